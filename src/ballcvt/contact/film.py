@@ -1,0 +1,45 @@
+"""Central film thickness (Eq. 56): Hamrock-Dowson, in its dimensional form."""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["central_film_thickness"]
+
+
+def central_film_thickness(eta0, zeta, reduced_modulus, rx, entrainment_speed, load,
+                           ellipticity):
+    """Hamrock-Dowson central film thickness of an elliptical EHL contact.
+
+    ``H = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 exp(-0.73 k_e))``, ``h = H R_x``, with
+    ``U = eta_0 u_e / (E' R_x)``, ``G = zeta E'``, ``W = F_N / (E' R_x^2)``. This is the
+    paper's Eq. 56 written dimensionally (the equality is a test; MODEL.md section 3).
+
+    Parameters
+    ----------
+    eta0 : float
+        Viscosity at atmospheric pressure [Pa s].
+    zeta : float
+        Pressure-viscosity coefficient [1/Pa].
+    reduced_modulus : float
+        ``E'`` [Pa].
+    rx : array_like
+        Equivalent radius in the rolling direction ``R_x`` [m].
+    entrainment_speed : array_like
+        Mean surface speed ``u_e`` [m/s].
+    load : array_like
+        Normal load ``F_N`` [N].
+    ellipticity : array_like
+        ``k_e = a_y / a_x`` [-].
+
+    Returns
+    -------
+    ndarray
+        Central film thickness ``h`` [m].
+    """
+    rx = np.asarray(rx, dtype=float)
+    u = eta0 * np.abs(entrainment_speed) / (reduced_modulus * rx)
+    g = zeta * reduced_modulus
+    w = np.asarray(load, dtype=float) / (reduced_modulus * rx**2)
+    h_bar = 2.69 * u**0.67 * g**0.53 * w**-0.067 * (1.0 - 0.61 * np.exp(-0.73 * ellipticity))
+    return h_bar * rx

@@ -1,0 +1,159 @@
+"""Quadrature rules on the unit disc ``X^2 + Y^2 <= 1`` (the normalised contact ellipse).
+
+The traction integrand has a pole at ``(0, Y_p)`` where the sliding speed vanishes and
+its direction jumps (MODEL.md section 8). Three rules, each with ``n_radial x n_angular``
+nodes and weights summing to the disc area ``pi``:
+
+``centred``
+    Polar grid about the centre; converges algebraically when the pole is inside.
+``pole`` (default)
+    Pole inside: polar grid about the pole. Pole outside but near (``|Y_p| < 2``): a fan of
+    rays from the pole across the disc. Far pole: the centred grid. In each case the
+    integrand is smooth in the grid coordinates and the rule converges spectrally.
+
+Radial coordinates are mapped so that the Hertz factor ``sqrt(1 - X^2 - Y^2)`` becomes
+smooth: ``r = t (2 - t)`` on rays ending on the boundary, ``s = cos(theta)`` on chords.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+__all__ = ["Quadrature", "REFERENCE", "gauss_legendre", "centred_rule", "pole_rule", "disc_rule", "METHODS"]
+
+METHODS = ("pole", "centred")
+#: Beyond this |Y_p| the pole is far enough outside for the centred rule.
+FAR_POLE = 2.0
+
+
+@dataclass(frozen=True)
+class Quadrature:
+    """Choice of quadrature rule for the traction integrals.
+
+    Attributes
+    ----------
+    method : {"pole", "centred"}
+        Pole-centred (default, spectral) or centred (algebraic) rule.
+    n_radial, n_angular : int
+        Nodes along the rays and around the pole. The radial direction carries the
+        sharp viscous-to-limiting-shear ring near the contact edge and needs more nodes.
+    """
+
+    method: str = "pole"
+    n_radial: int = 32
+    n_angular: int = 12
+
+    def __post_init__(self):
+        if self.method not in METHODS:
+            raise ValueError(f"quadrature method must be one of {METHODS}, got {self.method!r}")
+        if self.n_radial < 2 or self.n_angular < 2:
+            raise ValueError("quadrature needs at least 2 x 2 nodes")
+
+
+#: Converged high-order reference rule (MODEL.md section 8).
+REFERENCE = Quadrature("pole", 96, 64)
+
+
+@lru_cache(maxsize=64)
+def gauss_legendre(n: int, a: float = 0.0, b: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights on ``[a, b]`` (cached, read-only)."""
+    x, w = np.polynomial.legendre.leggauss(n)
+    x = 0.5 * (b - a) * x + 0.5 * (b + a)
+    w = 0.5 * (b - a) * w
+    x.flags.writeable = False
+    w.flags.writeable = False
+    return x, w
+
+
+def _radial(n_radial: int):
+    t, wt = gauss_legendre(n_radial)
+    return t * (2.0 - t), 2.0 * (1.0 - t) * wt          # r(t), dr/dt * w
+
+
+def centred_rule(n_radial: int, n_angular: int, shape=()) -> tuple[np.ndarray, ...]:
+    """Polar rule about the disc centre.
+
+    Returns
+    -------
+    X, Y, W : ndarray
+        Nodes and weights, shape ``shape + (n_radial * n_angular,)`` [-].
+    """
+    r, wr = _radial(n_radial)
+    psi = 2.0 * np.pi * np.arange(n_angular) / n_angular
+    x = (r[:, None] * np.cos(psi)).ravel()
+    y = (r[:, None] * np.sin(psi)).ravel()
+    w = (r * wr)[:, None] * np.full(n_angular, 2.0 * np.pi / n_angular)
+    full = shape + (x.size,)
+    return (np.broadcast_to(x, full), np.broadcast_to(y, full), np.broadcast_to(w.ravel(), full))
+
+
+def _inner_pole_rule(yp, n_radial, n_angular):
+    """Rays from an inside pole ``(0, yp)``, ``|yp| < 1``, to the boundary."""
+    r01, wr = _radial(n_radial)
+    phi = 2.0 * np.pi * np.arange(n_angular) / n_angular
+    sp, cp = np.sin(phi), np.cos(phi)
+    yp = yp[:, None]
+    b = yp * sp
+    reach = -b + np.sqrt(b * b + (1.0 - yp * yp))                   # (m, n_angular)
+    rho = reach[:, None, :] * r01[None, :, None]                     # (m, n_r, n_a)
+    x = rho * cp
+    y = yp[:, None] + rho * sp
+    w = rho * reach[:, None, :] * wr[None, :, None] * (2.0 * np.pi / n_angular)
+    m = yp.shape[0]
+    return x.reshape(m, -1), y.reshape(m, -1), w.reshape(m, -1)
+
+
+def _outer_pole_rule(yp, n_radial, n_angular):
+    """A fan of chords from an outside pole ``(0, yp)``, ``1 <= |yp|``, across the disc."""
+    wv, ww = gauss_legendre(n_angular, -np.pi / 2, np.pi / 2)
+    th, wth = gauss_legendre(n_radial, 0.0, np.pi)
+    d = np.abs(yp)[:, None]                                          # (m, 1)
+    e = -np.sign(yp)[:, None, None]
+    sin_b = np.sin(wv) / d                                           # (m, n_a)
+    cos_b = np.sqrt(1.0 - sin_b**2)
+    cw = np.cos(wv)
+    rho = (d * cos_b)[:, None, :] + cw[None, None, :] * np.cos(th)[None, :, None]
+    x = rho * sin_b[:, None, :]
+    y = yp[:, None, None] + e * rho * cos_b[:, None, :]
+    w = (rho * (cw * ww)[None, None, :] * (np.sin(th) * wth)[None, :, None]
+         * (cw / (d * cos_b))[:, None, :])
+    m = yp.shape[0]
+    return x.reshape(m, -1), y.reshape(m, -1), w.reshape(m, -1)
+
+
+def pole_rule(y_pole, n_radial: int, n_angular: int) -> tuple[np.ndarray, ...]:
+    """Pole-centred rule for poles at ``(0, y_pole)`` (any shape, ``inf`` allowed).
+
+    Returns
+    -------
+    X, Y, W : ndarray
+        Shape ``y_pole.shape + (n_radial * n_angular,)`` [-].
+    """
+    yp = np.asarray(y_pole, dtype=float)
+    flat = yp.ravel()
+    n = n_radial * n_angular
+    x = np.empty((flat.size, n))
+    y = np.empty((flat.size, n))
+    w = np.empty((flat.size, n))
+    a = np.abs(flat)
+    for mask, rule in ((a < 1.0, _inner_pole_rule),
+                       ((a >= 1.0) & (a < FAR_POLE), _outer_pole_rule)):
+        if mask.any():
+            x[mask], y[mask], w[mask] = rule(flat[mask], n_radial, n_angular)
+    far = ~(a < FAR_POLE)
+    if far.any():
+        x[far], y[far], w[far] = centred_rule(n_radial, n_angular, (int(far.sum()),))
+    shape = yp.shape + (n,)
+    return x.reshape(shape), y.reshape(shape), w.reshape(shape)
+
+
+def disc_rule(method: str, y_pole, n_radial: int, n_angular: int) -> tuple[np.ndarray, ...]:
+    """Dispatch to `pole_rule` or `centred_rule` by ``method`` (one of `METHODS`)."""
+    if method == "pole":
+        return pole_rule(y_pole, n_radial, n_angular)
+    if method == "centred":
+        return centred_rule(n_radial, n_angular, np.shape(y_pole))
+    raise ValueError(f"quadrature method must be one of {METHODS}, got {method!r}")

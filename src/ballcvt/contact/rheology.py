@@ -1,0 +1,79 @@
+"""Traction-fluid rheology: Roelands viscosity, limiting shear stress, shear law.
+
+Eqs. 51, 53 and 54 of the paper, as corrected in MODEL.md section 3. Pure functions.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["roelands_viscosity", "limiting_shear_stress", "saturation_factor"]
+
+
+def roelands_viscosity(pressure, eta0, eta_inf, pole_pressure, index):
+    """Roelands pressure-viscosity law (Eq. 51, with ``1 + p / c_p``, MODEL.md 3).
+
+    ``log(eta / eta_0) = [(1 + p / c_p)^Z_1 - 1] log(eta_0 / eta_inf)``.
+
+    Parameters
+    ----------
+    pressure : array_like
+        Local pressure ``p`` >= 0 [Pa].
+    eta0 : float
+        Viscosity at atmospheric pressure [Pa s].
+    eta_inf : float
+        Pole viscosity [Pa s].
+    pole_pressure : float
+        Pole pressure ``c_p`` [Pa].
+    index : float
+        Viscosity-pressure index ``Z_1`` [-].
+
+    Returns
+    -------
+    ndarray
+        Viscosity [Pa s].
+    """
+    p = np.asarray(pressure, dtype=float)
+    return eta0 * np.exp(np.log(eta0 / eta_inf) * np.expm1(index * np.log1p(p / pole_pressure)))
+
+
+def limiting_shear_stress(pressure, tau_l0, slope):
+    """``tau_L = tau_L0 + a p`` (Eq. 54).
+
+    Parameters
+    ----------
+    pressure : array_like
+        Local pressure [Pa].
+    tau_l0 : float
+        Limiting shear stress at atmospheric pressure [Pa].
+    slope : float
+        Pressure coefficient ``a`` [-].
+
+    Returns
+    -------
+    ndarray
+        Limiting shear stress [Pa].
+    """
+    return tau_l0 + slope * np.asarray(pressure, dtype=float)
+
+
+def saturation_factor(x):
+    """``(1 - exp(-x)) / x`` with its limit 1 at ``x = 0`` (the shear law of Eq. 53).
+
+    The shear stress of Eq. 53 is ``tau = (eta / h) * saturation_factor(eta |V| / (h tau_L)) V``,
+    which equals ``tau_L (1 - exp(-eta |V| / (h tau_L))) V / |V|`` and never divides 0 by 0.
+
+    Parameters
+    ----------
+    x : array_like
+        ``eta |V| / (h tau_L)`` >= 0 [-].
+
+    Returns
+    -------
+    ndarray
+        Factor in (0, 1] [-].
+    """
+    x = np.asarray(x, dtype=float)
+    small = x < 1e-8
+    safe = np.where(small, 1.0, x)
+    return np.where(small, 1.0 - 0.5 * x, -np.expm1(-safe) / safe)

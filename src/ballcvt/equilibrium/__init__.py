@@ -1,0 +1,6 @@
+"""Layer 4: the equilibrium problem and its residual (MODEL.md section 5)."""
+
+from .problem import EquilibriumProblem, build_problem
+from .residual import EquilibriumState, evaluate, residual
+
+__all__ = ["EquilibriumProblem", "build_problem", "EquilibriumState", "evaluate", "residual"]

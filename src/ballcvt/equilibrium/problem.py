@@ -1,0 +1,128 @@
+"""The creep-independent part of an equilibrium problem: geometry, loads, Hertz contacts.
+
+An `EquilibriumProblem` holds one operating point or a batch of them (leading axes of
+every array); the per-contact arrays have the contacts on the last axis.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..contact.hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
+from ..geometry.kinematics import check_ratio, rolling_radius, spin_axis_projection, \
+    tilt_from_ratio
+from ..geometry.layout import ContactLayout, contact_layout
+from ..errors import InputError
+from ..params.models import Design, Fluid
+
+__all__ = ["EquilibriumProblem", "build_problem"]
+
+
+@dataclass(frozen=True)
+class EquilibriumProblem:
+    """Everything about an operating point that does not depend on the creeps.
+
+    Attributes
+    ----------
+    design, fluid : Design, Fluid
+        Parameter sets.
+    layout : ContactLayout
+        Contact layout of the architecture.
+    ratio, tilt, output_torque, clamp_force, input_speed : ndarray
+        Ideal ratio [-], tilt [rad], ``T_2`` [N m], ``F_N0`` [N], ``omega_0`` [rad/s];
+        shape ``(...)``.
+    rho, sz : ndarray
+        Rolling radius factor ``rho_c`` and ``s . z_c`` (MODEL.md 1), ``(..., n_c)`` [-].
+    load : ndarray
+        Normal loads ``F_Nc`` [N], ``(..., n_c)``.
+    radius : ndarray
+        Contact radii ``r_c`` [m], ``(n_c,)``.
+    rx : ndarray
+        Equivalent rolling-direction radii ``R_x`` [m], ``(n_c,)``.
+    ax, ay, p_max : ndarray
+        Hertz semi-axes [m] and peak pressure [Pa], ``(..., n_c)``.
+    """
+
+    design: Design
+    fluid: Fluid
+    layout: ContactLayout
+    ratio: np.ndarray
+    tilt: np.ndarray
+    output_torque: np.ndarray
+    clamp_force: np.ndarray
+    input_speed: np.ndarray
+    rho: np.ndarray
+    sz: np.ndarray
+    load: np.ndarray
+    radius: np.ndarray
+    rx: np.ndarray
+    ax: np.ndarray
+    ay: np.ndarray
+    p_max: np.ndarray
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Batch shape ``(...)``."""
+        return self.tilt.shape
+
+    @property
+    def reduced_modulus(self) -> float:
+        """``E'`` [Pa]."""
+        return self.design.material.reduced_modulus
+
+    @property
+    def torque_scale(self) -> np.ndarray:
+        """``n F_N0 r_S``, the scale of the body-torque residuals [N m]."""
+        return self.design.n_rollers * self.clamp_force * self.design.roller_radius
+
+
+def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output_torque,
+                  clamp_force, input_speed) -> EquilibriumProblem:
+    """Assemble an `EquilibriumProblem`; the four operating inputs broadcast together.
+
+    Parameters
+    ----------
+    design, fluid : Design, Fluid
+        Parameter sets.
+    architecture : {"double", "single"}
+        Idler architecture.
+    ratio : array_like
+        Ideal speed ratio ``tau_ID`` within `ratio_range` [-].
+    output_torque : array_like
+        Output torque ``T_2`` >= 0 [N m].
+    clamp_force : array_like
+        Input-contact normal load ``F_N0`` > 0 [N].
+    input_speed : array_like
+        Input speed ``omega_0`` > 0 [rad/s].
+
+    Returns
+    -------
+    EquilibriumProblem
+    """
+    layout = contact_layout(design, architecture)
+    ratio, t2, fn0, w0 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
+                                               (ratio, output_torque, clamp_force, input_speed)))
+    _check("output_torque", t2, "N m", strict=False)
+    _check("clamp_force", fn0, "N")
+    _check("input_speed", w0, "rad/s")
+    check_ratio(design, ratio)
+    tilt = tilt_from_ratio(ratio, design.theta0, design.theta2, design.aspect_ratio)
+    rs = design.roller_radius
+    rx = rolling_curvature_ratio(layout.radius, design.aspect_ratio) * rs
+    ry = transverse_curvature_ratio(layout.groove_ratio) * rs
+    load = fn0[..., None] * layout.load_factor
+    ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
+    return EquilibriumProblem(
+        design=design, fluid=fluid, layout=layout, ratio=ratio, tilt=tilt, output_torque=t2,
+        clamp_force=fn0, input_speed=w0, rho=rolling_radius(layout, tilt),
+        sz=spin_axis_projection(layout, tilt), load=load, radius=layout.radius * rs, rx=rx,
+        ax=ax, ay=ay, p_max=p_max)
+
+
+def _check(name: str, value: np.ndarray, unit: str, strict: bool = True) -> None:
+    ok = np.isfinite(value) & ((value > 0) if strict else (value >= 0))
+    if not np.all(ok):
+        bad = float(value[~ok].flat[0]) if value.ndim else float(value)
+        raise InputError(name, bad, f"{'>' if strict else '>='} 0 {unit} and finite")

@@ -1,0 +1,152 @@
+"""The equilibrium residual (MODEL.md section 5), separate from any solver.
+
+Unknowns: the creep coefficients of all contacts. Given them, `evaluate` computes the
+speeds, spins, film thicknesses, traction and spin coefficients, contact forces and
+moments, axle reactions, bearing torques and the residuals of
+
+* the ball's moment balance about its spin axis ``s``;
+* each idler's torque balance about ``j``;
+* the output disc's torque balance (the rollers' torque on it equals ``T_2``).
+
+Balances in vector form (MODEL.md 5), per ball, with ``F_c = kappa_c mu_c F_Nc`` along
+``+i`` and the spin moment ``T_c = -chi_c F_Nc r_c`` about ``z_c``:
+
+* ``M.s = sum_c (r_S rho_c F_c + (s.z_c) T_c)``, residual ``(M.s - T_BLS) / (F_N0 r_S)``
+  (the corrected Eq. 18/33);
+* ``M.u = sum_c (-r_S (s.z_c) F_c + rho_c T_c)`` gives ``F_Ra - F_Rb = 2 M.u / r_S``
+  (Eq. 19/34) and ``F_Ra + F_Rb = -sum_c F_c`` (Eq. 17/35);
+* body torque ``T_body,c = n (-F_c r_c - T_c z_c.j)``; idler residual
+  ``(T_body - sign(Omega) T_BL) / (n F_N0 r_S)``; output ``(T_body,2 - T_2) / (n F_N0 r_S)``;
+  input torque ``T_0 = -T_body,0`` (Eqs. 21-27, 32).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..bearings.friction import load_dependent_torque, speed_dependent_torque
+from ..contact.film import central_film_thickness
+from ..contact.quadrature import Quadrature
+from ..contact.traction import traction_coefficients
+from ..geometry.kinematics import body_speeds, creep_term, entrainment_factor, spin
+from .problem import EquilibriumProblem
+
+__all__ = ["EquilibriumState", "evaluate", "residual"]
+
+
+@dataclass(frozen=True)
+class EquilibriumState:
+    """Every quantity that follows from a creep vector (arrays ``(...)`` or ``(..., n_c)``).
+
+    Attributes
+    ----------
+    creep : ndarray
+        Creep coefficients (Eq. 7) [-].
+    omega_s : ndarray
+        Ball speed about its axis [rad/s].
+    omega : ndarray
+        Signed body speeds about ``j`` [rad/s].
+    spin : ndarray
+        Spin coefficients (Eqs. 11-14) [-].
+    u_ref : ndarray
+        Body surface speed ``|Omega_c| r_c`` [m/s].
+    film : ndarray
+        Central film thickness [m].
+    mu, chi : ndarray
+        Traction and spin-moment coefficients (Eqs. 30-31) [-].
+    force : ndarray
+        Tangential force on the ball along ``+i``, ``F_c`` [N].
+    moment : ndarray
+        Spin moment on the ball about ``z_c``, ``T_c`` [N m].
+    body_torque : ndarray
+        Torque of the ``n`` balls on each body about ``j`` [N m].
+    axle_reactions : ndarray
+        ``(F_Ra, F_Rb)`` along ``i`` [N], shape ``(..., 2)``.
+    roller_bearing_torque : ndarray
+        ``T_BLS`` [N m].
+    idler_bearing_torque : ndarray
+        ``T_BL,c`` of each contact's body (0 where not an idler) [N m].
+    residual : ndarray
+        Dimensionless residuals, shape ``(..., n_c)``: ball moment, idlers, output.
+    """
+
+    creep: np.ndarray
+    omega_s: np.ndarray
+    omega: np.ndarray
+    spin: np.ndarray
+    u_ref: np.ndarray
+    film: np.ndarray
+    mu: np.ndarray
+    chi: np.ndarray
+    force: np.ndarray
+    moment: np.ndarray
+    body_torque: np.ndarray
+    axle_reactions: np.ndarray
+    roller_bearing_torque: np.ndarray
+    idler_bearing_torque: np.ndarray
+    residual: np.ndarray
+
+    @property
+    def input_torque(self) -> np.ndarray:
+        """Input torque ``T_0 = -T_body,0`` [N m]."""
+        return -self.body_torque[..., 0]
+
+
+def evaluate(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()
+             ) -> EquilibriumState:
+    """Evaluate every balance of ``problem`` at the creep vector ``creep``.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating point(s).
+    creep : array_like
+        Creep coefficients, shape ``problem.shape + (n_c,)``, each < 1 [-].
+    quadrature : Quadrature
+        Rule for the traction integrals.
+
+    Returns
+    -------
+    EquilibriumState
+    """
+    pb, lay, des, fl = problem, problem.layout, problem.design, problem.fluid
+    creep = np.asarray(creep, dtype=float)
+    rs, n = des.roller_radius, des.n_rollers
+    omega_s, omega = body_speeds(lay, pb.tilt, creep, pb.input_speed)
+    sigma = spin(lay, pb.tilt, omega_s, omega)
+    u_ref = np.abs(omega) * pb.radius
+    film = central_film_thickness(fl.viscosity, fl.pressure_viscosity_coefficient,
+                                  pb.reduced_modulus, pb.rx, u_ref * entrainment_factor(creep),
+                                  pb.load, pb.ay / pb.ax)
+    mu, chi = traction_coefficients(creep_term(creep), sigma, pb.ax, pb.ay, pb.p_max, pb.load,
+                                    pb.radius, u_ref, film, fl, quadrature)
+    force = lay.kappa * mu * pb.load
+    moment = -chi * pb.load * pb.radius
+    m_s = np.sum(rs * pb.rho * force + pb.sz * moment, axis=-1)
+    m_u = np.sum(-rs * pb.sz * force + pb.rho * moment, axis=-1)
+    f_sum = -np.sum(force, axis=-1)
+    axle = np.stack([0.5 * (f_sum + 2.0 * m_u / rs), 0.5 * (f_sum - 2.0 * m_u / rs)], axis=-1)
+    bm, nu = des.bearings, fl.kinematic_viscosity
+    t_bls = (2.0 * speed_dependent_torque(omega_s, des.roller_bearing_diameter, nu, bm)
+             + np.sum(load_dependent_torque(axle, des.roller_bearing_diameter, bm), axis=-1))
+    idler_thrust = n * pb.load * np.abs(lay.z_j)
+    t_bl = np.where(lay.is_idler,
+                    speed_dependent_torque(omega, des.idler_bearing_diameter, nu, bm)
+                    + load_dependent_torque(idler_thrust, des.idler_bearing_diameter, bm), 0.0)
+    body = n * (-force * pb.radius - moment * lay.z_j)
+    scale = pb.torque_scale[..., None]
+    res = np.empty_like(creep)
+    res[..., 0] = (m_s - np.sign(omega_s) * t_bls) / (pb.clamp_force * rs)
+    res[..., 1:-1] = ((body - np.sign(omega) * t_bl) / scale)[..., 1:-1]
+    res[..., -1] = (body[..., -1] - pb.output_torque) / scale[..., 0]
+    return EquilibriumState(creep=creep, omega_s=omega_s, omega=omega, spin=sigma, u_ref=u_ref,
+                            film=film, mu=mu, chi=chi, force=force, moment=moment,
+                            body_torque=body, axle_reactions=axle, roller_bearing_torque=t_bls,
+                            idler_bearing_torque=t_bl, residual=res)
+
+
+def residual(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()):
+    """Dimensionless residual vector of `evaluate` (shape ``(..., n_c)``)."""
+    return evaluate(problem, creep, quadrature).residual

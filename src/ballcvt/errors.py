@@ -1,0 +1,60 @@
+"""Exceptions with messages a user can act on.
+
+Every error names the quantity, the value it had and the allowed range, in one line,
+so that the command-line interface can print it as is (exit status 2).
+"""
+
+from __future__ import annotations
+
+__all__ = ["BallCVTError", "InputError", "TractionLimitError", "ConvergenceError"]
+
+
+class BallCVTError(Exception):
+    """Base class of every error ballcvt raises on purpose."""
+
+
+class InputError(BallCVTError, ValueError):
+    """An input quantity is outside its allowed range.
+
+    Parameters
+    ----------
+    quantity : str
+        Name of the quantity (as the user wrote it, e.g. ``clamp_force``).
+    value : object
+        The offending value.
+    allowed : str
+        Human-readable allowed range, e.g. ``"> 0 N"``.
+    message : str, optional
+        Full one-line message, when the standard wording does not fit (a missing key).
+    """
+
+    def __init__(self, quantity: str, value: object, allowed: str, message: str | None = None):
+        self.quantity = quantity
+        self.value = value
+        self.allowed = allowed
+        super().__init__(
+            message or f"{quantity} = {_fmt(value)} is out of range: allowed {allowed}"
+        )
+
+
+class TractionLimitError(InputError):
+    """The requested output torque exceeds the traction capacity of the drive."""
+
+    def __init__(self, value: float, limit: float, context: str = ""):
+        self.limit_torque = limit
+        BallCVTError.__init__(
+            self,
+            f"output_torque = {_fmt(value)} N m exceeds the traction capacity "
+            f"{limit:.4g} N m{context}: allowed 0 <= output_torque <= {limit:.4g} N m",
+        )
+        self.quantity, self.value, self.allowed = "output_torque", value, f"<= {limit:.4g} N m"
+
+
+class ConvergenceError(BallCVTError, RuntimeError):
+    """The equilibrium solver did not converge; never returned silently."""
+
+
+def _fmt(value: object) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return repr(value) if isinstance(value, str) else str(value)

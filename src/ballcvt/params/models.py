@@ -1,0 +1,216 @@
+"""Parameter sets: drive design, material, bearings, fluid and operating point.
+
+All models are frozen pydantic models, validated on construction. No field has a
+default: the numbers live in named parameter files (``ballcvt/params/data``), so a
+design file that omits a key is an error, never a silent fallback. Every field's
+unit is in its ``unit`` metadata and in its description. Angles are stored in degrees
+(the name says ``_deg``); everything else is SI.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+from ..errors import InputError
+
+__all__ = [
+    "ParameterModel",
+    "Material",
+    "BearingModel",
+    "Design",
+    "Fluid",
+    "OperatingPoint",
+    "Architecture",
+    "ARCHITECTURES",
+]
+
+Architecture = Literal["double", "single"]
+ARCHITECTURES: tuple[str, ...] = ("double", "single")
+
+
+def _f(unit: str, description: str, **constraints: Any) -> Any:
+    """A required field with its unit recorded in the schema."""
+    return Field(..., description=f"{description} [{unit}]", json_schema_extra={"unit": unit},
+                 **constraints)
+
+
+_BOUND_TEXT = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
+
+
+class ParameterModel(BaseModel):
+    """Frozen, strict base model whose validation errors are one-line `InputError`."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid", allow_inf_nan=True)
+
+    def __init__(self, **data: Any) -> None:
+        try:
+            super().__init__(**data)
+        except ValidationError as exc:
+            raise _as_input_error(type(self), exc) from None
+
+    @classmethod
+    def unit(cls, name: str) -> str:
+        """Unit of field ``name`` (``"-"`` for a dimensionless one)."""
+        extra = cls.model_fields[name].json_schema_extra or {}
+        return str(extra.get("unit", "-"))
+
+    def replace(self, **changes: Any):
+        """Return a validated copy with some fields changed."""
+        return type(self)(**{**self.model_dump(), **changes})
+
+
+def _as_input_error(model: type[BaseModel], exc: ValidationError) -> InputError:
+    err = exc.errors()[0]
+    loc = [str(p) for p in err["loc"]]
+    name = ".".join(loc) or model.__name__
+    kind = err["type"]
+    inner = (err.get("ctx") or {}).get("error")
+    if isinstance(inner, InputError):  # a nested parameter model already explained itself
+        qualified = ".".join(loc + [inner.quantity])
+        return InputError(qualified, inner.value, inner.allowed,
+                          message=str(inner).replace(inner.quantity, qualified, 1))
+    if kind == "missing":
+        return InputError(name, None, "a value", message=f"{model.__name__} is incomplete: "
+                          f"required key '{name}' is missing")
+    if kind == "extra_forbidden":
+        return InputError(name, err.get("input"), "known keys only",
+                          message=f"{model.__name__}: unknown key '{name}'")
+    field = _field(model, loc)
+    bounds = []
+    for meta in field.metadata if field is not None else ():
+        for attr, text in _BOUND_TEXT.items():
+            value = getattr(meta, attr, None)
+            if value is not None and value not in (math.inf, -math.inf):
+                bounds.append(f"{text} {value:g}")
+    unit = str((field.json_schema_extra or {}).get("unit", "")) if field is not None else ""
+    if bounds:
+        allowed = " and ".join(bounds) + (f" {unit}" if unit not in ("", "-") else "")
+    else:
+        allowed = err["msg"].replace("Input should be ", "")
+    return InputError(name, err.get("input"), allowed)
+
+
+def _field(model: type[BaseModel], loc: list[str]) -> Any:
+    cls: Any = model
+    field = None
+    for part in loc:
+        field = getattr(cls, "model_fields", {}).get(part)
+        if field is None:
+            return None
+        cls = field.annotation
+    return field
+
+
+class Material(ParameterModel):
+    """Elastic properties of rollers, discs and idlers (all of one material)."""
+
+    youngs_modulus: float = _f("Pa", "Young's modulus E", gt=0, lt=math.inf)
+    poisson_ratio: float = _f("-", "Poisson ratio nu", ge=0, lt=0.5)
+
+    @property
+    def reduced_modulus(self) -> float:
+        """Plane-strain modulus ``E' = E / (1 - nu^2)`` (MODEL.md section 3) [Pa]."""
+        return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
+
+
+class BearingModel(ParameterModel):
+    """Rolling-bearing friction torque coefficients of Eqs. 15-16 (Harris / SKF form)."""
+
+    f0: float = _f("-", "load-independent coefficient f0 of Eq. 15", ge=0, lt=math.inf)
+    f1: float = _f("-", "load-dependent coefficient f1 of Eq. 16", ge=0, lt=math.inf)
+    speed_exponent: float = _f("-", "exponent of (eta_c N) in Eq. 15 (printed 0.69; "
+                               "Palmgren's classical value is 2/3)", gt=0, lt=2)
+    speed_threshold: float = _f("mm^2/s rpm", "eta_c N below which Eq. 15 is constant",
+                                ge=0, lt=math.inf)
+    load_exponent: float = _f("-", "exponent a of the bearing load P in Eq. 16", gt=0, lt=3)
+    diameter_exponent: float = _f("-", "exponent b of the mean diameter in Eq. 16", gt=0, lt=3)
+
+
+class Design(ParameterModel):
+    """Geometry of a planetary ball variator (Sec. II.A, Table I, MODEL.md section 1).
+
+    Lengths in metres, angles in degrees (names ending in ``_deg``).
+    """
+
+    name: str = Field(..., description="label of the design")
+    aspect_ratio: float = _f("-", "k = r_1 / r_S (Eq. 2)", gt=0, lt=100)
+    roller_radius: float = _f("m", "ball radius r_S", gt=0, lt=10)
+    theta0_deg: float = _f("deg", "input disc contact angle theta_0", gt=0, lt=90)
+    theta2_deg: float = _f("deg", "output disc contact angle theta_2", gt=0, lt=90)
+    alpha_deg: float = _f("deg", "double-idler contact angle alpha", ge=0, lt=90)
+    n_rollers: int = _f("-", "number of balls n", ge=1, le=64)
+    roller_bearing_diameter: float = _f("m", "ball axle bearing mean diameter d_S",
+                                        gt=0, lt=10)
+    idler_bearing_diameter: float = _f("m", "idler bearing mean diameter d_I", gt=0, lt=10)
+    disc_groove_ratio: float = _f("-", "r_02/r_S = r_22/r_S: transverse (meridian) radius "
+                                  "of the concave disc tracks over r_S, > 1; inf for straight",
+                                  gt=1)
+    idler_groove_ratio: float = _f("-", "r_a2/r_S = r_b2/r_S of the double-idler tracks, > 1; "
+                                   "inf for straight", gt=1)
+    single_idler_groove_ratio: float = _f("-", "transverse track radius of the single idler "
+                                          "over r_S; inf = straight cylinder (MODEL.md 1)", gt=1)
+    tilt_safety_factor: float = _f("-", "fraction of the Eq. 6 tilt limits that is usable "
+                                   "(Fig. 3 uses 0.8)", gt=0, le=1)
+    creep_limit: float = _f("-", "largest |creep| counted as traction (MODEL.md section 7)",
+                            gt=0, lt=1)
+    material: Material
+    bearings: BearingModel
+
+    @property
+    def theta0(self) -> float:
+        """Input contact angle [rad]."""
+        return math.radians(self.theta0_deg)
+
+    @property
+    def theta2(self) -> float:
+        """Output contact angle [rad]."""
+        return math.radians(self.theta2_deg)
+
+    @property
+    def alpha(self) -> float:
+        """Double-idler contact angle [rad]."""
+        return math.radians(self.alpha_deg)
+
+
+class Fluid(ParameterModel):
+    """Traction fluid (Table I, Appendix A, MODEL.md sections 3-4)."""
+
+    name: str = Field(..., description="label of the fluid")
+    viscosity: float = _f("Pa s", "absolute viscosity eta_0 at atmospheric pressure",
+                          gt=0, lt=math.inf)
+    roelands_index: float = _f("-", "Roelands viscosity-pressure index Z_1 (Eq. 51)",
+                               gt=0, lt=5)
+    pressure_viscosity_coefficient: float = _f("1/Pa", "zeta, for the film thickness (Eq. 56)",
+                                               ge=0, lt=1e-6)
+    limiting_shear_stress: float = _f("Pa", "tau_L0 at atmospheric pressure (Eq. 54)",
+                                      gt=0, lt=math.inf)
+    limiting_shear_slope: float = _f("-", "a in tau_L = tau_L0 + a p (Eq. 54)", ge=0, lt=1)
+    pole_pressure: float = _f("Pa", "Roelands pole pressure c_p (Eq. 51)", gt=0, lt=math.inf)
+    pole_viscosity: float = _f("Pa s", "Roelands pole viscosity eta_inf (Eq. 51)",
+                               gt=0, lt=math.inf)
+    density: float = _f("kg/m^3", "density, for the kinematic viscosity of Eq. 15 "
+                        "(an assumption of MODEL.md section 4)", gt=0, lt=math.inf)
+
+    @property
+    def kinematic_viscosity(self) -> float:
+        """``eta_0 / rho`` [m^2/s]."""
+        return self.viscosity / self.density
+
+
+class OperatingPoint(ParameterModel):
+    """A steady operating point: speed-ratio set-point, load torque, clamping, speed."""
+
+    ratio: float = _f("-", "ideal speed ratio tau_ID = omega_2 / omega_0 (Eq. 4)",
+                      gt=0, lt=math.inf)
+    output_torque: float = _f("N m", "output (load) torque T_2", ge=0, lt=math.inf)
+    clamp_force: float = _f("N", "normal load F_N0 at each input disc contact", gt=0,
+                            lt=math.inf)
+    input_speed: float = _f("rad/s", "input disc speed omega_0", gt=0, lt=math.inf)
+
+    @property
+    def input_speed_rpm(self) -> float:
+        """Input speed [rpm]."""
+        return self.input_speed * 30.0 / math.pi

@@ -1,0 +1,5 @@
+"""Layer 6: power losses and efficiency (Eqs. 9, 36-40, MODEL.md section 6)."""
+
+from .efficiency import Efficiency, PowerLosses, efficiency, power_losses
+
+__all__ = ["Efficiency", "PowerLosses", "efficiency", "power_losses"]

@@ -1,0 +1,106 @@
+"""Power losses (Eqs. 39-40) and efficiency two ways (Eq. 38 and Eq. 39).
+
+Both are computed from a solved `EquilibriumState`; at an equilibrium they agree to
+round-off, an identity of the balances that tests the signs (MODEL.md section 6).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem
+from ..equilibrium.residual import EquilibriumState
+from ..geometry.kinematics import creep_term
+
+__all__ = ["PowerLosses", "Efficiency", "power_losses", "efficiency"]
+
+
+@dataclass(frozen=True)
+class PowerLosses:
+    """Dissipated power [W] (Eq. 40, idler bearings counted once per idler, MODEL.md 6).
+
+    Attributes
+    ----------
+    creep, spin : ndarray
+        Per contact, summed over the ``n`` balls, shape ``(..., n_c)``.
+    roller_bearings : ndarray
+        ``n T_BLS |omega_S|``, shape ``(...)``.
+    idler_bearings : ndarray
+        ``T_BL,c |Omega_c|`` per contact (0 at the discs), shape ``(..., n_c)``.
+    """
+
+    creep: np.ndarray
+    spin: np.ndarray
+    roller_bearings: np.ndarray
+    idler_bearings: np.ndarray
+
+    @property
+    def bearing(self) -> np.ndarray:
+        """All bearing losses [W]."""
+        return self.roller_bearings + np.sum(self.idler_bearings, axis=-1)
+
+    @property
+    def total(self) -> np.ndarray:
+        """``P_loss = P_CR + P_SP + P_BL`` [W]."""
+        return np.sum(self.creep + self.spin, axis=-1) + self.bearing
+
+
+@dataclass(frozen=True)
+class Efficiency:
+    """Efficiencies [-]: speed (Eq. 9), torque (Eq. 37), overall by Eq. 38 and Eq. 39."""
+
+    speed: np.ndarray
+    torque: np.ndarray
+    overall: np.ndarray
+    from_losses: np.ndarray
+
+
+def power_losses(problem: EquilibriumProblem, state: EquilibriumState) -> PowerLosses:
+    """Creep, spin and bearing losses of a solved state (Eq. 40).
+
+    Creep loss per contact ``n |F_c| u_ref |c|`` (``u_ref c`` is the gross sliding speed:
+    ``|omega_0| r_0 C_0`` at the input, ``|omega_S| r_Sc C_c`` elsewhere); spin loss
+    ``n |T_c sigma_c Omega_c|``.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+    state : EquilibriumState
+
+    Returns
+    -------
+    PowerLosses
+    """
+    n = problem.design.n_rollers
+    creep = n * np.abs(state.force * state.u_ref * creep_term(state.creep))
+    spin = n * np.abs(state.moment * state.spin * state.omega)
+    roller = n * state.roller_bearing_torque * np.abs(state.omega_s)
+    idler = state.idler_bearing_torque * np.abs(state.omega)
+    return PowerLosses(creep=creep, spin=spin, roller_bearings=roller, idler_bearings=idler)
+
+
+def efficiency(problem: EquilibriumProblem, state: EquilibriumState,
+               losses: PowerLosses | None = None) -> Efficiency:
+    """Speed, torque and overall efficiency, the last by Eq. 38 and by Eq. 39.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+    state : EquilibriumState
+    losses : PowerLosses, optional
+        Computed if not given.
+
+    Returns
+    -------
+    Efficiency
+    """
+    losses = power_losses(problem, state) if losses is None else losses
+    c = state.creep
+    speed = (1.0 - c[..., 0]) * (1.0 - c[..., -1])                      # Eq. 9
+    t0 = state.input_torque
+    torque = problem.ratio * problem.output_torque / t0                 # Eq. 37
+    p0 = t0 * problem.input_speed
+    return Efficiency(speed=speed, torque=torque, overall=speed * torque,  # Eq. 38
+                      from_losses=1.0 - losses.total / p0)                # Eq. 39

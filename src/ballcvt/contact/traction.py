@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..params.models import Fluid
-from .quadrature import Quadrature, disc_rule
+from .quadrature import Quadrature, centred_rule, disc_rule
 from .rheology import limiting_shear_stress, roelands_viscosity, saturation_factor
 
 __all__ = ["pole_position", "traction_coefficients"]
@@ -73,11 +73,42 @@ def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, 
     mu, chi : ndarray
         Traction coefficient (Eq. 30) and spin-moment coefficient (Eq. 31) [-].
     """
-    c, sg, ax, ay, pm, fn, rc, u, h = np.broadcast_arrays(
-        *(np.asarray(v, dtype=float) for v in
-          (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)))
-    yp = pole_position(c, sg, ay, rc)
-    x, y, w = disc_rule(quadrature.method, yp, quadrature.n_radial, quadrature.n_angular)
+    args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
+                                 (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)))
+    shape = args[0].shape
+    flat = [a.ravel() for a in args]
+    yp = pole_position(flat[0], flat[1], flat[3], flat[6])
+    q = quadrature
+    mu, chi = _integrate(disc_rule(q.method, yp, q.n_radial, q.n_angular), flat, fluid)
+    if q.method == "pole":
+        # Blend into the centred rule as the pole nears the edge, so that mu and chi stay
+        # continuous (C1) where the pole leaves the ellipse and the rule changes.
+        weight = _pole_weight(np.abs(yp))
+        mix = (weight > 0.0) & (weight < 1.0)
+        if mix.any():
+            sub = [a[mix] for a in flat]
+            mu_c, chi_c = _integrate(centred_rule(q.n_radial, q.n_angular, (int(mix.sum()),)),
+                                     sub, fluid)
+            wm = weight[mix]
+            mu[mix] = wm * mu[mix] + (1.0 - wm) * mu_c
+            chi[mix] = wm * chi[mix] + (1.0 - wm) * chi_c
+    return mu.reshape(shape), chi.reshape(shape)
+
+
+#: Range of |Y_p| over which the pole-centred rule hands over to the centred rule.
+BLEND = (0.8, 1.0)
+
+
+def _pole_weight(abs_yp):
+    """Weight of the pole-centred rule: 1 below ``BLEND[0]``, 0 from ``BLEND[1]`` (C1)."""
+    t = np.clip((BLEND[1] - abs_yp) / (BLEND[1] - BLEND[0]), 0.0, 1.0)
+    return t * t * (3.0 - 2.0 * t)
+
+
+def _integrate(nodes, params, fluid: Fluid):
+    """Quadrature of Eqs. 57-66 for flat parameter arrays on the given nodes."""
+    x, y, w = nodes
+    c, sg, ax, ay, pm, fn, rc, u, h = params
     ex = lambda v: v[..., None]  # noqa: E731  (broadcast over the nodes)
     p = ex(pm) * np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
     eta = roelands_viscosity(p, fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure,
@@ -85,8 +116,7 @@ def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, 
     tau_l = limiting_shear_stress(p, fluid.limiting_shear_stress, fluid.limiting_shear_slope)
     vx = ex(u) * (ex(c) - ex(sg * ay / rc) * y)
     vy = ex(u * sg * ax / rc) * x
-    speed = np.hypot(vx, vy)
-    g = eta / ex(h) * saturation_factor(eta * speed / (ex(h) * tau_l))
+    g = eta / ex(h) * saturation_factor(eta * np.hypot(vx, vy) / (ex(h) * tau_l))
     tx = g * vx
     ty = g * vy
     area = ax * ay

@@ -9,6 +9,7 @@ unit is in its ``unit`` metadata and in its description. Angles are stored in de
 
 from __future__ import annotations
 
+import difflib
 import math
 from typing import Any, Literal
 
@@ -63,7 +64,9 @@ class ParameterModel(BaseModel):
 
 
 def _as_input_error(model: type[BaseModel], exc: ValidationError) -> InputError:
-    err = exc.errors()[0]
+    errors = exc.errors()
+    # A misspelt key shows as an unknown key and a missing one: report the typo first.
+    err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
     loc = [str(p) for p in err["loc"]]
     name = ".".join(loc) or model.__name__
     kind = err["type"]
@@ -76,8 +79,11 @@ def _as_input_error(model: type[BaseModel], exc: ValidationError) -> InputError:
         return InputError(name, None, "a value", message=f"{model.__name__} is incomplete: "
                           f"required key '{name}' is missing")
     if kind == "extra_forbidden":
+        parent = _field(model, loc[:-1]).annotation if len(loc) > 1 else model
+        close = difflib.get_close_matches(loc[-1], list(getattr(parent, "model_fields", {})), 1)
+        hint = f" (did you mean '{close[0]}'?)" if close else ""
         return InputError(name, err.get("input"), "known keys only",
-                          message=f"{model.__name__}: unknown key '{name}'")
+                          message=f"{model.__name__}: unknown key '{name}'{hint}")
     field = _field(model, loc)
     bounds = []
     for meta in field.metadata if field is not None else ():
@@ -123,8 +129,9 @@ class BearingModel(ParameterModel):
     f1: float = _f("-", "load-dependent coefficient f1 of Eq. 16", ge=0, lt=math.inf)
     speed_exponent: float = _f("-", "exponent of (eta_c N) in Eq. 15 (printed 0.69; "
                                "Palmgren's classical value is 2/3)", gt=0, lt=2)
-    speed_threshold: float = _f("mm^2/s rpm", "eta_c N below which Eq. 15 is constant",
-                                ge=0, lt=math.inf)
+    low_speed_factor: float = _f("-", "floor of (eta_c N)^e in Eq. 15 (160 as printed; the "
+                                 "floor makes Eq. 15 continuous, docs/model.md)",
+                                 ge=0, lt=math.inf)
     load_exponent: float = _f("-", "exponent a of the bearing load P in Eq. 16", gt=0, lt=3)
     diameter_exponent: float = _f("-", "exponent b of the mean diameter in Eq. 16", gt=0, lt=3)
 

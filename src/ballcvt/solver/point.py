@@ -2,14 +2,14 @@
 
 Strategy: MINPACK's hybrid Powell method (`scipy.optimize.root`, ``hybr``) with a
 forward-difference Jacobian that has an absolute step floor (creeps span 1e-15 to 0.4,
-MODEL.md section 8). If that fails, a continuation in output torque from zero, each step
-started from the last. A result is reported converged only if the final residual, evaluated
-afresh, is below the tolerance.
+MODEL.md section 8). If that fails (typically near the traction limit from a cold start),
+the bracketing solver of `ballcvt.solver.nested`, which cannot wander off. A result is
+reported converged only if the final residual, evaluated afresh, is below the tolerance.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import root
@@ -17,6 +17,7 @@ from scipy.optimize import root
 from ..contact.quadrature import Quadrature
 from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState, evaluate
+from .nested import NoBracketError, solve_nested
 
 __all__ = ["SolverOptions", "PointSolution", "solve_point", "initial_creep"]
 
@@ -36,15 +37,12 @@ class SolverOptions:
     tol : float
         Largest accepted ``max |residual|`` (residuals are torques over ``F_N0 r_S``) [-].
     max_evaluations : int
-        Residual evaluations allowed per root-finder attempt.
-    continuation_steps : int
-        Torque steps of the fallback continuation.
+        Residual evaluations allowed to the hybrid method before the fallback.
     """
 
     quadrature: Quadrature = Quadrature()
     tol: float = 1e-11
     max_evaluations: int = 400
-    continuation_steps: int = 8
 
 
 @dataclass(frozen=True)
@@ -55,7 +53,6 @@ class PointSolution:
     converged: bool
     residual_norm: float
     evaluations: int
-    iterations: int
     message: str
 
 
@@ -108,28 +105,22 @@ def solve_point(problem: EquilibriumProblem, options: SolverOptions = SolverOpti
         raise ValueError("solve_point takes a single operating point")
     x0 = initial_creep(problem) if x0 is None else np.asarray(x0, dtype=float)
     sol, evals = _attempt(problem, x0, options)
-    iterations = int(getattr(sol, "nfev", 0))
     x = sol.x
     state = evaluate(problem, x, options.quadrature)
     norm = float(np.max(np.abs(state.residual)))
     if not norm <= options.tol:
-        # Fallback: continuation in output torque from zero load.
-        x = initial_creep(problem)
-        for frac in np.linspace(0.0, 1.0, options.continuation_steps + 1):
-            step = _with_torque(problem, frac * problem.output_torque)
-            sol, n_ev = _attempt(step, x, options)
+        try:
+            x, n_ev = solve_nested(problem, options.quadrature)
             evals += n_ev
-            if not sol.success:
-                break
-            x = sol.x
-        state = evaluate(problem, x, options.quadrature)
-        norm = float(np.max(np.abs(state.residual)))
+            state = evaluate(problem, x, options.quadrature)
+            norm = float(np.max(np.abs(state.residual)))
+            detail = "bracketing fallback"
+        except NoBracketError as exc:
+            detail = str(exc)
+    else:
+        detail = "hybrid method"
     converged = bool(norm <= options.tol and np.all(np.isfinite(state.residual)))
-    message = "converged" if converged else (
-        f"no equilibrium found: max|residual| = {norm:.3g} > tol {options.tol:g} "
-        f"({sol.message.strip()})")
-    return PointSolution(state, converged, norm, evals, iterations, message)
+    message = f"converged ({detail})" if converged else (
+        f"no equilibrium found: max|residual| = {norm:.3g} > tol {options.tol:g} ({detail})")
+    return PointSolution(state, converged, norm, evals, message)
 
-
-def _with_torque(problem: EquilibriumProblem, torque) -> EquilibriumProblem:
-    return replace(problem, output_torque=np.asarray(torque, dtype=float))

@@ -1,0 +1,60 @@
+"""Plain-text tables for the command line."""
+
+from __future__ import annotations
+
+from ..results.point import OperatingResult
+
+__all__ = ["point_table", "limit_table"]
+
+_ROWS = [  # (label, attribute, unit, scale, format)
+    ("creep C", "creep", "-", 1.0, "{:+.4e}"),
+    ("spin sigma", "spin", "-", 1.0, "{:+.4f}"),
+    ("traction mu", "mu", "-", 1.0, "{:+.4e}"),
+    ("spin moment chi", "chi", "-", 1.0, "{:+.4e}"),
+    ("normal load", "normal_load", "N", 1.0, "{:.1f}"),
+    ("peak pressure", "p_max", "GPa", 1e-9, "{:.3f}"),
+    ("semi-axis a_x", "semi_axis_x", "mm", 1e3, "{:.4f}"),
+    ("semi-axis a_y", "semi_axis_y", "mm", 1e3, "{:.4f}"),
+    ("film thickness", "film_thickness", "um", 1e6, "{:.4f}"),
+    ("creep loss", "creep_loss", "W", 1.0, "{:.2f}"),
+    ("spin loss", "spin_loss", "W", 1.0, "{:.2f}"),
+]
+
+
+def point_table(r: OperatingResult) -> str:
+    """Readable summary of an operating point."""
+    names = list(r.contacts)
+    w = 12
+    lines = [
+        f"ballcvt {r.version}  {r.architecture} idler  ({r.design.name})",
+        f"ratio tau_ID {r.ratio:.4g}   tilt {r.tilt_deg:+.3f} deg   actual ratio "
+        f"{r.actual_ratio:.5f}",
+        f"input  {r.input_speed_rpm:8.1f} rpm  {r.input_torque:9.3f} N m  "
+        f"{r.input_power / 1e3:8.3f} kW",
+        f"output {r.output_speed * 30 / 3.141592653589793:8.1f} rpm  {r.output_torque:9.3f} N m  "
+        f"{r.output_power / 1e3:8.3f} kW",
+        f"clamp F_N0 {r.clamp_force:.1f} N",
+        "",
+        f"{'contact':<22}" + "".join(f"{n:>{w}}" for n in names),
+    ]
+    for label, attr, unit, scale, fmt in _ROWS:
+        cells = "".join(f"{fmt.format(getattr(r.contacts[n], attr) * scale):>{w}}" for n in names)
+        lines.append(f"{label + ' [' + unit + ']':<22}{cells}")
+    ls = r.losses
+    lines += [
+        "",
+        f"losses [W]  creep {ls['creep']:.2f}  spin {ls['spin']:.2f}  bearings "
+        f"{ls['bearing']:.2f}  total {ls['total']:.2f}",
+        f"efficiency  overall {r.eta:.5f} (Eq. 38)  {r.eta_loss:.5f} (Eq. 39)  "
+        f"speed {r.eta_speed:.5f}  torque {r.eta_torque:.5f}",
+        f"solver      {'converged' if r.converged else 'NOT CONVERGED'}, max|residual| "
+        f"{r.residual_norm:.1e}, {r.iterations} evaluations, quadrature {r.quadrature}",
+    ]
+    return "\n".join(lines)
+
+
+def limit_table(data: dict) -> str:
+    """Readable limiting-torque line."""
+    return (f"limiting output torque {data['limit_torque']:.2f} N m  ({data['architecture']} "
+            f"idler, ratio {data['ratio']:g}, F_N0 {data['clamp_force']:g} N, "
+            f"{data['input_speed_rpm']:g} rpm, |creep| <= {data['creep_limit']:g})")

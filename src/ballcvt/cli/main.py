@@ -1,0 +1,138 @@
+"""The ``ballcvt`` command line.
+
+Exit status: 0 success, 2 bad input (one line on stderr naming the quantity, its value and
+the allowed range), 1 any other failure (one line; set ``BALLCVT_DEBUG=1`` for a traceback).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from pathlib import Path
+
+from .._version import __version__
+from ..errors import BallCVTError, InputError
+from ..params.io import builtin_text, drive_to_toml, load_builtin, load_drive
+from ..params.models import ARCHITECTURES
+from ..variator import Variator
+from .format import limit_table, point_table
+
+__all__ = ["main", "build_parser"]
+
+PAPER_POINT = {"ratio": 1.0, "torque": 40.0, "clamp": 2000.0, "speed": 2000.0}
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports usage errors in one line with exit status 2."""
+
+    def error(self, message: str):  # noqa: D102
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def _common(p: argparse.ArgumentParser, torque: bool) -> None:
+    p.add_argument("--arch", default="double", choices=ARCHITECTURES,
+                   help="idler architecture (default: double)")
+    p.add_argument("--ratio", type=float, default=PAPER_POINT["ratio"],
+                   help="ideal speed ratio tau_ID (default: %(default)s)")
+    if torque:
+        p.add_argument("--torque", type=float, default=PAPER_POINT["torque"],
+                       help="output torque T2 [N m] (default: %(default)s)")
+    p.add_argument("--clamp", type=float, default=PAPER_POINT["clamp"],
+                   help="input-contact normal load F_N0 [N] (default: %(default)s)")
+    p.add_argument("--speed", type=float, default=PAPER_POINT["speed"],
+                   help="input speed [rpm] (default: %(default)s)")
+    p.add_argument("--design", type=Path, help="drive definition TOML (default: Table I)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``ballcvt`` command."""
+    parser = _Parser(prog="ballcvt", description="Steady-state model of ball-type traction "
+                     "CVTs (Tomaselli et al., Mech. Mach. Theory 150 (2020) 103877).")
+    parser.add_argument("--version", action="version", version=f"ballcvt {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    p = sub.add_parser("point", help="solve one operating point (default: the paper's)")
+    _common(p, torque=True)
+    p = sub.add_parser("limit", help="limiting output torque at a ratio, clamp and speed")
+    _common(p, torque=False)
+    p.add_argument("--creep-limit", type=float, default=None,
+                   help="largest admissible |creep| (default: the design's, 0.10)")
+
+    p = sub.add_parser("design", help="show or export the drive definition as TOML")
+    p.add_argument("action", choices=("show", "export"))
+    p.add_argument("path", nargs="?", type=Path, help="output file of 'export' (default: stdout)")
+    p.add_argument("--design", type=Path, help="drive definition to validate and show")
+    return parser
+
+
+def _variator(args) -> Variator:
+    design, fluid = load_drive(args.design) if args.design else load_builtin()
+    return Variator(design, fluid, args.arch)
+
+
+def _cmd_point(args) -> int:
+    v = _variator(args)
+    r = v.solve(ratio=args.ratio, output_torque=args.torque, clamp_force=args.clamp,
+                input_speed_rpm=_rpm(args.speed))
+    print(r.to_json(indent=2) if args.json else point_table(r))
+    return 0
+
+
+def _cmd_limit(args) -> int:
+    v = _variator(args)
+    c_lim = v.design.creep_limit if args.creep_limit is None else args.creep_limit
+    t = v.limit_torque(ratio=args.ratio, clamp_force=args.clamp,
+                       input_speed_rpm=_rpm(args.speed), creep_limit=c_lim)
+    data = {"limit_torque": t, "architecture": args.arch, "ratio": args.ratio,
+            "clamp_force": args.clamp, "input_speed_rpm": args.speed, "creep_limit": c_lim,
+            "version": __version__}
+    print(json.dumps(data, indent=2) if args.json else limit_table(data))
+    return 0
+
+
+def _cmd_design(args) -> int:
+    if args.design:
+        text = drive_to_toml(*load_drive(args.design))
+    else:
+        text = builtin_text()
+    if args.action == "export" and args.path:
+        args.path.write_text(text)
+        print(f"wrote {args.path}", file=sys.stderr)
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+def _rpm(speed: float) -> float:
+    if not speed > 0 or speed == float("inf"):
+        raise InputError("speed", speed, "> 0 rpm and finite")
+    return speed
+
+
+COMMANDS = {"point": _cmd_point, "limit": _cmd_limit, "design": _cmd_design}
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line; returns the exit status."""
+    args = build_parser().parse_args(argv)
+    try:
+        return COMMANDS[args.command](args)
+    except InputError as exc:
+        print(f"ballcvt: error: {exc}", file=sys.stderr)
+        return 2
+    except BallCVTError as exc:
+        print(f"ballcvt: error: {exc}", file=sys.stderr)
+        return 1
+    except Exception as exc:  # a bug: say so in one line unless debugging
+        if os.environ.get("BALLCVT_DEBUG"):
+            raise
+        print(f"ballcvt: internal error: {type(exc).__name__}: {exc} "
+              "(set BALLCVT_DEBUG=1 for a traceback)", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,101 @@
+"""Limiting output torque (MODEL.md section 7).
+
+The traction law saturates (``mu -> a + tau_L0 A / F_N``), so creep runs away over a
+narrow torque band instead of stopping at a sharp maximum. The limiting torque is the
+largest ``T_2`` with a converged equilibrium and every ``|C| <= C_lim``. It is found by
+bisection on ``T_2``, each trial started from the solution at the highest torque known
+to be admissible (continuation).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem
+from .point import PointSolution, SolverOptions, solve_point
+
+__all__ = ["LimitSolution", "limit_torque", "traction_ceiling_torque"]
+
+
+@dataclass(frozen=True)
+class LimitSolution:
+    """Limiting torque and the admissible equilibrium just below it.
+
+    Attributes
+    ----------
+    torque : float
+        Limiting output torque [N m].
+    solution : PointSolution
+        Equilibrium at ``torque``.
+    critical_contact : int
+        Index of the contact whose creep reaches the limit first.
+    bracket : tuple of float
+        Final ``(admissible, inadmissible)`` torques [N m].
+    """
+
+    torque: float
+    solution: PointSolution
+    critical_contact: int
+    bracket: tuple[float, float]
+
+
+def traction_ceiling_torque(problem: EquilibriumProblem) -> float:
+    """Upper bound on ``T_2`` from the saturated traction of the disc contacts [N m].
+
+    ``|tau| <= tau_L``, so ``|mu| <= a + tau_L0 pi a_x a_y / F_N`` (the traction ceiling);
+    with the spin moment bounded likewise, the output torque cannot exceed
+    ``n F_N r_c (1 + sin(theta)) mu_max`` at the output contact, nor that of the input
+    contact over ``tau_ID`` (power cannot grow: ``T_2 <= T_0 / tau_ID``).
+    """
+    fl, lay = problem.fluid, problem.layout
+    area = np.pi * problem.ax * problem.ay
+    mu_max = fl.limiting_shear_slope + fl.limiting_shear_stress * area / problem.load
+    cap = problem.design.n_rollers * problem.load * problem.radius * mu_max * (1 + np.abs(lay.z_j))
+    return float(min(cap[..., -1], cap[..., 0] / problem.ratio))
+
+
+def limit_torque(problem: EquilibriumProblem, creep_limit: float,
+                 options: SolverOptions = SolverOptions(), rtol: float = 1e-4) -> LimitSolution:
+    """Largest admissible output torque of a single operating point.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating point (its ``output_torque`` is ignored).
+    creep_limit : float
+        ``C_lim``, the largest admissible ``|C|`` [-].
+    options : SolverOptions
+        Solver options.
+    rtol : float
+        Relative width of the final torque bracket [-].
+
+    Returns
+    -------
+    LimitSolution
+    """
+    def at(torque, x0):
+        sol = solve_point(replace(problem, output_torque=np.asarray(float(torque))), options, x0)
+        ok = sol.converged and float(np.max(np.abs(sol.state.creep))) <= creep_limit
+        return ok, sol
+
+    ok, best = at(0.0, None)
+    if not ok:
+        raise RuntimeError(f"no admissible equilibrium even at zero output torque "
+                           f"({best.message})")
+    lo, hi = 0.0, traction_ceiling_torque(problem)
+    while True:
+        ok, sol = at(hi, best.state.creep)
+        if not ok:
+            break
+        lo, best, hi = hi, sol, 2.0 * hi
+    while hi - lo > rtol * hi:
+        mid = 0.5 * (lo + hi)
+        ok, sol = at(mid, best.state.creep)
+        if ok:
+            lo, best = mid, sol
+        else:
+            hi = mid
+    critical = int(np.argmax(np.abs(best.state.creep)))
+    return LimitSolution(torque=lo, solution=best, critical_contact=critical, bracket=(lo, hi))

@@ -1,0 +1,144 @@
+"""`Variator`: the one obvious entry point of the Python API."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from .contact.quadrature import Quadrature
+from .equilibrium.problem import build_problem
+from .errors import ConvergenceError, InputError, TractionLimitError
+from .geometry.kinematics import ratio_range
+from .params.io import load_builtin
+from .params.models import ARCHITECTURES, Design, Fluid
+from .results.point import OperatingResult, make_result
+from .solver.limit import limit_torque
+from .solver.point import SolverOptions, solve_point
+
+__all__ = ["Variator"]
+
+
+def _default_drive():
+    return load_builtin("table1")
+
+
+@dataclass(frozen=True)
+class Variator:
+    """A ball variator of a given design, fluid and idler architecture.
+
+    Parameters
+    ----------
+    design : Design, optional
+        Geometry; the paper's Table I drive by default.
+    fluid : Fluid, optional
+        Traction fluid; Table I's by default.
+    architecture : {"double", "single"}
+        Two idlers (the disassembled drive) or one cylindrical idler (original patent).
+    options : SolverOptions
+        Solver and quadrature settings.
+
+    Examples
+    --------
+    >>> from ballcvt import Variator
+    >>> v = Variator()
+    >>> r = v.solve(ratio=1.76, output_torque=40.0, clamp_force=2000.0, input_speed_rpm=2000)
+    >>> round(r.eta, 2)
+    0.89
+    """
+
+    design: Design = field(default=None)  # type: ignore[assignment]
+    fluid: Fluid = field(default=None)  # type: ignore[assignment]
+    architecture: str = "double"
+    options: SolverOptions = SolverOptions()
+
+    def __post_init__(self):
+        if self.design is None or self.fluid is None:
+            d, f = _default_drive()
+            object.__setattr__(self, "design", self.design or d)
+            object.__setattr__(self, "fluid", self.fluid or f)
+        if self.architecture not in ARCHITECTURES:
+            raise InputError("architecture", self.architecture,
+                             "one of: " + ", ".join(ARCHITECTURES))
+
+    @property
+    def ratio_range(self) -> tuple[float, float]:
+        """Usable ideal-ratio range ``(min, max)`` [-]."""
+        return ratio_range(self.design)
+
+    def _problem(self, ratio, output_torque, clamp_force, input_speed, input_speed_rpm):
+        speed = _speed(input_speed, input_speed_rpm)
+        return build_problem(self.design, self.fluid, self.architecture, float(ratio),
+                             float(output_torque), float(clamp_force), speed)
+
+    def solve(self, ratio: float, output_torque: float, clamp_force: float,
+              input_speed: float | None = None, *, input_speed_rpm: float | None = None,
+              check_capacity: bool = True) -> OperatingResult:
+        """Solve the steady operating point.
+
+        Parameters
+        ----------
+        ratio : float
+            Ideal speed ratio ``tau_ID`` [-].
+        output_torque : float
+            Output torque ``T_2`` >= 0 [N m].
+        clamp_force : float
+            Normal load at each input contact ``F_N0`` > 0 [N].
+        input_speed : float, optional
+            Input speed ``omega_0`` [rad/s]; or give ``input_speed_rpm`` [rpm].
+        check_capacity : bool
+            If True (default), a torque whose equilibrium has a creep above
+            ``design.creep_limit``, or has none, raises `TractionLimitError` with the limit.
+
+        Returns
+        -------
+        OperatingResult
+
+        Raises
+        ------
+        InputError
+            Out-of-range input (including a torque beyond the traction capacity).
+        ConvergenceError
+            If no equilibrium is found and ``check_capacity`` is False.
+        """
+        problem = self._problem(ratio, output_torque, clamp_force, input_speed, input_speed_rpm)
+        sol = solve_point(problem, self.options)
+        over = sol.converged and max(abs(c) for c in sol.state.creep) > self.design.creep_limit
+        if check_capacity and (over or not sol.converged):
+            lim = limit_torque(problem, self.design.creep_limit, self.options)
+            if output_torque > lim.torque:
+                raise TractionLimitError(float(output_torque), lim.torque,
+                                         f" at ratio {ratio:g}, clamp {clamp_force:g} N")
+        if not sol.converged:
+            raise ConvergenceError(sol.message)
+        return make_result(problem, sol, self.options.quadrature)
+
+    def limit_torque(self, ratio: float, clamp_force: float, input_speed: float | None = None,
+                     *, input_speed_rpm: float | None = None,
+                     creep_limit: float | None = None) -> float:
+        """Largest admissible output torque (MODEL.md section 7) [N m].
+
+        Parameters
+        ----------
+        ratio, clamp_force, input_speed, input_speed_rpm
+            As in `solve`.
+        creep_limit : float, optional
+            Largest admissible ``|C|``; ``design.creep_limit`` by default.
+        """
+        c_lim = self.design.creep_limit if creep_limit is None else float(creep_limit)
+        if not 0.0 < c_lim < 1.0:
+            raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
+        problem = self._problem(ratio, 0.0, clamp_force, input_speed, input_speed_rpm)
+        return limit_torque(problem, c_lim, self.options).torque
+
+    def with_quadrature(self, quadrature: Quadrature) -> "Variator":
+        """A copy using another traction-integral rule."""
+        opts = SolverOptions(quadrature=quadrature, tol=self.options.tol,
+                             max_evaluations=self.options.max_evaluations)
+        return Variator(self.design, self.fluid, self.architecture, opts)
+
+
+def _speed(input_speed, input_speed_rpm) -> float:
+    if (input_speed is None) == (input_speed_rpm is None):
+        raise InputError("input_speed", input_speed, "exactly one of input_speed [rad/s] "
+                         "or input_speed_rpm [rpm]")
+    return float(input_speed) if input_speed is not None else float(input_speed_rpm) * math.pi / 30

@@ -1,0 +1,34 @@
+"""Shared fixtures and hypothesis settings."""
+
+import math
+import os
+
+import pytest
+from hypothesis import HealthCheck, settings
+
+from ballcvt import Variator, load_builtin
+
+settings.register_profile("default", max_examples=25, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("thorough", max_examples=300, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
+
+RPM = math.pi / 30.0
+#: The paper's operating point of Figs. 7, 9-13.
+PAPER = {"clamp_force": 2000.0, "input_speed_rpm": 2000.0}
+
+
+@pytest.fixture(scope="session")
+def drive():
+    return load_builtin()
+
+
+@pytest.fixture(scope="session")
+def double():
+    return Variator(architecture="double")
+
+
+@pytest.fixture(scope="session")
+def single():
+    return Variator(architecture="single")

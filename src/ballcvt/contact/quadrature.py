@@ -25,7 +25,8 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["Quadrature", "REFERENCE", "gauss_legendre", "centred_rule", "pole_rule", "disc_rule", "METHODS"]
+__all__ = ["Quadrature", "REFERENCE", "gauss_legendre", "centred_rule", "pole_rule",
+           "inner_pole_rule", "METHODS"]
 
 METHODS = ("pole", "centred")
 
@@ -41,21 +42,26 @@ class Quadrature:
     n_radial, n_angular : int
         Nodes along the rays and around the pole. The radial direction carries the
         sharp viscous-to-limiting-shear ring near the contact edge and needs more nodes.
+    n_centred : int
+        Angular nodes of the centred rule when the ``pole`` method uses it (pole outside
+        the ellipse); the sliding direction then turns quickly near the edge closest to
+        the pole, and needs more angular nodes than the pole-centred rule.
     """
 
     method: str = "pole"
     n_radial: int = 32
     n_angular: int = 12
+    n_centred: int = 32
 
     def __post_init__(self):
         if self.method not in METHODS:
             raise ValueError(f"quadrature method must be one of {METHODS}, got {self.method!r}")
-        if self.n_radial < 2 or self.n_angular < 2:
+        if min(self.n_radial, self.n_angular, self.n_centred) < 2:
             raise ValueError("quadrature needs at least 2 x 2 nodes")
 
 
 #: Converged high-order reference rule (MODEL.md section 8).
-REFERENCE = Quadrature("pole", 96, 64)
+REFERENCE = Quadrature("pole", 96, 64, 128)
 
 
 @lru_cache(maxsize=64)
@@ -91,8 +97,14 @@ def centred_rule(n_radial: int, n_angular: int, shape=()) -> tuple[np.ndarray, .
     return (np.broadcast_to(x, full), np.broadcast_to(y, full), np.broadcast_to(w.ravel(), full))
 
 
-def _inner_pole_rule(yp, n_radial, n_angular):
-    """Rays from an inside pole ``(0, yp)``, ``|yp| < 1``, to the boundary."""
+def inner_pole_rule(yp, n_radial, n_angular):
+    """Rays from inside poles ``(0, yp)``, ``|yp| < 1`` (1-D array), to the boundary.
+
+    Returns
+    -------
+    X, Y, W : ndarray
+        Shape ``(yp.size, n_radial * n_angular)`` [-].
+    """
     r01, wr = _radial(n_radial)
     phi = 2.0 * np.pi * np.arange(n_angular) / n_angular
     sp, cp = np.sin(phi), np.cos(phi)
@@ -123,7 +135,7 @@ def pole_rule(y_pole, n_radial: int, n_angular: int) -> tuple[np.ndarray, ...]:
     w = np.empty((flat.size, n))
     inside = np.abs(flat) < 1.0
     if inside.any():
-        x[inside], y[inside], w[inside] = _inner_pole_rule(flat[inside], n_radial, n_angular)
+        x[inside], y[inside], w[inside] = inner_pole_rule(flat[inside], n_radial, n_angular)
     outside = ~inside
     if outside.any():
         x[outside], y[outside], w[outside] = centred_rule(n_radial, n_angular,
@@ -131,11 +143,3 @@ def pole_rule(y_pole, n_radial: int, n_angular: int) -> tuple[np.ndarray, ...]:
     shape = yp.shape + (n,)
     return x.reshape(shape), y.reshape(shape), w.reshape(shape)
 
-
-def disc_rule(method: str, y_pole, n_radial: int, n_angular: int) -> tuple[np.ndarray, ...]:
-    """Dispatch to `pole_rule` or `centred_rule` by ``method`` (one of `METHODS`)."""
-    if method == "pole":
-        return pole_rule(y_pole, n_radial, n_angular)
-    if method == "centred":
-        return centred_rule(n_radial, n_angular, np.shape(y_pole))
-    raise ValueError(f"quadrature method must be one of {METHODS}, got {method!r}")

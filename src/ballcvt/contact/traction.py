@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..params.models import Fluid
-from .quadrature import Quadrature, centred_rule, disc_rule
+from .quadrature import Quadrature, centred_rule, inner_pole_rule
 from .rheology import limiting_shear_stress, roelands_viscosity, saturation_factor
 
 __all__ = ["pole_position", "traction_coefficients"]
@@ -79,19 +79,22 @@ def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, 
     flat = [a.ravel() for a in args]
     yp = pole_position(flat[0], flat[1], flat[3], flat[6])
     q = quadrature
-    mu, chi = _integrate(disc_rule(q.method, yp, q.n_radial, q.n_angular), flat, fluid)
-    if q.method == "pole":
-        # Blend into the centred rule as the pole nears the edge, so that mu and chi stay
-        # continuous (C1) where the pole leaves the ellipse and the rule changes.
-        weight = _pole_weight(np.abs(yp))
-        mix = (weight > 0.0) & (weight < 1.0)
-        if mix.any():
-            sub = [a[mix] for a in flat]
-            mu_c, chi_c = _integrate(centred_rule(q.n_radial, q.n_angular, (int(mix.sum()),)),
-                                     sub, fluid)
-            wm = weight[mix]
-            mu[mix] = wm * mu[mix] + (1.0 - wm) * mu_c
-            chi[mix] = wm * chi[mix] + (1.0 - wm) * chi_c
+    if q.method == "centred":
+        mu, chi = _integrate(centred_rule(q.n_radial, q.n_angular, yp.shape), flat, fluid)
+        return mu.reshape(shape), chi.reshape(shape)
+    # Pole-centred rule while the pole is well inside, centred rule once it is outside,
+    # blended in between so that mu and chi stay continuous (C1) in the creep.
+    weight = _pole_weight(np.abs(yp))
+    mu = np.zeros(yp.shape)
+    chi = np.zeros(yp.shape)
+    for part, rule_weight, rule in (
+            (weight > 0.0, weight, lambda y: inner_pole_rule(y, q.n_radial, q.n_angular)),
+            (weight < 1.0, 1.0 - weight,
+             lambda y: centred_rule(q.n_radial, q.n_centred, y.shape))):
+        if part.any():
+            m, c = _integrate(rule(yp[part]), [a[part] for a in flat], fluid)
+            mu[part] += rule_weight[part] * m
+            chi[part] += rule_weight[part] * c
     return mu.reshape(shape), chi.reshape(shape)
 
 

@@ -102,7 +102,7 @@ class OperatingResult:
     iterations : int
         Residual evaluations of the solver.
     quadrature : str
-        The traction-integral rule, e.g. ``"pole 32x12"``.
+        The traction-integral rule, e.g. ``"pole 32x12 (centred part 32x32)"``.
     version : str
         ballcvt version that computed the result.
     """
@@ -239,4 +239,10 @@ def make_result(problem: EquilibriumProblem, solution: PointSolution,
         losses=MappingProxyType(losses), eta=f(eff.overall), eta_loss=f(eff.from_losses),
         eta_speed=f(eff.speed), eta_torque=f(eff.torque), converged=solution.converged,
         residual_norm=solution.residual_norm, iterations=solution.evaluations,
-        quadrature=f"{quadrature.method} {quadrature.n_radial}x{quadrature.n_angular}")
+        quadrature=_label(quadrature))
+
+
+def _label(q: Quadrature) -> str:
+    if q.method == "centred":
+        return f"centred {q.n_radial}x{q.n_angular}"
+    return f"pole {q.n_radial}x{q.n_angular} (centred part {q.n_radial}x{q.n_centred})"

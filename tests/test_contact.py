@@ -8,7 +8,7 @@ from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
 from ballcvt.contact import (REFERENCE, Quadrature, central_film_thickness, hertz_contact,
-                             pole_rule, centred_rule, roelands_viscosity, saturation_factor,
+                             inner_pole_rule, centred_rule, roelands_viscosity, saturation_factor,
                              traction_coefficients)
 from ballcvt.contact.reference import traction_coefficients_adaptive
 
@@ -89,9 +89,9 @@ def test_rheology_limits(drive):
     np.testing.assert_allclose(saturation_factor(x), -np.expm1(-x) / x, rtol=1e-12)
 
 
-@pytest.mark.parametrize("yp", [0.0, 0.3, -0.7, 0.999, 1.0, 1.2, -1.9, 2.5, np.inf])
+@pytest.mark.parametrize("yp", [0.0, 0.3, -0.7, 0.95, 0.999])
 def test_rules_integrate_polynomials(yp):
-    x, y, w = pole_rule(np.array(yp), 12, 16)
+    x, y, w = inner_pole_rule(np.array([yp]), 12, 16)
     assert np.sum(w) == pytest.approx(np.pi, rel=1e-12)
     assert np.sum(w * x**2 * y**2) == pytest.approx(np.pi / 24, rel=1e-10)
     assert np.all(x**2 + y**2 <= 1.0 + 1e-12)

@@ -25,8 +25,8 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["Quadrature", "REFERENCE", "gauss_legendre", "centred_rule", "pole_rule",
-           "inner_pole_rule", "METHODS"]
+__all__ = ["Quadrature", "REFERENCE", "gauss_legendre", "centred_rule", "inner_pole_rule",
+           "METHODS"]
 
 METHODS = ("pole", "centred")
 
@@ -117,29 +117,3 @@ def inner_pole_rule(yp, n_radial, n_angular):
     w = rho * reach[:, None, :] * wr[None, :, None] * (2.0 * np.pi / n_angular)
     m = yp.shape[0]
     return x.reshape(m, -1), y.reshape(m, -1), w.reshape(m, -1)
-
-
-def pole_rule(y_pole, n_radial: int, n_angular: int) -> tuple[np.ndarray, ...]:
-    """Pole-centred rule for poles at ``(0, y_pole)`` (any shape, ``inf`` allowed).
-
-    Returns
-    -------
-    X, Y, W : ndarray
-        Shape ``y_pole.shape + (n_radial * n_angular,)`` [-].
-    """
-    yp = np.asarray(y_pole, dtype=float)
-    flat = yp.ravel()
-    n = n_radial * n_angular
-    x = np.empty((flat.size, n))
-    y = np.empty((flat.size, n))
-    w = np.empty((flat.size, n))
-    inside = np.abs(flat) < 1.0
-    if inside.any():
-        x[inside], y[inside], w[inside] = inner_pole_rule(flat[inside], n_radial, n_angular)
-    outside = ~inside
-    if outside.any():
-        x[outside], y[outside], w[outside] = centred_rule(n_radial, n_angular,
-                                                          (int(outside.sum()),))
-    shape = yp.shape + (n,)
-    return x.reshape(shape), y.reshape(shape), w.reshape(shape)
-

@@ -7,7 +7,6 @@ rejected. The built-in Table I drive ships as ``data/table1.toml`` with its cita
 
 from __future__ import annotations
 
-import math
 import tomllib
 from importlib import resources
 from pathlib import Path
@@ -77,12 +76,4 @@ def parse_drive(text: str, source: str = "design file") -> tuple[Design, Fluid]:
 
 def drive_to_toml(design: Design, fluid: Fluid) -> str:
     """TOML text of a drive definition that `parse_drive` reads back unchanged."""
-    return tomli_w.dumps({"design": _finite(design.model_dump()),
-                          "fluid": _finite(fluid.model_dump())})
-
-
-def _finite(d: dict) -> dict:
-    # tomli-w writes inf as 'inf', which TOML reads back: nothing to convert, but keep
-    # nested dicts plain (model_dump already gives plain dicts).
-    return {k: (_finite(v) if isinstance(v, dict) else v) for k, v in d.items()
-            if not (isinstance(v, float) and math.isnan(v))}
+    return tomli_w.dumps({"design": design.model_dump(), "fluid": fluid.model_dump()})

@@ -3,4 +3,5 @@
 from .limit import LimitSolution, limit_torque, traction_ceiling_torque
 from .point import PointSolution, SolverOptions, initial_creep, solve_point
 
-__all__ = ["LimitSolution", "limit_torque", "traction_ceiling_torque", "PointSolution", "SolverOptions", "initial_creep", "solve_point"]
+__all__ = ["LimitSolution", "limit_torque", "traction_ceiling_torque", "PointSolution",
+           "SolverOptions", "initial_creep", "solve_point"]

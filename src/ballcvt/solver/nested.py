@@ -28,7 +28,10 @@ class NoBracketError(RuntimeError):
 
 
 def _inner(problem, c0, quadrature, xtol):
-    """Solve the decoupled balances (idlers, output) for a given input creep."""
+    """Solve the decoupled balances (idlers, output) for a given input creep.
+
+    Returns the creep vector, its residual vector and the evaluations used.
+    """
     n_c = problem.layout.n_contacts
     lo = np.array([c0] + [IDLER_BRACKET[0]] * (n_c - 2) + [DISC_BRACKET[0]])
     hi = np.array([c0] + [IDLER_BRACKET[1]] * (n_c - 2) + [DISC_BRACKET[1]])
@@ -51,7 +54,7 @@ def _inner(problem, c0, quadrature, xtol):
         hi, f_hi = x, f
         if np.all((np.abs(hi - lo) <= xtol * (1e-3 + np.abs(x)))[k] | (f[k] == 0)):
             break
-    return x, count
+    return x, f_hi, count
 
 
 def solve_nested(problem: EquilibriumProblem, quadrature: Quadrature, xtol: float = 1e-13):
@@ -73,11 +76,10 @@ def solve_nested(problem: EquilibriumProblem, quadrature: Quadrature, xtol: floa
     cache: dict[float, np.ndarray] = {}
 
     def outer(c0):
-        x, n = _inner(problem, c0, quadrature, xtol)
+        x, f, n = _inner(problem, c0, quadrature, xtol)
         total[0] += n
         cache[c0] = x
-        total[0] += 1
-        return evaluate(problem, x, quadrature).residual[0]
+        return f[0]
 
     a, b = DISC_BRACKET
     fa, fb = outer(a), outer(b)

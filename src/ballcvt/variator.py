@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from .contact.quadrature import Quadrature
 from .equilibrium.problem import build_problem
@@ -132,9 +132,7 @@ class Variator:
 
     def with_quadrature(self, quadrature: Quadrature) -> "Variator":
         """A copy using another traction-integral rule."""
-        opts = SolverOptions(quadrature=quadrature, tol=self.options.tol,
-                             max_evaluations=self.options.max_evaluations)
-        return Variator(self.design, self.fluid, self.architecture, opts)
+        return replace(self, options=replace(self.options, quadrature=quadrature))
 
 
 def _speed(input_speed, input_speed_rpm) -> float:

@@ -25,10 +25,13 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["Quadrature", "REFERENCE", "gauss_legendre", "centred_rule", "inner_pole_rule",
+__all__ = ["Quadrature", "REFERENCE", "gauss_legendre", "radial_rule", "centred_rule", "inner_pole_rule",
            "METHODS"]
 
 METHODS = ("pole", "centred")
+#: ``auto``: the compiled kernels of `ballcvt.contact.kernels` when numba is installed;
+#: ``numpy``: the whole-array NumPy path (the reference implementation).
+ENGINES = ("auto", "numpy")
 
 
 @dataclass(frozen=True)
@@ -46,16 +49,22 @@ class Quadrature:
         Angular nodes of the centred rule when the ``pole`` method uses it (pole outside
         the ellipse); the sliding direction then turns quickly near the edge closest to
         the pole, and needs more angular nodes than the pole-centred rule.
+    engine : {"auto", "numpy"}
+        Compiled kernels (numba) when available, or the NumPy reference path. Both
+        compute the same sums.
     """
 
     method: str = "pole"
     n_radial: int = 32
-    n_angular: int = 12
+    n_angular: int = 24
     n_centred: int = 32
+    engine: str = "auto"
 
     def __post_init__(self):
         if self.method not in METHODS:
             raise ValueError(f"quadrature method must be one of {METHODS}, got {self.method!r}")
+        if self.engine not in ENGINES:
+            raise ValueError(f"quadrature engine must be one of {ENGINES}, got {self.engine!r}")
         if min(self.n_radial, self.n_angular, self.n_centred) < 2:
             raise ValueError("quadrature needs at least 2 x 2 nodes")
 
@@ -75,7 +84,8 @@ def gauss_legendre(n: int, a: float = 0.0, b: float = 1.0) -> tuple[np.ndarray, 
     return x, w
 
 
-def _radial(n_radial: int):
+def radial_rule(n_radial: int) -> tuple[np.ndarray, np.ndarray]:
+    """Radial nodes ``r(t) = t (2 - t)`` on [0, 1] and weights ``dr/dt w_t`` (Gauss in t)."""
     t, wt = gauss_legendre(n_radial)
     return t * (2.0 - t), 2.0 * (1.0 - t) * wt          # r(t), dr/dt * w
 
@@ -88,7 +98,7 @@ def centred_rule(n_radial: int, n_angular: int, shape=()) -> tuple[np.ndarray, .
     X, Y, W : ndarray
         Nodes and weights, shape ``shape + (n_radial * n_angular,)`` [-].
     """
-    r, wr = _radial(n_radial)
+    r, wr = radial_rule(n_radial)
     psi = 2.0 * np.pi * np.arange(n_angular) / n_angular
     x = (r[:, None] * np.cos(psi)).ravel()
     y = (r[:, None] * np.sin(psi)).ravel()
@@ -105,7 +115,7 @@ def inner_pole_rule(yp, n_radial, n_angular):
     X, Y, W : ndarray
         Shape ``(yp.size, n_radial * n_angular)`` [-].
     """
-    r01, wr = _radial(n_radial)
+    r01, wr = radial_rule(n_radial)
     phi = 2.0 * np.pi * np.arange(n_angular) / n_angular
     sp, cp = np.sin(phi), np.cos(phi)
     yp = yp[:, None]

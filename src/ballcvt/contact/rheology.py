@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["roelands_viscosity", "limiting_shear_stress", "saturation_factor"]
+__all__ = ["roelands_viscosity", "limiting_shear_stress", "saturation_factor",
+           "saturation_slope"]
 
 
 def roelands_viscosity(pressure, eta0, eta_inf, pole_pressure, index):
@@ -77,3 +78,29 @@ def saturation_factor(x):
     small = x < 1e-8
     safe = np.where(small, 1.0, x)
     return np.where(small, 1.0 - 0.5 * x, -np.expm1(-safe) / safe)
+
+
+def saturation_slope(x, factor=None):
+    """Derivative of `saturation_factor`: ``d/dx [(1 - exp(-x)) / x]`` [-].
+
+    Equals ``((1 + x) exp(-x) - 1) / x^2``; a three-term series below ``x = 1e-3`` avoids
+    the cancellation. Used for the analytic creep derivatives of the traction integrals.
+
+    Parameters
+    ----------
+    x : array_like
+        ``eta |V| / (h tau_L)`` >= 0 [-].
+    factor : array_like, optional
+        ``saturation_factor(x)`` if already computed (saves an exponential).
+
+    Returns
+    -------
+    ndarray
+        Slope in [-1/2, 0) [-].
+    """
+    x = np.asarray(x, dtype=float)
+    s = saturation_factor(x) if factor is None else factor
+    small = x < 1e-3
+    safe = np.where(small, 1.0, x)
+    # (1 + x) e^-x - 1 = (1 + x)(1 - x S) - 1 = -x^2 S + x (1 - S)  (S = saturation factor)
+    return np.where(small, -0.5 + x / 3.0 - x * x / 8.0, ((1.0 - s) - safe * s) / safe)

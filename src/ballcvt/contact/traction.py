@@ -21,8 +21,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..params.models import Fluid
-from .quadrature import Quadrature, centred_rule, inner_pole_rule
-from .rheology import limiting_shear_stress, roelands_viscosity, saturation_factor
+from . import kernels
+from .quadrature import Quadrature, centred_rule, inner_pole_rule, radial_rule
+from .rheology import (limiting_shear_stress, roelands_viscosity, saturation_factor,
+                       saturation_slope)
 
 __all__ = ["pole_position", "traction_coefficients"]
 
@@ -40,7 +42,8 @@ def pole_position(creep_term, spin, ay, radius):
 
 
 def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, film,
-                          fluid: Fluid, quadrature: Quadrature = Quadrature()):
+                          fluid: Fluid, quadrature: Quadrature = Quadrature(),
+                          derivatives: bool = False):
     """Traction coefficient ``mu`` and spin-moment coefficient ``chi`` of contacts.
 
     All array arguments broadcast together to the shape ``(...)`` of the result.
@@ -67,11 +70,20 @@ def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, 
         Traction fluid.
     quadrature : Quadrature
         Rule and node counts (see `ballcvt.contact.quadrature`).
+    derivatives : bool
+        Also return the derivatives of ``mu`` and ``chi``, computed in the same pass.
 
     Returns
     -------
     mu, chi : ndarray
         Traction coefficient (Eq. 30) and spin-moment coefficient (Eq. 31) [-].
+    dmu, dchi : ndarray
+        Only with ``derivatives``: shape ``(..., 3)``, the derivatives with respect to
+        ``creep_term`` [-], ``spin`` [-] and ``log(u_ref)`` [-]. The shear law depends on
+        the sliding speed over the film thickness only, so the derivative with respect to
+        ``log(film)`` is minus the last one. The motion of the nodes with the pole is not
+        differentiated (it changes the result only by the discretisation error), nor is the
+        blend weight: these are Jacobians for Newton's method, not exact gradients.
     """
     args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
                                  (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)))
@@ -80,22 +92,48 @@ def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, 
     yp = pole_position(flat[0], flat[1], flat[3], flat[6])
     q = quadrature
     if q.method == "centred":
-        mu, chi = _integrate(centred_rule(q.n_radial, q.n_angular, yp.shape), flat, fluid)
-        return mu.reshape(shape), chi.reshape(shape)
-    # Pole-centred rule while the pole is well inside, centred rule once it is outside,
-    # blended in between so that mu and chi stay continuous (C1) in the creep.
-    weight = _pole_weight(np.abs(yp))
-    mu = np.zeros(yp.shape)
-    chi = np.zeros(yp.shape)
-    for part, rule_weight, rule in (
-            (weight > 0.0, weight, lambda y: inner_pole_rule(y, q.n_radial, q.n_angular)),
-            (weight < 1.0, 1.0 - weight,
-             lambda y: centred_rule(q.n_radial, q.n_centred, y.shape))):
+        parts = [(np.ones(yp.shape, bool), np.ones(yp.shape), "centred", q.n_angular)]
+    else:
+        # Pole-centred rule while the pole is well inside, centred rule once it is
+        # outside, blended in between so that mu and chi stay continuous (C1) in the creep.
+        weight = _pole_weight(np.abs(yp))
+        parts = [(weight > 0.0, weight, "pole", q.n_angular),
+                 (weight < 1.0, 1.0 - weight, "centred", q.n_centred)]
+    n_out = 8 if derivatives else 2
+    out = np.zeros((n_out, yp.size))
+    params = np.stack(flat)
+    for part, rule_weight, kind, n_angular in parts:
         if part.any():
-            m, c = _integrate(rule(yp[part]), [a[part] for a in flat], fluid)
-            mu[part] += rule_weight[part] * m
-            chi[part] += rule_weight[part] * c
-    return mu.reshape(shape), chi.reshape(shape)
+            values = _rule(kind, yp[part], params[:, part], fluid, q.n_radial, n_angular,
+                           derivatives, q.engine)
+            out[:, part] += rule_weight[part] * values[:n_out]
+    out = out.reshape((n_out,) + shape)
+    if not derivatives:
+        return out[0], out[1]
+    return out[0], out[1], np.moveaxis(out[2:5], 0, -1), np.moveaxis(out[5:8], 0, -1)
+
+
+def _rule(kind, yp, params, fluid: Fluid, n_radial, n_angular, derivatives, engine):
+    """Sums of one rule for flat contacts: rows mu, chi (and their derivatives)."""
+    if engine == "numpy" or not kernels.AVAILABLE:
+        nodes = (inner_pole_rule(yp, n_radial, n_angular) if kind == "pole"
+                 else centred_rule(n_radial, n_angular, yp.shape))
+        values = _integrate(nodes, list(params), fluid, derivatives)
+        if not derivatives:
+            return np.stack(values)
+        return np.concatenate([np.stack(values[:2]), values[2].T, values[3].T])
+    out = np.empty((yp.size, kernels.N_OUT))
+    par = np.ascontiguousarray(params)
+    fl, tab = kernels.viscosity_table(fluid, float(np.max(par[4])))
+    if kind == "pole":
+        r01, wr = radial_rule(n_radial)
+        phi = 2.0 * np.pi * np.arange(n_angular) / n_angular
+        kernels.pole_kernel(yp, par, r01, wr, np.sin(phi), np.cos(phi),
+                            2.0 * np.pi / n_angular, fl, tab, derivatives, out)
+    else:
+        x, y, w = (np.ascontiguousarray(v) for v in centred_rule(n_radial, n_angular))
+        kernels.centred_kernel(par, x, y, w, fl, tab, derivatives, out)
+    return out.T
 
 
 #: Range of |Y_p| over which the pole-centred rule hands over to the centred rule.
@@ -108,8 +146,12 @@ def _pole_weight(abs_yp):
     return t * t * (3.0 - 2.0 * t)
 
 
-def _integrate(nodes, params, fluid: Fluid):
-    """Quadrature of Eqs. 57-66 for flat parameter arrays on the given nodes."""
+def _integrate(nodes, params, fluid: Fluid, derivatives: bool = False):
+    """Quadrature of Eqs. 57-66 for flat parameter arrays on the given nodes.
+
+    Returns ``mu, chi`` and, with ``derivatives``, ``dmu, dchi`` of shape ``(m, 3)``
+    (see `traction_coefficients`).
+    """
     x, y, w = nodes
     c, sg, ax, ay, pm, fn, rc, u, h = params
     ex = lambda v: v[..., None]  # noqa: E731  (broadcast over the nodes)
@@ -119,10 +161,28 @@ def _integrate(nodes, params, fluid: Fluid):
     tau_l = limiting_shear_stress(p, fluid.limiting_shear_stress, fluid.limiting_shear_slope)
     vx = ex(u) * (ex(c) - ex(sg * ay / rc) * y)
     vy = ex(u * sg * ax / rc) * x
-    g = eta / ex(h) * saturation_factor(eta * np.hypot(vx, vy) / (ex(h) * tau_l))
-    tx = g * vx
-    ty = g * vy
+    speed = np.hypot(vx, vy)
+    arg = eta * speed / (ex(h) * tau_l)
+    sat = saturation_factor(arg)
+    g = eta / ex(h) * sat                                 # tau = g V
     area = ax * ay
-    mu = area / fn * np.sum(w * tx, axis=-1)
-    chi = area / (fn * rc) * np.sum(w * (ex(ax) * x * ty - ex(ay) * y * tx), axis=-1)
-    return mu, chi
+    wx, wy = w * ex(ax) * x, w * ex(ay) * y               # lever-arm weights of chi
+
+    def moments(tx, ty):
+        return (area / fn * np.sum(w * tx, axis=-1),
+                area / (fn * rc) * np.sum(wx * ty - wy * tx, axis=-1))
+
+    mu, chi = moments(g * vx, g * vy)
+    if not derivatives:
+        return mu, chi
+    # d tau = g dV + (dg/d|V|) (V.dV / |V|) V; k = (dg/d|V|) / |V| stays finite times V.V
+    k = (eta / ex(h)) ** 2 / tau_l * saturation_slope(arg, sat)
+    k = np.divide(k, speed, out=np.zeros_like(k), where=speed > 0.0)
+    dvx_s, dvy_s = -ex(u * ay / rc) * y, ex(u * ax / rc) * x          # dV / d sigma
+    d_c = moments(g * ex(u) + k * vx * ex(u) * vx, k * vx * ex(u) * vy)
+    dot_s = vx * dvx_s + vy * dvy_s
+    d_s = moments(g * dvx_s + k * dot_s * vx, g * dvy_s + k * dot_s * vy)
+    lin = g + k * speed * speed                                       # dV / d log u = V
+    d_u = moments(lin * vx, lin * vy)
+    return (mu, chi, np.stack([d_c[0], d_s[0], d_u[0]], axis=-1),
+            np.stack([d_c[1], d_s[1], d_u[1]], axis=-1))

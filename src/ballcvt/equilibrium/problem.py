@@ -6,7 +6,7 @@ every array); the per-contact arrays have the contacts on the last axis.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -18,6 +18,10 @@ from ..errors import InputError
 from ..params.models import Design, Fluid
 
 __all__ = ["EquilibriumProblem", "build_problem"]
+
+#: Fields with the batch shape ``(...)`` and with ``(..., n_c)``.
+_BATCH = ("ratio", "tilt", "output_torque", "clamp_force", "input_speed")
+_PER_CONTACT = ("rho", "sz", "load", "ax", "ay", "p_max")
 
 
 @dataclass(frozen=True)
@@ -66,6 +70,29 @@ class EquilibriumProblem:
     def shape(self) -> tuple[int, ...]:
         """Batch shape ``(...)``."""
         return self.tilt.shape
+
+    @property
+    def size(self) -> int:
+        """Number of operating points in the batch."""
+        return int(np.prod(self.shape, dtype=int))
+
+    def _map(self, batch, per_contact) -> "EquilibriumProblem":
+        changes = {n: batch(getattr(self, n)) for n in _BATCH}
+        changes.update({n: per_contact(getattr(self, n)) for n in _PER_CONTACT})
+        return replace(self, **changes)
+
+    def flat(self) -> "EquilibriumProblem":
+        """The same points as a 1-D batch (C order)."""
+        nc = self.layout.n_contacts
+        return self._map(lambda a: a.reshape(-1), lambda a: a.reshape(-1, nc))
+
+    def take(self, index) -> "EquilibriumProblem":
+        """The points ``index`` (integer or boolean array) of a 1-D batch."""
+        return self._map(lambda a: a[index], lambda a: a[index])
+
+    def expand(self) -> "EquilibriumProblem":
+        """Insert a trailing batch axis of length 1 (to broadcast over perturbations)."""
+        return self._map(lambda a: a[..., None], lambda a: a[..., None, :])
 
     @property
     def reduced_modulus(self) -> float:

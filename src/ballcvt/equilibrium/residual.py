@@ -33,7 +33,7 @@ from ..contact.traction import traction_coefficients
 from ..geometry.kinematics import body_speeds, creep_term, entrainment_factor, spin
 from .problem import EquilibriumProblem
 
-__all__ = ["EquilibriumState", "evaluate", "residual"]
+__all__ = ["EquilibriumState", "evaluate", "evaluate_with_jacobian", "residual"]
 
 
 @dataclass(frozen=True)
@@ -111,17 +111,81 @@ def evaluate(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadra
     -------
     EquilibriumState
     """
-    pb, lay, des, fl = problem, problem.layout, problem.design, problem.fluid
     creep = np.asarray(creep, dtype=float)
-    rs, n = des.roller_radius, des.n_rollers
-    omega_s, omega = body_speeds(lay, pb.tilt, creep, pb.input_speed)
-    sigma = spin(lay, pb.tilt, omega_s, omega)
-    u_ref = np.abs(omega) * pb.radius
+    omega_s, omega, sigma, u_ref, film = _contact_inputs(problem, creep)
+    mu, chi = traction_coefficients(creep_term(creep), sigma, problem.ax, problem.ay,
+                                    problem.p_max, problem.load, problem.radius, u_ref, film,
+                                    problem.fluid, quadrature)
+    return _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi)
+
+
+def evaluate_with_jacobian(problem: EquilibriumProblem, creep,
+                           quadrature: Quadrature = Quadrature(), step: float = 1e-7):
+    """`evaluate` and the Jacobian of its residual with respect to the creeps.
+
+    The traction integrals, the costly part, are evaluated once with their analytic
+    derivatives (`traction_coefficients` with ``derivatives=True``). The Jacobian then
+    follows by forward differences of the cheap rest (kinematics, film thickness,
+    balances, bearings) with the traction coefficients linearised, all creeps perturbed
+    at once along an extra batch axis.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating point(s), batch shape ``(...)``.
+    creep : array_like
+        Creeps, shape ``(..., n_c)`` [-].
+    quadrature : Quadrature
+        Rule for the traction integrals.
+    step : float
+        Relative difference step (floor ``1e-4`` on ``|creep|``) [-].
+
+    Returns
+    -------
+    state : EquilibriumState
+    jacobian : ndarray
+        ``d residual_i / d creep_j``, shape ``(..., n_c, n_c)`` [-].
+    """
+    creep = np.asarray(creep, dtype=float)
+    nc = creep.shape[-1]
+    omega_s, omega, sigma, u_ref, film = _contact_inputs(problem, creep)
+    c = creep_term(creep)
+    mu, chi, dmu, dchi = traction_coefficients(c, sigma, problem.ax, problem.ay,
+                                               problem.p_max, problem.load, problem.radius,
+                                               u_ref, film, problem.fluid, quadrature,
+                                               derivatives=True)
+    state = _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi)
+    h = step * np.maximum(np.abs(creep), 1e-4)
+    pert = creep[..., None, :] + h[..., None] * np.eye(nc)            # (..., j, n_c)
+    wide = problem.expand()
+    ws, w, sg, u, hf = _contact_inputs(wide, pert)
+    ex = lambda v: v[..., None, :]  # noqa: E731
+    delta = np.stack([creep_term(pert) - ex(c), sg - ex(sigma),
+                      np.log(u / ex(u_ref)) - np.log(hf / ex(film))], axis=-1)
+    mu_p = ex(mu) + np.sum(ex(dmu) * delta, axis=-1)
+    chi_p = ex(chi) + np.sum(ex(dchi) * delta, axis=-1)
+    res_p = _balances(wide, pert, ws, w, sg, u, hf, mu_p, chi_p).residual
+    jac = (res_p - state.residual[..., None, :]) / h[..., :, None]    # (..., j, i)
+    return state, np.swapaxes(jac, -1, -2)
+
+
+def _contact_inputs(problem: EquilibriumProblem, creep):
+    """Speeds, spins, surface speeds and film thicknesses at the creeps (Eqs. 7-14, 67)."""
+    lay, fl = problem.layout, problem.fluid
+    omega_s, omega = body_speeds(lay, problem.tilt, creep, problem.input_speed)
+    sigma = spin(lay, problem.tilt, omega_s, omega)
+    u_ref = np.abs(omega) * problem.radius
     film = central_film_thickness(fl.viscosity, fl.pressure_viscosity_coefficient,
-                                  pb.reduced_modulus, pb.rx, u_ref * entrainment_factor(creep),
-                                  pb.load, pb.ay / pb.ax)
-    mu, chi = traction_coefficients(creep_term(creep), sigma, pb.ax, pb.ay, pb.p_max, pb.load,
-                                    pb.radius, u_ref, film, fl, quadrature)
+                                  problem.reduced_modulus, problem.rx,
+                                  u_ref * entrainment_factor(creep), problem.load,
+                                  problem.ay / problem.ax)
+    return omega_s, omega, sigma, u_ref, film
+
+
+def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> EquilibriumState:
+    """Forces, moments, bearing torques and residuals from the contact coefficients."""
+    pb, lay, des, fl = problem, problem.layout, problem.design, problem.fluid
+    rs, n = des.roller_radius, des.n_rollers
     force = lay.kappa * mu * pb.load
     moment = -chi * pb.load * pb.radius
     m_s = np.sum(rs * pb.rho * force + pb.sz * moment, axis=-1)
@@ -137,7 +201,7 @@ def evaluate(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadra
                     + load_dependent_torque(idler_thrust, des.idler_bearing_diameter, bm), 0.0)
     body = n * (-force * pb.radius - moment * lay.z_j)
     scale = pb.torque_scale[..., None]
-    res = np.empty_like(creep)
+    res = np.empty(body.shape)
     res[..., 0] = (m_s - np.sign(omega_s) * t_bls) / (pb.clamp_force * rs)
     res[..., 1:-1] = ((body - np.sign(omega) * t_bl) / scale)[..., 1:-1]
     res[..., -1] = (body[..., -1] - pb.output_torque) / scale[..., 0]

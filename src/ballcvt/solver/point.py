@@ -1,6 +1,8 @@
 """Solve the equilibrium of one operating point for its creep coefficients.
 
-Strategy: MINPACK's hybrid Powell method (`scipy.optimize.root`, ``hybr``) with a
+Strategy: the batched Newton method of `ballcvt.solver.batch` on the single point
+(``method="newton"``, the default); if it fails, or with ``method="hybr"``, MINPACK's
+hybrid Powell method (`scipy.optimize.root`, ``hybr``) with a
 forward-difference Jacobian that has an absolute step floor (creeps span 1e-15 to 0.4,
 MODEL.md section 8). If that fails (typically near the traction limit from a cold start),
 the bracketing solver of `ballcvt.solver.nested`, which cannot wander off. A result is
@@ -17,18 +19,17 @@ from scipy.optimize import root
 from ..contact.quadrature import Quadrature
 from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState, evaluate
+from .batch import CREEP_BOUNDS, initial_creep, solve_batch
 from .nested import NoBracketError, solve_nested
 
 __all__ = ["SolverOptions", "PointSolution", "solve_point", "initial_creep"]
 
-#: Creeps outside this open interval are unphysical (speeds reverse); the residual
-#: there is replaced by a large value so that the root finder backs off.
-_CREEP_BOUNDS = (-0.5, 0.98)
+METHODS = ("newton", "hybr")
 
 
 @dataclass(frozen=True)
 class SolverOptions:
-    """Numerical options of the equilibrium solver.
+    """Numerical options of the equilibrium solvers.
 
     Attributes
     ----------
@@ -36,13 +37,32 @@ class SolverOptions:
         Traction-integral rule.
     tol : float
         Largest accepted ``max |residual|`` (residuals are torques over ``F_N0 r_S``) [-].
+    method : {"newton", "hybr"}
+        ``newton``: the batched Newton method with analytic traction derivatives (fast,
+        default); ``hybr``: SciPy's hybrid method with a finite-difference Jacobian (the
+        straightforward path, kept as a baseline). Both fall back to bracketing.
+    max_iterations : int
+        Newton iterations allowed (per stage) before the fallback.
+    predictor : Quadrature or None
+        Coarse rule on which the Newton method first converges to ``predictor_tol``
+        (a cheap starting point for the iterations on ``quadrature``); None to skip.
+    predictor_tol : float
+        Tolerance of the predictor stage [-].
     max_evaluations : int
         Residual evaluations allowed to the hybrid method before the fallback.
     """
 
     quadrature: Quadrature = Quadrature()
     tol: float = 1e-11
+    method: str = "newton"
+    max_iterations: int = 40
     max_evaluations: int = 400
+    predictor: Quadrature | None = Quadrature("pole", 12, 8, 12)
+    predictor_tol: float = 1e-6
+
+    def __post_init__(self):
+        if self.method not in METHODS:
+            raise ValueError(f"solver method must be one of {METHODS}, got {self.method!r}")
 
 
 @dataclass(frozen=True)
@@ -56,13 +76,6 @@ class PointSolution:
     message: str
 
 
-def initial_creep(problem: EquilibriumProblem) -> np.ndarray:
-    """A starting creep vector: small positive disc creeps, zero idler creeps."""
-    x0 = np.full(problem.layout.n_contacts, 1e-3)
-    x0[problem.layout.is_idler] = 0.0
-    return x0
-
-
 def _attempt(problem, x0, options):
     count = [0]
     last: dict = {}
@@ -71,7 +84,7 @@ def _attempt(problem, x0, options):
         if last and np.array_equal(x, last["x"]):
             return last["f"]  # hybr asks for f and the Jacobian at the same point
         count[0] += 1
-        if np.any(x <= _CREEP_BOUNDS[0]) or np.any(x >= _CREEP_BOUNDS[1]):
+        if np.any(x <= CREEP_BOUNDS[0]) or np.any(x >= CREEP_BOUNDS[1]):
             f = np.full_like(x, 1e3)
         else:
             f = evaluate(problem, x, options.quadrature).residual
@@ -110,10 +123,16 @@ def solve_point(problem: EquilibriumProblem, options: SolverOptions = SolverOpti
     if problem.shape != ():
         raise ValueError("solve_point takes a single operating point")
     x0 = initial_creep(problem) if x0 is None else np.asarray(x0, dtype=float)
-    sol, evals = _attempt(problem, x0, options)
-    x = sol.x
-    state = evaluate(problem, x, options.quadrature)
-    norm = float(np.max(np.abs(state.residual)))
+    if options.method == "newton":
+        batch = solve_batch(problem, options, x0, fallback=False)
+        state, norm, evals = batch.state, float(batch.residual_norm), int(batch.iterations)
+        detail = "Newton"
+    if options.method == "hybr" or not norm <= options.tol:
+        sol, n_ev = _attempt(problem, x0, options)
+        evals = n_ev if options.method == "hybr" else evals + n_ev
+        state = evaluate(problem, sol.x, options.quadrature)
+        norm = float(np.max(np.abs(state.residual)))
+        detail = "hybrid method"
     if not norm <= options.tol:
         try:
             x, n_ev = solve_nested(problem, options.quadrature)
@@ -123,8 +142,6 @@ def solve_point(problem: EquilibriumProblem, options: SolverOptions = SolverOpti
             detail = "bracketing fallback"
         except NoBracketError as exc:
             detail = str(exc)
-    else:
-        detail = "hybrid method"
     converged = bool(norm <= options.tol and np.all(np.isfinite(state.residual)))
     message = f"converged ({detail})" if converged else (
         f"no equilibrium found: max|residual| = {norm:.3g} > tol {options.tol:g} ({detail})")

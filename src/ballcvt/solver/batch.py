@@ -1,0 +1,205 @@
+"""Batched Newton solver: many operating points at once (the fast default path).
+
+All points of a batch iterate together, first with a coarse quadrature (the predictor,
+``SolverOptions.predictor``) to a loose tolerance, then with the requested one. Each iteration evaluates the traction integrals
+once, with their analytic derivatives (`evaluate_with_jacobian`), and solves the small
+``n_c x n_c`` Newton systems of every point in one `numpy.linalg.solve` call. Steps are
+capped so that no creep leaves its physical range, and a point whose residual grew is sent
+back along half its previous step (a deferred backtracking line search that costs nothing
+while Newton converges). Points still unconverged after ``max_iterations`` go, one by one,
+to the robust point solver (hybrid method, then bracketing). A point is reported converged
+only if its residual, evaluated afresh on the final creeps, meets the tolerance; the others
+are flagged in ``converged``, never hidden.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem
+from ..equilibrium.residual import EquilibriumState, evaluate, evaluate_with_jacobian
+
+__all__ = ["BatchSolution", "solve_batch", "initial_creep", "CREEP_BOUNDS"]
+
+#: Creeps outside this open interval are unphysical (speeds reverse).
+CREEP_BOUNDS = (-0.5, 0.98)
+#: Largest change of any creep in one Newton step [-].
+MAX_STEP = 0.05
+
+
+@dataclass(frozen=True)
+class BatchSolution:
+    """Outcome of `solve_batch`; arrays have the batch shape ``(...)``.
+
+    Attributes
+    ----------
+    state : EquilibriumState
+        Every quantity at the final creeps (also for unconverged points: check
+        ``converged``).
+    converged : ndarray of bool
+        Residual at most the tolerance and finite.
+    residual_norm : ndarray
+        ``max |residual|`` at the final creeps [-].
+    iterations : ndarray of int
+        Newton iterations (residual-and-Jacobian evaluations) of each point; points
+        that needed the point solver add its residual evaluations.
+    """
+
+    state: EquilibriumState
+    converged: np.ndarray
+    residual_norm: np.ndarray
+    iterations: np.ndarray
+
+
+def initial_creep(problem: EquilibriumProblem) -> np.ndarray:
+    """A starting creep vector per point: small positive disc creeps, zero idler creeps."""
+    x0 = np.where(problem.layout.is_idler, 0.0, 1e-3)
+    return np.broadcast_to(x0, problem.shape + x0.shape).copy()
+
+
+def solve_batch(problem: EquilibriumProblem, options=None, x0=None,
+                fallback: bool = True) -> BatchSolution:
+    """Solve every operating point of ``problem`` for its creeps.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating points, batch shape ``(...)``.
+    options : SolverOptions, optional
+        Quadrature, tolerance and ``max_iterations`` (Newton iterations before a point goes
+        to the point solver); ``ballcvt.solver.point.SolverOptions()`` by default.
+    x0 : array_like, optional
+        Starting creeps, broadcastable to ``(..., n_c)`` (e.g. a neighbour's solution).
+    fallback : bool
+        Whether unconverged points go to the point solver (otherwise they are flagged).
+
+    Returns
+    -------
+    BatchSolution
+    """
+    from .point import SolverOptions, solve_point  # the point solver builds on this module
+    options = SolverOptions() if options is None else options
+    shape, nc = problem.shape, problem.layout.n_contacts
+    flat = problem.flat()
+    x = initial_creep(flat) if x0 is None else \
+        np.broadcast_to(np.asarray(x0, dtype=float), shape + (nc,)).reshape(-1, nc).copy()
+    iterations = np.zeros(flat.size, dtype=int)
+    if options.predictor is not None and options.predictor != options.quadrature:
+        coarse = replace(options, quadrature=options.predictor, tol=options.predictor_tol)
+        x_fine = x.copy()
+        _newton(flat, x, iterations, coarse)
+        x = np.where(np.all(np.isfinite(x), axis=-1, keepdims=True), x, x_fine)
+    state = _newton(flat, x, iterations, options)
+    norm = _norm(state.residual)
+    bad = np.flatnonzero(~(norm <= options.tol))
+    if fallback and bad.size:
+        robust = replace(options, method="hybr")
+        for i in bad:
+            sol = solve_point(flat.take(int(i)), robust)
+            iterations[i] += sol.evaluations
+            if sol.residual_norm < norm[i]:
+                x[i] = sol.state.creep
+        state = evaluate(flat, x, options.quadrature)
+        norm = _norm(state.residual)
+    converged = norm <= options.tol
+    return BatchSolution(state=_reshape(state, shape), converged=converged.reshape(shape),
+                         residual_norm=norm.reshape(shape), iterations=iterations.reshape(shape))
+
+
+def _newton(flat, x, iterations, options):
+    """Damped Newton on the points of the 1-D batch ``flat``; updates ``x`` in place.
+
+    Returns the state at the final ``x`` of every point: each point's last evaluation,
+    or a fresh one for the points whose last move was not evaluated.
+    """
+    active = np.arange(flat.size)
+    final = None
+    fresh = np.zeros(flat.size, dtype=bool)       # last evaluation was at the current x
+    best = np.full(flat.size, np.inf)          # residual norm at the last accepted creeps
+    prev_x = x.copy()
+    prev_dx = np.zeros_like(x)
+    for _ in range(options.max_iterations):
+        if active.size == 0:
+            break
+        sub = flat.take(active) if active.size < flat.size else flat
+        state, jac = evaluate_with_jacobian(sub, x[active], options.quadrature)
+        iterations[active] += 1
+        final = state if final is None else _scatter(final, state, active)
+        fresh[active] = True
+        res = state.residual
+        norm = _norm(res)
+        done = norm <= options.tol
+        worse = ~done & ~(norm < best[active])        # includes NaN residuals
+        # Points that got worse go back along half their last step; the others step.
+        ok = ~done & ~worse
+        dx = np.zeros_like(res)
+        if np.any(ok):
+            dx[ok] = _newton_step(jac[ok], res[ok], x[active][ok])
+        idx = active
+        back = idx[worse]
+        prev_dx[back] *= 0.5
+        x[back] = prev_x[back] + prev_dx[back]
+        stuck = worse & ~(np.max(np.abs(prev_dx[idx]), axis=-1) > 1e-14)
+        step = idx[ok]
+        best[step] = norm[ok]
+        prev_x[step] = x[step]
+        prev_dx[step] = dx[ok]
+        x[step] = x[step] + dx[ok]
+        fresh[back] = False
+        fresh[step] = False
+        active = idx[~done & ~stuck]
+    stale = np.flatnonzero(~fresh)
+    if final is None or stale.size == flat.size:
+        return evaluate(flat, x, options.quadrature)
+    if stale.size:
+        final = _scatter(final, evaluate(flat.take(stale), x[stale], options.quadrature), stale)
+    return final
+
+
+def _scatter(full: EquilibriumState, part: EquilibriumState, index) -> EquilibriumState:
+    """``full`` with the points ``index`` replaced by ``part`` (copies, 1-D batches)."""
+    if part.creep.shape[0] == full.creep.shape[0] and np.array_equal(index, np.arange(
+            full.creep.shape[0])):
+        return part
+    fields = {}
+    for name, value in vars(full).items():
+        value = np.array(value, copy=True)
+        value[index] = getattr(part, name)
+        fields[name] = value
+    return EquilibriumState(**fields)
+
+
+def _newton_step(jac, res, x):
+    """Newton steps, capped in size and kept inside `CREEP_BOUNDS`."""
+    try:
+        dx = np.linalg.solve(jac, -res[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        dx = np.stack([_lstsq(j, r) for j, r in zip(jac, res)])
+    dx = np.where(np.isfinite(dx), dx, 0.0)
+    big = np.max(np.abs(dx), axis=-1, keepdims=True)
+    dx *= np.minimum(1.0, MAX_STEP / np.maximum(big, 1e-300))
+    lo, hi = CREEP_BOUNDS
+    # Never step more than half-way to a bound.
+    room = np.where(dx > 0, 0.5 * (hi - x), 0.5 * (x - lo))
+    scale = np.min(np.where(np.abs(dx) > room, room / np.maximum(np.abs(dx), 1e-300), 1.0),
+                   axis=-1, keepdims=True)
+    return dx * scale
+
+
+def _lstsq(jac, res):
+    return np.linalg.lstsq(jac, -res, rcond=None)[0]
+
+
+def _norm(res):
+    norm = np.max(np.abs(res), axis=-1)
+    return np.where(np.isfinite(norm), norm, np.inf)
+
+
+def _reshape(state: EquilibriumState, shape) -> EquilibriumState:
+    fields = {}
+    for name, value in vars(state).items():
+        value = np.asarray(value)
+        fields[name] = value.reshape(shape + value.shape[1:])
+    return EquilibriumState(**fields)

@@ -37,8 +37,13 @@ def test_power_balance_and_signs(case):
     v, ratio, clamp, rpm, frac = case
     limit = v.limit_torque(ratio=ratio, clamp_force=clamp, input_speed_rpm=rpm)
     r = v.solve(ratio=ratio, output_torque=frac * limit, clamp_force=clamp, input_speed_rpm=rpm)
-    assert r.converged and r.residual_norm < 1e-10
-    assert r.eta == pytest.approx(r.eta_loss, abs=1e-9)          # Eq. 38 = Eq. 39
+    assert r.converged and r.residual_norm <= v.options.tol
+    # Eq. 38 = Eq. 39 exactly at the exact equilibrium. At a residual eps (torques over
+    # F_N0 r_S) the power balance is off by at most n F_N0 r_S eps (|omega_S| + sum |Omega|);
+    # the factor 2 is a margin for round-off in the loss sums.
+    speeds = abs(r.roller_speed) + sum(abs(c.body_speed) for c in r.contacts.values())
+    slack = v.design.n_rollers * clamp * v.design.roller_radius * r.residual_norm * speeds
+    assert r.eta == pytest.approx(r.eta_loss, abs=1e-12 + 2.0 * slack / r.input_power)
     assert 0.0 < r.eta < 1.0
     for c in r.contacts.values():
         assert c.creep_loss >= 0.0 and c.spin_loss >= 0.0

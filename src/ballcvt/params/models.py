@@ -163,6 +163,8 @@ class Design(ParameterModel):
                                    "(Fig. 3 uses 0.8)", gt=0, le=1)
     creep_limit: float = _f("-", "largest |creep| counted as traction (MODEL.md section 7)",
                             gt=0, lt=1)
+    max_pressure: float = _f("Pa", "largest admissible Hertz peak pressure (clamping-force "
+                             "optimisation)", gt=0)
     material: Material
     bearings: BearingModel
 

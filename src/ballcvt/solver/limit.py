@@ -14,9 +14,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
+from .batch import solve_batch
 from .point import PointSolution, SolverOptions, solve_point
 
-__all__ = ["LimitSolution", "limit_torque", "traction_ceiling_torque"]
+__all__ = ["LimitSolution", "limit_torque", "limit_torque_batch", "traction_ceiling_torque"]
 
 
 @dataclass(frozen=True)
@@ -99,3 +100,53 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
             hi = mid
     critical = int(np.argmax(np.abs(best.state.creep)))
     return LimitSolution(torque=lo, solution=best, critical_contact=critical, bracket=(lo, hi))
+
+
+def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
+                       options: SolverOptions = SolverOptions(), rtol: float = 1e-4,
+                       callback=None) -> np.ndarray:
+    """Limiting output torque of every point of a batch (its ``output_torque`` is ignored).
+
+    The same bisection as `limit_torque`, run on all points at once with the batched
+    Newton solver, each trial started from the point's last admissible creeps. A trial
+    counts as admissible only if Newton converges with every ``|C| <= creep_limit``
+    (no per-point fallback, so a trial Newton cannot converge counts as beyond the limit).
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating points, batch shape ``(...)``.
+    creep_limit : float
+        ``C_lim`` [-].
+    options : SolverOptions
+        Solver options.
+    rtol : float
+        Relative width of the final torque brackets [-].
+    callback : callable, optional
+        Called with no argument after each bisection step (progress bars).
+
+    Returns
+    -------
+    ndarray
+        Limiting torques [N m], shape ``(...)``; NaN where even ``T_2 = 0`` is inadmissible.
+    """
+    flat = problem.flat()
+    ceiling = np.array([traction_ceiling_torque(flat.take(i)) for i in range(flat.size)])
+
+    def admissible(torque, x0):
+        sol = solve_batch(replace(flat, output_torque=torque), options, x0, fallback=False)
+        ok = sol.converged & (np.max(np.abs(sol.state.creep), axis=-1) <= creep_limit)
+        return ok, sol.state.creep
+
+    ok0, best = admissible(np.zeros(flat.size), None)
+    lo, hi = np.zeros(flat.size), ceiling.copy()
+    steps = int(np.ceil(np.log2(1.0 / rtol))) + 1
+    for _ in range(steps):
+        mid = 0.5 * (lo + hi)
+        ok, x = admissible(mid, best)
+        lo = np.where(ok, mid, lo)
+        hi = np.where(ok, hi, mid)
+        best = np.where(ok[:, None], x, best)
+        if callback is not None:
+            callback()
+    return np.where(ok0, lo, np.nan).reshape(problem.shape)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
+import numpy as np
+
 from .contact.quadrature import Quadrature
 from .equilibrium.problem import build_problem
 from .errors import ConvergenceError, InputError, TractionLimitError
@@ -13,7 +15,9 @@ from .params.io import load_builtin
 from .params.models import ARCHITECTURES, Design, Fluid
 from .results.point import OperatingResult, make_result
 from .solver.limit import limit_torque
+from .optimize.clamp import ClampOptimum, optimal_clamp_force
 from .solver.point import SolverOptions, solve_point
+from .sweeps.grid import sweep
 
 __all__ = ["Variator"]
 
@@ -129,6 +133,54 @@ class Variator:
             raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
         problem = self._problem(ratio, 0.0, clamp_force, input_speed, input_speed_rpm)
         return limit_torque(problem, c_lim, self.options).torque
+
+    def sweep(self, *, ratio, output_torque, clamp_force, input_speed=None,
+              input_speed_rpm=None, architecture=None, creep_limit: float | None = None,
+              workers: int = 1, progress: bool | None = None):
+        """Evaluate a grid of operating points (see `ballcvt.sweeps.sweep`).
+
+        Parameters
+        ----------
+        ratio, output_torque, clamp_force : float or array_like
+            Ideal ratios [-], output torques (increasing) [N m], clamping forces [N].
+        input_speed, input_speed_rpm : float or array_like
+            Input speeds [rad/s] or [rpm] (exactly one).
+        architecture : str or sequence of str, optional
+            This variator's architecture by default; e.g. ``("double", "single")``.
+        creep_limit : float, optional
+            ``C_lim`` of the limiting torque [-].
+        workers : int
+            Processes to use.
+        progress : bool, optional
+            Progress bar (default: when stderr is a terminal).
+
+        Returns
+        -------
+        xarray.Dataset
+        """
+        if (input_speed is None) == (input_speed_rpm is None):
+            raise InputError("input_speed", input_speed, "exactly one of input_speed [rad/s] "
+                             "or input_speed_rpm [rpm]")
+        speed = (np.asarray(input_speed, float) if input_speed is not None
+                 else np.asarray(input_speed_rpm, float) * math.pi / 30.0)
+        return sweep(self.design, self.fluid, ratio=ratio, output_torque=output_torque,
+                     clamp_force=clamp_force, input_speed=speed,
+                     architecture=architecture or self.architecture, options=self.options,
+                     creep_limit=creep_limit, workers=workers, progress=progress)
+
+    def optimal_clamp_force(self, ratio: float, output_torque: float,
+                            input_speed: float | None = None, *,
+                            input_speed_rpm: float | None = None,
+                            creep_limit: float | None = None,
+                            max_pressure: float | None = None) -> ClampOptimum:
+        """Clamping force of maximum efficiency under the creep and pressure limits.
+
+        See `ballcvt.optimize.optimal_clamp_force`; limits default to the design's
+        ``creep_limit`` and ``max_pressure``.
+        """
+        return optimal_clamp_force(self.design, self.fluid, self.architecture, float(ratio),
+                                   float(output_torque), _speed(input_speed, input_speed_rpm),
+                                   self.options, creep_limit, max_pressure)
 
     def with_quadrature(self, quadrature: Quadrature) -> "Variator":
         """A copy using another traction-integral rule."""

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from ..results.point import OperatingResult
 
-__all__ = ["point_table", "limit_table"]
+__all__ = ["point_table", "limit_table", "clamp_table"]
 
 _ROWS = [  # (label, attribute, unit, scale, format)
     ("creep C", "creep", "-", 1.0, "{:+.4e}"),
@@ -58,3 +58,13 @@ def limit_table(data: dict) -> str:
     return (f"limiting output torque {data['limit_torque']:.2f} N m  ({data['architecture']} "
             f"idler, ratio {data['ratio']:g}, F_N0 {data['clamp_force']:g} N, "
             f"{data['input_speed_rpm']:g} rpm, |creep| <= {data['creep_limit']:g})")
+
+
+def clamp_table(data: dict) -> str:
+    """Readable optimal-clamping-force summary."""
+    lo, hi = data["feasible_clamp_range"]
+    return (f"optimal clamping force {data['clamp_force']:.0f} N: eta {data['eta']:.5f}, "
+            f"max |creep| {data['max_creep']:.4f}, max p_max {data['max_pressure'] / 1e9:.3f} "
+            f"GPa\n  ({data['architecture']} idler, ratio {data['ratio']:g}, T2 "
+            f"{data['output_torque']:g} N m, {data['input_speed_rpm']:g} rpm; feasible "
+            f"F_N0 {lo:.0f}-{hi:.0f} N, active constraint: {data['active_constraint']})")

@@ -17,7 +17,7 @@ from ..errors import BallCVTError, InputError
 from ..params.io import builtin_text, drive_to_toml, load_builtin, load_drive
 from ..params.models import ARCHITECTURES
 from ..variator import Variator
-from .format import limit_table, point_table
+from .format import clamp_table, limit_table, point_table
 
 __all__ = ["main", "build_parser"]
 
@@ -61,11 +61,49 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--creep-limit", type=float, default=None,
                    help="largest admissible |creep| (default: the design's, 0.10)")
 
+    p = sub.add_parser("clamp", help="clamping force of maximum efficiency under the creep "
+                       "and pressure limits")
+    _common(p, torque=True)
+    p.set_defaults(clamp=None)
+    p.add_argument("--creep-limit", type=float, default=None,
+                   help="largest admissible |creep| (default: the design's, 0.10)")
+    p.add_argument("--max-pressure", type=float, default=None,
+                   help="largest admissible Hertz peak pressure [Pa] (default: the design's)")
+
+    p = sub.add_parser("map", help="efficiency map (ratio x output torque) as data and PNG")
+    _common(p, torque=False)
+    p.set_defaults(ratio=None)
+    p.add_argument("--out", type=Path, default=Path("ballcvt-map"),
+                   help="output directory (default: %(default)s)")
+    p.add_argument("--ratio-range", type=float, nargs=2, default=(0.5, 2.0),
+                   metavar=("MIN", "MAX"), help="ratio range (default: 0.5 2)")
+    p.add_argument("--n-ratio", type=int, default=31, help="ratios (default: %(default)s)")
+    p.add_argument("--torque-max", type=float, default=None,
+                   help="largest torque [N m] (default: the largest limiting torque)")
+    p.add_argument("--n-torque", type=int, default=35, help="torques (default: %(default)s)")
+    _run_options(p)
+
+    p = sub.add_parser("reproduce", help="recompute every result of the paper: figures, "
+                       "data and report")
+    p.add_argument("--out", type=Path, default=Path("ballcvt-reproduction"),
+                   help="output directory (default: %(default)s)")
+    p.add_argument("--quick", action="store_true", help="coarse grids (seconds)")
+    _run_options(p)
+
     p = sub.add_parser("design", help="show or export the drive definition as TOML")
     p.add_argument("action", choices=("show", "export"))
     p.add_argument("path", nargs="?", type=Path, help="output file of 'export' (default: stdout)")
     p.add_argument("--design", type=Path, help="drive definition to validate and show")
     return parser
+
+
+def _run_options(p):
+    p.add_argument("--workers", type=int, default=1, help="processes (default: 1)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def _progress(args):
+    return False if args.quiet else None          # None: only when stderr is a terminal
 
 
 def _variator(args) -> Variator:
@@ -93,6 +131,67 @@ def _cmd_limit(args) -> int:
     return 0
 
 
+def _cmd_clamp(args) -> int:
+    v = _variator(args)
+    o = v.optimal_clamp_force(ratio=args.ratio, output_torque=args.torque,
+                              input_speed_rpm=_rpm(args.speed), creep_limit=args.creep_limit,
+                              max_pressure=args.max_pressure)
+    data = {"clamp_force": o.clamp_force, "eta": o.eta, "max_creep": o.max_creep,
+            "max_pressure": o.max_pressure, "feasible_clamp_range": list(o.bounds),
+            "active_constraint": o.active, "architecture": args.arch, "ratio": args.ratio,
+            "output_torque": args.torque, "input_speed_rpm": args.speed,
+            "version": __version__}
+    print(json.dumps(data, indent=2) if args.json else clamp_table(data))
+    return 0
+
+
+def _cmd_map(args) -> int:
+    import numpy as np
+
+    from ..plotting import efficiency_map, save
+    from ..sweeps import to_csv, to_netcdf
+    v = _variator(args)
+    lo, hi = args.ratio_range
+    for name, n in (("n_ratio", args.n_ratio), ("n_torque", args.n_torque)):
+        if n < 2:
+            raise InputError(name, n, ">= 2")
+    if not 0 < lo < hi:
+        raise InputError("ratio_range", f"{lo:g} {hi:g}", "0 < MIN < MAX")
+    ratios = np.linspace(lo, hi, args.n_ratio)
+    top = args.torque_max
+    if top is None:
+        limits = v.sweep(ratio=ratios[[0, -1]], output_torque=0.0, clamp_force=args.clamp,
+                         input_speed_rpm=_rpm(args.speed), progress=False).limit_torque
+        top = 1.02 * float(limits.max())
+    if not top > 0:
+        raise InputError("torque_max", top, "> 0 N m")
+    ds = v.sweep(ratio=ratios, output_torque=np.linspace(top / args.n_torque, top,
+                                                         args.n_torque),
+                 clamp_force=args.clamp, input_speed_rpm=_rpm(args.speed),
+                 workers=args.workers, progress=_progress(args))
+    args.out.mkdir(parents=True, exist_ok=True)
+    to_netcdf(ds, args.out / "map.nc")
+    to_csv(ds, args.out / "map.csv")
+    one = ds.squeeze(drop=True)
+    save(efficiency_map(one.ratio.values, one.output_torque.values, one.eta.values,
+                        one.limit_torque.values, f"Efficiency map, {args.arch} idler, "
+                        f"F_N0 = {args.clamp:g} N, {args.speed:g} rpm"), args.out, "map")
+    n_ok = int((ds.status == 0).sum())
+    print(f"wrote {args.out}/map.png, map.svg, map.nc, map.csv: {n_ok} of {ds.status.size} "
+          f"points converged within the limit, max eta {float(ds.eta.max()):.4f}, "
+          f"{ds.attrs['run_time_s']:.1f} s")
+    return 0
+
+
+def _cmd_reproduce(args) -> int:
+    from ..reports import reproduce
+    r = reproduce(args.out, quick=args.quick, workers=args.workers, progress=_progress(args))
+    n_agree = sum(c.verdict == "agrees" for c in r.claims)
+    print(f"wrote {len(r.files)} files to {r.out} (report: {r.out / 'report.html'}); "
+          f"{n_agree} of {len(r.claims)} claims agree; run time {r.run_time:.1f} s")
+    return 0
+
+
 def _cmd_design(args) -> int:
     if args.design:
         text = drive_to_toml(*load_drive(args.design))
@@ -112,7 +211,8 @@ def _rpm(speed: float) -> float:
     return speed
 
 
-COMMANDS = {"point": _cmd_point, "limit": _cmd_limit, "design": _cmd_design}
+COMMANDS = {"point": _cmd_point, "limit": _cmd_limit, "clamp": _cmd_clamp, "map": _cmd_map,
+            "reproduce": _cmd_reproduce, "design": _cmd_design}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -1,0 +1,5 @@
+"""Layer 11: the reproduction of the paper (figures, claims, report)."""
+
+from .reproduce import GRIDS, Reproduction, reproduce
+
+__all__ = ["reproduce", "Reproduction", "GRIDS"]

@@ -1,0 +1,154 @@
+"""`reproduce`: recompute every result figure and stated number of the paper, with a report.
+
+Run from the command line as ``ballcvt reproduce --out DIR [--quick]``. Writes into DIR:
+``figNN.png/.svg/.csv`` for Figs. 3, 5, 7-13, ``map.*``, the sweeps as NetCDF
+(``data/*.nc``), ``claims.csv``, ``report.md`` and ``report.html`` (figures inline).
+"""
+
+from __future__ import annotations
+
+import math
+import platform
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from scipy.optimize import minimize_scalar
+
+from .._version import __version__
+from ..equilibrium.problem import build_problem
+from ..params.io import load_builtin
+from ..sweeps import to_netcdf
+from ..variator import Variator
+from .claims import ceiling_numbers, paper_claims
+from .figures import FIGURES, FigureData, write_csv
+from .report import write_report
+
+__all__ = ["reproduce", "Reproduction", "GRIDS"]
+
+RPM = 2000.0
+CLAMP = 2000.0
+
+#: Grid sizes: (full, quick).
+GRIDS = {"torque": (57, 9), "ratio": (61, 7), "map_ratio": (31, 7), "map_torque": (35, 8),
+         "envelope": (24, 5)}
+
+
+@dataclass(frozen=True)
+class Reproduction:
+    """What `reproduce` wrote and found."""
+
+    out: Path
+    files: list
+    claims: list
+    run_time: float
+
+
+def _grid(name, quick):
+    return GRIDS[name][1 if quick else 0]
+
+
+def _torques(n, top=180.0):
+    return np.unique(np.concatenate([[0.0, 1.0, 2.5], np.linspace(5.0, top, n - 3)]))
+
+
+def compute(quick: bool = False, workers: int = 1, progress: bool | None = None):
+    """Run every sweep the figures need; returns (FigureData, Fig. 11 peak)."""
+    v = Variator()
+    speed = RPM * math.pi / 30.0
+    torque = _torques(_grid("torque", quick))
+    common = {"input_speed": speed, "workers": workers, "progress": progress}
+    torque_curves = v.sweep(ratio=[0.5, 1.0, 2.0], output_torque=torque, clamp_force=CLAMP,
+                            **common)
+    clamps = [1000.0, 1500.0, 2000.0, 2500.0, 3000.0]
+    clamp_curves = v.sweep(ratio=1.0, output_torque=_torques(_grid("torque", quick), 260.0),
+                           clamp_force=clamps, **common)
+    env_t = np.unique(np.concatenate([np.linspace(5.0, 250.0, _grid("envelope", quick)),
+                                      [40.0]]))
+    rows = []
+    for t in env_t:
+        o = v.optimal_clamp_force(1.0, t, speed)
+        rows.append({"output_torque": t, "clamp_force": o.clamp_force, "eta": o.eta,
+                     "max_creep": o.max_creep, "max_pressure": o.max_pressure,
+                     "active_constraint": o.active})
+    envelope = pd.DataFrame(rows)
+    ratio = np.unique(np.concatenate([np.linspace(0.5, 2.0, _grid("ratio", quick)), [1.0]]))
+    ratio_curves = v.sweep(ratio=ratio, output_torque=[20.0, 40.0, 60.0], clamp_force=CLAMP,
+                           architecture=("double", "single"), **common)
+    emap = v.sweep(ratio=np.linspace(0.5, 2.0, _grid("map_ratio", quick)),
+                   output_torque=np.linspace(2.0, 170.0, _grid("map_torque", quick)),
+                   clamp_force=CLAMP, **common)
+    data = FigureData(v.design, torque_curves, clamp_curves, envelope, ratio_curves, emap)
+    return data, _fig11_peak(v, ratio_curves)
+
+
+def _fig11_peak(v, ratio_curves):
+    """Maximum of eta(ratio) at T_2 = 40 N m: grid maximum refined by bounded Brent."""
+    eta = ratio_curves.eta.sel(architecture="double", output_torque=40.0).squeeze(drop=True)
+    r = eta.ratio.values
+    i = int(np.nanargmax(eta.values))
+    lo, hi = r[max(i - 1, 0)], r[min(i + 1, r.size - 1)]
+
+    def neg(x):
+        return -v.solve(ratio=x, output_torque=40.0, clamp_force=CLAMP,
+                        input_speed_rpm=RPM).eta
+
+    res = minimize_scalar(neg, bounds=(lo, hi), method="bounded", options={"xatol": 1e-3})
+    return float(res.x), float(-res.fun)
+
+
+def reproduce(out, quick: bool = False, workers: int = 1,
+              progress: bool | None = None) -> Reproduction:
+    """Recompute the paper's results on the Table I drive and write figures and report.
+
+    Parameters
+    ----------
+    out : path-like
+        Output directory (created).
+    quick : bool
+        Coarse grids (seconds; for tests and a first look).
+    workers : int
+        Processes for the sweeps.
+    progress : bool, optional
+        Progress bars (default: when stderr is a terminal).
+
+    Returns
+    -------
+    Reproduction
+    """
+    start = time.perf_counter()
+    out = Path(out)
+    (out / "data").mkdir(parents=True, exist_ok=True)
+    data, peak = compute(quick, workers, progress)
+    files = []
+    for name, (fn, _) in FIGURES.items():
+        files += fn(data, out)
+    for name in ("torque_curves", "clamp_curves", "ratio_curves", "efficiency_map"):
+        files.append(to_netcdf(getattr(data, name), out / "data" / f"{name}.nc"))
+    design, fluid = load_builtin()
+    claims = paper_claims(data, peak)
+    frame = pd.DataFrame([c.__dict__ for c in claims])
+    files.append(write_csv(frame, out / "claims.csv", {}))
+    ceiling = {}
+    for r in (0.5, 1.0, 2.0):
+        pb = build_problem(design, fluid, "double", r, 0.0, CLAMP, RPM * math.pi / 30.0)
+        ceiling[r] = ceiling_numbers(pb)
+    run_time = time.perf_counter() - start
+    files += write_report(out, data, claims, ceiling, peak, quick=quick, run_time=run_time,
+                          inputs=_inputs(design, fluid, quick))
+    return Reproduction(out=out, files=files, claims=claims, run_time=run_time)
+
+
+def _inputs(design, fluid, quick):
+    return {
+        "design": design.name, "fluid": fluid.name,
+        "operating point": f"F_N0 = {CLAMP:g} N, omega_0 = {RPM:g} rpm (Figs. 7, 9-13)",
+        "creep limit": f"{design.creep_limit:g}",
+        "max pressure (clamp optimisation)": f"{design.max_pressure / 1e9:g} GPa",
+        "grids": "quick (coarse)" if quick else "full",
+        "ballcvt": __version__, "python": platform.python_version(),
+        "machine": f"{platform.machine()}, {platform.system()}",
+    }
+

@@ -103,7 +103,7 @@ def _md(blocks):
             head, rows = args
             lines.append("| " + " | ".join(head) + " |")
             lines.append("|" + "---|" * len(head))
-            lines += ["| " + " | ".join(str(c).replace("|", "/") for c in r) + " |"
+            lines += ["| " + " | ".join(str(c).replace("|", "\\|") for c in r) + " |"
                       for r in rows]
             lines.append("")
         elif kind == "figure":

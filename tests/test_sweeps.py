@@ -1,0 +1,118 @@
+"""Sweeps (xarray), export, the clamp optimiser and the quick end-to-end reproduction."""
+
+import numpy as np
+import pytest
+
+from ballcvt.cli.main import main
+from ballcvt.reports import reproduce
+from ballcvt.reports.figures import FIGURES
+from ballcvt.sweeps import VARIABLES, load_dataset, to_csv, to_netcdf
+
+OP = {"clamp_force": 2000.0, "input_speed_rpm": 2000.0}
+
+
+@pytest.fixture(scope="module")
+def small(double):
+    return double.sweep(ratio=[0.5, 1.0, 2.0], output_torque=[0.0, 40.0, 100.0, 150.0],
+                        architecture=("double", "single"), progress=False, **OP)
+
+
+def test_dataset_dims_units_and_flags(small):
+    assert dict(small.sizes) == {"architecture": 2, "clamp_force": 1, "input_speed": 1,
+                                 "ratio": 3, "output_torque": 4, "contact": 5}
+    for name in list(small.data_vars) + ["ratio", "output_torque", "clamp_force",
+                                         "input_speed"]:
+        assert small[name].attrs["units"] and small[name].attrs["long_name"], name
+    status = small.status.sel(architecture="double").squeeze(drop=True)
+    limit = small.limit_torque.sel(architecture="double").squeeze(drop=True)
+    beyond = small.output_torque > limit                    # 100 and 150 N m at ratio 2
+    assert (status.where(beyond) == 1).sum() == beyond.sum() > 0
+    assert small.eta.sel(architecture="double").squeeze(drop=True).where(beyond).isnull().all()
+    assert (status.where(~beyond) == 0).sum() == (~beyond).sum()   # nothing dropped
+    # contacts a single idler does not have are NaN, not zero
+    assert small.creep.sel(architecture="single", contact="idler_a").isnull().all()
+
+
+def test_netcdf_and_csv_round_trip(small, tmp_path):
+    back = load_dataset(to_netcdf(small, tmp_path / "s.nc"))
+    assert np.allclose(back.eta.values, small.eta.values, equal_nan=True)
+    assert back.eta.attrs["units"] == "1" and back.attrs["ballcvt_version"]
+    text = to_csv(small, tmp_path / "s.csv").read_text().splitlines()
+    assert text[0].startswith("# units:") and "creep_output" in text[1]
+    assert len(text) == 2 + 2 * 3 * 4
+
+
+def test_limit_torque_monotone_in_clamp(double):
+    ds = double.sweep(ratio=[0.7, 1.5], output_torque=0.0,
+                      clamp_force=[800.0, 1400.0, 2000.0, 2600.0], input_speed_rpm=2000.0,
+                      progress=False)
+    lim = ds.limit_torque.squeeze(drop=True).transpose("ratio", "clamp_force").values
+    assert np.all(np.diff(lim, axis=1) > 0)
+
+
+def test_variables_are_documented():
+    for name, (units, long_name) in VARIABLES.items():
+        assert units and long_name, name
+
+
+def test_optimal_clamp_beats_every_fixed_clamp(double):
+    torque = 60.0
+    opt = double.optimal_clamp_force(1.0, torque, **{"input_speed_rpm": 2000.0})
+    assert opt.max_creep <= double.design.creep_limit
+    assert opt.max_pressure <= double.design.max_pressure
+    for f in (800.0, 1000.0, 1500.0, 2000.0, 3000.0):
+        r = double.solve(ratio=1.0, output_torque=torque, clamp_force=f, input_speed_rpm=2000)
+        assert opt.eta >= r.eta - 1e-9, f
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory):
+    out = tmp_path_factory.mktemp("repro")
+    return reproduce(out, quick=True, progress=False)
+
+
+def test_quick_reproduction_writes_everything(quick):
+    out = quick.out
+    for name in FIGURES:
+        for ext in ("png", "svg", "csv"):
+            assert (out / f"{name}.{ext}").stat().st_size > 0, (name, ext)
+    for name in ("torque_curves", "clamp_curves", "ratio_curves", "efficiency_map"):
+        assert (out / "data" / f"{name}.nc").exists()
+    md = (out / "report.md").read_text()
+    page = (out / "report.html").read_text()
+    assert len(quick.claims) == 22
+    for c in quick.claims:
+        assert c.claim.replace("|", "\\|") in md                 # escaped in the table
+        assert c.verdict in ("agrees", "differs")
+    assert page.count("<img") == len(FIGURES) and "data:image/png;base64," in page
+    assert "Limiting torque." in md and "Single-idler pressure." in md
+
+
+def test_envelope_never_below_a_clamp_curve(quick, tmp_path):
+    import pandas as pd
+    env = pd.read_csv(quick.out / "fig08c_envelope.csv", comment="#")
+    curves = pd.read_csv(quick.out / "fig08.csv", comment="#")
+    for _, row in env.iterrows():
+        at = curves[np.isclose(curves.output_torque, row.output_torque)]
+        if len(at):
+            assert row.eta >= at.eta.max() - 1e-9
+
+
+def test_reproduced_fig11_numbers(quick):
+    rows = {c.claim: c for c in quick.claims}
+    assert float(rows["eta at tau_ID = 0.5, T_2 = 40 N m"].ours) == pytest.approx(0.82, abs=0.01)
+    assert float(rows["maximum eta, T_2 = 40 N m"].ours) == pytest.approx(0.89, abs=0.01)
+    assert float(rows["ratio of the maximum"].ours) == pytest.approx(1.76, abs=0.1)
+    assert rows["Eq. 38 = Eq. 39"].verdict == "agrees"
+
+
+def test_cli_map_clamp_and_errors(tmp_path, capsys):
+    assert main(["map", "--out", str(tmp_path), "--n-ratio", "3", "--n-torque", "3",
+                 "--quiet"]) == 0
+    assert (tmp_path / "map.png").exists() and (tmp_path / "map.nc").exists()
+    assert main(["clamp", "--torque", "40", "--json"]) == 0
+    assert '"clamp_force"' in capsys.readouterr().out
+    assert main(["map", "--n-torque", "1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "n_torque" in err[0]
+    assert main(["clamp", "--torque", "-5"]) == 2

@@ -84,9 +84,27 @@ def gauss_legendre(n: int, a: float = 0.0, b: float = 1.0) -> tuple[np.ndarray, 
     return x, w
 
 
+#: Two-panel radial rule: Gauss panels ``[0, RADIAL_SPLIT]`` and ``[RADIAL_SPLIT, 1]`` in
+#: ``t`` (``r = 0.84`` at the split), the inner one with ``INNER_SHARE`` of the nodes; used
+#: from 16 radial nodes up. It puts more nodes on the edge ring (measured on the 30 x 30
+#: benchmark map: max creep error 8.8e-4 -> 6.5e-4, mean 6.7e-5 -> 2.2e-5; on a small,
+#: slow, four-ball design the idler creep error fell from 1.0e-3 to 7e-6).
+RADIAL_SPLIT = 0.6
+INNER_SHARE = 0.4
+
+
 def radial_rule(n_radial: int) -> tuple[np.ndarray, np.ndarray]:
-    """Radial nodes ``r(t) = t (2 - t)`` on [0, 1] and weights ``dr/dt w_t`` (Gauss in t)."""
-    t, wt = gauss_legendre(n_radial)
+    """Radial nodes ``r(t) = t (2 - t)`` on [0, 1] and weights ``dr/dt w_t`` (Gauss in t).
+
+    From 16 nodes up, two Gauss panels split at ``t = RADIAL_SPLIT`` (see above).
+    """
+    if n_radial < 16:
+        t, wt = gauss_legendre(n_radial)
+    else:
+        inner = int(round(INNER_SHARE * n_radial))
+        t1, w1 = gauss_legendre(inner, 0.0, RADIAL_SPLIT)
+        t2, w2 = gauss_legendre(n_radial - inner, RADIAL_SPLIT, 1.0)
+        t, wt = np.concatenate([t1, t2]), np.concatenate([w1, w2])
     return t * (2.0 - t), 2.0 * (1.0 - t) * wt          # r(t), dr/dt * w
 
 

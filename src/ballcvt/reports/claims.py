@@ -162,4 +162,6 @@ def ceiling_numbers(problem) -> dict:
     fl = problem.fluid
     area = np.pi * problem.ax * problem.ay
     mu_max = fl.limiting_shear_slope + fl.limiting_shear_stress * area / problem.load
-    return {"mu_max": mu_max, "ceiling": traction_ceiling_torque(problem)}
+    force_bound = problem.design.n_rollers * problem.load * problem.radius * mu_max
+    return {"mu_max": mu_max, "ceiling": traction_ceiling_torque(problem),
+            "force_bound": float(np.asarray(force_bound)[..., -1])}

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import platform
+import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 from scipy.optimize import minimize_scalar
+from tqdm.auto import tqdm
 
 from .._version import __version__
 from ..equilibrium.problem import build_problem
@@ -68,7 +70,8 @@ def compute(quick: bool = False, workers: int = 1, progress: bool | None = None)
     env_t = np.unique(np.concatenate([np.linspace(5.0, 250.0, _grid("envelope", quick)),
                                       [40.0]]))
     rows = []
-    for t in env_t:
+    show = sys.stderr.isatty() if progress is None else progress
+    for t in tqdm(env_t, desc="Fig. 8c envelope", unit="torque", disable=not show):
         o = v.optimal_clamp_force(1.0, t, speed)
         rows.append({"output_torque": t, "clamp_force": o.clamp_force, "eta": o.eta,
                      "max_creep": o.max_creep, "max_pressure": o.max_pressure,

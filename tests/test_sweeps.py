@@ -116,3 +116,10 @@ def test_cli_map_clamp_and_errors(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "n_torque" in err[0]
     assert main(["clamp", "--torque", "-5"]) == 2
+
+
+def test_two_workers_give_the_same_sweep(double, small):
+    two = double.sweep(ratio=[0.5, 1.0, 2.0], output_torque=[0.0, 40.0, 100.0, 150.0],
+                       architecture=("double", "single"), progress=False, workers=2, **OP)
+    assert np.array_equal(two.status.values, small.status.values)
+    assert np.allclose(two.eta.values, small.eta.values, rtol=0, atol=1e-12, equal_nan=True)

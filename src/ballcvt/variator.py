@@ -17,7 +17,6 @@ from .results.point import OperatingResult, make_result
 from .solver.limit import limit_torque
 from .optimize.clamp import ClampOptimum, optimal_clamp_force
 from .solver.point import SolverOptions, solve_point
-from .sweeps.grid import sweep
 
 __all__ = ["Variator"]
 
@@ -161,6 +160,7 @@ class Variator:
         if (input_speed is None) == (input_speed_rpm is None):
             raise InputError("input_speed", input_speed, "exactly one of input_speed [rad/s] "
                              "or input_speed_rpm [rpm]")
+        from .sweeps.grid import sweep  # xarray and pandas load only when a sweep is asked for
         speed = (np.asarray(input_speed, float) if input_speed is not None
                  else np.asarray(input_speed_rpm, float) * math.pi / 30.0)
         return sweep(self.design, self.fluid, ratio=ratio, output_torque=output_torque,

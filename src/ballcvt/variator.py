@@ -135,7 +135,7 @@ class Variator:
 
     def sweep(self, *, ratio, output_torque, clamp_force, input_speed=None,
               input_speed_rpm=None, architecture=None, creep_limit: float | None = None,
-              workers: int = 1, progress: bool | None = None):
+              limit_torque=None, workers: int = 1, progress: bool | None = None):
         """Evaluate a grid of operating points (see `ballcvt.sweeps.sweep`).
 
         Parameters
@@ -148,6 +148,9 @@ class Variator:
             This variator's architecture by default; e.g. ``("double", "single")``.
         creep_limit : float, optional
             ``C_lim`` of the limiting torque [-].
+        limit_torque : array_like, optional
+            Limiting torques already known at these conditions [N m] (see
+            `ballcvt.sweeps.sweep`).
         workers : int
             Processes to use.
         progress : bool, optional
@@ -166,7 +169,8 @@ class Variator:
         return sweep(self.design, self.fluid, ratio=ratio, output_torque=output_torque,
                      clamp_force=clamp_force, input_speed=speed,
                      architecture=architecture or self.architecture, options=self.options,
-                     creep_limit=creep_limit, workers=workers, progress=progress)
+                     creep_limit=creep_limit, limit_torque=limit_torque, workers=workers,
+                     progress=progress)
 
     def optimal_clamp_force(self, ratio: float, output_torque: float,
                             input_speed: float | None = None, *,

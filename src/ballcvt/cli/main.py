@@ -148,7 +148,9 @@ def _cmd_clamp(args) -> int:
 def _cmd_map(args) -> int:
     import numpy as np
 
+    from ..equilibrium.problem import build_problem
     from ..plotting import efficiency_map, save
+    from ..solver.limit import limit_torque_batch
     from ..sweeps import to_csv, to_netcdf
     v = _variator(args)
     lo, hi = args.ratio_range
@@ -158,16 +160,17 @@ def _cmd_map(args) -> int:
     if not 0 < lo < hi:
         raise InputError("ratio_range", f"{lo:g} {hi:g}", "0 < MIN < MAX")
     ratios = np.linspace(lo, hi, args.n_ratio)
-    top = args.torque_max
-    if top is None:
-        limits = v.sweep(ratio=ratios[[0, -1]], output_torque=0.0, clamp_force=args.clamp,
-                         input_speed_rpm=_rpm(args.speed), progress=False).limit_torque
-        top = 1.02 * float(limits.max())
+    # the limiting torque of every ratio, found once: it sets the default torque range
+    # and is handed to the sweep
+    base = build_problem(v.design, v.fluid, v.architecture, ratios, 0.0, args.clamp,
+                         _rpm(args.speed) * np.pi / 30.0)
+    limits = limit_torque_batch(base, v.design.creep_limit, v.options)
+    top = 1.02 * float(np.nanmax(limits)) if args.torque_max is None else args.torque_max
     if not top > 0:
         raise InputError("torque_max", top, "> 0 N m")
     ds = v.sweep(ratio=ratios, output_torque=np.linspace(top / args.n_torque, top,
                                                          args.n_torque),
-                 clamp_force=args.clamp, input_speed_rpm=_rpm(args.speed),
+                 clamp_force=args.clamp, input_speed_rpm=_rpm(args.speed), limit_torque=limits,
                  workers=args.workers, progress=_progress(args))
     args.out.mkdir(parents=True, exist_ok=True)
     to_netcdf(ds, args.out / "map.nc")

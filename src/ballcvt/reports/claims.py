@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..solver.limit import traction_ceiling_torque
+from ..solver.limit import saturated_traction
 
 __all__ = ["Claim", "paper_claims"]
 
@@ -158,10 +158,7 @@ def paper_claims(data, fig11_peak) -> list[Claim]:
 
 
 def ceiling_numbers(problem) -> dict:
-    """Traction-ceiling figures of a point, for the limiting-torque discussion."""
-    fl = problem.fluid
-    area = np.pi * problem.ax * problem.ay
-    mu_max = fl.limiting_shear_slope + fl.limiting_shear_stress * area / problem.load
-    force_bound = problem.design.n_rollers * problem.load * problem.radius * mu_max
-    return {"mu_max": mu_max, "ceiling": traction_ceiling_torque(problem),
-            "force_bound": float(np.asarray(force_bound)[..., -1])}
+    """Traction ceiling of the output contact and the torque its tangential forces carry."""
+    mu_max = float(np.asarray(saturated_traction(problem))[..., -1])
+    force = problem.design.n_rollers * problem.load[..., -1] * problem.radius[-1] * mu_max
+    return {"mu_max": mu_max, "force_bound": float(force)}

@@ -18,8 +18,9 @@ from ..geometry.kinematics import body_speeds, ideal_ratio, spin, tilt_from_rati
 from ..geometry.layout import contact_layout
 from ..params.models import Design
 from ..plotting import efficiency_map, line_panels, ratio_vs_tilt, save
+from ..sweeps.export import write_table
 
-__all__ = ["FigureData", "write_csv", "FIGURES"]
+__all__ = ["FigureData", "FIGURES"]
 
 STYLES = ["-", "--", "-.", ":", (0, (5, 1, 1, 1, 1, 1))]
 
@@ -51,15 +52,6 @@ class FigureData:
     efficiency_map: xr.Dataset
 
 
-def write_csv(frame: pd.DataFrame, path: Path, units: dict) -> Path:
-    """Write ``frame`` with a ``# units:`` header line."""
-    with path.open("w") as fh:
-        fh.write("# units: " + ", ".join(f"{c} [{units.get(c, '-')}]" for c in frame.columns)
-                 + "\n")
-        frame.to_csv(fh, index=False)
-    return path
-
-
 def _sel(ds, **kw):
     return ds.sel(**kw).squeeze(drop=True)
 
@@ -77,7 +69,7 @@ def fig3(data: FigureData, out: Path):
         curves.append((np.degrees(tilt), ratio, f"theta = {theta:g} deg", usable))
         rows.append(pd.DataFrame({"theta_deg": theta, "tilt_deg": np.degrees(tilt),
                                   "ratio": ratio, "within_safety": usable}))
-    write_csv(pd.concat(rows), out / "fig03.csv", {"theta_deg": "deg", "tilt_deg": "deg",
+    write_table(pd.concat(rows), out / "fig03.csv", {"theta_deg": "deg", "tilt_deg": "deg",
                                                    "ratio": "-", "within_safety": "-"})
     return save(ratio_vs_tilt(curves), out, "fig03") + [out / "fig03.csv"]
 
@@ -96,7 +88,7 @@ def fig5(data: FigureData, out: Path):
               for i, name in enumerate(lay.names)]
     frame = pd.DataFrame({"ratio": ratio, **{f"spin_{n}": sg[:, i]
                                               for i, n in enumerate(lay.names)}})
-    write_csv(frame, out / "fig05.csv", {"ratio": "-"})
+    write_table(frame, out / "fig05.csv", {"ratio": "-"})
     fig = line_panels(panels, "ideal speed ratio tau_ID [-]",
                       "Fig. 5: spin coefficients (zero creep), double idler", ncols=4)
     return save(fig, out, "fig05") + [out / "fig05.csv"]
@@ -130,7 +122,7 @@ def fig7(data: FigureData, out: Path):
                       "F_N0 = 2 kN, 2000 rpm", ncols=3)
     frame = _curve_frame(ds, "ratio", ["eta_speed", "eta_torque", "eta", "eta_losses",
                                        "status"])
-    write_csv(frame, out / "fig07.csv", {"output_torque": "N m"})
+    write_table(frame, out / "fig07.csv", {"output_torque": "N m"})
     return save(fig, out, "fig07") + [out / "fig07.csv"]
 
 
@@ -145,8 +137,8 @@ def fig8(data: FigureData, out: Path):
     fig = line_panels(panels, "output torque T_2 [N m]", "Fig. 8: double idler, tau_ID = 1, "
                       "2000 rpm", ncols=3)
     frame = _curve_frame(ds, "clamp_force", ["eta_speed", "eta_torque", "eta", "status"])
-    write_csv(frame, out / "fig08.csv", {"output_torque": "N m", "clamp_force": "N"})
-    write_csv(env, out / "fig08c_envelope.csv",
+    write_table(frame, out / "fig08.csv", {"output_torque": "N m", "clamp_force": "N"})
+    write_table(env, out / "fig08c_envelope.csv",
               {"output_torque": "N m", "clamp_force": "N", "eta": "-", "max_creep": "-",
                "max_pressure": "Pa"})
     return save(fig, out, "fig08") + [out / "fig08.csv", out / "fig08c_envelope.csv"]
@@ -170,7 +162,7 @@ def fig9(data: FigureData, out: Path):
                               values="creep", dropna=False).reset_index()
     frame.columns = [str(c) if c in ("ratio", "output_torque") else f"creep_{c}"
                      for c in frame.columns]
-    write_csv(frame, out / "fig09.csv", {"output_torque": "N m"})
+    write_table(frame, out / "fig09.csv", {"output_torque": "N m"})
     return save(fig, out, "fig09") + [out / "fig09.csv"]
 
 
@@ -193,7 +185,7 @@ def fig10(data: FigureData, out: Path):
     frame = pd.DataFrame({"ratio": r, **{f"{v}_{c}": _sel(ds[v], contact=c).values
                                          for v in ("creep", "spin")
                                          for c in ("idler_a", "idler_b")}})
-    write_csv(frame, out / "fig10.csv", {"ratio": "-"})
+    write_table(frame, out / "fig10.csv", {"ratio": "-"})
     return save(fig, out, "fig10") + [out / "fig10.csv"]
 
 
@@ -209,7 +201,7 @@ def fig11(data: FigureData, out: Path):
                       "T_2 = 40 N m, F_N0 = 2 kN, 2000 rpm", ncols=1)
     frame = pd.DataFrame({"ratio": r, "eta_eq38": ds.eta.values,
                           "eta_eq39": ds.eta_losses.values})
-    write_csv(frame, out / "fig11.csv", {"ratio": "-"})
+    write_table(frame, out / "fig11.csv", {"ratio": "-"})
     return save(fig, out, "fig11") + [out / "fig11.csv"]
 
 
@@ -230,7 +222,7 @@ def fig12(data: FigureData, out: Path):
                                                                  contact="idler").values,
                           "creep_double_idler_a": _sel(double.creep, contact="idler_a").values,
                           "creep_double_idler_b": _sel(double.creep, contact="idler_b").values})
-    write_csv(frame, out / "fig12.csv", {"ratio": "-"})
+    write_table(frame, out / "fig12.csv", {"ratio": "-"})
     return save(fig, out, "fig12") + [out / "fig12.csv"]
 
 
@@ -248,7 +240,7 @@ def fig13(data: FigureData, out: Path):
     fig = line_panels([{"title": "", "ylabel": "overall efficiency [-]", "lines": lines}],
                       "ideal speed ratio tau_ID [-]", "Fig. 13: single vs double idler, "
                       "F_N0 = 2 kN", ncols=1)
-    write_csv(pd.DataFrame(cols), out / "fig13.csv", {"ratio": "-"})
+    write_table(pd.DataFrame(cols), out / "fig13.csv", {"ratio": "-"})
     return save(fig, out, "fig13") + [out / "fig13.csv"]
 
 
@@ -260,7 +252,7 @@ def fig_map(data: FigureData, out: Path):
                          "F_N0 = 2 kN, 2000 rpm")
     frame = ds[["eta", "status"]].to_dataframe().reset_index()[["ratio", "output_torque",
                                                                "eta", "status"]]
-    write_csv(frame, out / "map.csv", {"output_torque": "N m"})
+    write_table(frame, out / "map.csv", {"output_torque": "N m"})
     return save(fig, out, "map") + [out / "map.csv"]
 
 

@@ -47,8 +47,8 @@ def _blocks(data, claims, ceiling, peak, quick, run_time, inputs):
     b.append(("h2", "Where the model and the paper differ, and why"))
     tc = data.torque_curves.sel(architecture="double").squeeze(drop=True)
     lim = {r: float(tc.limit_torque.sel(ratio=r)) for r in (0.5, 1.0, 2.0)}
-    c1 = ceiling[1.0]
-    mu_out = float(np.asarray(c1["mu_max"])[-1])
+    c1 = ceiling                                   # output contact, tau_ID = 1
+    mu_out = c1["mu_max"]
     creep_at_paper = _interp_creep(data, 1.0, 120.0)
     b.append(("p", (
         f"**Limiting torque.** We find {lim[0.5]:.0f} / {lim[1.0]:.0f} / {lim[2.0]:.0f} N m at "
@@ -181,7 +181,10 @@ def _html(blocks, out: Path):
 
 
 def write_report(out: Path, data, claims, ceiling, peak, *, quick, run_time, inputs):
-    """Write ``report.md`` and ``report.html`` in ``out``; returns their paths."""
+    """Write ``report.md`` and ``report.html`` in ``out``; returns their paths.
+
+    ``ceiling`` is `ceiling_numbers` of the double idler at tau_ID = 1.
+    """
     blocks = _blocks(data, claims, ceiling, peak, quick, run_time, inputs)
     md, page = out / "report.md", out / "report.html"
     md.write_text(_md(blocks))

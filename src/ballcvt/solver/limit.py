@@ -17,7 +17,8 @@ from ..equilibrium.problem import EquilibriumProblem
 from .batch import solve_batch
 from .point import PointSolution, SolverOptions, solve_point
 
-__all__ = ["LimitSolution", "limit_torque", "limit_torque_batch", "traction_ceiling_torque"]
+__all__ = ["LimitSolution", "limit_torque", "limit_torque_batch", "traction_ceiling_torque",
+           "saturated_traction", "bisection_steps", "LIMIT_RTOL"]
 
 
 @dataclass(frozen=True)
@@ -42,23 +43,42 @@ class LimitSolution:
     bracket: tuple[float, float]
 
 
-def traction_ceiling_torque(problem: EquilibriumProblem) -> float:
+#: Default relative width of the final torque bracket of the limit bisections.
+LIMIT_RTOL = 1e-4
+
+
+def bisection_steps(rtol: float = LIMIT_RTOL) -> int:
+    """Bisection steps of `limit_torque_batch` for a relative bracket ``rtol``."""
+    return int(np.ceil(np.log2(1.0 / rtol))) + 1
+
+
+def saturated_traction(problem: EquilibriumProblem) -> np.ndarray:
+    """Traction ceiling ``mu_max = a + tau_L0 pi a_x a_y / F_N`` of every contact [-].
+
+    ``|tau| <= tau_L = tau_L0 + a p`` and the pressure integrates to ``F_N`` over the
+    ellipse, so ``|mu| <= mu_max`` (Eqs. 53-54, 57).
+    """
+    fl = problem.fluid
+    area = np.pi * problem.ax * problem.ay
+    return fl.limiting_shear_slope + fl.limiting_shear_stress * area / problem.load
+
+
+def traction_ceiling_torque(problem: EquilibriumProblem) -> np.ndarray:
     """Upper bound on ``T_2`` from the saturated traction of the disc contacts [N m].
 
-    ``|tau| <= tau_L``, so ``|mu| <= a + tau_L0 pi a_x a_y / F_N`` (the traction ceiling);
-    with the spin moment bounded likewise, the output torque cannot exceed
-    ``n F_N r_c (1 + sin(theta)) mu_max`` at the output contact, nor that of the input
-    contact over ``tau_ID`` (power cannot grow: ``T_2 <= T_0 / tau_ID``).
+    With the spin moment bounded like the traction (`saturated_traction`), the output
+    torque cannot exceed ``n F_N r_c (1 + sin(theta)) mu_max`` at the output contact, nor
+    that of the input contact over ``tau_ID`` (power cannot grow: ``T_2 <= T_0 / tau_ID``).
+    Shape ``(...)``, the batch shape of ``problem``.
     """
-    fl, lay = problem.fluid, problem.layout
-    area = np.pi * problem.ax * problem.ay
-    mu_max = fl.limiting_shear_slope + fl.limiting_shear_stress * area / problem.load
-    cap = problem.design.n_rollers * problem.load * problem.radius * mu_max * (1 + np.abs(lay.z_j))
-    return float(min(cap[..., -1], cap[..., 0] / problem.ratio))
+    cap = (problem.design.n_rollers * problem.load * problem.radius
+           * saturated_traction(problem) * (1 + np.abs(problem.layout.z_j)))
+    return np.minimum(cap[..., -1], cap[..., 0] / problem.ratio)
 
 
 def limit_torque(problem: EquilibriumProblem, creep_limit: float,
-                 options: SolverOptions = SolverOptions(), rtol: float = 1e-4) -> LimitSolution:
+                 options: SolverOptions = SolverOptions(),
+                 rtol: float = LIMIT_RTOL) -> LimitSolution:
     """Largest admissible output torque of a single operating point.
 
     Parameters
@@ -85,7 +105,7 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
     if not ok:
         raise RuntimeError(f"no admissible equilibrium even at zero output torque "
                            f"({best.message})")
-    lo, hi = 0.0, traction_ceiling_torque(problem)
+    lo, hi = 0.0, float(traction_ceiling_torque(problem))
     while True:
         ok, sol = at(hi, best.state.creep)
         if not ok:
@@ -103,7 +123,7 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
 
 
 def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
-                       options: SolverOptions = SolverOptions(), rtol: float = 1e-4,
+                       options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL,
                        callback=None) -> np.ndarray:
     """Limiting output torque of every point of a batch (its ``output_torque`` is ignored).
 
@@ -131,7 +151,6 @@ def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
         Limiting torques [N m], shape ``(...)``; NaN where even ``T_2 = 0`` is inadmissible.
     """
     flat = problem.flat()
-    ceiling = np.array([traction_ceiling_torque(flat.take(i)) for i in range(flat.size)])
 
     def admissible(torque, x0):
         sol = solve_batch(replace(flat, output_torque=torque), options, x0, fallback=False)
@@ -139,9 +158,8 @@ def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
         return ok, sol.state.creep
 
     ok0, best = admissible(np.zeros(flat.size), None)
-    lo, hi = np.zeros(flat.size), ceiling.copy()
-    steps = int(np.ceil(np.log2(1.0 / rtol))) + 1
-    for _ in range(steps):
+    lo, hi = np.zeros(flat.size), traction_ceiling_torque(flat)
+    for _ in range(bisection_steps(rtol)):
         mid = 0.5 * (lo + hi)
         ok, x = admissible(mid, best)
         lo = np.where(ok, mid, lo)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import xarray as xr
 
-__all__ = ["to_netcdf", "to_csv", "load_dataset", "to_frame"]
+__all__ = ["to_netcdf", "to_csv", "load_dataset", "to_frame", "write_table"]
 
 
 def to_netcdf(ds: xr.Dataset, path) -> Path:
@@ -34,18 +34,23 @@ def to_frame(ds: xr.Dataset):
     return flat.to_dataframe().reset_index()
 
 
-def to_csv(ds: xr.Dataset, path) -> Path:
-    """Write ``ds`` as a CSV table (see `to_frame`), units in a commented header line."""
+def write_table(frame, path, units: dict) -> Path:
+    """Write a DataFrame as CSV after a ``# units: col [unit], ...`` line (``-`` if unknown)."""
     path = Path(path)
-    frame = to_frame(ds)
-    units = []
-    for col in frame.columns:
-        base = col if col in ds.variables else col.rsplit("_", 1)[0]
-        if base not in ds.variables:
-            base = next((n for n in ds.variables if col.startswith(n + "_")), col)
-        units.append(ds[base].attrs.get("units", "") if base in ds.variables else "")
     with path.open("w") as fh:
-        fh.write("# units: " + ", ".join(f"{c} [{u}]" for c, u in zip(frame.columns, units))
+        fh.write("# units: " + ", ".join(f"{c} [{units.get(c, '-')}]" for c in frame.columns)
                  + "\n")
         frame.to_csv(fh, index=False)
     return path
+
+
+def to_csv(ds: xr.Dataset, path) -> Path:
+    """Write ``ds`` as a CSV table (see `to_frame`), units in a commented header line."""
+    frame = to_frame(ds)
+    units = {}
+    for col in frame.columns:
+        base = col if col in ds.variables else next(
+            (n for n in ds.variables if col.startswith(n + "_")), None)
+        if base is not None:
+            units[col] = ds[base].attrs.get("units", "-")
+    return write_table(frame, path, units)

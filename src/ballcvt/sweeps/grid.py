@@ -25,7 +25,7 @@ from ..geometry.layout import CONTACT_NAMES
 from ..params.models import ARCHITECTURES, Design, Fluid
 from ..performance.efficiency import efficiency, power_losses
 from ..solver.batch import solve_batch
-from ..solver.limit import limit_torque_batch
+from ..solver.limit import bisection_steps, limit_torque_batch
 from ..solver.point import SolverOptions
 from .variables import CONTACT_VARIABLES, POINT_VARIABLES, STATUS, attrs_for
 
@@ -34,7 +34,7 @@ __all__ = ["sweep", "STATUS"]
 
 def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
           input_speed, architecture="double", options: SolverOptions = SolverOptions(),
-          creep_limit: float | None = None, workers: int = 1,
+          creep_limit: float | None = None, limit_torque=None, workers: int = 1,
           progress: bool | None = None) -> xr.Dataset:
     """Evaluate the model over a grid of operating conditions.
 
@@ -56,6 +56,10 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
         Solver options (the fast batched Newton method by default).
     creep_limit : float, optional
         ``C_lim`` of the limiting torque; ``design.creep_limit`` by default.
+    limit_torque : array_like, optional
+        Limiting torques already found at these conditions (`limit_torque_batch` with
+        the same ``creep_limit``), broadcastable to ``(clamp_force, input_speed, ratio)``
+        [N m]; one architecture only. By default they are computed.
     workers : int
         Processes to use (curves are split between them).
     progress : bool, optional
@@ -89,14 +93,19 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
                   axes["clamp_force"][:, None, None], axes["input_speed"][:, None, None, None])
     shape = tuple(len(axes[n]) for n in ("clamp_force", "input_speed", "ratio"))
     grid = np.meshgrid(axes["clamp_force"], axes["input_speed"], axes["ratio"], indexing="ij")
+    flat = [g.ravel() for g in grid]
+    if limit_torque is not None:
+        if len(archs) != 1:
+            raise InputError("architecture", ", ".join(archs),
+                             "a single architecture when limit_torque is given")
+        limits = np.broadcast_to(np.asarray(limit_torque, dtype=float), shape).ravel()
     contacts = _contact_axis(archs)
     show = sys.stderr.isatty() if progress is None else progress
+    chunks = np.array_split(np.arange(flat[0].size), max(1, min(workers, flat[0].size)))
     blocks = {}
     for arch in archs:
-        flat = [g.ravel() for g in grid]
-        chunks = np.array_split(np.arange(flat[0].size), max(1, min(workers, flat[0].size)))
         jobs = [(design, fluid, arch, flat[0][c], flat[1][c], flat[2][c], torque, options,
-                 c_lim) for c in chunks]
+                 c_lim, None if limit_torque is None else limits[c]) for c in chunks]
         blocks[arch] = _run(jobs, workers, show, f"{arch} idler")
     ds = _assemble(blocks, archs, axes, shape, contacts)
     ds.attrs.update(
@@ -133,7 +142,7 @@ def _run(jobs, workers, show, label):
                     out.append(f.result())
                     bar.update()
         return _concat(out)
-    steps = sum(len(job[6]) for job in jobs) + 16 * len(jobs)
+    steps = sum(len(job[6]) + (bisection_steps() if job[9] is None else 0) for job in jobs)
     with tqdm(total=steps, desc=label, disable=not show, unit="step") as bar:
         return _concat([solve_curves(*job, callback=bar.update) for job in jobs])
 
@@ -143,17 +152,21 @@ def _concat(parts):
 
 
 def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, torque,
-                 options, creep_limit, callback=None):
+                 options, creep_limit, limit=None, callback=None):
     """Solve the curves ``(clamp_force[i], input_speed[i], ratio[i])`` over ``torque``.
+
+    ``limit``: the curves' limiting torques if already known (else computed here).
 
     Returns a dict of arrays ``(m, n_T)`` or ``(m, n_T, n_c)`` (and ``limit_torque``,
     ``(m,)``) with the variables of `ballcvt.sweeps.variables`; run in worker processes.
     """
     m, nt = ratio.size, torque.size
     base = build_problem(design, fluid, architecture, ratio, 0.0, clamp_force, input_speed)
-    limit = limit_torque_batch(base, creep_limit, options, callback=callback)
+    if limit is None:
+        limit = limit_torque_batch(base, creep_limit, options, callback=callback)
     nc = base.layout.n_contacts
     creep = np.full((m, nt, nc), np.nan)
+    # points within the limit start as "not converged" (2) until solved
     status = np.where(torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None], 2, 1)
     iterations = np.zeros((m, nt), dtype=int)
     residual = np.full((m, nt), np.nan)

@@ -2,7 +2,7 @@
 
 Run: ``python benchmarks/bench_point.py`` (prints figures; nothing is asserted).
 The reference is the same model with the high-order pole-centred rule (96 x 64 nodes,
-MODEL.md section 8).
+docs/model.md §3).
 """
 
 import platform

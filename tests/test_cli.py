@@ -71,7 +71,7 @@ BAD = [
     (["point", "--speed", "-100"], "speed = -100"),
     (["point", "--torque", "-1"], "output_torque = -1"),
     (["point", "--ratio", "10"], "ratio = 10"),
-    (["point", "--ratio", "nan"], "ratio = nan"),
+    (["point", "--ratio", "nan"], "--ratio: 'nan' is not a finite number"),
     (["point", "--arch", "triple"], "invalid choice: 'triple'"),
     (["point", "--torque", "400"], "exceeds the traction capacity"),
     (["limit", "--creep-limit", "1.5"], "creep_limit = 1.5"),

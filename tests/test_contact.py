@@ -55,7 +55,7 @@ def test_hertz_swaps_axes_for_xi_below_one():
 
 def test_roller_idler_pressure_calibration(drive):
     # Sec. III.A: p_max = 1.63 GPa at the roller-idler contact for F_N0 = 2 kN; the groove
-    # ratio 2.4548 is calibrated to it (MODEL.md section 3), so this checks the chain.
+    # ratio 2.4548 is calibrated to it (docs/model.md §3), so this checks the chain.
     from ballcvt.equilibrium import build_problem
     pb = build_problem(*drive, "double", 1.0, 0.0, 2000.0, 200.0)
     assert pb.p_max[1] == pytest.approx(1.63e9, rel=5e-4)
@@ -136,7 +136,7 @@ def test_quadrature_converges_to_adaptive(drive, yp):
 
 
 def test_pole_rule_beats_centred_rule(drive):
-    """MODEL.md section 8: with the pole inside, the centred grid converges slowly."""
+    """docs/model.md §3: with the pole inside, the centred grid converges slowly."""
     f, sigma, yp = drive[1], 0.3, 0.5
     ref = _coeffs(yp, sigma, f, REFERENCE)
     pole = _coeffs(yp, sigma, f, Quadrature("pole", 48, 24))

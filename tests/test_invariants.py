@@ -6,19 +6,22 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ballcvt import Variator, load_builtin
+from ballcvt.params.feasibility import max_balls
 
 BASE_DESIGN, BASE_FLUID = load_builtin()
 
 
 @st.composite
 def cases(draw):
+    k, rs = draw(st.floats(1.0, 2.5)), draw(st.floats(0.015, 0.05))
+    n_max = min(12, max_balls(k, rs, BASE_DESIGN.min_ball_gap))     # feasible designs only
     design = BASE_DESIGN.replace(
-        aspect_ratio=draw(st.floats(1.0, 2.5)),
-        roller_radius=draw(st.floats(0.015, 0.05)),
+        aspect_ratio=k,
+        roller_radius=rs,
         theta0_deg=(th := draw(st.floats(30.0, 60.0))),
         theta2_deg=th + draw(st.floats(-5.0, 5.0)),
         alpha_deg=draw(st.floats(5.0, 20.0)),
-        n_rollers=draw(st.integers(4, 12)),
+        n_rollers=draw(st.integers(min(4, n_max), n_max)),
         disc_groove_ratio=draw(st.floats(1.5, 6.0)),
         idler_groove_ratio=draw(st.floats(1.5, 6.0)),
     )

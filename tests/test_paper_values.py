@@ -42,7 +42,7 @@ def test_roller_idler_peak_pressure(double):
 
 def test_limiting_torque_ratio_of_two(double):
     # Sec. III.A: T_lim(tau = 1) / T_lim(tau = 2) ~ 2 (paper ~120 / ~60 N m; this model gives
-    # ~158 / ~77 N m with the Table I values, MODEL.md section 7).
+    # ~158 / ~77 N m with the Table I values, docs/model.md §8).
     t1 = double.limit_torque(ratio=1.0, **PAPER)
     t2 = double.limit_torque(ratio=2.0, **PAPER)
     assert t1 / t2 == pytest.approx(2.0, rel=0.1)

@@ -2,6 +2,8 @@
 
 import math
 
+import re
+
 import pytest
 
 from ballcvt import Design, Fluid, InputError, OperatingPoint
@@ -42,18 +44,18 @@ def test_models_are_frozen(drive):
 
 @pytest.mark.parametrize("edit, fragment", [
     (("aspect_ratio = 1.7", "aspect_ratio = -1.7"), "aspect_ratio = -1.7 is out of range"),
-    (("aspect_ratio = 1.7\n", ""), "required key 'aspect_ratio' is missing"),
+    ((r"aspect_ratio = 1.7.*\n", ""), "required key 'aspect_ratio' is missing"),
     (("poisson_ratio = 0.3", "poisson_ratio = 0.6"), "material.poisson_ratio = 0.6"),
-    (("viscosity = 0.00325", "viscosity = 0.0"), "viscosity = 0"),
+    (("viscosity = 3.25e-3", "viscosity = 0.0"), "viscosity = 0"),
     (("n_rollers = 8", "n_rolers = 8"), "unknown key 'n_rolers'"),
-    (("[fluid]", "[fluids]"), "table [fluid] is missing"),
-    (("[design]", "[design"), "not valid TOML"),
+    ((r"\[fluid\]", "[fluids]"), "table [fluid] is missing"),
+    ((r"\[design\]", "[design"), "not valid TOML"),
 ])
 def test_bad_design_file(drive, edit, fragment):
     text = drive_to_toml(*drive)
-    assert edit[0] in text
+    assert re.search(edit[0], text)
     with pytest.raises(InputError) as err:
-        parse_drive(text.replace(*edit))
+        parse_drive(re.sub(edit[0], edit[1], text, count=1))
     message = str(err.value)
     assert fragment in message and "\n" not in message
 

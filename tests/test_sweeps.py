@@ -18,11 +18,19 @@ def small(double):
 
 
 def test_dataset_dims_units_and_flags(small):
-    assert dict(small.sizes) == {"architecture": 2, "clamp_force": 1, "input_speed": 1,
-                                 "ratio": 3, "output_torque": 4, "contact": 5}
+    assert dict(small.sizes) == {"architecture": 2, "clamp_force": 1, "input_speed_rpm": 1,
+                                 "ratio": 3, "output_torque": 4, "contact": 5, "loss": 6}
+    # the speed coordinate is in the units the user passed, exactly as passed
+    assert small.input_speed_rpm.values.tolist() == [2000.0]
+    assert small.sel(input_speed_rpm=2000).input_speed.attrs["units"] == "rad/s"
     for name in list(small.data_vars) + ["ratio", "output_torque", "clamp_force",
-                                         "input_speed"]:
-        assert small[name].attrs["units"] and small[name].attrs["long_name"], name
+                                         "input_speed_rpm", "input_speed"]:
+        if name in ("status", "warnings"):      # CF flag variables: meanings, no units
+            assert small[name].attrs["flag_meanings"], name
+        else:
+            assert small[name].attrs["units"] and small[name].attrs["long_name"], name
+    assert list(small.status.attrs["flag_values"]) == [0, 1, 2]
+    assert list(small.warnings.attrs["flag_masks"]) == [1, 2, 4, 8]
     status = small.status.sel(architecture="double").squeeze(drop=True)
     limit = small.limit_torque.sel(architecture="double").squeeze(drop=True)
     beyond = small.output_torque > limit                    # 100 and 150 N m at ratio 2
@@ -33,13 +41,42 @@ def test_dataset_dims_units_and_flags(small):
     assert small.creep.sel(architecture="single", contact="idler_a").isnull().all()
 
 
+def test_sweep_names_match_results(double, small):
+    """The same quantity has the same name in a result and in a sweep."""
+    r = double.solve(ratio=1.0, output_torque=40.0, **OP)
+    point = small.sel(architecture="double", ratio=1.0, output_torque=40.0).squeeze(drop=True)
+    for name in ("eta", "eta_loss", "eta_speed", "eta_torque", "input_torque", "actual_ratio",
+                 "tilt_deg"):
+        assert float(point[name]) == pytest.approx(getattr(r, name), rel=1e-6, abs=1e-9), name
+    for kind, value in r.losses.items():
+        assert float(point.losses.sel(loss=kind)) == pytest.approx(value, rel=1e-6), kind
+    for name in ("creep", "spin", "mu", "chi", "p_max", "film_thickness", "normal_load",
+                 "creep_loss", "spin_loss", "lambda_ratio"):
+        got = float(point[name].sel(contact="output"))
+        assert got == pytest.approx(getattr(r.contacts["output"], name), rel=1e-5), name
+
+
 def test_netcdf_and_csv_round_trip(small, tmp_path):
-    back = load_dataset(to_netcdf(small, tmp_path / "s.nc"))
+    import pandas as pd
+
+    from ballcvt import Design, Fluid
+    from ballcvt.sweeps import parameters
+    path = to_netcdf(small, tmp_path / "s.nc")
+    assert path.read_bytes()[:4] == b"\x89HDF"                 # NetCDF-4 (HDF5)
+    back = load_dataset(path)
     assert np.allclose(back.eta.values, small.eta.values, equal_nan=True)
     assert back.eta.attrs["units"] == "1" and back.attrs["ballcvt_version"]
-    text = to_csv(small, tmp_path / "s.csv").read_text().splitlines()
-    assert text[0].startswith("# units:") and "creep_output" in text[1]
-    assert len(text) == 2 + 2 * 3 * 4
+    assert back.attrs["Conventions"].startswith("CF-")
+    assert list(back.status.attrs["flag_values"]) == [0, 1, 2]
+    assert back.status.attrs["flag_meanings"] == "converged beyond_limit not_converged"
+    design = Design(**parameters(back, "design"))
+    assert design == Design(**parameters(small, "design")) and design.n_rollers == 8
+    assert Fluid(**parameters(back, "fluid")).viscosity == 3.25e-3
+    frame = pd.read_csv(to_csv(small, tmp_path / "s.csv"))      # no options needed
+    assert len(frame) == 2 * 3 * 4
+    assert "output_torque [N m]" in frame and "eta [1]" in frame and "status" in frame
+    assert "creep_output [1]" in frame and "loss_total [W]" in frame
+    assert "p_max_idler_a [Pa]" in frame
 
 
 def test_limit_torque_monotone_in_clamp(double):
@@ -57,7 +94,7 @@ def test_variables_are_documented():
 
 def test_optimal_clamp_beats_every_fixed_clamp(double):
     torque = 60.0
-    opt = double.optimal_clamp_force(1.0, torque, **{"input_speed_rpm": 2000.0})
+    opt = double.optimal_clamp_force(1.0, torque, input_speed_rpm=2000.0)
     assert opt.max_creep <= double.design.creep_limit
     assert opt.max_pressure <= double.design.max_pressure
     for f in (800.0, 1000.0, 1500.0, 2000.0, 3000.0):
@@ -90,12 +127,12 @@ def test_quick_reproduction_writes_everything(quick):
 
 def test_envelope_never_below_a_clamp_curve(quick, tmp_path):
     import pandas as pd
-    env = pd.read_csv(quick.out / "fig08c_envelope.csv", comment="#")
-    curves = pd.read_csv(quick.out / "fig08.csv", comment="#")
+    env = pd.read_csv(quick.out / "fig08c_envelope.csv")
+    curves = pd.read_csv(quick.out / "fig08.csv")
     for _, row in env.iterrows():
-        at = curves[np.isclose(curves.output_torque, row.output_torque)]
+        at = curves[np.isclose(curves["output_torque [N m]"], row["output_torque [N m]"])]
         if len(at):
-            assert row.eta >= at.eta.max() - 1e-9
+            assert row["eta [1]"] >= at["eta [1]"].max() - 1e-9
 
 
 def test_reproduced_fig11_numbers(quick):
@@ -112,9 +149,11 @@ def test_cli_map_clamp_and_errors(tmp_path, capsys):
     assert (tmp_path / "map.png").exists() and (tmp_path / "map.nc").exists()
     assert main(["clamp", "--torque", "40", "--json"]) == 0
     assert '"clamp_force"' in capsys.readouterr().out
-    assert main(["map", "--n-torque", "1"]) == 2
+    with pytest.raises(SystemExit) as exc:                   # an argparse usage error
+        main(["map", "--n-torque", "1"])
+    assert exc.value.code == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "n_torque" in err[0]
+    assert len(err) == 1 and "--n-torque" in err[0]
     assert main(["clamp", "--torque", "-5"]) == 2
 
 

@@ -6,7 +6,8 @@ so that the command-line interface can print it as is (exit status 2).
 
 from __future__ import annotations
 
-__all__ = ["BallCVTError", "InputError", "TractionLimitError", "ConvergenceError"]
+__all__ = ["BallCVTError", "InputError", "TractionLimitError", "ConvergenceError",
+           "NoEquilibriumError"]
 
 
 class BallCVTError(Exception):
@@ -52,6 +53,14 @@ class TractionLimitError(InputError):
 
 class ConvergenceError(BallCVTError, RuntimeError):
     """The equilibrium solver did not converge; never returned silently."""
+
+
+class NoEquilibriumError(ConvergenceError):
+    """No admissible equilibrium exists even at zero output torque.
+
+    The traction the clamping force can transmit does not carry the drive's own bearing and
+    spin drag (e.g. a clamping force of a few newtons); the message names the conditions.
+    """
 
 
 def _fmt(value: object) -> str:

@@ -11,6 +11,7 @@ from .contact.quadrature import Quadrature
 from .equilibrium.problem import build_problem
 from .errors import ConvergenceError, InputError, TractionLimitError
 from .geometry.kinematics import ratio_range
+from .params.feasibility import check_architecture
 from .params.io import load_builtin
 from .params.models import ARCHITECTURES, Design, Fluid
 from .results.point import OperatingResult, make_result
@@ -62,6 +63,7 @@ class Variator:
         if self.architecture not in ARCHITECTURES:
             raise InputError("architecture", self.architecture,
                              "one of: " + ", ".join(ARCHITECTURES))
+        check_architecture(self.design, self.architecture)
 
     @property
     def ratio_range(self) -> tuple[float, float]:
@@ -73,8 +75,8 @@ class Variator:
         return build_problem(self.design, self.fluid, self.architecture, float(ratio),
                              float(output_torque), float(clamp_force), speed)
 
-    def solve(self, ratio: float, output_torque: float, clamp_force: float,
-              input_speed: float | None = None, *, input_speed_rpm: float | None = None,
+    def solve(self, ratio: float, output_torque: float, *, clamp_force: float,
+              input_speed: float | None = None, input_speed_rpm: float | None = None,
               check_capacity: bool = True) -> OperatingResult:
         """Solve the steady operating point.
 
@@ -85,7 +87,8 @@ class Variator:
         output_torque : float
             Output torque ``T_2`` >= 0 [N m].
         clamp_force : float
-            Normal load at each input contact ``F_N0`` > 0 [N].
+            Normal load at each input contact ``F_N0`` > 0 [N] (keyword only, as are the
+            speeds: a unit cannot be guessed wrong).
         input_speed : float, optional
             Input speed ``omega_0`` [rad/s]; or give ``input_speed_rpm`` [rpm].
         check_capacity : bool
@@ -115,10 +118,10 @@ class Variator:
             raise ConvergenceError(sol.message)
         return make_result(problem, sol, self.options.quadrature)
 
-    def limit_torque(self, ratio: float, clamp_force: float, input_speed: float | None = None,
-                     *, input_speed_rpm: float | None = None,
+    def limit_torque(self, ratio: float, *, clamp_force: float,
+                     input_speed: float | None = None, input_speed_rpm: float | None = None,
                      creep_limit: float | None = None) -> float:
-        """Largest admissible output torque (MODEL.md section 7) [N m].
+        """Largest admissible output torque (docs/model.md §8) [N m].
 
         Parameters
         ----------
@@ -135,7 +138,8 @@ class Variator:
 
     def sweep(self, *, ratio, output_torque, clamp_force, input_speed=None,
               input_speed_rpm=None, architecture=None, creep_limit: float | None = None,
-              limit_torque=None, workers: int = 1, progress: bool | None = None):
+              limit_torque=None, workers: int = 1, progress: bool | None = None,
+              label: str | None = None):
         """Evaluate a grid of operating points (see `ballcvt.sweeps.sweep`).
 
         Parameters
@@ -143,7 +147,9 @@ class Variator:
         ratio, output_torque, clamp_force : float or array_like
             Ideal ratios [-], output torques (increasing) [N m], clamping forces [N].
         input_speed, input_speed_rpm : float or array_like
-            Input speeds [rad/s] or [rpm] (exactly one).
+            Input speeds [rad/s] or [rpm] (exactly one). The speed dimension is named after
+            the one given, with the values as given (``ds.sel(input_speed_rpm=2000)``);
+            with rpm, ``input_speed`` [rad/s] is a second coordinate on it.
         architecture : str or sequence of str, optional
             This variator's architecture by default; e.g. ``("double", "single")``.
         creep_limit : float, optional
@@ -155,6 +161,8 @@ class Variator:
             Processes to use.
         progress : bool, optional
             Progress bar (default: when stderr is a terminal).
+        label : str, optional
+            What the progress bar says it computes.
 
         Returns
         -------
@@ -164,16 +172,22 @@ class Variator:
             raise InputError("input_speed", input_speed, "exactly one of input_speed [rad/s] "
                              "or input_speed_rpm [rpm]")
         from .sweeps.grid import sweep  # xarray and pandas load only when a sweep is asked for
-        speed = (np.asarray(input_speed, float) if input_speed is not None
-                 else np.asarray(input_speed_rpm, float) * math.pi / 30.0)
-        return sweep(self.design, self.fluid, ratio=ratio, output_torque=output_torque,
-                     clamp_force=clamp_force, input_speed=speed,
-                     architecture=architecture or self.architecture, options=self.options,
-                     creep_limit=creep_limit, limit_torque=limit_torque, workers=workers,
-                     progress=progress)
+        from .sweeps.variables import attrs_for
+        rpm = None if input_speed_rpm is None else np.atleast_1d(
+            np.asarray(input_speed_rpm, float))
+        speed = np.asarray(input_speed, float) if rpm is None else rpm * math.pi / 30.0
+        ds = sweep(self.design, self.fluid, ratio=ratio, output_torque=output_torque,
+                   clamp_force=clamp_force, input_speed=speed,
+                   architecture=architecture or self.architecture, options=self.options,
+                   creep_limit=creep_limit, limit_torque=limit_torque, workers=workers,
+                   progress=progress, label=label)
+        if rpm is not None:
+            ds = ds.swap_dims(input_speed="input_speed_rpm").assign_coords(
+                input_speed_rpm=("input_speed_rpm", rpm, attrs_for("input_speed_rpm")))
+        return ds
 
-    def optimal_clamp_force(self, ratio: float, output_torque: float,
-                            input_speed: float | None = None, *,
+    def optimal_clamp_force(self, ratio: float, output_torque: float, *,
+                            input_speed: float | None = None,
                             input_speed_rpm: float | None = None,
                             creep_limit: float | None = None,
                             max_pressure: float | None = None) -> ClampOptimum:

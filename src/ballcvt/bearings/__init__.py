@@ -1,4 +1,4 @@
-"""Layer 3: rolling-bearing friction torques (Eqs. 15-16, MODEL.md section 4)."""
+"""Layer 3: rolling-bearing friction torques (Eqs. 15-16, docs/model.md §4)."""
 
 from .friction import load_dependent_torque, speed_dependent_torque
 

@@ -16,6 +16,7 @@ _ROWS = [  # (label, attribute, unit, scale, format)
     ("semi-axis a_x", "semi_axis_x", "mm", 1e3, "{:.4f}"),
     ("semi-axis a_y", "semi_axis_y", "mm", 1e3, "{:.4f}"),
     ("film thickness", "film_thickness", "um", 1e6, "{:.4f}"),
+    ("film ratio h_min/sigma", "lambda_ratio", "-", 1.0, "{:.2f}"),
     ("creep loss", "creep_loss", "W", 1.0, "{:.2f}"),
     ("spin loss", "spin_loss", "W", 1.0, "{:.2f}"),
 ]
@@ -50,6 +51,7 @@ def point_table(r: OperatingResult) -> str:
         f"solver      {'converged' if r.converged else 'NOT CONVERGED'}, max|residual| "
         f"{r.residual_norm:.1e}, {r.iterations} evaluations, quadrature {r.quadrature}",
     ]
+    lines += [f"warning: {w}" for w in r.warnings] or ["validity    no warnings"]
     return "\n".join(lines)
 
 

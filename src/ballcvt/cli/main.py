@@ -1,17 +1,24 @@
 """The ``ballcvt`` command line.
 
-Exit status: 0 success, 2 bad input (one line on stderr naming the quantity, its value and
-the allowed range), 1 any other failure (one line; set ``BALLCVT_DEBUG=1`` for a traceback).
+Every subcommand has only the options it uses, a description and an example
+(``ballcvt SUBCOMMAND --help``). Output locations are checked before any computing starts.
+
+Exit status: 0 success; 2 bad input, a torque beyond the traction capacity, no equilibrium,
+or an output location that cannot be written (one line on stderr naming the quantity, its
+value and the allowed range or the cause); 1 a bug (one line; set ``BALLCVT_DEBUG=1`` for a
+traceback).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 from pathlib import Path
 
+from .._fileio import atomic_write_text, check_output_dir, check_output_file
 from .._version import __version__
 from ..errors import BallCVTError, InputError
 from ..params.io import builtin_text, drive_to_toml, load_builtin, load_drive
@@ -31,20 +38,79 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
-def _common(p: argparse.ArgumentParser, torque: bool) -> None:
+def _number(text: str) -> float:
+    """A finite decimal number (``nan``, ``inf`` and overflowing literals are refused)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a finite number")
+    return value
+
+
+def _count(lo: int, hi: int):
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        if not lo <= value <= hi:
+            raise argparse.ArgumentTypeError(f"{value} is out of range: allowed {lo}-{hi}")
+        return value
+    return parse
+
+
+def _sub(sub, name: str, summary: str, description: str, example: str):
+    return sub.add_parser(name, help=summary, description=description,
+                          epilog="example:\n  " + example + "\n",
+                          formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
+def _arch(p):
     p.add_argument("--arch", default="double", choices=ARCHITECTURES,
                    help="idler architecture (default: double)")
-    p.add_argument("--ratio", type=float, default=PAPER_POINT["ratio"],
-                   help="ideal speed ratio tau_ID (default: %(default)s)")
-    if torque:
-        p.add_argument("--torque", type=float, default=PAPER_POINT["torque"],
-                       help="output torque T2 [N m] (default: %(default)s)")
-    p.add_argument("--clamp", type=float, default=PAPER_POINT["clamp"],
+
+
+def _design(p):
+    p.add_argument("--design", type=Path, metavar="FILE.toml",
+                   help="drive definition (default: the paper's Table I drive)")
+
+
+def _ratio(p):
+    p.add_argument("--ratio", type=_number, default=PAPER_POINT["ratio"],
+                   help="ideal speed ratio tau_ID [-] (default: %(default)s)")
+
+
+def _torque(p):
+    p.add_argument("--torque", type=_number, default=PAPER_POINT["torque"],
+                   help="output torque T2 [N m] (default: %(default)s)")
+
+
+def _clamp(p):
+    p.add_argument("--clamp", type=_number, default=PAPER_POINT["clamp"],
                    help="input-contact normal load F_N0 [N] (default: %(default)s)")
-    p.add_argument("--speed", type=float, default=PAPER_POINT["speed"],
+
+
+def _speed(p):
+    p.add_argument("--speed", type=_number, default=PAPER_POINT["speed"],
                    help="input speed [rpm] (default: %(default)s)")
-    p.add_argument("--design", type=Path, help="drive definition TOML (default: Table I)")
+
+
+def _json(p):
     p.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def _creep_limit(p):
+    p.add_argument("--creep-limit", type=_number, default=None,
+                   help="largest admissible |creep| (default: the design's, 0.10)")
+
+
+def _run_options(p):
+    p.add_argument("--workers", type=_count(1, 64), default=1,
+                   help="worker processes, 1-64 (default: 1)")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress bars and no summary line")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -54,56 +120,72 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"ballcvt {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
-    p = sub.add_parser("point", help="solve one operating point (default: the paper's)")
-    _common(p, torque=True)
-    p = sub.add_parser("limit", help="limiting output torque at a ratio, clamp and speed")
-    _common(p, torque=False)
-    p.add_argument("--creep-limit", type=float, default=None,
-                   help="largest admissible |creep| (default: the design's, 0.10)")
+    p = _sub(sub, "point", "solve one operating point (default: the paper's)",
+             "Solve the steady operating point: ratio and tilt, creep, spin, traction, "
+             "pressure and film at every contact, the losses and the efficiency (Eq. 38 and "
+             "Eq. 39), with validity warnings. A torque beyond the traction capacity is "
+             "refused with the limiting torque.",
+             "ballcvt point --arch double --ratio 1.76 --torque 40 --clamp 2000 --speed 2000")
+    for add in (_arch, _ratio, _torque, _clamp, _speed, _design, _json):
+        add(p)
 
-    p = sub.add_parser("clamp", help="clamping force of maximum efficiency under the creep "
-                       "and pressure limits")
-    _common(p, torque=True)
-    p.set_defaults(clamp=None)
-    p.add_argument("--creep-limit", type=float, default=None,
-                   help="largest admissible |creep| (default: the design's, 0.10)")
-    p.add_argument("--max-pressure", type=float, default=None,
+    p = _sub(sub, "limit", "limiting output torque at a ratio, clamp and speed",
+             "The largest output torque with a converged equilibrium and every |creep| <= "
+             "the creep limit (docs/model.md section 8).",
+             "ballcvt limit --arch single --ratio 2 --clamp 2000 --speed 2000")
+    for add in (_arch, _ratio, _clamp, _speed, _creep_limit, _design, _json):
+        add(p)
+
+    p = _sub(sub, "clamp", "clamping force of maximum efficiency under the creep and "
+             "pressure limits",
+             "The input-contact normal load F_N0 that maximises the overall efficiency at "
+             "this ratio, torque and speed, keeping every |creep| <= the creep limit and "
+             "every Hertz peak pressure <= the pressure limit.",
+             "ballcvt clamp --ratio 1 --torque 60 --speed 2000 --max-pressure 3e9")
+    for add in (_arch, _ratio, _torque, _speed, _creep_limit, _design, _json):
+        add(p)
+    p.add_argument("--max-pressure", type=_number, default=None,
                    help="largest admissible Hertz peak pressure [Pa] (default: the design's)")
 
-    p = sub.add_parser("map", help="efficiency map (ratio x output torque) as data and PNG")
-    _common(p, torque=False)
-    p.set_defaults(ratio=None)
+    p = _sub(sub, "map", "efficiency map (ratio x output torque) as data and figure",
+             "Efficiency over ideal ratio x output torque at one clamping force and speed, "
+             "with the limiting-torque curve: map.png, map.svg, map.nc (NetCDF-4, CF) and "
+             "map.csv in --out. Points beyond the limit have status 1.",
+             "ballcvt map --out map_dir --clamp 2000 --speed 2000 --n-ratio 31 --n-torque 35")
+    for add in (_arch, _clamp, _speed, _design):
+        add(p)
     p.add_argument("--out", type=Path, default=Path("ballcvt-map"),
-                   help="output directory (default: %(default)s)")
-    p.add_argument("--ratio-range", type=float, nargs=2, default=(0.5, 2.0),
+                   help="output folder (default: %(default)s)")
+    p.add_argument("--ratio-range", type=_number, nargs=2, default=(0.5, 2.0),
                    metavar=("MIN", "MAX"), help="ratio range (default: 0.5 2)")
-    p.add_argument("--n-ratio", type=int, default=31, help="ratios (default: %(default)s)")
-    p.add_argument("--torque-max", type=float, default=None,
-                   help="largest torque [N m] (default: the largest limiting torque)")
-    p.add_argument("--n-torque", type=int, default=35, help="torques (default: %(default)s)")
+    p.add_argument("--n-ratio", type=_count(2, 1000), default=31,
+                   help="ratios, 2-1000 (default: %(default)s)")
+    p.add_argument("--torque-max", type=_number, default=None,
+                   help="largest torque [N m] (default: 1.02 x the largest limiting torque)")
+    p.add_argument("--n-torque", type=_count(2, 1000), default=35,
+                   help="torques, 2-1000 (default: %(default)s)")
     _run_options(p)
 
-    p = sub.add_parser("reproduce", help="recompute every result of the paper: figures, "
-                       "data and report")
+    p = _sub(sub, "reproduce", "recompute every result of the paper: figures, data and "
+             "report",
+             "Recompute every result figure and stated number of the paper on the Table I "
+             "drive: figNN.png/.svg/.csv, data/*.nc, claims.csv, report.md and report.html "
+             "in --out.",
+             "ballcvt reproduce --out reproduction --quick --workers 2")
     p.add_argument("--out", type=Path, default=Path("ballcvt-reproduction"),
-                   help="output directory (default: %(default)s)")
+                   help="output folder (default: %(default)s)")
     p.add_argument("--quick", action="store_true", help="coarse grids (seconds)")
     _run_options(p)
 
-    p = sub.add_parser("design", help="show or export the drive definition as TOML")
+    p = _sub(sub, "design", "show or export the drive definition as TOML",
+             "Print the drive definition (the built-in Table I drive, with its sources, or "
+             "--design FILE after validation), or write it to PATH.",
+             "ballcvt design export my_drive.toml")
     p.add_argument("action", choices=("show", "export"))
-    p.add_argument("path", nargs="?", type=Path, help="output file of 'export' (default: stdout)")
-    p.add_argument("--design", type=Path, help="drive definition to validate and show")
+    p.add_argument("path", nargs="?", type=Path,
+                   help="output file of 'export' (required for export)")
+    _design(p)
     return parser
-
-
-def _run_options(p):
-    p.add_argument("--workers", type=int, default=1, help="processes (default: 1)")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
-
-
-def _progress(args):
-    return False if args.quiet else None          # None: only when stderr is a terminal
 
 
 def _variator(args) -> Variator:
@@ -126,7 +208,7 @@ def _cmd_limit(args) -> int:
                        input_speed_rpm=_rpm(args.speed), creep_limit=c_lim)
     data = {"limit_torque": t, "architecture": args.arch, "ratio": args.ratio,
             "clamp_force": args.clamp, "input_speed_rpm": args.speed, "creep_limit": c_lim,
-            "version": __version__}
+            "design": v.design.name, "version": __version__}
     print(json.dumps(data, indent=2) if args.json else limit_table(data))
     return 0
 
@@ -140,7 +222,7 @@ def _cmd_clamp(args) -> int:
             "max_pressure": o.max_pressure, "feasible_clamp_range": list(o.bounds),
             "active_constraint": o.active, "architecture": args.arch, "ratio": args.ratio,
             "output_torque": args.torque, "input_speed_rpm": args.speed,
-            "version": __version__}
+            "design": v.design.name, "version": __version__}
     print(json.dumps(data, indent=2) if args.json else clamp_table(data))
     return 0
 
@@ -149,63 +231,94 @@ def _cmd_map(args) -> int:
     import numpy as np
 
     from ..equilibrium.problem import build_problem
-    from ..plotting import efficiency_map, save
     from ..solver.limit import limit_torque_batch
-    from ..sweeps import to_csv, to_netcdf
-    v = _variator(args)
     lo, hi = args.ratio_range
-    for name, n in (("n_ratio", args.n_ratio), ("n_torque", args.n_torque)):
-        if n < 2:
-            raise InputError(name, n, ">= 2")
     if not 0 < lo < hi:
         raise InputError("ratio_range", f"{lo:g} {hi:g}", "0 < MIN < MAX")
+    if args.torque_max is not None and not args.torque_max > 0:
+        raise InputError("torque_max", args.torque_max, "> 0 N m")
+    out = check_output_dir(args.out)
+    v = _variator(args)
     ratios = np.linspace(lo, hi, args.n_ratio)
+    base = build_problem(v.design, v.fluid, v.architecture, ratios, 0.0, args.clamp,
+                         _rpm(args.speed) * np.pi / 30.0)          # validates every input
     # the limiting torque of every ratio, found once: it sets the default torque range
     # and is handed to the sweep
-    base = build_problem(v.design, v.fluid, v.architecture, ratios, 0.0, args.clamp,
-                         _rpm(args.speed) * np.pi / 30.0)
-    limits = limit_torque_batch(base, v.design.creep_limit, v.options)
+    show = _show(args)
+    from tqdm.auto import tqdm
+    from ..solver.limit import bisection_steps
+    with tqdm(total=bisection_steps(), desc=f"limiting torque at {ratios.size} ratios",
+              unit="step", disable=not show) as bar:
+        limits = limit_torque_batch(base, v.design.creep_limit, v.options,
+                                    callback=bar.update)
     top = 1.02 * float(np.nanmax(limits)) if args.torque_max is None else args.torque_max
-    if not top > 0:
-        raise InputError("torque_max", top, "> 0 N m")
     ds = v.sweep(ratio=ratios, output_torque=np.linspace(top / args.n_torque, top,
                                                          args.n_torque),
                  clamp_force=args.clamp, input_speed_rpm=_rpm(args.speed), limit_torque=limits,
-                 workers=args.workers, progress=_progress(args))
-    args.out.mkdir(parents=True, exist_ok=True)
-    to_netcdf(ds, args.out / "map.nc")
-    to_csv(ds, args.out / "map.csv")
-    one = ds.squeeze(drop=True)
-    save(efficiency_map(one.ratio.values, one.output_torque.values, one.eta.values,
-                        one.limit_torque.values, f"Efficiency map, {args.arch} idler, "
-                        f"F_N0 = {args.clamp:g} N, {args.speed:g} rpm"), args.out, "map")
-    n_ok = int((ds.status == 0).sum())
-    print(f"wrote {args.out}/map.png, map.svg, map.nc, map.csv: {n_ok} of {ds.status.size} "
-          f"points converged within the limit, max eta {float(ds.eta.max()):.4f}, "
-          f"{ds.attrs['run_time_s']:.1f} s")
+                 workers=args.workers, progress=show, label="efficiency map")
+    _write_map(ds, out, args)
+    if not args.quiet:
+        st = ds.status.values
+        n_warn = int((ds.warnings.values != 0).sum())
+        print(f"wrote {out}/map.png, map.svg, map.nc, map.csv ({v.design.name}): "
+              f"{int((st == 0).sum())} of {st.size} points converged within the limit, "
+              f"{int((st == 1).sum())} beyond the limiting torque, {int((st == 2).sum())} not "
+              f"converged; {n_warn} with validity warnings; max eta "
+              f"{float(ds.eta.max()):.4f}; {ds.attrs['run_time_s']:.1f} s on "
+              f"{args.workers} worker(s)")
+        if (st == 1).sum() > st.size / 2:
+            print(f"note: most points lie beyond the limiting torque (max "
+                  f"{float(np.nanmax(limits)):.1f} N m); lower --torque-max", file=sys.stderr)
     return 0
 
 
+def _write_map(ds, out, args):
+    import matplotlib
+    matplotlib.use("Agg")                    # the CLI writes files only
+    from ..plotting import efficiency_map, save
+    from ..sweeps import to_csv, to_netcdf
+    to_netcdf(ds, out / "map.nc")
+    to_csv(ds, out / "map.csv")
+    one = ds.squeeze(drop=True)
+    save(efficiency_map(one.ratio.values, one.output_torque.values, one.eta.values,
+                        one.limit_torque.values, f"Efficiency map, {args.arch} idler, "
+                        f"$F_{{N0}}$ = {args.clamp:g} N, {args.speed:g} rpm"), out, "map")
+
+
 def _cmd_reproduce(args) -> int:
+    import matplotlib
+    matplotlib.use("Agg")                    # the CLI writes files only
     from ..reports import reproduce
-    r = reproduce(args.out, quick=args.quick, workers=args.workers, progress=_progress(args))
+    r = reproduce(args.out, quick=args.quick, workers=args.workers, progress=_show(args))
     n_agree = sum(c.verdict == "agrees" for c in r.claims)
-    print(f"wrote {len(r.files)} files to {r.out} (report: {r.out / 'report.html'}); "
-          f"{n_agree} of {len(r.claims)} claims agree; run time {r.run_time:.1f} s")
+    if not args.quiet:
+        print(f"wrote {len(r.files)} files to {r.out} (report: {r.out / 'report.html'}); "
+              f"{n_agree} of {len(r.claims)} claims agree; run time {r.run_time:.1f} s on "
+              f"{args.workers} worker(s)")
     return 0
 
 
 def _cmd_design(args) -> int:
-    if args.design:
-        text = drive_to_toml(*load_drive(args.design))
-    else:
-        text = builtin_text()
-    if args.action == "export" and args.path:
-        args.path.write_text(text)
+    if args.action == "export" and args.path is None:
+        raise InputError("path", None, "an output file",
+                         message="design export needs PATH (use 'design show' to print)")
+    if args.action == "show" and args.path is not None:
+        raise InputError("path", str(args.path), "no PATH with 'show'",
+                         message="design show takes no PATH (use 'design export PATH')")
+    if args.path is not None:
+        check_output_file(args.path, "PATH")
+    text = (drive_to_toml(*load_drive(args.design), template=args.design.read_text())
+            if args.design else builtin_text())
+    if args.action == "export":
+        atomic_write_text(args.path, text)
         print(f"wrote {args.path}", file=sys.stderr)
     else:
         sys.stdout.write(text)
     return 0
+
+
+def _show(args):
+    return False if args.quiet else sys.stderr.isatty()
 
 
 def _rpm(speed: float) -> float:
@@ -223,12 +336,12 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return COMMANDS[args.command](args)
-    except InputError as exc:
+    except BallCVTError as exc:     # bad input, beyond capacity, no equilibrium: exit 2
         print(f"ballcvt: error: {exc}", file=sys.stderr)
         return 2
-    except BallCVTError as exc:
-        print(f"ballcvt: error: {exc}", file=sys.stderr)
-        return 1
+    except KeyboardInterrupt:
+        print("ballcvt: interrupted", file=sys.stderr)
+        return 130
     except Exception as exc:  # a bug: say so in one line unless debugging
         if os.environ.get("BALLCVT_DEBUG"):
             raise

@@ -16,7 +16,7 @@ def rolling_curvature_ratio(radius, aspect_ratio):
     """Equivalent radius in the rolling direction over ``r_S`` (Eqs. 41-44).
 
     ``rho~_x = r~_c / (1 + k)`` for every contact: the concave disc tracks and the convex
-    idlers both give this form (MODEL.md section 3).
+    idlers both give this form (docs/model.md §3).
 
     Parameters
     ----------
@@ -38,7 +38,7 @@ def transverse_curvature_ratio(groove_ratio):
 
     Ball of radius ``r_S`` in a concave groove of meridian radius ``r_j2``:
     ``rho~_y = r~_j2 / (r~_j2 - 1)`` (the printed ``(r~_j2 - 1)/r~_j2`` is its inverse,
-    MODEL.md section 3); a straight generatrix (``r~_j2 = inf``) gives 1.
+    docs/model.md §3); a straight generatrix (``r~_j2 = inf``) gives 1.
 
     Parameters
     ----------
@@ -59,7 +59,7 @@ def hertz_contact(load, rx, ry, reduced_modulus):
     """Semi-axes, peak pressure and approach of an elliptical Hertz contact.
 
     Hamrock-Brewe approximations (Eqs. 45-49) with the combined radius
-    ``R = (1/R_x + 1/R_y)^-1`` (MODEL.md section 3). Eq. 49 as printed is the branch
+    ``R = (1/R_x + 1/R_y)^-1`` (docs/model.md §3). Eq. 49 as printed is the branch
     ``xi = R_y / R_x >= 1`` (major axis along ``y``); for ``xi < 1`` the axes swap roles.
 
     Parameters

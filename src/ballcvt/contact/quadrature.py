@@ -1,7 +1,7 @@
 """Quadrature rules on the unit disc ``X^2 + Y^2 <= 1`` (the normalised contact ellipse).
 
 The traction integrand has a pole at ``(0, Y_p)`` where the sliding speed vanishes and
-its direction jumps (MODEL.md section 8). Three rules, each with ``n_radial x n_angular``
+its direction jumps (docs/model.md §3). Three rules, each with ``n_radial x n_angular``
 nodes and weights summing to the disc area ``pi``:
 
 ``centred``
@@ -69,7 +69,7 @@ class Quadrature:
             raise ValueError("quadrature needs at least 2 x 2 nodes")
 
 
-#: Converged high-order reference rule (MODEL.md section 8).
+#: Converged high-order reference rule (docs/model.md §3).
 REFERENCE = Quadrature("pole", 96, 64, 128)
 
 

@@ -1,7 +1,7 @@
 """Adaptive-quadrature reference of the traction integrals (for validation only).
 
 Nested `scipy.integrate.quad` over the normalised ellipse, with the pole passed as a
-break point of the inner integral. Accurate but slow (seconds per contact; MODEL.md 8):
+break point of the inner integral. Accurate but slow (seconds per contact; docs/model.md §3):
 use it in tests and benchmarks, never in production.
 """
 

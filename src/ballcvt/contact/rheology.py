@@ -1,18 +1,21 @@
 """Traction-fluid rheology: Roelands viscosity, limiting shear stress, shear law.
 
-Eqs. 51, 53 and 54 of the paper, as corrected in MODEL.md section 3. Pure functions.
+Eqs. 51, 53 and 54 of the paper, as corrected in docs/model.md §3. Pure functions.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["roelands_viscosity", "limiting_shear_stress", "saturation_factor",
-           "saturation_slope"]
+__all__ = ["roelands_viscosity", "roelands_pressure_limit", "limiting_shear_stress",
+           "saturation_factor", "saturation_slope"]
+
+#: Largest ``log(eta / eta_0)`` kept: ``exp`` overflows double precision at 709.8.
+LOG_VISCOSITY_MAX = 700.0
 
 
 def roelands_viscosity(pressure, eta0, eta_inf, pole_pressure, index):
-    """Roelands pressure-viscosity law (Eq. 51, with ``1 + p / c_p``, MODEL.md 3).
+    """Roelands pressure-viscosity law (Eq. 51, with ``1 + p / c_p``, docs/model.md §3).
 
     ``log(eta / eta_0) = [(1 + p / c_p)^Z_1 - 1] log(eta_0 / eta_inf)``.
 
@@ -36,6 +39,29 @@ def roelands_viscosity(pressure, eta0, eta_inf, pole_pressure, index):
     """
     p = np.asarray(pressure, dtype=float)
     return eta0 * np.exp(np.log(eta0 / eta_inf) * np.expm1(index * np.log1p(p / pole_pressure)))
+
+
+def roelands_pressure_limit(eta0, eta_inf, pole_pressure, index):
+    """Pressure at which the Roelands viscosity (Eq. 51) leaves double precision [Pa].
+
+    Solves ``[(1 + p / c_p)^Z_1 - 1] log(eta_0 / eta_inf) = 700`` for ``p``. Peak pressures
+    above it (clamping forces of 10^8 N on the Table I drive, 87 GPa) have no finite
+    viscosity; `ballcvt.equilibrium.build_problem` refuses them.
+
+    Parameters
+    ----------
+    eta0, eta_inf, pole_pressure, index : float
+        As in `roelands_viscosity` ([Pa s], [Pa s], [Pa], [-]).
+
+    Returns
+    -------
+    float
+        ``p_lim`` [Pa] (``inf`` when the viscosity does not grow with pressure).
+    """
+    growth = np.log(eta0 / eta_inf)
+    if growth <= 0:
+        return float("inf")
+    return float(pole_pressure * np.expm1(np.log1p(LOG_VISCOSITY_MAX / growth) / index))
 
 
 def limiting_shear_stress(pressure, tau_l0, slope):

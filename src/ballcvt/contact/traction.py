@@ -1,14 +1,14 @@
 """Traction and spin coefficients by quadrature over the contact ellipse (Eqs. 53-66).
 
 With ``X = x / a_x``, ``Y = y / a_y`` on the unit disc, the local sliding speed of the body
-over the ball (Eq. 55, MODEL.md section 3) is
+over the ball (Eq. 55, docs/model.md §3) is
 
     ``V = u_ref (c - s_y Y, s_x X)``, ``s_x = sigma a_x / r_c``, ``s_y = sigma a_y / r_c``,
 
 with ``u_ref = |Omega_c| r_c`` and ``c`` the creep term (`creep_term`). The shear stress is
 ``tau = tau_L (1 - exp(-eta |V| / (h tau_L))) V / |V|`` (Eq. 53), with the Hertz pressure
 ``p = p_max sqrt(1 - X^2 - Y^2)`` in the Roelands viscosity and the limiting shear stress.
-Then (Eqs. 57-66, lever arms with their semi-axes, MODEL.md section 3)
+Then (Eqs. 57-66, lever arms with their semi-axes, docs/model.md §3)
 
     ``mu = (a_x a_y / F_N) int tau_x dX dY``,
     ``chi = (a_x a_y / (F_N r_c)) int (a_x X tau_y - a_y Y tau_x) dX dY``.

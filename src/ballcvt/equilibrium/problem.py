@@ -11,6 +11,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..contact.hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
+from ..contact.rheology import roelands_pressure_limit
 from ..geometry.kinematics import check_ratio, rolling_radius, spin_axis_projection, \
     tilt_from_ratio
 from ..geometry.layout import ContactLayout, contact_layout
@@ -38,7 +39,7 @@ class EquilibriumProblem:
         Ideal ratio [-], tilt [rad], ``T_2`` [N m], ``F_N0`` [N], ``omega_0`` [rad/s];
         shape ``(...)``.
     rho, sz : ndarray
-        Rolling radius factor ``rho_c`` and ``s . z_c`` (MODEL.md 1), ``(..., n_c)`` [-].
+        Rolling radius factor ``rho_c`` and ``s . z_c`` (docs/model.md §1), ``(..., n_c)`` [-].
     load : ndarray
         Normal loads ``F_Nc`` [N], ``(..., n_c)``.
     radius : ndarray
@@ -141,11 +142,26 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
     ry = transverse_curvature_ratio(layout.groove_ratio) * rs
     load = fn0[..., None] * layout.load_factor
     ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
+    _check_pressure(fluid, fn0, p_max)
     return EquilibriumProblem(
         design=design, fluid=fluid, layout=layout, ratio=ratio, tilt=tilt, output_torque=t2,
         clamp_force=fn0, input_speed=w0, rho=rolling_radius(layout, tilt),
         sz=spin_axis_projection(layout, tilt), load=load, radius=layout.radius * rs, rx=rx,
         ax=ax, ay=ay, p_max=p_max)
+
+
+def _check_pressure(fluid: Fluid, clamp_force: np.ndarray, p_max: np.ndarray) -> None:
+    """Refuse clamping forces whose peak pressure has no finite Roelands viscosity."""
+    p_lim = roelands_pressure_limit(fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure,
+                                    fluid.roelands_index)
+    worst = np.max(p_max, axis=-1) if p_max.size else p_max
+    bad = worst > p_lim
+    if np.any(bad):
+        i = np.argmax(np.where(bad, worst, -np.inf))
+        f, p = float(clamp_force.flat[i]), float(worst.flat[i])
+        raise InputError("clamp_force", f, f"<= {f * (p_lim / p) ** 3:.4g} N: its peak "
+                         f"pressure {p / 1e9:.4g} GPa exceeds the {p_lim / 1e9:.4g} GPa beyond "
+                         "which the Roelands viscosity (Eq. 51) overflows")
 
 
 def _check(name: str, value: np.ndarray, unit: str, strict: bool = True) -> None:

@@ -1,4 +1,4 @@
-"""The equilibrium residual (MODEL.md section 5), separate from any solver.
+"""The equilibrium residual (docs/model.md §5), separate from any solver.
 
 Unknowns: the creep coefficients of all contacts. Given them, `evaluate` computes the
 speeds, spins, film thicknesses, traction and spin coefficients, contact forces and
@@ -8,7 +8,7 @@ moments, axle reactions, bearing torques and the residuals of
 * each idler's torque balance about ``j``;
 * the output disc's torque balance (the rollers' torque on it equals ``T_2``).
 
-Balances in vector form (MODEL.md 5), per ball, with ``F_c = kappa_c mu_c F_Nc`` along
+Balances in vector form (docs/model.md §5), per ball, with ``F_c = kappa_c mu_c F_Nc`` along
 ``+i`` and the spin moment ``T_c = -chi_c F_Nc r_c`` about ``z_c``:
 
 * ``M.s = sum_c (r_S rho_c F_c + (s.z_c) T_c)``, residual ``(M.s - T_BLS) / (F_N0 r_S)``

@@ -1,7 +1,7 @@
 """Kinematics: ratio and tilt, rolling radii, body speeds and spin (Eqs. 1, 3-14).
 
 Pure functions of NumPy arrays. Per-contact arrays have the contacts on the last axis;
-tilt and speeds broadcast over the leading axes. Spin follows MODEL.md section 2 in
+tilt and speeds broadcast over the leading axes. Spin follows docs/model.md §2 in
 vector form, which reproduces Eqs. 11-14 (with the Eq. 7 typo ``omega_1 -> omega_2``).
 """
 
@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
+from ..params.feasibility import tilt_limits, usable_tilt_range
 from ..params.models import Design
 from .layout import ContactLayout
 
@@ -54,7 +55,7 @@ def ideal_ratio(tilt, theta0, theta2, k):
 
 
 def tilt_from_ratio(ratio, theta0, theta2, k):
-    """Tilt for an ideal ratio: the closed-form inverse of Eq. 4 (MODEL.md section 2).
+    """Tilt for an ideal ratio: the closed-form inverse of Eq. 4 (docs/model.md §2).
 
     ``gamma = atan((q cos(theta0) - cos(theta2)) / (q sin(theta0) + sin(theta2)))``,
     ``q = tau_ID / tau_0``.
@@ -77,17 +78,6 @@ def tilt_from_ratio(ratio, theta0, theta2, k):
     return np.arctan((q * np.cos(theta0) - np.cos(theta2)) / (q * np.sin(theta0) + np.sin(theta2)))
 
 
-def tilt_limits(theta0, theta2):
-    """Geometric tilt limits of Eq. 6, where ``tau_ID`` reaches 0 or infinity.
-
-    Returns
-    -------
-    tuple of float
-        ``(gamma_min, gamma_max)`` [rad].
-    """
-    return max(-theta0, theta2 - np.pi / 2), min(theta2, np.pi / 2 - theta0)
-
-
 def ratio_range(design: Design) -> tuple[float, float]:
     """Usable ratio range: Eq. 6 limits times ``design.tilt_safety_factor`` (Fig. 3).
 
@@ -96,10 +86,9 @@ def ratio_range(design: Design) -> tuple[float, float]:
     tuple of float
         ``(tau_min, tau_max)`` [-].
     """
-    lo, hi = tilt_limits(design.theta0, design.theta2)
-    s = design.tilt_safety_factor
+    lo, hi = usable_tilt_range(design)
     args = (design.theta0, design.theta2, design.aspect_ratio)
-    return float(ideal_ratio(s * lo, *args)), float(ideal_ratio(s * hi, *args))
+    return float(ideal_ratio(lo, *args)), float(ideal_ratio(hi, *args))
 
 
 def check_ratio(design: Design, ratio) -> None:
@@ -114,7 +103,7 @@ def check_ratio(design: Design, ratio) -> None:
 
 
 def spin_axis_projection(layout: ContactLayout, tilt):
-    """``s . z_c`` with ``s = cos(gamma) j - sin(gamma) k`` (MODEL.md section 1) [-]."""
+    """``s . z_c`` with ``s = cos(gamma) j - sin(gamma) k`` (docs/model.md §1) [-]."""
     g = np.asarray(tilt, dtype=float)[..., None]
     return np.cos(g) * layout.z_j - np.sin(g) * layout.z_k
 

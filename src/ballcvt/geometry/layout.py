@@ -1,4 +1,4 @@
-"""Contact layout of the two architectures (Sec. II.A, Eqs. 1-2, 29; MODEL.md section 1).
+"""Contact layout of the two architectures (Sec. II.A, Eqs. 1-2, 29; docs/model.md §1).
 
 Frame: ``j`` main axis, ``k`` radial through the ball centre, ``i = j x k`` the rolling
 direction. Every per-contact quantity is an array over the contacts, in the order of
@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..params.feasibility import check_architecture
 from ..params.models import ARCHITECTURES, Design
 
 __all__ = ["ContactLayout", "contact_layout", "CONTACT_NAMES"]
@@ -40,7 +41,7 @@ class ContactLayout:
         ``r~_c`` (Eq. 2) [-].
     kappa : ndarray
         Sign of the tangential force on the ball along ``+i`` for positive traction
-        coefficient: +1 input and idlers, -1 output (MODEL.md section 5) [-].
+        coefficient: +1 input and idlers, -1 output (docs/model.md §5) [-].
     load_factor : ndarray
         Normal load over ``F_N0`` (Eq. 29; single idler: radial balance) [-].
     groove_ratio : ndarray
@@ -79,14 +80,20 @@ def contact_layout(design: Design, architecture: str) -> ContactLayout:
         Drive geometry.
     architecture : {"double", "single"}
         Double idler (the disassembled 2017 drive) or single cylindrical idler
-        (the original patent, MODEL.md section 1).
+        (the original patent, docs/model.md §1).
 
     Returns
     -------
     ContactLayout
+
+    Raises
+    ------
+    InputError
+        If the design cannot be built with this architecture (docs/model.md §10).
     """
     if architecture not in ARCHITECTURES:
         raise InputError("architecture", architecture, "one of: " + ", ".join(ARCHITECTURES))
+    check_architecture(design, architecture)
     k = design.aspect_ratio
     t0, t2, al = design.theta0, design.theta2, design.alpha
     f2 = np.sin(t0) / np.sin(t2)                                     # Eq. 29

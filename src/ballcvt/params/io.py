@@ -11,7 +11,7 @@ import tomllib
 from importlib import resources
 from pathlib import Path
 
-import tomli_w
+import tomlkit
 
 from ..errors import InputError
 from .models import Design, Fluid
@@ -45,10 +45,13 @@ def load_drive(path: str | Path) -> tuple[Design, Fluid]:
     """
     path = Path(path)
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise InputError("design file", str(path), "a readable TOML file",
                          message=f"design file {path}: cannot be read ({exc.strerror})") from None
+    except UnicodeDecodeError:
+        raise InputError("design file", str(path), "a UTF-8 TOML file",
+                         message=f"design file {path}: not a text file (not UTF-8)") from None
     return parse_drive(text, source=f"design file {path}")
 
 
@@ -58,7 +61,8 @@ def parse_drive(text: str, source: str = "design file") -> tuple[Design, Fluid]:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(source, None, "valid TOML",
-                         message=f"{source} is not valid TOML: {exc}") from None
+                         message=f"{source} is not valid TOML: {str(exc).splitlines()[0]}"
+                         ) from None
     for table in ("design", "fluid"):
         if not isinstance(data.get(table), dict):
             raise InputError(table, None, "a table",
@@ -74,6 +78,54 @@ def parse_drive(text: str, source: str = "design file") -> tuple[Design, Fluid]:
                          message=f"{source}: {exc}") from None
 
 
-def drive_to_toml(design: Design, fluid: Fluid) -> str:
-    """TOML text of a drive definition that `parse_drive` reads back unchanged."""
-    return tomli_w.dumps({"design": design.model_dump(), "fluid": fluid.model_dump()})
+def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> str:
+    """TOML text of a drive definition that `parse_drive` reads back unchanged.
+
+    The text keeps the layout, comments and sources of ``template`` (the built-in Table I
+    file by default, or the file a drive was loaded from). A value that differs from the
+    template's is written with the comment ``edited (template value: ...)``, so the
+    citations of the values that were kept stay next to them and no edited value carries a
+    citation it no longer deserves.
+
+    Parameters
+    ----------
+    design, fluid : Design, Fluid
+        The drive.
+    template : str, optional
+        TOML text to take the layout and comments from.
+
+    Returns
+    -------
+    str
+    """
+    try:
+        doc = tomlkit.parse(template if template is not None else builtin_text())
+    except tomlkit.exceptions.ParseError as exc:
+        raise InputError("template", None, "valid TOML",
+                         message=f"design template is not valid TOML: {exc}") from None
+    _update(doc, "design", design.model_dump())
+    _update(doc, "fluid", fluid.model_dump())
+    return tomlkit.dumps(doc)
+
+
+def _update(container, key, data) -> None:
+    """Write ``data`` into ``container[key]``, keeping the comments of unchanged values."""
+    if key not in container or not hasattr(container[key], "items"):
+        container[key] = tomlkit.table()
+    table = container[key]
+    for name, value in data.items():
+        if isinstance(value, dict):
+            _update(table, name, value)
+            continue
+        old = table.get(name)
+        plain = old.unwrap() if hasattr(old, "unwrap") else old
+        if old is not None and plain == value:
+            continue
+        item = tomlkit.item(value)
+        if old is not None and name == "name":
+            comment = old.trivia.comment.lstrip("# ") if hasattr(old, "trivia") else ""
+            if comment:
+                item.comment(comment)
+        elif old is not None:
+            item.comment(f"edited (template value: {plain})")
+        table[name] = item

@@ -13,9 +13,10 @@ import difflib
 import math
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from ..errors import InputError
+from .feasibility import check_design
 
 __all__ = [
     "ParameterModel",
@@ -59,8 +60,33 @@ class ParameterModel(BaseModel):
         return str(extra.get("unit", "-"))
 
     def replace(self, **changes: Any):
-        """Return a validated copy with some fields changed."""
-        return type(self)(**{**self.model_dump(), **changes})
+        """Return a validated copy with some fields changed.
+
+        A copy whose values differ from this one and that is not given a new ``name`` is
+        named after this one with the changed keys, e.g. ``"... Table I (edited:
+        n_rollers)"``, so that results never carry the name of a design they do not use.
+        """
+        data = self.model_dump()
+        if "name" in type(self).model_fields and "name" not in changes:
+            changed = _changed_keys(data, changes)
+            if changed:
+                base = str(data["name"]).split(" (edited: ")[0]
+                changes = {**changes, "name": f"{base} (edited: {', '.join(changed)})"}
+        return type(self)(**{**data, **changes})
+
+
+def _changed_keys(data: dict, changes: dict, prefix: str = "") -> list[str]:
+    """Dotted names of the keys whose value ``changes`` alters in ``data``."""
+    out = []
+    for key, value in changes.items():
+        old = data.get(key)
+        if isinstance(value, BaseModel):
+            value = value.model_dump()
+        if isinstance(value, dict) and isinstance(old, dict):
+            out += _changed_keys(old, value, f"{prefix}{key}.")
+        elif value != old:
+            out.append(prefix + key)
+    return out
 
 
 def _as_input_error(model: type[BaseModel], exc: ValidationError) -> InputError:
@@ -118,7 +144,7 @@ class Material(ParameterModel):
 
     @property
     def reduced_modulus(self) -> float:
-        """Plane-strain modulus ``E' = E / (1 - nu^2)`` (MODEL.md section 3) [Pa]."""
+        """Plane-strain modulus ``E' = E / (1 - nu^2)`` (docs/model.md §3) [Pa]."""
         return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
 
 
@@ -137,7 +163,7 @@ class BearingModel(ParameterModel):
 
 
 class Design(ParameterModel):
-    """Geometry of a planetary ball variator (Sec. II.A, Table I, MODEL.md section 1).
+    """Geometry of a planetary ball variator (Sec. II.A, Table I, docs/model.md §1).
 
     Lengths in metres, angles in degrees (names ending in ``_deg``).
     """
@@ -158,15 +184,26 @@ class Design(ParameterModel):
     idler_groove_ratio: float = _f("-", "r_a2/r_S = r_b2/r_S of the double-idler tracks, > 1; "
                                    "inf for straight", gt=1)
     single_idler_groove_ratio: float = _f("-", "transverse track radius of the single idler "
-                                          "over r_S; inf = straight cylinder (MODEL.md 1)", gt=1)
+                                          "over r_S; inf = straight cylinder (docs/model.md §1)", gt=1)
     tilt_safety_factor: float = _f("-", "fraction of the Eq. 6 tilt limits that is usable "
                                    "(Fig. 3 uses 0.8)", gt=0, le=1)
-    creep_limit: float = _f("-", "largest |creep| counted as traction (MODEL.md section 7)",
+    creep_limit: float = _f("-", "largest |creep| counted as traction (docs/model.md §8)",
                             gt=0, lt=1)
     max_pressure: float = _f("Pa", "largest admissible Hertz peak pressure (clamping-force "
-                             "optimisation)", gt=0)
+                             "optimisation, validity warning)", gt=0)
+    min_ball_gap: float = _f("m", "smallest clearance between neighbouring balls, idler "
+                             "contacts and disc contacts (feasibility, docs/model.md §10)",
+                             ge=0, lt=10)
+    surface_roughness: float = _f("m", "composite RMS roughness sqrt(Rq1^2 + Rq2^2) of the "
+                                  "contacting surfaces (film thickness ratio, validity "
+                                  "warning)", gt=0, lt=1e-3)
     material: Material
     bearings: BearingModel
+
+    @model_validator(mode="after")
+    def _buildable(self) -> "Design":
+        check_design(self)
+        return self
 
     @property
     def theta0(self) -> float:
@@ -185,7 +222,7 @@ class Design(ParameterModel):
 
 
 class Fluid(ParameterModel):
-    """Traction fluid (Table I, Appendix A, MODEL.md sections 3-4)."""
+    """Traction fluid (Table I, Appendix A, docs/model.md §3, §4)."""
 
     name: str = Field(..., description="label of the fluid")
     viscosity: float = _f("Pa s", "absolute viscosity eta_0 at atmospheric pressure",
@@ -201,7 +238,10 @@ class Fluid(ParameterModel):
     pole_viscosity: float = _f("Pa s", "Roelands pole viscosity eta_inf (Eq. 51)",
                                gt=0, lt=math.inf)
     density: float = _f("kg/m^3", "density, for the kinematic viscosity of Eq. 15 "
-                        "(an assumption of MODEL.md section 4)", gt=0, lt=math.inf)
+                        "(an assumption, docs/model.md §4)", gt=0, lt=math.inf)
+    max_rolling_speed: float = _f("m/s", "largest rolling (entrainment) speed covered by the "
+                                  "fluid's traction data (validity warning)", gt=0,
+                                  lt=math.inf)
 
     @property
     def kinematic_viscosity(self) -> float:

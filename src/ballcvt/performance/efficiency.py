@@ -1,7 +1,7 @@
 """Power losses (Eqs. 39-40) and efficiency two ways (Eq. 38 and Eq. 39).
 
 Both are computed from a solved `EquilibriumState`; at an equilibrium they agree to
-round-off, an identity of the balances that tests the signs (MODEL.md section 6).
+round-off, an identity of the balances that tests the signs (docs/model.md §7).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ __all__ = ["PowerLosses", "Efficiency", "power_losses", "efficiency"]
 
 @dataclass(frozen=True)
 class PowerLosses:
-    """Dissipated power [W] (Eq. 40, idler bearings counted once per idler, MODEL.md 6).
+    """Dissipated power [W] (Eq. 40, idler bearings counted once per idler, docs/model.md §7).
 
     Attributes
     ----------

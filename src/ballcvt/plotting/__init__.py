@@ -1,5 +1,10 @@
-"""Layer 10: figures (matplotlib). Never imported by the physics layers."""
+"""Layer 10: figures (matplotlib). Never imported by the physics layers.
 
-from .figures import efficiency_map, line_panels, ratio_vs_tilt, save
+Importing this package does not change matplotlib's backend.
+"""
 
-__all__ = ["save", "line_panels", "efficiency_map", "ratio_vs_tilt"]
+from .figures import (LABELS, draw_efficiency_map, efficiency_map, line_panels,
+                      plot_curves, plot_efficiency_map, ratio_vs_tilt, save)
+
+__all__ = ["save", "line_panels", "efficiency_map", "draw_efficiency_map",
+           "plot_efficiency_map", "plot_curves", "ratio_vs_tilt", "LABELS"]

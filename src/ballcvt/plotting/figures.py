@@ -1,35 +1,55 @@
 """Matplotlib figures of the paper's results (and the efficiency map) from sweep data.
 
-Every function takes plain data (an `xarray.Dataset` from `ballcvt.sweeps.sweep` or
-arrays) and returns a `matplotlib.figure.Figure`; nothing here computes physics. Axes carry
-the quantity and its unit; legends follow the paper's.
+Nothing here computes physics, and nothing here changes matplotlib's backend: figures for
+files are `matplotlib.figure.Figure` objects that never touch pyplot (so they work
+headless and leave a notebook's own plotting alone), and the helpers for interactive use
+(`plot_efficiency_map`, `plot_curves`) draw on an ``ax`` you pass, or on pyplot's current
+axes, and return the artists. Labels use mathtext (``$\\tau_{ID}$``, ``$T_2$``, ``$\\eta$``).
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
+import numpy as np
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")  # files only; never needs a display
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from .._fileio import atomic_path
 
-__all__ = ["save", "line_panels", "efficiency_map", "ratio_vs_tilt"]
+__all__ = ["save", "line_panels", "efficiency_map", "ratio_vs_tilt", "draw_efficiency_map",
+           "plot_efficiency_map", "plot_curves", "LABELS"]
+
+#: Axis labels of the common quantities (mathtext).
+LABELS = {
+    "ratio": r"ideal speed ratio $\tau_{ID}$ [-]",
+    "output_torque": r"output torque $T_2$ [N m]",
+    "clamp_force": r"clamping force $F_{N0}$ [N]",
+    "input_speed": r"input speed $\omega_0$ [rad/s]",
+    "input_speed_rpm": r"input speed $\omega_0$ [rpm]",
+    "eta": r"overall efficiency $\eta$ [-]",
+    "eta_loss": r"overall efficiency $\eta$ (Eq. 39) [-]",
+    "eta_speed": r"speed efficiency $\eta_\omega$ [-]",
+    "eta_torque": r"torque efficiency $\eta_T$ [-]",
+    "creep": r"creep $C$ [-]",
+    "spin": r"spin coefficient $\sigma$ [-]",
+    "tilt_deg": r"tilt $\gamma$ [deg]",
+    "input_torque": r"input torque $T_0$ [N m]",
+    "limit_torque": r"limiting torque $T_{2,lim}$ [N m]",
+}
 
 
-def save(fig, directory, name) -> list[Path]:
-    """Write ``fig`` as ``name.png`` and ``name.svg`` in ``directory``; close it."""
+def save(fig: Figure, directory, name) -> list[Path]:
+    """Write ``fig`` as ``name.png`` and ``name.svg`` in ``directory`` (atomically)."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     paths = [directory / f"{name}.png", directory / f"{name}.svg"]
-    fig.savefig(paths[0], dpi=130, bbox_inches="tight")
-    fig.savefig(paths[1], bbox_inches="tight")
-    plt.close(fig)
+    for path, kw in zip(paths, ({"dpi": 130}, {})):
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, bbox_inches="tight", **kw)
     return paths
 
 
-def line_panels(panels, xlabel, title=None, ncols=None):
+def line_panels(panels, xlabel, title=None, ncols=None) -> Figure:
     """A row (or grid) of line plots.
 
     Parameters
@@ -46,7 +66,8 @@ def line_panels(panels, xlabel, title=None, ncols=None):
     n = len(panels)
     ncols = ncols or min(n, 4)
     nrows = int(np.ceil(n / ncols))
-    fig, axes = plt.subplots(nrows, ncols, figsize=(4.2 * ncols, 3.4 * nrows), squeeze=False)
+    fig = Figure(figsize=(4.2 * ncols, 3.4 * nrows), layout="constrained")
+    axes = fig.subplots(nrows, ncols, squeeze=False)
     for ax, panel in zip(axes.flat, panels):
         for x, y, label, style in panel["lines"]:
             ax.plot(x, y, label=label, **(style or {}))
@@ -64,15 +85,26 @@ def line_panels(panels, xlabel, title=None, ncols=None):
         ax.set_visible(False)
     if title:
         fig.suptitle(title, fontsize=11)
-    fig.tight_layout()
     return fig
 
 
-def efficiency_map(ratio, torque, eta, limit, title="Overall efficiency"):
-    """Filled contours of ``eta(ratio, torque)`` with the limiting-torque curve.
+def _levels(eta):
+    finite = eta[np.isfinite(eta)]
+    lo = float(np.min(finite)) if finite.size else 0.0
+    top = float(np.max(finite)) if finite.size else 1.0
+    coarse = np.arange(np.floor(lo * 10) / 10, 0.9, 0.1)
+    fine = np.arange(0.9, top + 0.01, 0.01)
+    levels = np.unique(np.round(np.concatenate([coarse, [0.85], fine, [top + 1e-9]]), 3))
+    return levels[levels >= np.floor(lo * 10) / 10]
+
+
+def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True):
+    """Draw filled efficiency contours and the limiting-torque curve on ``ax``.
 
     Parameters
     ----------
+    ax : matplotlib.axes.Axes
+        Target axes.
     ratio : array_like
         Ideal ratios, shape ``(n_r,)`` [-].
     torque : array_like
@@ -81,28 +113,109 @@ def efficiency_map(ratio, torque, eta, limit, title="Overall efficiency"):
         Efficiency, shape ``(n_r, n_T)``, NaN beyond the limit [-].
     limit : array_like
         Limiting torque per ratio, shape ``(n_r,)`` [N m].
+    colorbar : bool
+        Add a colour bar.
+
+    Returns
+    -------
+    dict
+        The artists: ``filled`` and ``lines`` (contour sets), ``labels``, ``limit`` (the
+        red line) and ``colorbar`` (or None).
     """
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
     eta = np.asarray(eta, dtype=float).T
-    finite = eta[np.isfinite(eta)]
-    top = float(np.max(finite)) if finite.size else 1.0
-    levels = np.unique(np.round(np.concatenate([np.linspace(0.5, 0.9, 9),
-                                                np.arange(0.9, top + 0.01, 0.01)]), 3))
-    filled = ax.contourf(ratio, torque, np.where(eta >= 0.5, eta, np.nan), levels=levels,
-                         cmap="viridis", extend="min")
-    lines = ax.contour(ratio, torque, eta, levels=levels[::2], colors="k", linewidths=0.5)
-    ax.clabel(lines, fmt="%.2f", fontsize=7)
-    ax.plot(ratio, limit, "r-", lw=2, label="limiting torque")
-    fig.colorbar(filled, ax=ax, label="overall efficiency eta [-]")
-    ax.set_xlabel("ideal speed ratio tau_ID [-]")
-    ax.set_ylabel("output torque T_2 [N m]")
-    ax.set_title(title, fontsize=10)
+    levels = _levels(eta)
+    filled = ax.contourf(ratio, torque, eta, levels=levels, cmap="viridis")
+    lines = ax.contour(ratio, torque, eta, levels=[v for v in levels if v >= 0.5][::2],
+                       colors="k", linewidths=0.5)
+    labels = ax.clabel(lines, fmt="%.2f", fontsize=7, inline=True)
+    limit_line, = ax.plot(ratio, limit, "r-", lw=2, label="limiting torque")
+    bar = ax.figure.colorbar(filled, ax=ax, label=LABELS["eta"]) if colorbar else None
+    ax.set_xlabel(LABELS["ratio"])
+    ax.set_ylabel(LABELS["output_torque"])
+    top = np.nanmax(np.concatenate([np.asarray(torque, float), np.asarray(limit, float)]))
+    ax.set_ylim(0.0, 1.05 * top)
     ax.legend(loc="upper right", fontsize=8)
-    fig.tight_layout()
+    return {"filled": filled, "lines": lines, "labels": labels, "limit": limit_line,
+            "colorbar": bar}
+
+
+def efficiency_map(ratio, torque, eta, limit, title="Overall efficiency") -> Figure:
+    """A figure of `draw_efficiency_map` with a title (for files)."""
+    fig = Figure(figsize=(6.6, 4.8), layout="constrained")
+    ax = fig.add_subplot()
+    draw_efficiency_map(ax, ratio, torque, eta, limit)
+    ax.set_title(title, fontsize=10)
     return fig
 
 
-def ratio_vs_tilt(curves, title="Fig. 3: ideal speed ratio vs tilt (k = 1)"):
+def _axes(ax):
+    if ax is None:
+        import matplotlib.pyplot as plt  # interactive use: the user's own backend
+        ax = plt.gca()
+    return ax
+
+
+def plot_efficiency_map(ds, ax=None, colorbar=True):
+    """Efficiency map of a ratio x torque sweep on ``ax`` (pyplot's current axes if None).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep with one architecture, clamping force and speed (the other dimensions of
+        length 1), e.g. ``Variator().sweep(ratio=..., output_torque=..., ...)``.
+    ax : matplotlib.axes.Axes, optional
+        Target axes.
+    colorbar : bool
+        Add a colour bar.
+
+    Returns
+    -------
+    dict
+        The artists (see `draw_efficiency_map`).
+    """
+    one = ds.squeeze(drop=True)
+    return draw_efficiency_map(_axes(ax), one.ratio.values, one.output_torque.values,
+                               one.eta.transpose("ratio", "output_torque").values,
+                               one.limit_torque.values, colorbar=colorbar)
+
+
+def plot_curves(ds, y="eta", x="output_torque", ax=None, **style):
+    """Lines of ``ds[y]`` against ``x``, one per value of every other sweep dimension.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep (or a selection of one).
+    y, x : str
+        Variable and dimension names.
+    ax : matplotlib.axes.Axes, optional
+        Target axes (pyplot's current axes if None).
+    **style
+        Keyword arguments for ``ax.plot``.
+
+    Returns
+    -------
+    list of matplotlib.lines.Line2D
+    """
+    ax = _axes(ax)
+    da = ds[y].squeeze(drop=True)
+    others = [d for d in da.dims if d != x]
+    stacked = da.stack(curve=others) if others else da.expand_dims(curve=[""])
+    lines = []
+    for i in range(stacked.sizes["curve"]):
+        curve = stacked.isel(curve=i)
+        label = ", ".join(f"{d} = {curve[d].item():g}" if np.ndim(curve[d]) == 0 and
+                          np.issubdtype(curve[d].dtype, np.number) else
+                          f"{curve[d].item()}" for d in others)
+        lines += ax.plot(curve[x].values, curve.values, label=label or None, **style)
+    ax.set_xlabel(LABELS.get(x, x))
+    ax.set_ylabel(LABELS.get(y, y))
+    if others:
+        ax.legend(fontsize=8)
+    return lines
+
+
+def ratio_vs_tilt(curves, title=r"Fig. 3: ideal speed ratio vs tilt ($k$ = 1)") -> Figure:
     """Fig. 3: ``tau_ID(gamma)`` for several contact angles.
 
     Parameters
@@ -110,15 +223,15 @@ def ratio_vs_tilt(curves, title="Fig. 3: ideal speed ratio vs tilt (k = 1)"):
     curves : list of (tilt_deg, ratio, label, usable_mask)
         Tilt [deg], ratio [-], legend label, and the part inside the safety factor.
     """
-    fig, ax = plt.subplots(figsize=(6.0, 4.2))
+    fig = Figure(figsize=(6.0, 4.2), layout="constrained")
+    ax = fig.add_subplot()
     for tilt, ratio, label, usable in curves:
         line, = ax.plot(tilt, ratio, ":", lw=1)
         ax.plot(tilt[usable], ratio[usable], "-", color=line.get_color(), label=label)
     ax.set_yscale("log")
-    ax.set_xlabel("tilt angle gamma [deg]")
-    ax.set_ylabel("ideal speed ratio tau_ID [-]")
+    ax.set_xlabel(LABELS["tilt_deg"])
+    ax.set_ylabel(LABELS["ratio"])
     ax.set_title(title + "; solid: within the 0.8 safety factor", fontsize=10)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
-    fig.tight_layout()
     return fig

@@ -1,4 +1,4 @@
-"""Every numeric claim of the paper (MODEL.md section 9) against the reproduced model.
+"""Every numeric claim of the paper (docs/model.md §9) against the reproduced model.
 
 Each `Claim` carries the paper's value, ours, the difference and a verdict from a stated
 tolerance: "agrees" or "differs". Qualitative claims are checked by a stated criterion.
@@ -134,7 +134,7 @@ def paper_claims(data, fig11_peak) -> list[Claim]:
                      fmt="{:.3f}"))
     rows.append(_num("Fig. 11", "ratio of the maximum", 1.76, fig11_peak[0], 0.1,
                      fmt="{:.2f}"))
-    gap = float(np.nanmax(np.abs(d40.eta - d40.eta_losses)))
+    gap = float(np.nanmax(np.abs(d40.eta - d40.eta_loss)))
     rows.append(_bool("Fig. 11", "Eq. 38 = Eq. 39", "equal", gap <= 1e-6, f"max |diff| "
                       f"{gap:.1e}", "max |eta_38 - eta_39| <= 1e-6"))
     s40 = sq(rc.sel(architecture="single", output_torque=40.0))

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._fileio import atomic_write_text
 from .figures import FIGURES
 
 __all__ = ["write_report"]
@@ -63,14 +64,14 @@ def _blocks(data, claims, ceiling, peak, quick, run_time, inputs):
         f"paper's limit cannot come from the same shear law with the Table I values and a "
         f"creep threshold of 0.1. A lower tau_L0 or a, a different contact size (the paper "
         f"does not give the groove radii, and we calibrate them to its 1.63 GPa), or a "
-        f"stricter creep criterion would each lower it. As MODEL.md section 7 asks, we did "
+        f"stricter creep criterion would each lower it. As our model notes (docs/model.md §8) require, we did "
         f"not retune the Table I values to hide the difference.")))
     rc = data.ratio_curves
     p_single = float(rc.p_max.sel(architecture="single", contact="idler").max()) / 1e9
     b.append(("p", (
         f"**Single-idler pressure.** The paper states 2.61 GPa at the roller-idler contact of "
         f"the single idler. It does not give that idler's geometry. We assume a straight "
-        f"cylinder (MODEL.md section 1) and get {p_single:.2f} GPa. By Hertz, p_max scales as "
+        f"cylinder (docs/model.md §1) and get {p_single:.2f} GPa. By Hertz, p_max scales as "
         f"(F_N (sum of curvatures)^2)^(1/3) at fixed ellipticity. 2.61 GPa would therefore "
         f"need (2.61 / {p_single:.2f})^3 = {(2.61 / p_single) ** 3:.2f} times our "
         f"F_N (sum K)^2: for example a crowned idler with "

@@ -11,6 +11,7 @@ import math
 import platform
 import sys
 import time
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -19,6 +20,7 @@ import pandas as pd
 from scipy.optimize import minimize_scalar
 from tqdm.auto import tqdm
 
+from .._fileio import check_output_dir
 from .._version import __version__
 from ..equilibrium.problem import build_problem
 from ..params.io import load_builtin
@@ -58,34 +60,61 @@ def _torques(n, top=180.0):
 
 
 def compute(quick: bool = False, workers: int = 1, progress: bool | None = None):
-    """Run every sweep the figures need; returns (FigureData, Fig. 11 peak)."""
+    """Run every sweep the figures need; returns (FigureData, Fig. 11 peak).
+
+    Every sweep and the Fig. 8c envelope run on ``workers`` processes, each with a labelled
+    progress bar.
+    """
     v = Variator()
     speed = RPM * math.pi / 30.0
     torque = _torques(_grid("torque", quick))
     common = {"input_speed": speed, "workers": workers, "progress": progress}
     torque_curves = v.sweep(ratio=[0.5, 1.0, 2.0], output_torque=torque, clamp_force=CLAMP,
-                            **common)
+                            label="Figs. 7, 9: efficiency and creep vs torque", **common)
     clamps = [1000.0, 1500.0, 2000.0, 2500.0, 3000.0]
     clamp_curves = v.sweep(ratio=1.0, output_torque=_torques(_grid("torque", quick), 260.0),
-                           clamp_force=clamps, **common)
+                           clamp_force=clamps, label="Fig. 8: efficiency at five clamps",
+                           **common)
     env_t = np.unique(np.concatenate([np.linspace(5.0, 250.0, _grid("envelope", quick)),
                                       [40.0]]))
-    rows = []
-    show = sys.stderr.isatty() if progress is None else progress
-    for t in tqdm(env_t, desc="Fig. 8c envelope", unit="torque", disable=not show):
-        o = v.optimal_clamp_force(1.0, t, speed)
-        rows.append({"output_torque": t, "clamp_force": o.clamp_force, "eta": o.eta,
-                     "max_creep": o.max_creep, "max_pressure": o.max_pressure,
-                     "active_constraint": o.active})
-    envelope = pd.DataFrame(rows)
+    envelope = pd.DataFrame(_envelope(v, env_t, speed, workers, progress))
     ratio = np.unique(np.concatenate([np.linspace(0.5, 2.0, _grid("ratio", quick)), [1.0]]))
     ratio_curves = v.sweep(ratio=ratio, output_torque=[20.0, 40.0, 60.0], clamp_force=CLAMP,
-                           architecture=("double", "single"), **common)
+                           architecture=("double", "single"),
+                           label="Figs. 10-13: vs ratio", **common)
     emap = v.sweep(ratio=np.linspace(0.5, 2.0, _grid("map_ratio", quick)),
                    output_torque=np.linspace(2.0, 170.0, _grid("map_torque", quick)),
-                   clamp_force=CLAMP, **common)
+                   clamp_force=CLAMP, label="efficiency map", **common)
     data = FigureData(v.design, torque_curves, clamp_curves, envelope, ratio_curves, emap)
     return data, _fig11_peak(v, ratio_curves)
+
+
+def _envelope_row(v, torque, speed):
+    o = v.optimal_clamp_force(1.0, torque, input_speed=speed)
+    return {"output_torque": torque, "clamp_force": o.clamp_force, "eta": o.eta,
+            "max_creep": o.max_creep, "max_pressure": o.max_pressure,
+            "active_constraint": o.active}
+
+
+def _envelope(v, torques, speed, workers, progress):
+    """Fig. 8c: the optimal clamping force at each torque, on ``workers`` processes."""
+    show = sys.stderr.isatty() if progress is None else progress
+    bar = tqdm(total=len(torques), desc="Fig. 8c: optimal-clamp envelope", unit="torque",
+               disable=not show)
+    with bar:
+        if workers > 1:
+            with ProcessPoolExecutor(max_workers=workers) as pool:
+                futures = [pool.submit(_envelope_row, v, float(t), speed) for t in torques]
+                rows = []
+                for f in futures:
+                    rows.append(f.result())
+                    bar.update()
+                return rows
+        rows = []
+        for t in torques:
+            rows.append(_envelope_row(v, float(t), speed))
+            bar.update()
+        return rows
 
 
 def _fig11_peak(v, ratio_curves):
@@ -123,8 +152,8 @@ def reproduce(out, quick: bool = False, workers: int = 1,
     Reproduction
     """
     start = time.perf_counter()
-    out = Path(out)
-    (out / "data").mkdir(parents=True, exist_ok=True)
+    out = check_output_dir(out)
+    check_output_dir(out / "data")
     data, peak = compute(quick, workers, progress)
     files = []
     for name, (fn, _) in FIGURES.items():
@@ -139,17 +168,18 @@ def reproduce(out, quick: bool = False, workers: int = 1,
                                             RPM * math.pi / 30.0))
     run_time = time.perf_counter() - start
     files += write_report(out, data, claims, ceiling, peak, quick=quick, run_time=run_time,
-                          inputs=_inputs(design, fluid, quick))
+                          inputs=_inputs(design, fluid, quick, workers))
     return Reproduction(out=out, files=files, claims=claims, run_time=run_time)
 
 
-def _inputs(design, fluid, quick):
+def _inputs(design, fluid, quick, workers):
     return {
         "design": design.name, "fluid": fluid.name,
         "operating point": f"F_N0 = {CLAMP:g} N, omega_0 = {RPM:g} rpm (Figs. 7, 9-13)",
         "creep limit": f"{design.creep_limit:g}",
         "max pressure (clamp optimisation)": f"{design.max_pressure / 1e9:g} GPa",
         "grids": "quick (coarse)" if quick else "full",
+        "worker processes": str(workers),
         "ballcvt": __version__, "python": platform.python_version(),
         "machine": f"{platform.machine()}, {platform.system()}",
     }

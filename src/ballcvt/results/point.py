@@ -15,10 +15,15 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from pydantic import TypeAdapter, ValidationError
+
+from .._fileio import atomic_write_text
 from .._version import __version__
 from ..contact.quadrature import Quadrature
 from ..equilibrium.problem import EquilibriumProblem
+from ..errors import InputError
 from ..performance.efficiency import efficiency, power_losses
+from ..performance.validity import validity, warning_messages
 from ..params.models import Design, Fluid
 from ..solver.point import PointSolution
 
@@ -49,6 +54,8 @@ class ContactResult:
         Signed speed of the disc or idler about the main axis [rad/s].
     creep_loss, spin_loss : float
         Power dissipated by creep and by spin [W].
+    lambda_ratio : float
+        Film thickness ratio ``h_min / sigma`` (docs/model.md §10) [-].
     """
 
     creep: float
@@ -65,6 +72,7 @@ class ContactResult:
     body_speed: float
     creep_loss: float
     spin_loss: float
+    lambda_ratio: float
 
 
 @dataclass(frozen=True)
@@ -103,6 +111,9 @@ class OperatingResult:
         Residual evaluations of the solver.
     quadrature : str
         The traction-integral rule, e.g. ``"pole 32x12 (centred part 32x32)"``.
+    warnings : tuple of str
+        Validity warnings (docs/model.md §10), one line each; empty when the point lies
+        within every assumption of the model.
     version : str
         ballcvt version that computed the result.
     """
@@ -130,6 +141,7 @@ class OperatingResult:
     residual_norm: float
     iterations: int
     quadrature: str
+    warnings: tuple[str, ...] = ()
     version: str = __version__
 
     @property
@@ -139,8 +151,8 @@ class OperatingResult:
 
     @property
     def input_speed_rpm(self) -> float:
-        """Input speed [rpm]."""
-        return self.input_speed * 30.0 / math.pi
+        """Input speed [rpm] (rounded to 12 significant digits: no conversion noise)."""
+        return float(f"{self.input_speed * 30.0 / math.pi:.12g}")
 
     @property
     def input_power(self) -> float:
@@ -163,7 +175,7 @@ class OperatingResult:
                 value = {k: asdict(v) for k, v in value.items()}
             elif f.name in ("losses",):
                 value = dict(value)
-            elif f.name == "axle_reactions":
+            elif f.name in ("axle_reactions", "warnings"):
                 value = list(value)
             out[f.name] = value
         out["tilt_deg"] = self.tilt_deg
@@ -174,28 +186,106 @@ class OperatingResult:
         return out
 
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any]) -> "OperatingResult":
-        """Inverse of `to_dict`."""
+    def from_dict(cls, data: Mapping[str, Any], source: str = "result") -> "OperatingResult":
+        """Inverse of `to_dict`, validated.
+
+        Every field is checked for its type (pydantic), the design and fluid are validated
+        as parameter sets, and the figures must be consistent with one another
+        (Eq. 38 ``eta = eta_speed eta_torque``, Eq. 37, Eq. 39 and the loss total), so an
+        edited or corrupted file is refused rather than loaded.
+
+        Raises
+        ------
+        InputError
+            Naming the first missing, wrong-typed or inconsistent field.
+        """
+        if not isinstance(data, Mapping):
+            raise InputError(source, type(data).__name__, "a JSON object",
+                             message=f"{source}: not a result (a JSON object is expected)")
+        missing = [f.name for f in fields(cls) if f.name not in data]
+        if missing:
+            raise InputError(missing[0], None, "a value",
+                             message=f"{source}: required key '{missing[0]}' is missing")
         kw = {f.name: data[f.name] for f in fields(cls)}
-        kw["design"] = Design(**kw["design"])
-        kw["fluid"] = Fluid(**kw["fluid"])
-        kw["contacts"] = MappingProxyType({k: ContactResult(**v) for k, v in kw["contacts"].items()})
-        kw["losses"] = MappingProxyType(dict(kw["losses"]))
-        kw["axle_reactions"] = tuple(kw["axle_reactions"])
-        return cls(**kw)
+        try:
+            kw["design"] = Design(**kw["design"])
+            kw["fluid"] = Fluid(**kw["fluid"])
+        except (InputError, TypeError) as exc:
+            raise InputError("design", None, "a valid design",
+                             message=f"{source}: {exc}") from None
+        try:
+            result = _ADAPTER.validate_python(kw)
+        except ValidationError as exc:
+            err = exc.errors()[0]
+            name = ".".join(str(p) for p in err["loc"])
+            raise InputError(name, err.get("input"), err["msg"],
+                             message=f"{source}: {name} = {err.get('input')!r}: "
+                                     f"{err['msg']}") from None
+        object.__setattr__(result, "contacts", MappingProxyType(dict(result.contacts)))
+        object.__setattr__(result, "losses", MappingProxyType(dict(result.losses)))
+        _check_consistent(result, source)
+        return result
 
     def to_json(self, **kwargs: Any) -> str:
         """JSON text of `to_dict` (non-finite numbers are written as ``null``)."""
         return json.dumps(_finite(self.to_dict()), **kwargs)
 
     def save(self, path: str | Path) -> None:
-        """Write the result as JSON."""
-        Path(path).write_text(self.to_json(indent=2))
+        """Write the result as JSON (atomically: never a truncated file)."""
+        atomic_write_text(path, self.to_json(indent=2))
 
     @classmethod
     def load(cls, path: str | Path) -> "OperatingResult":
-        """Read a result written by `save`."""
-        return cls.from_dict(json.loads(Path(path).read_text(), parse_constant=float))
+        """Read and validate a result written by `save` (see `from_dict`)."""
+        source = f"result file {path}"
+        try:
+            data = json.loads(Path(path).read_text(), parse_constant=float)
+        except (OSError, UnicodeDecodeError, ValueError) as exc:
+            raise InputError("result file", str(path), "a readable JSON result",
+                             message=f"{source}: cannot be read ({exc})") from None
+        return cls.from_dict(_unfinite(data), source)
+
+
+_ADAPTER = TypeAdapter(OperatingResult)
+
+
+def _check_consistent(r: OperatingResult, source: str) -> None:
+    """Refuse figures that contradict each other (an edited or corrupted file)."""
+    def close(a, b, tol):
+        return (math.isnan(a) and math.isnan(b)) or abs(a - b) <= tol * max(1.0, abs(b))
+
+    ls = r.losses
+    checks = [
+        ("eta", r.eta, r.eta_speed * r.eta_torque, 1e-12, "eta_speed * eta_torque (Eq. 38)"),
+        ("eta_torque", r.eta_torque,
+         r.ratio * r.output_torque / r.input_torque if r.input_torque else r.eta_torque,
+         1e-12, "ratio * output_torque / input_torque (Eq. 37)"),
+        ("eta_loss", r.eta_loss, 1.0 - ls.get("total", math.nan) / r.input_power
+         if r.input_power else r.eta_loss, 1e-12, "1 - losses.total / input power (Eq. 39)"),
+        ("losses.total", ls.get("total", math.nan),
+         ls.get("creep", math.nan) + ls.get("spin", math.nan) + ls.get("bearing", math.nan),
+         1e-9, "creep + spin + bearing"),
+        ("eta_loss", r.eta_loss, r.eta, 1e-6, "eta (Eq. 38 = Eq. 39)"),
+    ]
+    for name, value, expected, tol, what in checks:
+        if not close(float(value), float(expected), tol):
+            raise InputError(name, value, f"{expected:.12g} = {what}",
+                             message=f"{source}: {name} = {value!r} is inconsistent with "
+                                     f"{what} = {expected:.12g}: the file was edited or is "
+                                     "corrupt")
+
+
+def _unfinite(obj: Any) -> Any:
+    """Inverse of `_finite`: ``"inf"``/``"-inf"`` strings back to floats, ``null`` to NaN."""
+    if obj is None:
+        return math.nan
+    if obj in ("inf", "-inf"):
+        return float(obj)
+    if isinstance(obj, dict):
+        return {k: _unfinite(v) for k, v in obj.items()}
+    if isinstance(obj, list):
+        return [_unfinite(v) for v in obj]
+    return obj
 
 
 def _finite(obj: Any) -> Any:
@@ -214,6 +304,7 @@ def make_result(problem: EquilibriumProblem, solution: PointSolution,
     st, lay = solution.state, problem.layout
     loss = power_losses(problem, st)
     eff = efficiency(problem, st, loss)
+    valid = validity(problem, st)
     f = lambda a: float(np.asarray(a))  # noqa: E731
     contacts = {
         name: ContactResult(
@@ -222,7 +313,8 @@ def make_result(problem: EquilibriumProblem, solution: PointSolution,
             semi_axis_x=f(problem.ax[i]), semi_axis_y=f(problem.ay[i]),
             film_thickness=f(st.film[i]), tangential_force=f(st.force[i]),
             spin_moment=f(st.moment[i]), body_speed=f(st.omega[i]),
-            creep_loss=f(loss.creep[i]), spin_loss=f(loss.spin[i]))
+            creep_loss=f(loss.creep[i]), spin_loss=f(loss.spin[i]),
+            lambda_ratio=f(valid.lambda_ratio[i]))
         for i, name in enumerate(lay.names)}
     losses = {"creep": f(np.sum(loss.creep)), "spin": f(np.sum(loss.spin)),
               "roller_bearings": f(loss.roller_bearings),
@@ -239,7 +331,8 @@ def make_result(problem: EquilibriumProblem, solution: PointSolution,
         losses=MappingProxyType(losses), eta=f(eff.overall), eta_loss=f(eff.from_losses),
         eta_speed=f(eff.speed), eta_torque=f(eff.torque), converged=solution.converged,
         residual_norm=solution.residual_norm, iterations=solution.evaluations,
-        quadrature=_label(quadrature))
+        quadrature=_label(quadrature),
+        warnings=tuple(warning_messages(problem, valid, lay.names)))
 
 
 def _label(q: Quadrature) -> str:

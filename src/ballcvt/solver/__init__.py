@@ -1,4 +1,4 @@
-"""Layer 5: solvers of the equilibrium and the limiting torque (MODEL.md sections 5, 7)."""
+"""Layer 5: solvers of the equilibrium and the limiting torque (docs/model.md §5, §8)."""
 
 from .batch import BatchSolution, solve_batch
 from .limit import LimitSolution, limit_torque, limit_torque_batch, traction_ceiling_torque

@@ -1,4 +1,4 @@
-"""Limiting output torque (MODEL.md section 7).
+"""Limiting output torque (docs/model.md §8).
 
 The traction law saturates (``mu -> a + tau_L0 A / F_N``), so creep runs away over a
 narrow torque band instead of stopping at a sharp maximum. The limiting torque is the
@@ -14,6 +14,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
+from ..errors import NoEquilibriumError
 from .batch import solve_batch
 from .point import PointSolution, SolverOptions, solve_point
 
@@ -103,8 +104,17 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
 
     ok, best = at(0.0, None)
     if not ok:
-        raise RuntimeError(f"no admissible equilibrium even at zero output torque "
-                           f"({best.message})")
+        where = (f"ratio {float(problem.ratio):g}, clamp_force {float(problem.clamp_force):g} N, "
+                 f"input speed {float(problem.input_speed):g} rad/s")
+        if best.converged:
+            why = (f"its creep {float(np.max(np.abs(best.state.creep))):.3g} already exceeds "
+                   f"creep_limit {creep_limit:g}: the drive's own spin and bearing drag use up "
+                   "its traction")
+        else:
+            why = ("the traction this clamping force can transmit does not carry the drive's "
+                   f"own drag; raise clamp_force ({best.message})")
+        raise NoEquilibriumError(f"no admissible equilibrium even at zero output torque "
+                                 f"({where}): {why}")
     lo, hi = 0.0, float(traction_ceiling_torque(problem))
     while True:
         ok, sol = at(hi, best.state.creep)

@@ -4,7 +4,7 @@ Strategy: the batched Newton method of `ballcvt.solver.batch` on the single poin
 (``method="newton"``, the default); if it fails, or with ``method="hybr"``, MINPACK's
 hybrid Powell method (`scipy.optimize.root`, ``hybr``) with a
 forward-difference Jacobian that has an absolute step floor (creeps span 1e-15 to 0.4,
-MODEL.md section 8). If that fails (typically near the traction limit from a cold start),
+docs/model.md §3). If that fails (typically near the traction limit from a cold start),
 the bracketing solver of `ballcvt.solver.nested`, which cannot wander off. A result is
 reported converged only if the final residual, evaluated afresh, is below the tolerance.
 """

@@ -1,8 +1,8 @@
 """Layer 7: sweeps over operating conditions as `xarray.Dataset` objects, and their export."""
 
-from .export import load_dataset, to_csv, to_frame, to_netcdf
+from .export import load_dataset, parameters, to_csv, to_frame, to_netcdf
 from .grid import STATUS, solve_curves, sweep
-from .variables import VARIABLES
+from .variables import LOSS_KINDS, VARIABLES
 
-__all__ = ["sweep", "solve_curves", "STATUS", "VARIABLES", "to_netcdf", "to_csv", "to_frame",
-           "load_dataset"]
+__all__ = ["sweep", "solve_curves", "STATUS", "VARIABLES", "LOSS_KINDS", "to_netcdf", "to_csv",
+           "to_frame", "load_dataset", "parameters"]

@@ -24,10 +24,11 @@ from ..errors import InputError
 from ..geometry.layout import CONTACT_NAMES
 from ..params.models import ARCHITECTURES, Design, Fluid
 from ..performance.efficiency import efficiency, power_losses
+from ..performance.validity import validity
 from ..solver.batch import solve_batch
 from ..solver.limit import bisection_steps, limit_torque_batch
 from ..solver.point import SolverOptions
-from .variables import CONTACT_VARIABLES, POINT_VARIABLES, STATUS, attrs_for
+from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, STATUS, attrs_for
 
 __all__ = ["sweep", "STATUS"]
 
@@ -35,7 +36,7 @@ __all__ = ["sweep", "STATUS"]
 def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
           input_speed, architecture="double", options: SolverOptions = SolverOptions(),
           creep_limit: float | None = None, limit_torque=None, workers: int = 1,
-          progress: bool | None = None) -> xr.Dataset:
+          progress: bool | None = None, label: str | None = None) -> xr.Dataset:
     """Evaluate the model over a grid of operating conditions.
 
     Parameters
@@ -64,14 +65,19 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
         Processes to use (curves are split between them).
     progress : bool, optional
         Show a progress bar; by default only when stderr is a terminal.
+    label : str, optional
+        What the progress bar says it computes (default: ``"sweep, <arch> idler"``).
 
     Returns
     -------
     xarray.Dataset
         Dimensions ``architecture, clamp_force, input_speed, ratio, output_torque`` (and
-        ``contact`` for per-contact variables); every variable has ``units`` and
-        ``long_name``. ``status`` flags each point (0 converged, 1 beyond the limiting
-        torque, 2 not converged); flagged points are NaN.
+        ``contact`` for per-contact variables, ``loss`` for ``losses``); every variable has
+        ``units`` and ``long_name``. ``status`` flags each point (0 converged, 1 beyond the
+        limiting torque, 2 not converged); flagged points are NaN. ``warnings`` holds the
+        validity warnings of each converged point as bit flags (``flag_masks``,
+        ``flag_meanings``; docs/model.md §10). The design, fluid and solver settings are
+        attributes (``design_<key>``, ``fluid_<key>``).
     """
     start = time.perf_counter()
     archs = [architecture] if isinstance(architecture, str) else list(architecture)
@@ -106,14 +112,30 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
     for arch in archs:
         jobs = [(design, fluid, arch, flat[0][c], flat[1][c], flat[2][c], torque, options,
                  c_lim, None if limit_torque is None else limits[c]) for c in chunks]
-        blocks[arch] = _run(jobs, workers, show, f"{arch} idler")
+        text = f"{label}, {arch} idler" if label and len(archs) > 1 else label
+        blocks[arch] = _run(jobs, workers, show, text or f"sweep, {arch} idler")
     ds = _assemble(blocks, archs, axes, shape, contacts)
     ds.attrs.update(
-        title="ballcvt sweep", ballcvt_version=__version__, design=design.model_dump_json(),
-        fluid=fluid.model_dump_json(), creep_limit=c_lim, quadrature=repr(options.quadrature),
-        solver=options.method, tolerance=options.tol, run_time_s=time.perf_counter() - start,
-        status_meanings="0 converged, 1 beyond limiting torque, 2 not converged")
+        title="ballcvt sweep", Conventions="CF-1.10", institution="ballcvt",
+        source=f"ballcvt {__version__}", ballcvt_version=__version__,
+        references="Tomaselli, Bottiglione, Lino, Carbone, Mech. Mach. Theory 150 (2020) "
+                   "103877, doi:10.1016/j.mechmachtheory.2020.103877",
+        creep_limit=c_lim, quadrature=repr(options.quadrature), solver=options.method,
+        tolerance=options.tol, run_time_s=time.perf_counter() - start)
+    ds.attrs.update(flat_attrs("design", design.model_dump()))
+    ds.attrs.update(flat_attrs("fluid", fluid.model_dump()))
     return ds
+
+
+def flat_attrs(prefix: str, data: dict) -> dict:
+    """Nested parameters as flat NetCDF attributes ``<prefix>_<key>[_<subkey>]``."""
+    out = {}
+    for key, value in data.items():
+        if isinstance(value, dict):
+            out.update(flat_attrs(f"{prefix}_{key}", value))
+        else:
+            out[f"{prefix}_{key}"] = value
+    return out
 
 
 def _axis(name, value):
@@ -202,32 +224,38 @@ def _derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep
     i, k = np.nonzero(ok)
     values = {name: np.full((m, nt), np.nan) for name in POINT_VARIABLES}
     values.update({name: np.full((m, nt, nc), np.nan) for name in CONTACT_VARIABLES})
+    values["losses"] = np.full((m, nt, len(LOSS_KINDS)), np.nan)
+    values["warnings"] = np.zeros((m, nt), dtype=np.int8)
     if i.size == 0:
         return values
     pb = build_problem(design, fluid, arch, ratio[i], torque[k], clamp_force[i], input_speed[i])
     st = evaluate(pb, creep[i, k], options.quadrature)
     loss = power_losses(pb, st)
     eff = efficiency(pb, st, loss)
-    point = {"eta": eff.overall, "eta_losses": eff.from_losses, "eta_speed": eff.speed,
+    valid = validity(pb, st)
+    point = {"eta": eff.overall, "eta_loss": eff.from_losses, "eta_speed": eff.speed,
              "eta_torque": eff.torque, "input_torque": st.input_torque,
-             "actual_ratio": st.omega[:, -1] / st.omega[:, 0], "tilt": np.degrees(pb.tilt),
-             "loss_total": loss.total, "loss_creep": loss.creep.sum(-1),
-             "loss_spin": loss.spin.sum(-1), "loss_bearing": loss.bearing}
+             "actual_ratio": st.omega[:, -1] / st.omega[:, 0], "tilt_deg": np.degrees(pb.tilt)}
     contact = {"creep": st.creep, "spin": st.spin, "mu": st.mu, "chi": st.chi,
                "p_max": pb.p_max, "film_thickness": st.film, "normal_load": pb.load,
-               "contact_loss": loss.creep + loss.spin}
+               "creep_loss": loss.creep, "spin_loss": loss.spin,
+               "lambda_ratio": valid.lambda_ratio}
     for name, v in point.items():
         values[name][i, k] = v
     for name, v in contact.items():
         values[name][i, k] = v
+    values["losses"][i, k] = np.stack(
+        [loss.creep.sum(-1), loss.spin.sum(-1), loss.roller_bearings,
+         loss.idler_bearings.sum(-1), loss.bearing, loss.total], axis=-1)
+    values["warnings"][i, k] = valid.flags
     return values
 
 
 def _assemble(blocks, archs, axes, shape, contacts):
     dims = ("clamp_force", "input_speed", "ratio")
     data = {}
-    for name in ("limit_torque", "status", "iterations", "residual_norm",
-                 *POINT_VARIABLES, *CONTACT_VARIABLES):
+    for name in ("limit_torque", "status", "warnings", "iterations", "residual_norm",
+                 *POINT_VARIABLES, "losses", *CONTACT_VARIABLES):
         per_arch = []
         for arch in archs:
             v = blocks[arch][name]
@@ -244,12 +272,13 @@ def _assemble(blocks, archs, axes, shape, contacts):
             d += ("output_torque",)
         if name in CONTACT_VARIABLES:
             d += ("contact",)
+        elif name == "losses":
+            d += ("loss",)
         data[name] = xr.Variable(d, arr, attrs_for(name))
-    coords = {"architecture": ("architecture", np.array(archs)),
-              "contact": ("contact", np.array(contacts))}
+    coords = {"architecture": ("architecture", np.array(archs),
+                               {"long_name": "idler architecture"}),
+              "contact": ("contact", np.array(contacts), {"long_name": "contact"}),
+              "loss": ("loss", np.array(LOSS_KINDS), {"long_name": "kind of power loss"})}
     for n, v in axes.items():
         coords[n] = (n, v, attrs_for(n))
-    ds = xr.Dataset(data, coords=coords)
-    ds["architecture"].attrs.update(long_name="idler architecture", units="1")
-    ds["contact"].attrs.update(long_name="contact", units="1")
-    return ds
+    return xr.Dataset(data, coords=coords)

@@ -111,8 +111,8 @@ class Variator:
         over = sol.converged and max(abs(c) for c in sol.state.creep) > self.design.creep_limit
         if check_capacity and (over or not sol.converged):
             lim = limit_torque(problem, self.design.creep_limit, self.options)
-            if output_torque > lim.torque:
-                raise TractionLimitError(float(output_torque), lim.torque,
+            if output_torque > lim:
+                raise TractionLimitError(float(output_torque), lim,
                                          f" at ratio {ratio:g}, clamp {clamp_force:g} N")
         if not sol.converged:
             raise ConvergenceError(sol.message)
@@ -134,7 +134,7 @@ class Variator:
         if not 0.0 < c_lim < 1.0:
             raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
         problem = self._problem(ratio, 0.0, clamp_force, input_speed, input_speed_rpm)
-        return limit_torque(problem, c_lim, self.options).torque
+        return limit_torque(problem, c_lim, self.options)
 
     def sweep(self, *, ratio, output_torque, clamp_force, input_speed=None,
               input_speed_rpm=None, architecture=None, creep_limit: float | None = None,

@@ -1,9 +1,9 @@
 """Layer 5: solvers of the equilibrium and the limiting torque (docs/model.md §5, §8)."""
 
 from .batch import BatchSolution, solve_batch
-from .limit import LimitSolution, limit_torque, limit_torque_batch, traction_ceiling_torque
+from .limit import limit_torque, limit_torque_batch, traction_ceiling_torque
 from .point import PointSolution, SolverOptions, initial_creep, solve_point
 
-__all__ = ["BatchSolution", "solve_batch", "LimitSolution", "limit_torque",
+__all__ = ["BatchSolution", "solve_batch", "limit_torque",
            "limit_torque_batch", "traction_ceiling_torque", "PointSolution", "SolverOptions",
            "initial_creep", "solve_point"]

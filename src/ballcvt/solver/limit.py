@@ -9,43 +9,23 @@ to be admissible (continuation).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import NoEquilibriumError
 from .batch import solve_batch
-from .point import PointSolution, SolverOptions, solve_point
+from .point import SolverOptions, solve_point
 
-__all__ = ["LimitSolution", "limit_torque", "limit_torque_batch", "traction_ceiling_torque",
+__all__ = ["limit_torque", "limit_torque_batch", "traction_ceiling_torque",
            "saturated_traction", "bisection_steps", "LIMIT_RTOL"]
-
-
-@dataclass(frozen=True)
-class LimitSolution:
-    """Limiting torque and the admissible equilibrium just below it.
-
-    Attributes
-    ----------
-    torque : float
-        Limiting output torque [N m].
-    solution : PointSolution
-        Equilibrium at ``torque``.
-    critical_contact : int
-        Index of the contact whose creep reaches the limit first.
-    bracket : tuple of float
-        Final ``(admissible, inadmissible)`` torques [N m].
-    """
-
-    torque: float
-    solution: PointSolution
-    critical_contact: int
-    bracket: tuple[float, float]
 
 
 #: Default relative width of the final torque bracket of the limit bisections.
 LIMIT_RTOL = 1e-4
+#: Most bisection steps of `limit_torque_batch` (a bracket of 2^-60 of the ceiling).
+MAX_BISECTIONS = 60
 
 
 def bisection_steps(rtol: float = LIMIT_RTOL) -> int:
@@ -78,9 +58,11 @@ def traction_ceiling_torque(problem: EquilibriumProblem) -> np.ndarray:
 
 
 def limit_torque(problem: EquilibriumProblem, creep_limit: float,
-                 options: SolverOptions = SolverOptions(),
-                 rtol: float = LIMIT_RTOL) -> LimitSolution:
-    """Largest admissible output torque of a single operating point.
+                 options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL) -> float:
+    """Largest admissible output torque of a single operating point [N m].
+
+    `limit_torque_batch` on one point, so that a point, a sweep and a map give the same
+    limit; when there is none, the cause is diagnosed and raised.
 
     Parameters
     ----------
@@ -95,41 +77,28 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
 
     Returns
     -------
-    LimitSolution
-    """
-    def at(torque, x0):
-        sol = solve_point(replace(problem, output_torque=np.asarray(float(torque))), options, x0)
-        ok = sol.converged and float(np.max(np.abs(sol.state.creep))) <= creep_limit
-        return ok, sol
+    float
 
-    ok, best = at(0.0, None)
-    if not ok:
-        where = (f"ratio {float(problem.ratio):g}, clamp_force {float(problem.clamp_force):g} N, "
-                 f"input speed {float(problem.input_speed):g} rad/s")
-        if best.converged:
-            why = (f"its creep {float(np.max(np.abs(best.state.creep))):.3g} already exceeds "
-                   f"creep_limit {creep_limit:g}: the drive's own spin and bearing drag use up "
-                   "its traction")
-        else:
-            why = ("the traction this clamping force can transmit does not carry the drive's "
-                   f"own drag; raise clamp_force ({best.message})")
-        raise NoEquilibriumError(f"no admissible equilibrium even at zero output torque "
-                                 f"({where}): {why}")
-    lo, hi = 0.0, float(traction_ceiling_torque(problem))
-    while True:
-        ok, sol = at(hi, best.state.creep)
-        if not ok:
-            break
-        lo, best, hi = hi, sol, 2.0 * hi
-    while hi - lo > rtol * hi:
-        mid = 0.5 * (lo + hi)
-        ok, sol = at(mid, best.state.creep)
-        if ok:
-            lo, best = mid, sol
-        else:
-            hi = mid
-    critical = int(np.argmax(np.abs(best.state.creep)))
-    return LimitSolution(torque=lo, solution=best, critical_contact=critical, bracket=(lo, hi))
+    Raises
+    ------
+    NoEquilibriumError
+        If no admissible equilibrium exists even at zero output torque.
+    """
+    torque = float(limit_torque_batch(problem, creep_limit, options, rtol))
+    if not np.isnan(torque):
+        return torque
+    best = solve_point(replace(problem, output_torque=np.asarray(0.0)), options)
+    where = (f"ratio {float(problem.ratio):g}, clamp_force {float(problem.clamp_force):g} N, "
+             f"input speed {float(problem.input_speed):g} rad/s")
+    if best.converged:
+        why = (f"its creep {float(np.max(np.abs(best.state.creep))):.3g} already exceeds "
+               f"creep_limit {creep_limit:g}: the drive's own spin and bearing drag use up "
+               "its traction")
+    else:
+        why = ("the traction this clamping force can transmit does not carry the drive's "
+               f"own drag; raise clamp_force ({best.message})")
+    raise NoEquilibriumError(f"no admissible equilibrium even at zero output torque "
+                             f"({where}): {why}")
 
 
 def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
@@ -139,8 +108,10 @@ def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
 
     The same bisection as `limit_torque`, run on all points at once with the batched
     Newton solver, each trial started from the point's last admissible creeps. A trial
-    counts as admissible only if Newton converges with every ``|C| <= creep_limit``
-    (no per-point fallback, so a trial Newton cannot converge counts as beyond the limit).
+    counts as admissible only if it converges with every ``|C| <= creep_limit``. A trial
+    whose Newton run fails with its creeps beyond the limit counts as beyond it at once
+    (the common case above the limit, kept cheap); one that fails with its creeps within
+    the limit goes to the point solver, as in `limit_torque`.
 
     Parameters
     ----------
@@ -162,19 +133,35 @@ def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
     """
     flat = problem.flat()
 
-    def admissible(torque, x0):
-        sol = solve_batch(replace(flat, output_torque=torque), options, x0, fallback=False)
-        ok = sol.converged & (np.max(np.abs(sol.state.creep), axis=-1) <= creep_limit)
-        return ok, sol.state.creep
+    def admissible(index, torque, x0):
+        """Newton alone first; the point solver only for the points whose Newton run
+        failed without its creeps running past the limit (a failure of the method, not
+        of the equilibrium), so that this search agrees with `limit_torque`."""
+        pb = replace(flat.take(index), output_torque=torque)
+        sol = solve_batch(pb, options, x0, fallback=False)
+        big = np.max(np.abs(sol.state.creep), axis=-1)
+        conv, creep = sol.converged.copy(), sol.state.creep.copy()
+        unsure = np.flatnonzero(~conv & ~(big > creep_limit))
+        if unsure.size:
+            again = solve_batch(pb.take(unsure), options, None if x0 is None else x0[unsure])
+            conv[unsure], creep[unsure] = again.converged, again.state.creep
+        ok = conv & (np.max(np.abs(creep), axis=-1) <= creep_limit)
+        return ok, creep
 
-    ok0, best = admissible(np.zeros(flat.size), None)
+    ok0, best = admissible(np.arange(flat.size), np.zeros(flat.size), None)
     lo, hi = np.zeros(flat.size), traction_ceiling_torque(flat)
-    for _ in range(bisection_steps(rtol)):
-        mid = 0.5 * (lo + hi)
-        ok, x = admissible(mid, best)
-        lo = np.where(ok, mid, lo)
-        hi = np.where(ok, hi, mid)
-        best = np.where(ok[:, None], x, best)
-        if callback is not None:
+    # bisect until every bracket is narrow: a loose ceiling (extreme designs) needs more
+    # than the bisection_steps() of a typical one
+    steps = bisection_steps(rtol)
+    for step in range(MAX_BISECTIONS):
+        active = np.flatnonzero(ok0 & ((step < steps) | (hi - lo > rtol * hi)))
+        if active.size == 0:
+            break
+        mid = 0.5 * (lo[active] + hi[active])
+        ok, x = admissible(active, mid, best[active])
+        lo[active] = np.where(ok, mid, lo[active])
+        hi[active] = np.where(ok, hi[active], mid)
+        best[active] = np.where(ok[:, None], x, best[active])
+        if callback is not None and step < steps:
             callback()
     return np.where(ok0, lo, np.nan).reshape(problem.shape)

@@ -36,9 +36,10 @@ import collections
 import math
 import time
 import traceback
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, as_completed
 
 import numpy as np
+from tqdm import tqdm
 
 from ballcvt import (ConvergenceError, InputError, TractionLimitError, Variator, __version__,
                      load_builtin)
@@ -205,19 +206,16 @@ def run_designs(seed, first, count, conditions):
     examples, archs = [], collections.Counter()
     for i in range(first, first + count):
         rng = np.random.default_rng([seed, i])
-        design = feasible_design(rng, refused, wide=i % 4 >= 2)
-        arch = "double" if i % 2 == 0 else "single"
-        try:
-            v = Variator(design, BASE_FLUID, arch)
-        except InputError as exc:             # the architecture's own checks (Eqs. F4-F6)
-            refused[f"{exc.quantity} ({arch})"] += 1
-            arch = "single" if arch == "double" else "double"
-            try:
-                v = Variator(design, BASE_FLUID, arch)
-            except InputError as exc2:
-                refused[f"{exc2.quantity} ({arch})"] += 1
-                continue
-        archs[arch] += 1
+        v = None
+        while v is None:                      # redraw until one architecture accepts it
+            design = feasible_design(rng, refused, wide=i % 4 >= 2)
+            for arch in (("double", "single") if i % 2 == 0 else ("single", "double")):
+                try:
+                    v = Variator(design, BASE_FLUID, arch)
+                    break
+                except InputError as exc:     # the architecture's own checks (Eqs. F4-F6)
+                    refused[f"{exc.quantity} ({arch})"] += 1
+        archs[v.architecture] += 1
         for _ in range(conditions):
             run_condition(v, rng, counts, reasons, examples)
     return refused, counts, reasons, examples, archs
@@ -235,7 +233,11 @@ def main(argv=None):
     chunks = [(args.seed, int(c[0]), len(c), args.conditions)
               for c in np.array_split(np.arange(args.designs), 4 * args.workers) if len(c)]
     with ProcessPoolExecutor(max_workers=args.workers) as pool:
-        parts = list(pool.map(run_designs, *zip(*chunks)))
+        futures = [pool.submit(run_designs, *chunk) for chunk in chunks]
+        with tqdm(total=args.designs, desc="hardening campaign", unit="design") as bar:
+            for f in as_completed(futures):
+                bar.update(chunks[futures.index(f)][2])
+        parts = [f.result() for f in futures]
     refused, counts, reasons, archs = (sum((p[k] for p in parts), collections.Counter())
                                        for k in (0, 1, 2, 4))
     examples = [e for p in parts for e in p[3]]

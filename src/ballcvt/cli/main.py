@@ -282,7 +282,8 @@ def _write_map(ds, out, args):
     one = ds.squeeze(drop=True)
     save(efficiency_map(one.ratio.values, one.output_torque.values, one.eta.values,
                         one.limit_torque.values, f"Efficiency map, {args.arch} idler, "
-                        f"$F_{{N0}}$ = {args.clamp:g} N, {args.speed:g} rpm"), out, "map")
+                        f"$F_{{N0}}$ = {args.clamp:g} N, {args.speed:g} rpm",
+                        limit_eta=one.eta_at_limit.values), out, "map")
 
 
 def _cmd_reproduce(args) -> int:

@@ -20,6 +20,11 @@ from ..params.models import Design, Fluid
 
 __all__ = ["EquilibriumProblem", "build_problem"]
 
+#: Smallest clamping force [N] and input speed [rad/s] accepted: far below any physical
+#: use (one revolution in 72 days), and above the range where the film thickness and the
+#: traction integrals underflow double precision (docs/model.md §10).
+MIN_POSITIVE = 1e-6
+
 #: Fields with the batch shape ``(...)`` and with ``(..., n_c)``.
 _BATCH = ("ratio", "tilt", "output_torque", "clamp_force", "input_speed")
 _PER_CONTACT = ("rho", "sz", "load", "ax", "ay", "p_max")
@@ -133,8 +138,8 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
     ratio, t2, fn0, w0 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
                                                (ratio, output_torque, clamp_force, input_speed)))
     _check("output_torque", t2, "N m", strict=False)
-    _check("clamp_force", fn0, "N")
-    _check("input_speed", w0, "rad/s")
+    _check("clamp_force", fn0, "N", floor=MIN_POSITIVE)
+    _check("input_speed", w0, "rad/s", floor=MIN_POSITIVE)
     check_ratio(design, ratio)
     tilt = tilt_from_ratio(ratio, design.theta0, design.theta2, design.aspect_ratio)
     rs = design.roller_radius
@@ -164,8 +169,12 @@ def _check_pressure(fluid: Fluid, clamp_force: np.ndarray, p_max: np.ndarray) ->
                          "which the Roelands viscosity (Eq. 51) overflows")
 
 
-def _check(name: str, value: np.ndarray, unit: str, strict: bool = True) -> None:
-    ok = np.isfinite(value) & ((value > 0) if strict else (value >= 0))
+def _check(name: str, value: np.ndarray, unit: str, strict: bool = True,
+           floor: float = 0.0) -> None:
+    ok = np.isfinite(value) & ((value >= floor) if floor else
+                               (value > 0) if strict else (value >= 0))
     if not np.all(ok):
         bad = float(value[~ok].flat[0]) if value.ndim else float(value)
-        raise InputError(name, bad, f"{'>' if strict else '>='} 0 {unit} and finite")
+        allowed = (f">= {floor:g} {unit} and finite" if floor else
+                   f"{'>' if strict else '>='} 0 {unit} and finite")
+        raise InputError(name, bad, allowed)

@@ -184,7 +184,8 @@ class Design(ParameterModel):
     idler_groove_ratio: float = _f("-", "r_a2/r_S = r_b2/r_S of the double-idler tracks, > 1; "
                                    "inf for straight", gt=1)
     single_idler_groove_ratio: float = _f("-", "transverse track radius of the single idler "
-                                          "over r_S; inf = straight cylinder (docs/model.md §1)", gt=1)
+                                          "over r_S; inf = straight cylinder "
+                                          "(docs/model.md §1)", gt=1)
     tilt_safety_factor: float = _f("-", "fraction of the Eq. 6 tilt limits that is usable "
                                    "(Fig. 3 uses 0.8)", gt=0, le=1)
     creep_limit: float = _f("-", "largest |creep| counted as traction (docs/model.md §8)",
@@ -229,8 +230,8 @@ class Fluid(ParameterModel):
                           gt=0, lt=math.inf)
     roelands_index: float = _f("-", "Roelands viscosity-pressure index Z_1 (Eq. 51)",
                                gt=0, lt=5)
-    pressure_viscosity_coefficient: float = _f("1/Pa", "zeta, for the film thickness (Eq. 56)",
-                                               ge=0, lt=1e-6)
+    pressure_viscosity_coefficient: float = _f("1/Pa", "zeta, for the film thickness (Eq. 56; "
+                                               "> 0: no film forms without it)", gt=0, lt=1e-6)
     limiting_shear_stress: float = _f("Pa", "tau_L0 at atmospheric pressure (Eq. 54)",
                                       gt=0, lt=math.inf)
     limiting_shear_slope: float = _f("-", "a in tau_L = tau_L0 + a p (Eq. 54)", ge=0, lt=1)

@@ -98,7 +98,7 @@ def _levels(eta):
     return levels[levels >= np.floor(lo * 10) / 10]
 
 
-def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True):
+def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True, limit_eta=None):
     """Draw filled efficiency contours and the limiting-torque curve on ``ax``.
 
     Parameters
@@ -115,6 +115,10 @@ def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True):
         Limiting torque per ratio, shape ``(n_r,)`` [N m].
     colorbar : bool
         Add a colour bar.
+    limit_eta : array_like, optional
+        Efficiency at the limiting torque per ratio, shape ``(n_r,)`` [-]. With it the
+        contours reach the limit curve (a triangulation of the grid points and the limit
+        points) instead of stopping at the last grid row below it.
 
     Returns
     -------
@@ -122,28 +126,53 @@ def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True):
         The artists: ``filled`` and ``lines`` (contour sets), ``labels``, ``limit`` (the
         red line) and ``colorbar`` (or None).
     """
+    ratio, torque = np.asarray(ratio, float), np.asarray(torque, float)
+    limit = np.asarray(limit, float)
     eta = np.asarray(eta, dtype=float).T
     levels = _levels(eta)
-    filled = ax.contourf(ratio, torque, eta, levels=levels, cmap="viridis")
-    lines = ax.contour(ratio, torque, eta, levels=[v for v in levels if v >= 0.5][::2],
-                       colors="k", linewidths=0.5)
+    line_levels = [v for v in levels if v >= 0.5][::2]
+    if limit_eta is None:
+        filled = ax.contourf(ratio, torque, eta, levels=levels, cmap="viridis")
+        lines = ax.contour(ratio, torque, eta, levels=line_levels, colors="k",
+                           linewidths=0.5)
+    else:
+        r, t = np.meshgrid(ratio, torque)
+        x = np.concatenate([r.ravel(), ratio])
+        y = np.concatenate([t.ravel(), limit])
+        z = np.concatenate([eta.ravel(), np.asarray(limit_eta, float)])
+        keep = np.isfinite(x) & np.isfinite(y) & np.isfinite(z)
+        tri = _triangulation(x[keep], y[keep], ratio, limit)
+        filled = ax.tricontourf(tri, z[keep], levels=levels, cmap="viridis")
+        lines = ax.tricontour(tri, z[keep], levels=line_levels, colors="k", linewidths=0.5)
     labels = ax.clabel(lines, fmt="%.2f", fontsize=7, inline=True)
     limit_line, = ax.plot(ratio, limit, "r-", lw=2, label="limiting torque")
     bar = ax.figure.colorbar(filled, ax=ax, label=LABELS["eta"]) if colorbar else None
     ax.set_xlabel(LABELS["ratio"])
     ax.set_ylabel(LABELS["output_torque"])
-    top = np.nanmax(np.concatenate([np.asarray(torque, float), np.asarray(limit, float)]))
-    ax.set_ylim(0.0, 1.05 * top)
+    top = np.nanmax(np.concatenate([torque, limit]))
+    ax.set_ylim(float(np.min(torque)), 1.05 * top)
     ax.legend(loc="upper right", fontsize=8)
     return {"filled": filled, "lines": lines, "labels": labels, "limit": limit_line,
             "colorbar": bar}
 
 
-def efficiency_map(ratio, torque, eta, limit, title="Overall efficiency") -> Figure:
+def _triangulation(x, y, ratio, limit):
+    """Delaunay triangles of the points, without those above the limit curve."""
+    from matplotlib.tri import Triangulation
+    scale = np.ptp(y) / np.ptp(x) if np.ptp(x) > 0 else 1.0
+    tri = Triangulation(x * scale, y)        # triangulate in comparable units
+    cx, cy = (x[tri.triangles].mean(axis=1), y[tri.triangles].mean(axis=1))
+    ok = np.isfinite(limit)
+    above = cy > np.interp(cx, ratio[ok], limit[ok]) * (1 + 1e-9) if ok.any() else False
+    return Triangulation(x, y, tri.triangles, mask=above)
+
+
+def efficiency_map(ratio, torque, eta, limit, title="Overall efficiency",
+                   limit_eta=None) -> Figure:
     """A figure of `draw_efficiency_map` with a title (for files)."""
     fig = Figure(figsize=(6.6, 4.8), layout="constrained")
     ax = fig.add_subplot()
-    draw_efficiency_map(ax, ratio, torque, eta, limit)
+    draw_efficiency_map(ax, ratio, torque, eta, limit, limit_eta=limit_eta)
     ax.set_title(title, fontsize=10)
     return fig
 
@@ -176,7 +205,8 @@ def plot_efficiency_map(ds, ax=None, colorbar=True):
     one = ds.squeeze(drop=True)
     return draw_efficiency_map(_axes(ax), one.ratio.values, one.output_torque.values,
                                one.eta.transpose("ratio", "output_torque").values,
-                               one.limit_torque.values, colorbar=colorbar)
+                               one.limit_torque.values, colorbar=colorbar,
+                               limit_eta=one.eta_at_limit.values)
 
 
 def plot_curves(ds, y="eta", x="output_torque", ax=None, **style):

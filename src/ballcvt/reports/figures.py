@@ -83,7 +83,8 @@ def fig5(data: FigureData, out: Path):
     tilt = tilt_from_ratio(ratio, d.theta0, d.theta2, d.aspect_ratio)
     ws, w = body_speeds(lay, tilt, np.zeros((ratio.size, lay.n_contacts)), 1.0)
     sg = spin(lay, tilt, ws, w)
-    panels = [{"title": f"({'abcd'[i]}) {name} contact", "ylabel": LABELS["spin"], "lines": [(ratio, sg[:, i], "", {})]}
+    panels = [{"title": f"({'abcd'[i]}) {name} contact", "ylabel": LABELS["spin"],
+               "lines": [(ratio, sg[:, i], "", {})]}
               for i, name in enumerate(lay.names)]
     frame = pd.DataFrame({"ratio": ratio, **{f"spin_{n}": sg[:, i]
                                               for i, n in enumerate(lay.names)}})
@@ -150,7 +151,8 @@ def fig9(data: FigureData, out: Path):
     names = ["input", "idler_a", "idler_b", "output"]
     for i, name in enumerate(names):
         c = _sel(ds.creep, contact=name)
-        lines = [(ds.output_torque.values, np.abs(_sel(c, ratio=r).values), rf"$\tau_{{ID}}$ = {r:g}",
+        lines = [(ds.output_torque.values, np.abs(_sel(c, ratio=r).values),
+                  rf"$\tau_{{ID}}$ = {r:g}",
                   {"ls": STYLES[j]}) for j, r in enumerate(ds.ratio.values)]
         panels.append({"title": f"({'abcd'[i]}) {name}", "ylabel": r"$|C|$ [-]",
                        "lines": lines, "yscale": "log"})
@@ -247,7 +249,8 @@ def fig_map(data: FigureData, out: Path):
     """Efficiency map (ratio x torque) with the limiting-torque curve."""
     ds = _sel(data.efficiency_map, architecture="double")
     fig = efficiency_map(ds.ratio.values, ds.output_torque.values, ds.eta.values,
-                         ds.limit_torque.values, "Efficiency map, double idler, "
+                         ds.limit_torque.values, limit_eta=ds.eta_at_limit.values,
+                         title="Efficiency map, double idler, "
                          "$F_{N0}$ = 2 kN, 2000 rpm")
     frame = ds[["eta", "status"]].to_dataframe().reset_index()[["ratio", "output_torque",
                                                                "eta", "status"]]

@@ -64,8 +64,8 @@ def _blocks(data, claims, ceiling, peak, quick, run_time, inputs):
         f"paper's limit cannot come from the same shear law with the Table I values and a "
         f"creep threshold of 0.1. A lower tau_L0 or a, a different contact size (the paper "
         f"does not give the groove radii, and we calibrate them to its 1.63 GPa), or a "
-        f"stricter creep criterion would each lower it. As our model notes (docs/model.md §8) require, we did "
-        f"not retune the Table I values to hide the difference.")))
+        f"stricter creep criterion would each lower it. As our model notes require "
+        f"(docs/model.md §8), we did not retune the Table I values to hide the difference.")))
     rc = data.ratio_curves
     p_single = float(rc.p_max.sel(architecture="single", contact="idler").max()) / 1e9
     b.append(("p", (
@@ -188,6 +188,6 @@ def write_report(out: Path, data, claims, ceiling, peak, *, quick, run_time, inp
     """
     blocks = _blocks(data, claims, ceiling, peak, quick, run_time, inputs)
     md, page = out / "report.md", out / "report.html"
-    md.write_text(_md(blocks))
-    page.write_text(_html(blocks, out))
+    atomic_write_text(md, _md(blocks))
+    atomic_write_text(page, _html(blocks, out))
     return [md, page]

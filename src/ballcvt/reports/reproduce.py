@@ -156,7 +156,9 @@ def reproduce(out, quick: bool = False, workers: int = 1,
     check_output_dir(out / "data")
     data, peak = compute(quick, workers, progress)
     files = []
-    for name, (fn, _) in FIGURES.items():
+    show = sys.stderr.isatty() if progress is None else progress
+    for name, (fn, _) in tqdm(FIGURES.items(), desc="figures and data files", unit="figure",
+                              disable=not show):
         files += fn(data, out)
     for name in ("torque_curves", "clamp_curves", "ratio_curves", "efficiency_map"):
         files.append(to_netcdf(getattr(data, name), out / "data" / f"{name}.nc"))

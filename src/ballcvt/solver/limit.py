@@ -95,8 +95,8 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
                f"creep_limit {creep_limit:g}: the drive's own spin and bearing drag use up "
                "its traction")
     else:
-        why = ("the traction this clamping force can transmit does not carry the drive's "
-               f"own drag; raise clamp_force ({best.message})")
+        why = ("the traction this clamping force can transmit at this speed does not carry "
+               f"the drive's own drag; raise clamp_force ({best.message})")
     raise NoEquilibriumError(f"no admissible equilibrium even at zero output torque "
                              f"({where}): {why}")
 

@@ -209,11 +209,26 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
             x[todo[good]] = sol.state.creep[good]
         if callback is not None:
             callback()
-    out = {"limit_torque": limit, "status": status.astype(np.int8), "iterations": iterations,
+    out = {"limit_torque": limit, "eta_at_limit": _eta_at(design, fluid, architecture,
+                                                          clamp_force, input_speed, ratio,
+                                                          limit, options),
+           "status": status.astype(np.int8), "iterations": iterations,
            "residual_norm": residual}
     out.update(_derived(design, fluid, architecture, clamp_force, input_speed, ratio, torque,
                         creep, status, options))
     return out
+
+
+def _eta_at(design, fluid, arch, clamp_force, input_speed, ratio, torque, options):
+    """Overall efficiency (Eq. 38) at one torque per curve (NaN where there is none)."""
+    eta = np.full(ratio.size, np.nan)
+    ok = np.flatnonzero(np.isfinite(torque))
+    if ok.size:
+        pb = build_problem(design, fluid, arch, ratio[ok], torque[ok], clamp_force[ok],
+                           input_speed[ok])
+        sol = solve_batch(pb, options)
+        eta[ok] = np.where(sol.converged, efficiency(pb, sol.state).overall, np.nan)
+    return eta
 
 
 def _derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep, status,
@@ -254,7 +269,8 @@ def _derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep
 def _assemble(blocks, archs, axes, shape, contacts):
     dims = ("clamp_force", "input_speed", "ratio")
     data = {}
-    for name in ("limit_torque", "status", "warnings", "iterations", "residual_norm",
+    for name in ("limit_torque", "eta_at_limit", "status", "warnings", "iterations",
+                 "residual_norm",
                  *POINT_VARIABLES, "losses", *CONTACT_VARIABLES):
         per_arch = []
         for arch in archs:
@@ -268,7 +284,7 @@ def _assemble(blocks, archs, axes, shape, contacts):
             per_arch.append(v)
         arr = np.stack(per_arch)
         d = ("architecture",) + dims
-        if name != "limit_torque":
+        if name not in ("limit_torque", "eta_at_limit"):
             d += ("output_torque",)
         if name in CONTACT_VARIABLES:
             d += ("contact",)

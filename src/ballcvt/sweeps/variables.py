@@ -23,6 +23,7 @@ VARIABLES = {
     "input_speed": ("rad/s", "input speed omega_0"),
     "input_speed_rpm": ("rpm", "input speed omega_0"),
     "limit_torque": ("N m", "limiting output torque (all |creep| <= creep_limit)"),
+    "eta_at_limit": ("1", "overall efficiency (Eq. 38) at the limiting output torque"),
     "status": ("1", "point status: 0 converged, 1 beyond limiting torque, 2 not converged"),
     "iterations": ("1", "solver iterations (residual-and-Jacobian evaluations)"),
     "residual_norm": ("1", "max |residual| of the equilibrium at the solution"),

@@ -1,0 +1,230 @@
+"""One consistent interface: every CLI flag does something, keyword-only units, results
+validated on load, plotting that leaves matplotlib alone, references that resolve."""
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+from ballcvt import InputError, OperatingResult, Variator
+from ballcvt.cli import main as cli
+from ballcvt.cli.main import build_parser
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def run(capsys, argv):
+    try:
+        code = cli.main(argv)
+    except SystemExit as exc:
+        code = exc.code
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def _subcommands():
+    sub = next(a for a in build_parser()._actions if a.dest == "command")
+    return sub.choices
+
+
+def _options(parser):
+    return {a.option_strings[0] for a in parser._actions
+            if a.option_strings and a.option_strings[0] != "-h"}
+
+
+@pytest.fixture(scope="module")
+def small_design(tmp_path_factory):
+    path = tmp_path_factory.mktemp("design") / "six.toml"
+    assert cli.main(["design", "export", str(path)]) == 0
+    path.write_text(path.read_text().replace("n_rollers = 8 ", "n_rollers = 6 "))
+    return str(path)
+
+
+#: For each subcommand: the base command line and, per flag, the arguments that change it.
+def _variants(design, tmp):
+    point = (["point", "--json"], {
+        "--arch": ["--arch", "single"], "--ratio": ["--ratio", "1.5"],
+        "--torque": ["--torque", "20"], "--clamp": ["--clamp", "2500"],
+        "--speed": ["--speed", "1000"], "--design": ["--design", design],
+        "--json": None})                                           # --json: base vs table
+    limit = (["limit", "--json"], {
+        "--arch": ["--arch", "single"], "--ratio": ["--ratio", "1.5"],
+        "--clamp": ["--clamp", "2500"], "--speed": ["--speed", "1000"],
+        "--creep-limit": ["--creep-limit", "0.05"], "--design": ["--design", design],
+        "--json": None})
+    clamp = (["clamp", "--torque", "60", "--json"], {
+        "--arch": ["--arch", "single"], "--ratio": ["--ratio", "1.5"],
+        "--torque": ["--torque", "30"], "--speed": ["--speed", "1000"],
+        "--creep-limit": ["--creep-limit", "0.02"], "--max-pressure": ["--max-pressure", "1.2e9"],
+        "--design": ["--design", design], "--json": None})
+    small = ["--n-ratio", "2", "--n-torque", "2"]
+    mapping = (["map", "--out", str(tmp / "m0"), *small], {
+        "--arch": ["--arch", "single"], "--clamp": ["--clamp", "2500"],
+        "--speed": ["--speed", "1000"], "--design": ["--design", design],
+        "--out": ["--out", str(tmp / "m1")], "--ratio-range": ["--ratio-range", "0.6", "1.9"],
+        "--n-ratio": ["--n-ratio", "3"], "--torque-max": ["--torque-max", "50"],
+        "--n-torque": ["--n-torque", "3"], "--workers": ["--workers", "2"],
+        "--quiet": ["--quiet"]})
+    return {"point": point, "limit": limit, "clamp": clamp, "map": mapping}
+
+
+def _output(code, out, err, argv):
+    """What a command produced: stdout, and the data of the map it wrote (if any)."""
+    assert code == 0, (argv, err)
+    files = ""
+    if argv[0] == "map":
+        folder = Path(argv[argv.index("--out") + 1])
+        files = (folder / "map.csv").read_text()
+    return re.sub(r"\d+\.\d s on", "", out) + files
+
+
+def test_every_flag_changes_the_output(capsys, tmp_path, small_design):
+    variants = _variants(small_design, tmp_path)
+    subs = _subcommands()
+    for command, (base, changes) in variants.items():
+        assert set(changes) == _options(subs[command]), command      # every flag covered
+        reference = _output(*run(capsys, base), base)
+        for flag, extra in changes.items():
+            argv = [a for a in base if a != flag] if extra is None else base + extra
+            got = _output(*run(capsys, argv), argv)
+            assert got != reference, (command, flag)
+
+
+def test_reproduce_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
+    calls = []
+
+    class Done:
+        out, files, claims, run_time = tmp_path, [], [], 0.0
+
+    import ballcvt.reports
+    monkeypatch.setattr(ballcvt.reports, "reproduce",
+                        lambda out, **kw: calls.append({"out": str(out), **kw}) or Done)
+    base = ["reproduce", "--out", str(tmp_path / "a")]
+    assert _options(_subcommands()["reproduce"]) == {"--out", "--quick", "--workers", "--quiet"}
+    variants = [[], ["--out", str(tmp_path / "b")], ["--quick"], ["--workers", "2"],
+                ["--quiet"]]
+    outputs = []
+    for extra in variants:
+        argv = base + extra if extra[:1] != ["--out"] else ["reproduce", *extra]
+        code, out, _ = run(capsys, argv)
+        assert code == 0
+        outputs.append((json.dumps(calls[-1], sort_keys=True), out))
+    for other in outputs[1:]:
+        assert other != outputs[0]
+
+
+def test_design_flag_and_path(capsys, tmp_path, small_design):
+    code, shown, _ = run(capsys, ["design", "show", "--design", small_design])
+    assert code == 0 and "n_rollers = 6" in shown
+    code, builtin, _ = run(capsys, ["design", "show"])
+    assert builtin != shown
+    assert _options(_subcommands()["design"]) == {"--design"}
+    path = tmp_path / "out.toml"
+    assert run(capsys, ["design", "export", str(path)])[0] == 0
+    assert path.read_text() == builtin
+
+
+def test_subcommand_help_has_description_and_example(capsys):
+    for name, parser in _subcommands().items():
+        text = parser.format_help()
+        assert parser.description and "example:" in text and f"ballcvt {name}" in text, name
+
+
+def test_physical_arguments_are_keyword_only(double):
+    with pytest.raises(TypeError):
+        double.solve(1.0, 40.0, 2000.0, 2000.0)           # the unit trap of the issue
+    with pytest.raises(TypeError):
+        double.limit_torque(1.0, 2000.0)
+    with pytest.raises(TypeError):
+        double.optimal_clamp_force(1.0, 40.0, 200.0)
+    r = double.solve(1.0, 40.0, clamp_force=2000.0, input_speed_rpm=2000)
+    assert r.input_speed_rpm == 2000.0                   # no conversion noise
+    assert json.loads(r.to_json())["input_speed_rpm"] == 2000.0
+
+
+def test_results_are_validated_on_load(double, tmp_path):
+    r = double.solve(ratio=1.0, output_torque=40.0, clamp_force=2000.0, input_speed_rpm=2000)
+    path = tmp_path / "r.json"
+    r.save(path)
+    assert OperatingResult.load(path) == r
+    data = json.loads(path.read_text())
+    for key, value, fragment in [("eta", 0.95, "inconsistent"), ("eta", "x", "eta"),
+                                 ("losses", {"total": 1.0}, "losses"),
+                                 ("ratio", None, "ratio")]:
+        bad = dict(data, **{key: value})
+        path.write_text(json.dumps(bad))
+        with pytest.raises(InputError, match=fragment) as err:
+            OperatingResult.load(path)
+        assert "\n" not in str(err.value)
+    path.write_text(json.dumps({k: v for k, v in data.items() if k != "eta"}))
+    with pytest.raises(InputError, match="'eta' is missing"):
+        OperatingResult.load(path)
+    path.write_bytes(b"\x00\xff")
+    with pytest.raises(InputError, match="cannot be read"):
+        OperatingResult.load(path)
+
+
+def test_plotting_import_leaves_the_backend_alone():
+    import subprocess
+    import sys
+    code = ("import matplotlib; matplotlib.use('pdf'); import ballcvt.plotting, ballcvt.reports;"
+            "print(matplotlib.get_backend())")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.stdout.strip() == "pdf", out.stderr
+
+
+def test_plot_helpers_take_ax_and_return_artists(double):
+    from matplotlib.figure import Figure
+
+    from ballcvt.plotting import plot_curves, plot_efficiency_map
+    ds = double.sweep(ratio=[0.8, 1.2, 1.6], output_torque=[10.0, 60.0, 120.0],
+                      clamp_force=2000.0, input_speed_rpm=2000, progress=False)
+    fig = Figure()
+    ax = fig.add_subplot()
+    artists = plot_efficiency_map(ds, ax=ax)
+    assert artists["limit"].axes is ax and artists["filled"] is not None
+    assert "$\\tau_{ID}$" in ax.get_xlabel() and "$T_2$" in ax.get_ylabel()
+    lines = plot_curves(ds, y="eta", x="output_torque", ax=fig.add_subplot())
+    assert len(lines) == 3 and all(line.axes is not ax for line in lines)
+
+
+def test_model_references_resolve():
+    """Every "docs/model.md §N" cited in code, data, tests and docs is a section there."""
+    sections = set(re.findall(r"^## (\d+)\.", (ROOT / "docs/model.md").read_text(), re.M))
+    cited = set()
+    files = [p for p in (ROOT / "src").rglob("*") if p.suffix in (".py", ".toml")]
+    files += list((ROOT / "tests").glob("*.py")) + [ROOT / "README.md", ROOT / "docs/model.md"]
+    for path in files:
+        text = path.read_text()
+        assert not re.search(r"MODEL\.md (sections? )?\d", text), path
+        for group in re.findall(r"docs/model\.md((?:,? ?§\d+)+)", text):
+            cited |= set(re.findall(r"§(\d+)", group))
+        cited |= set(re.findall(r"docs/model\.md section (\d+)", text))
+    assert cited and cited <= sections, cited - sections
+
+
+def test_variator_default_is_the_paper_drive():
+    v = Variator()
+    assert v.design.name.endswith("Table I") and v.architecture == "double"
+
+
+def test_atomic_write_leaves_no_partial_file(tmp_path):
+    from ballcvt._fileio import atomic_path, atomic_write_text
+    target = atomic_write_text(tmp_path / "a.txt", "complete")
+    with pytest.raises(RuntimeError):
+        with atomic_path(target) as tmp:
+            tmp.write_text("half")
+            raise RuntimeError("interrupted")
+    assert target.read_text() == "complete"
+    assert [p.name for p in tmp_path.iterdir()] == ["a.txt"]
+
+
+def test_map_writes_only_complete_files_into_out(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    out = tmp_path / "m"
+    assert cli.main(["map", "--out", str(out), "--n-ratio", "2", "--n-torque", "2",
+                     "--quiet"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["m"]            # nothing outside
+    assert sorted(p.name for p in out.iterdir()) == ["map.csv", "map.nc", "map.png",
+                                                     "map.svg"]

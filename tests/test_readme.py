@@ -1,0 +1,54 @@
+"""Every code block and command-line example of README.md runs as written.
+
+Python blocks run in order in one namespace (as a reader would paste them); every line of a
+``bash`` block that starts with ``ballcvt`` runs through the command line's ``main`` and
+must exit 0. The set-up commands (``python3 -m venv ...``) are what CI itself runs.
+"""
+
+import re
+import shlex
+from pathlib import Path
+
+import pytest
+
+from ballcvt.cli.main import main
+
+README = Path(__file__).resolve().parents[1] / "README.md"
+BLOCKS = re.findall(r"```(\w*)\n(.*?)```", README.read_text(), re.S)
+
+
+def test_readme_has_examples():
+    kinds = [kind for kind, _ in BLOCKS]
+    assert kinds.count("python") >= 4 and kinds.count("bash") >= 3
+
+
+def test_python_blocks_run_in_order(tmp_path, monkeypatch):
+    import matplotlib
+    matplotlib.use("Agg")                 # the test has no display
+    monkeypatch.chdir(tmp_path)
+    namespace: dict = {}
+    for i, (kind, code) in enumerate(BLOCKS):
+        if kind == "python":
+            exec(compile(code, f"README.md python block {i}", "exec"), namespace)  # noqa: S102
+    assert (tmp_path / "point.json").exists() and (tmp_path / "sweep.csv").exists()
+
+
+def _cli_lines():
+    for kind, code in BLOCKS:
+        if kind == "bash":
+            for line in code.splitlines():
+                if line.startswith("ballcvt "):
+                    yield line
+
+
+@pytest.fixture(scope="module")
+def workdir(tmp_path_factory):
+    return tmp_path_factory.mktemp("readme-cli")
+
+
+@pytest.mark.parametrize("line", list(_cli_lines()))
+def test_cli_examples_run(line, workdir, monkeypatch, capsys):
+    monkeypatch.chdir(workdir)
+    if "--design my_drive.toml" in line and not (workdir / "my_drive.toml").exists():
+        assert main(["design", "export", "my_drive.toml"]) == 0
+    assert main(shlex.split(line)[1:]) == 0, capsys.readouterr().err

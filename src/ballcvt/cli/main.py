@@ -16,6 +16,7 @@ import json
 import math
 import os
 import sys
+import textwrap
 from pathlib import Path
 
 from .._fileio import atomic_write_text, check_output_dir, check_output_file
@@ -62,48 +63,34 @@ def _count(lo: int, hi: int):
 
 
 def _sub(sub, name: str, summary: str, description: str, example: str):
-    return sub.add_parser(name, help=summary, description=description,
+    return sub.add_parser(name, help=summary, description=textwrap.fill(description, 88),
                           epilog="example:\n  " + example + "\n",
                           formatter_class=argparse.RawDescriptionHelpFormatter)
 
 
-def _arch(p):
-    p.add_argument("--arch", default="double", choices=ARCHITECTURES,
-                   help="idler architecture (default: double)")
+#: The options several subcommands share: name -> (add_argument keywords).
+OPTIONS = {
+    "arch": {"default": "double", "choices": ARCHITECTURES,
+             "help": "idler architecture (default: double)"},
+    "ratio": {"type": _number, "default": PAPER_POINT["ratio"],
+              "help": "ideal speed ratio tau_ID [-] (default: %(default)s)"},
+    "torque": {"type": _number, "default": PAPER_POINT["torque"],
+               "help": "output torque T2 [N m] (default: %(default)s)"},
+    "clamp": {"type": _number, "default": PAPER_POINT["clamp"],
+              "help": "input-contact normal load F_N0 [N] (default: %(default)s)"},
+    "speed": {"type": _number, "default": PAPER_POINT["speed"],
+              "help": "input speed [rpm] (default: %(default)s)"},
+    "creep-limit": {"type": _number, "default": None,
+                    "help": "largest admissible |creep| (default: the design's, 0.10)"},
+    "design": {"type": Path, "metavar": "FILE.toml",
+               "help": "drive definition (default: the paper's Table I drive)"},
+    "json": {"action": "store_true", "help": "print one JSON object"},
+}
 
 
-def _design(p):
-    p.add_argument("--design", type=Path, metavar="FILE.toml",
-                   help="drive definition (default: the paper's Table I drive)")
-
-
-def _ratio(p):
-    p.add_argument("--ratio", type=_number, default=PAPER_POINT["ratio"],
-                   help="ideal speed ratio tau_ID [-] (default: %(default)s)")
-
-
-def _torque(p):
-    p.add_argument("--torque", type=_number, default=PAPER_POINT["torque"],
-                   help="output torque T2 [N m] (default: %(default)s)")
-
-
-def _clamp(p):
-    p.add_argument("--clamp", type=_number, default=PAPER_POINT["clamp"],
-                   help="input-contact normal load F_N0 [N] (default: %(default)s)")
-
-
-def _speed(p):
-    p.add_argument("--speed", type=_number, default=PAPER_POINT["speed"],
-                   help="input speed [rpm] (default: %(default)s)")
-
-
-def _json(p):
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-
-
-def _creep_limit(p):
-    p.add_argument("--creep-limit", type=_number, default=None,
-                   help="largest admissible |creep| (default: the design's, 0.10)")
+def _add(p, *names):
+    for name in names:
+        p.add_argument(f"--{name}", **OPTIONS[name])
 
 
 def _run_options(p):
@@ -126,15 +113,13 @@ def build_parser() -> argparse.ArgumentParser:
              "Eq. 39), with validity warnings. A torque beyond the traction capacity is "
              "refused with the limiting torque.",
              "ballcvt point --arch double --ratio 1.76 --torque 40 --clamp 2000 --speed 2000")
-    for add in (_arch, _ratio, _torque, _clamp, _speed, _design, _json):
-        add(p)
+    _add(p, "arch", "ratio", "torque", "clamp", "speed", "design", "json")
 
     p = _sub(sub, "limit", "limiting output torque at a ratio, clamp and speed",
              "The largest output torque with a converged equilibrium and every |creep| <= "
              "the creep limit (docs/model.md section 8).",
              "ballcvt limit --arch single --ratio 2 --clamp 2000 --speed 2000")
-    for add in (_arch, _ratio, _clamp, _speed, _creep_limit, _design, _json):
-        add(p)
+    _add(p, "arch", "ratio", "clamp", "speed", "creep-limit", "design", "json")
 
     p = _sub(sub, "clamp", "clamping force of maximum efficiency under the creep and "
              "pressure limits",
@@ -142,8 +127,7 @@ def build_parser() -> argparse.ArgumentParser:
              "this ratio, torque and speed, keeping every |creep| <= the creep limit and "
              "every Hertz peak pressure <= the pressure limit.",
              "ballcvt clamp --ratio 1 --torque 60 --speed 2000 --max-pressure 3e9")
-    for add in (_arch, _ratio, _torque, _speed, _creep_limit, _design, _json):
-        add(p)
+    _add(p, "arch", "ratio", "torque", "speed", "creep-limit", "design", "json")
     p.add_argument("--max-pressure", type=_number, default=None,
                    help="largest admissible Hertz peak pressure [Pa] (default: the design's)")
 
@@ -152,8 +136,7 @@ def build_parser() -> argparse.ArgumentParser:
              "with the limiting-torque curve: map.png, map.svg, map.nc (NetCDF-4, CF) and "
              "map.csv in --out. Points beyond the limit have status 1.",
              "ballcvt map --out map_dir --clamp 2000 --speed 2000 --n-ratio 31 --n-torque 35")
-    for add in (_arch, _clamp, _speed, _design):
-        add(p)
+    _add(p, "arch", "clamp", "speed", "design")
     p.add_argument("--out", type=Path, default=Path("ballcvt-map"),
                    help="output folder (default: %(default)s)")
     p.add_argument("--ratio-range", type=_number, nargs=2, default=(0.5, 2.0),
@@ -184,7 +167,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("action", choices=("show", "export"))
     p.add_argument("path", nargs="?", type=Path,
                    help="output file of 'export' (required for export)")
-    _design(p)
+    _add(p, "design")
     return parser
 
 

@@ -37,10 +37,7 @@ def central_film_thickness(eta0, zeta, reduced_modulus, rx, entrainment_speed, l
     ndarray
         Central film thickness ``h`` [m].
     """
-    rx = np.asarray(rx, dtype=float)
-    u = eta0 * np.abs(entrainment_speed) / (reduced_modulus * rx)
-    g = zeta * reduced_modulus
-    w = np.asarray(load, dtype=float) / (reduced_modulus * rx**2)
+    rx, u, g, w = _groups(eta0, zeta, reduced_modulus, rx, entrainment_speed, load)
     h_bar = 2.69 * u**0.67 * g**0.53 * w**-0.067 * (1.0 - 0.61 * np.exp(-0.73 * ellipticity))
     return h_bar * rx
 
@@ -64,9 +61,14 @@ def minimum_film_thickness(eta0, zeta, reduced_modulus, rx, entrainment_speed, l
     ndarray
         Minimum film thickness ``h_min`` [m].
     """
-    rx = np.asarray(rx, dtype=float)
-    u = eta0 * np.abs(entrainment_speed) / (reduced_modulus * rx)
-    g = zeta * reduced_modulus
-    w = np.asarray(load, dtype=float) / (reduced_modulus * rx**2)
+    rx, u, g, w = _groups(eta0, zeta, reduced_modulus, rx, entrainment_speed, load)
     h_bar = 3.63 * u**0.68 * g**0.49 * w**-0.073 * (1.0 - np.exp(-0.68 * ellipticity))
     return h_bar * rx
+
+
+def _groups(eta0, zeta, reduced_modulus, rx, entrainment_speed, load):
+    """``R_x`` and the dimensionless speed, material and load parameters ``U, G, W``."""
+    rx = np.asarray(rx, dtype=float)
+    u = eta0 * np.abs(entrainment_speed) / (reduced_modulus * rx)
+    w = np.asarray(load, dtype=float) / (reduced_modulus * rx**2)
+    return rx, u, zeta * reduced_modulus, w

@@ -66,7 +66,19 @@ def _variants(design, tmp):
         "--n-ratio": ["--n-ratio", "3"], "--torque-max": ["--torque-max", "50"],
         "--n-torque": ["--n-torque", "3"], "--workers": ["--workers", "2"],
         "--quiet": ["--quiet"]})
-    return {"point": point, "limit": limit, "clamp": clamp, "map": mapping}
+    # the clamping law and the cam's options, against a base that uses the cam law
+    cam = {"--cam-disc": ["--cam-disc", "input"], "--cam-preload": ["--cam-preload", "3000"],
+           "--cam-angle": ["--cam-angle", "8"], "--cam-radius": ["--cam-radius", "0.04"],
+           "--cam-friction": ["--cam-friction", "0.1"]}
+    law = ["--clamp-law", "cam"]
+    for base, changes in (point, limit, mapping):
+        changes["--clamp-law"] = law
+    point_cam = (["point", "--json", *law], dict(cam))
+    limit_cam = (["limit", "--json", *law], dict(cam))
+    map_cam = (["map", "--out", str(tmp / "m2"), *small, *law],
+               {"--cam-angle": ["--cam-angle", "4"]})
+    return {"point": point, "limit": limit, "clamp": clamp, "map": mapping,
+            "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam}
 
 
 def _output(code, out, err, argv):
@@ -82,8 +94,15 @@ def _output(code, out, err, argv):
 def test_every_flag_changes_the_output(capsys, tmp_path, small_design):
     variants = _variants(small_design, tmp_path)
     subs = _subcommands()
+    covered = {}
+    for name, (_, changes) in variants.items():
+        covered.setdefault(name.split(":")[0], set()).update(changes)
+    for command, flags in covered.items():
+        # every flag covered (the map's cam options act like the point's: one suffices)
+        cam_rest = {f for f in _options(subs[command]) if f.startswith("--cam-")}
+        assert flags | (cam_rest if command == "map" else set()) == _options(subs[command]), \
+            command
     for command, (base, changes) in variants.items():
-        assert set(changes) == _options(subs[command]), command      # every flag covered
         reference = _output(*run(capsys, base), base)
         for flag, extra in changes.items():
             argv = [a for a in base if a != flag] if extra is None else base + extra

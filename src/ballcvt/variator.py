@@ -7,16 +7,19 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .clamping.laws import ConstantClamp
+from .clamping.laws import clamp_law as _clamp_law
 from .contact.quadrature import Quadrature
 from .equilibrium.problem import build_problem
 from .errors import ConvergenceError, InputError, TractionLimitError
 from .geometry.kinematics import ratio_range
+from .optimize.clamp import ClampOptimum, optimal_clamp_force
 from .params.feasibility import check_architecture
 from .params.io import load_builtin
 from .params.models import ARCHITECTURES, Design, Fluid
 from .results.point import OperatingResult, make_result
+from .solver.clamped import pressure_bound_force, solve_clamped
 from .solver.limit import limit_torque
-from .optimize.clamp import ClampOptimum, optimal_clamp_force
 from .solver.point import SolverOptions, solve_point
 
 __all__ = ["Variator"]
@@ -70,13 +73,34 @@ class Variator:
         """Usable ideal-ratio range ``(min, max)`` [-]."""
         return ratio_range(self.design)
 
-    def _problem(self, ratio, output_torque, clamp_force, input_speed, input_speed_rpm):
-        speed = _speed(input_speed, input_speed_rpm)
-        return build_problem(self.design, self.fluid, self.architecture, float(ratio),
-                             float(output_torque), float(clamp_force), speed)
+    def clamp_law(self, clamp_law=None, clamp_force=None):
+        """The clamping law named by ``clamp_law`` (see `ballcvt.clamping.clamp_law`)."""
+        return _clamp_law(clamp_law, self.design, clamp_force)
 
-    def solve(self, ratio: float, output_torque: float, *, clamp_force: float,
-              input_speed: float | None = None, input_speed_rpm: float | None = None,
+    def _problem(self, ratio, output_torque, law, input_speed, input_speed_rpm):
+        """The operating point, at the law's force for the given torque (a start value for
+        a law that senses the input torque)."""
+        speed = _speed(input_speed, input_speed_rpm)
+        t2 = float(output_torque)
+        force = law.clamp_force(self.design, t2 * float(ratio), t2)
+        return build_problem(self.design, self.fluid, self.architecture, float(ratio), t2,
+                             force, speed)
+
+    def _resolve(self, ratio, output_torque, clamp_force, clamp_law, input_speed,
+                 input_speed_rpm):
+        """(force law, law name): the optimal law becomes the constant law at its optimum."""
+        law = self.clamp_law(clamp_law, clamp_force)
+        if law.name != "optimal":
+            return law, law.name
+        opt = self.optimal_clamp_force(ratio, output_torque, input_speed=input_speed,
+                                       input_speed_rpm=input_speed_rpm,
+                                       creep_limit=law.creep_limit,
+                                       max_pressure=law.max_pressure)
+        return ConstantClamp(opt.clamp_force), "optimal"
+
+    def solve(self, ratio: float, output_torque: float, *, clamp_force: float | None = None,
+              clamp_law=None, input_speed: float | None = None,
+              input_speed_rpm: float | None = None,
               check_capacity: bool = True) -> OperatingResult:
         """Solve the steady operating point.
 
@@ -86,14 +110,21 @@ class Variator:
             Ideal speed ratio ``tau_ID`` [-].
         output_torque : float
             Output torque ``T_2`` >= 0 [N m].
-        clamp_force : float
-            Normal load at each input contact ``F_N0`` > 0 [N] (keyword only, as are the
-            speeds: a unit cannot be guessed wrong).
+        clamp_force : float, optional
+            Normal load at each input contact ``F_N0`` > 0 [N] of the constant clamping
+            law (keyword only, as are the speeds: a unit cannot be guessed wrong).
+        clamp_law : str or law object, optional
+            ``"constant"`` (the default, with ``clamp_force``), ``"cam"`` (the design's
+            loading cam, ``[design.cam]``), ``"optimal"`` (the efficiency-optimal force
+            under the creep and pressure limits) or a law object of `ballcvt.clamping`
+            (docs/model.md §11). The force used is ``result.clamp_force``.
         input_speed : float, optional
             Input speed ``omega_0`` [rad/s]; or give ``input_speed_rpm`` [rpm].
         check_capacity : bool
             If True (default), a torque whose equilibrium has a creep above
-            ``design.creep_limit``, or has none, raises `TractionLimitError` with the limit.
+            ``design.creep_limit``, or has none, raises `TractionLimitError` with the limit;
+            so does, under a torque-following law, a force whose peak pressure exceeds
+            ``design.max_pressure``.
 
         Returns
         -------
@@ -106,38 +137,62 @@ class Variator:
         ConvergenceError
             If no equilibrium is found and ``check_capacity`` is False.
         """
-        problem = self._problem(ratio, output_torque, clamp_force, input_speed, input_speed_rpm)
-        sol = solve_point(problem, self.options)
+        law, name = self._resolve(ratio, output_torque, clamp_force, clamp_law, input_speed,
+                                  input_speed_rpm)
+        problem = self._problem(ratio, output_torque, law, input_speed, input_speed_rpm)
+        follows = not isinstance(law, ConstantClamp)
+        if follows:
+            problem, sol = solve_clamped(problem, law,
+                                         lambda p, x: solve_point(p, self.options, x))
+        else:
+            sol = solve_point(problem, self.options)
         over = sol.converged and max(abs(c) for c in sol.state.creep) > self.design.creep_limit
+        if follows:
+            over = over or float(problem.clamp_force) > float(
+                pressure_bound_force(problem, self.design.max_pressure)) * (1 + 1e-12)
         if check_capacity and (over or not sol.converged):
-            lim = limit_torque(problem, self.design.creep_limit, self.options)
+            lim = limit_torque(problem, self.design.creep_limit, self.options,
+                               law=law if follows else None)
             if output_torque > lim:
+                where = (f"clamp {float(problem.clamp_force):g} N" if not follows else
+                         f"{name} clamping law")
                 raise TractionLimitError(float(output_torque), lim,
-                                         f" at ratio {ratio:g}, clamp {clamp_force:g} N")
+                                         f" at ratio {ratio:g}, {where}")
         if not sol.converged:
             raise ConvergenceError(sol.message)
-        return make_result(problem, sol, self.options.quadrature)
+        return make_result(problem, sol, self.options.quadrature, clamp_law=name)
 
-    def limit_torque(self, ratio: float, *, clamp_force: float,
+    def limit_torque(self, ratio: float, *, clamp_force: float | None = None, clamp_law=None,
                      input_speed: float | None = None, input_speed_rpm: float | None = None,
                      creep_limit: float | None = None) -> float:
-        """Largest admissible output torque (docs/model.md §8) [N m].
+        """Largest admissible output torque (docs/model.md §8, §11) [N m].
 
         Parameters
         ----------
-        ratio, clamp_force, input_speed, input_speed_rpm
-            As in `solve`.
+        ratio, clamp_force, clamp_law, input_speed, input_speed_rpm
+            As in `solve`. Under a torque-following law (``cam``) the capacity is also
+            bounded by ``design.max_pressure``; under ``optimal`` it is the limit at the
+            largest force within ``max_pressure`` (the optimiser may pick any force up to
+            it).
         creep_limit : float, optional
             Largest admissible ``|C|``; ``design.creep_limit`` by default.
         """
         c_lim = self.design.creep_limit if creep_limit is None else float(creep_limit)
         if not 0.0 < c_lim < 1.0:
             raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
-        problem = self._problem(ratio, 0.0, clamp_force, input_speed, input_speed_rpm)
-        return limit_torque(problem, c_lim, self.options)
+        law = self.clamp_law(clamp_law, clamp_force)
+        if law.name == "optimal":
+            ref = self._problem(ratio, 0.0, ConstantClamp(1000.0), input_speed,
+                                input_speed_rpm)
+            p_lim = self.design.max_pressure if law.max_pressure is None else law.max_pressure
+            law = ConstantClamp(float(pressure_bound_force(ref, p_lim)))
+        problem = self._problem(ratio, 0.0, law, input_speed, input_speed_rpm)
+        follows = not isinstance(law, ConstantClamp)
+        return limit_torque(problem, c_lim, self.options, law=law if follows else None)
 
-    def sweep(self, *, ratio, output_torque, clamp_force, input_speed=None,
-              input_speed_rpm=None, architecture=None, creep_limit: float | None = None,
+    def sweep(self, *, ratio, output_torque, clamp_force=None, clamp_law=None,
+              input_speed=None, input_speed_rpm=None, architecture=None,
+              creep_limit: float | None = None,
               limit_torque=None, workers: int = 1, progress: bool | None = None,
               label: str | None = None):
         """Evaluate a grid of operating points (see `ballcvt.sweeps.sweep`).
@@ -145,7 +200,11 @@ class Variator:
         Parameters
         ----------
         ratio, output_torque, clamp_force : float or array_like
-            Ideal ratios [-], output torques (increasing) [N m], clamping forces [N].
+            Ideal ratios [-], output torques (increasing) [N m], clamping forces [N] of the
+            constant law.
+        clamp_law : str or law object, optional
+            As in `solve`; under a law other than ``constant`` the sweep has no
+            ``clamp_force`` dimension and ``clamp_force`` is the force used at each point.
         input_speed, input_speed_rpm : float or array_like
             Input speeds [rad/s] or [rpm] (exactly one). The speed dimension is named after
             the one given, with the values as given (``ds.sel(input_speed_rpm=2000)``);
@@ -177,7 +236,7 @@ class Variator:
             np.asarray(input_speed_rpm, float))
         speed = np.asarray(input_speed, float) if rpm is None else rpm * math.pi / 30.0
         ds = sweep(self.design, self.fluid, ratio=ratio, output_torque=output_torque,
-                   clamp_force=clamp_force, input_speed=speed,
+                   clamp_force=clamp_force, clamp_law=clamp_law, input_speed=speed,
                    architecture=architecture or self.architecture, options=self.options,
                    creep_limit=creep_limit, limit_torque=limit_torque, workers=workers,
                    progress=progress, label=label)

@@ -34,7 +34,8 @@ def point_table(r: OperatingResult) -> str:
         f"{r.input_power / 1e3:8.3f} kW",
         f"output {r.output_speed * 30 / 3.141592653589793:8.1f} rpm  {r.output_torque:9.3f} N m  "
         f"{r.output_power / 1e3:8.3f} kW",
-        f"clamp F_N0 {r.clamp_force:.1f} N",
+        f"clamp F_N0 {r.clamp_force:.1f} N ({r.clamp_law} law), disc thrust "
+        f"{r.axial_force:.1f} N",
         "",
         f"{'contact':<22}" + "".join(f"{n:>{w}}" for n in names),
     ]
@@ -57,8 +58,10 @@ def point_table(r: OperatingResult) -> str:
 
 def limit_table(data: dict) -> str:
     """Readable limiting-torque line."""
+    clamp = (f"F_N0 {data['clamp_force']:g} N" if data["clamp_law"] == "constant" else
+             f"{data['clamp_law']} clamping law")
     return (f"limiting output torque {data['limit_torque']:.2f} N m  ({data['architecture']} "
-            f"idler, ratio {data['ratio']:g}, F_N0 {data['clamp_force']:g} N, "
+            f"idler, ratio {data['ratio']:g}, {clamp}, "
             f"{data['input_speed_rpm']:g} rpm, |creep| <= {data['creep_limit']:g})")
 
 

@@ -21,6 +21,7 @@ from pathlib import Path
 
 from .._fileio import atomic_write_text, check_output_dir, check_output_file
 from .._version import __version__
+from ..clamping.laws import CLAMP_LAWS
 from ..errors import BallCVTError, InputError
 from ..params.io import builtin_text, drive_to_toml, load_builtin, load_drive
 from ..params.models import ARCHITECTURES
@@ -76,8 +77,23 @@ OPTIONS = {
               "help": "ideal speed ratio tau_ID [-] (default: %(default)s)"},
     "torque": {"type": _number, "default": PAPER_POINT["torque"],
                "help": "output torque T2 [N m] (default: %(default)s)"},
-    "clamp": {"type": _number, "default": PAPER_POINT["clamp"],
-              "help": "input-contact normal load F_N0 [N] (default: %(default)s)"},
+    "clamp": {"type": _number, "default": None,
+              "help": f"input-contact normal load F_N0 [N] of the constant clamping law "
+                      f"(default: {PAPER_POINT['clamp']:g})"},
+    "clamp-law": {"default": "constant", "choices": CLAMP_LAWS,
+                  "help": "clamping law (docs/model.md section 11): constant F_N0 (--clamp), "
+                          "the design's loading cam, or the efficiency-optimal force "
+                          "(default: constant)"},
+    "cam-disc": {"choices": ("input", "output"), "default": None,
+                 "help": "disc whose torque the cam senses (default: the design's)"},
+    "cam-preload": {"type": _number, "default": None,
+                    "help": "cam spring preload [N] (default: the design's)"},
+    "cam-angle": {"type": _number, "default": None,
+                  "help": "cam ramp angle [deg] (default: the design's)"},
+    "cam-radius": {"type": _number, "default": None,
+                   "help": "cam mean radius [m] (default: the design's)"},
+    "cam-friction": {"type": _number, "default": None,
+                     "help": "cam ramp friction coefficient [-] (default: the design's)"},
     "speed": {"type": _number, "default": PAPER_POINT["speed"],
               "help": "input speed [rpm] (default: %(default)s)"},
     "creep-limit": {"type": _number, "default": None,
@@ -86,6 +102,13 @@ OPTIONS = {
                "help": "drive definition (default: the paper's Table I drive)"},
     "json": {"action": "store_true", "help": "print one JSON object"},
 }
+
+
+#: The clamping-law options, and the [design.cam] key each overrides.
+CLAMP_OPTIONS = ("clamp", "clamp-law", "cam-disc", "cam-preload", "cam-angle", "cam-radius",
+                 "cam-friction")
+CAM_KEYS = {"cam_disc": "disc", "cam_preload": "preload", "cam_angle": "ramp_angle_deg",
+            "cam_radius": "mean_radius", "cam_friction": "friction"}
 
 
 def _add(p, *names):
@@ -113,13 +136,14 @@ def build_parser() -> argparse.ArgumentParser:
              "Eq. 39), with validity warnings. A torque beyond the traction capacity is "
              "refused with the limiting torque.",
              "ballcvt point --arch double --ratio 1.76 --torque 40 --clamp 2000 --speed 2000")
-    _add(p, "arch", "ratio", "torque", "clamp", "speed", "design", "json")
+    _add(p, "arch", "ratio", "torque", *CLAMP_OPTIONS, "speed", "design", "json")
 
     p = _sub(sub, "limit", "limiting output torque at a ratio, clamp and speed",
              "The largest output torque with a converged equilibrium and every |creep| <= "
-             "the creep limit (docs/model.md section 8).",
+             "the creep limit (docs/model.md section 8); under the cam law also every peak "
+             "pressure <= the design's max_pressure (section 11).",
              "ballcvt limit --arch single --ratio 2 --clamp 2000 --speed 2000")
-    _add(p, "arch", "ratio", "clamp", "speed", "creep-limit", "design", "json")
+    _add(p, "arch", "ratio", *CLAMP_OPTIONS, "speed", "creep-limit", "design", "json")
 
     p = _sub(sub, "clamp", "clamping force of maximum efficiency under the creep and "
              "pressure limits",
@@ -136,7 +160,7 @@ def build_parser() -> argparse.ArgumentParser:
              "with the limiting-torque curve: map.png, map.svg, map.nc (NetCDF-4, CF) and "
              "map.csv in --out. Points beyond the limit have status 1.",
              "ballcvt map --out map_dir --clamp 2000 --speed 2000 --n-ratio 31 --n-torque 35")
-    _add(p, "arch", "clamp", "speed", "design")
+    _add(p, "arch", *CLAMP_OPTIONS, "speed", "design")
     p.add_argument("--out", type=Path, default=Path("ballcvt-map"),
                    help="output folder (default: %(default)s)")
     p.add_argument("--ratio-range", type=_number, nargs=2, default=(0.5, 2.0),
@@ -173,12 +197,38 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _variator(args) -> Variator:
     design, fluid = load_drive(args.design) if args.design else load_builtin()
+    cam = {key: getattr(args, opt) for opt, key in CAM_KEYS.items()
+           if getattr(args, opt, None) is not None}
+    if cam:
+        if getattr(args, "clamp_law", "constant") != "cam":
+            opt = "--" + next(o for o, k in CAM_KEYS.items() if k in cam).replace("_", "-")
+            raise InputError(opt, None, "--clamp-law cam", message=f"{opt} needs "
+                             "--clamp-law cam")
+        base = design.cam.model_dump() if design.cam is not None else {}
+        missing = [k for k in CAM_KEYS.values() if k not in {**base, **cam}]
+        if missing:
+            raise InputError("design.cam", None, "every cam key", message=(
+                "the design has no [design.cam] table: give every cam option (missing: "
+                + ", ".join("--" + o.replace("_", "-") for o, k in CAM_KEYS.items()
+                            if k in missing) + ")"))
+        design = design.replace(cam={**base, **cam})
     return Variator(design, fluid, args.arch)
+
+
+def _law(args):
+    """(clamp_force, clamp_law) keywords of the Python API from the options."""
+    if args.clamp_law == "constant":
+        return {"clamp_force": PAPER_POINT["clamp"] if args.clamp is None else args.clamp}
+    if args.clamp is not None:
+        raise InputError("clamp", args.clamp, f"not given with --clamp-law {args.clamp_law}",
+                         message=f"--clamp is the constant law's force: not given with "
+                                 f"--clamp-law {args.clamp_law} (the law sets the force)")
+    return {"clamp_law": args.clamp_law}
 
 
 def _cmd_point(args) -> int:
     v = _variator(args)
-    r = v.solve(ratio=args.ratio, output_torque=args.torque, clamp_force=args.clamp,
+    r = v.solve(ratio=args.ratio, output_torque=args.torque, **_law(args),
                 input_speed_rpm=_rpm(args.speed))
     print(r.to_json(indent=2) if args.json else point_table(r))
     return 0
@@ -187,10 +237,12 @@ def _cmd_point(args) -> int:
 def _cmd_limit(args) -> int:
     v = _variator(args)
     c_lim = v.design.creep_limit if args.creep_limit is None else args.creep_limit
-    t = v.limit_torque(ratio=args.ratio, clamp_force=args.clamp,
-                       input_speed_rpm=_rpm(args.speed), creep_limit=c_lim)
+    law = _law(args)
+    t = v.limit_torque(ratio=args.ratio, **law, input_speed_rpm=_rpm(args.speed),
+                       creep_limit=c_lim)
     data = {"limit_torque": t, "architecture": args.arch, "ratio": args.ratio,
-            "clamp_force": args.clamp, "input_speed_rpm": args.speed, "creep_limit": c_lim,
+            "clamp_law": args.clamp_law, "clamp_force": law.get("clamp_force"),
+            "input_speed_rpm": args.speed, "creep_limit": c_lim,
             "design": v.design.name, "version": __version__}
     print(json.dumps(data, indent=2) if args.json else limit_table(data))
     return 0
@@ -214,7 +266,6 @@ def _cmd_map(args) -> int:
     import numpy as np
 
     from ..equilibrium.problem import build_problem
-    from ..solver.limit import limit_torque_batch
     lo, hi = args.ratio_range
     if not 0 < lo < hi:
         raise InputError("ratio_range", f"{lo:g} {hi:g}", "0 < MIN < MAX")
@@ -222,22 +273,29 @@ def _cmd_map(args) -> int:
         raise InputError("torque_max", args.torque_max, "> 0 N m")
     out = check_output_dir(args.out)
     v = _variator(args)
+    law = _law(args)
     ratios = np.linspace(lo, hi, args.n_ratio)
-    base = build_problem(v.design, v.fluid, v.architecture, ratios, 0.0, args.clamp,
-                         _rpm(args.speed) * np.pi / 30.0)          # validates every input
+    speed = np.full(ratios.size, _rpm(args.speed) * np.pi / 30.0)
+    build_problem(v.design, v.fluid, v.architecture, ratios, 0.0,
+                  law.get("clamp_force", 1.0), speed)              # validates every input
     # the limiting torque of every ratio, found once: it sets the default torque range
     # and is handed to the sweep
     show = _show(args)
     from tqdm.auto import tqdm
+
     from ..solver.limit import bisection_steps
+    from ..sweeps import limit_torques
+    force = law.get("clamp_force")
+    resolved = None if force is not None else v.clamp_law(args.clamp_law)
     with tqdm(total=bisection_steps(), desc=f"limiting torque at {ratios.size} ratios",
               unit="step", disable=not show) as bar:
-        limits = limit_torque_batch(base, v.design.creep_limit, v.options,
-                                    callback=bar.update)
+        _, limits = limit_torques(v.design, v.fluid, v.architecture, ratios, speed,
+                                  None if force is None else np.full(ratios.size, force),
+                                  resolved, v.options, v.design.creep_limit, bar.update)
     top = 1.02 * float(np.nanmax(limits)) if args.torque_max is None else args.torque_max
     ds = v.sweep(ratio=ratios, output_torque=np.linspace(top / args.n_torque, top,
                                                          args.n_torque),
-                 clamp_force=args.clamp, input_speed_rpm=_rpm(args.speed), limit_torque=limits,
+                 **law, input_speed_rpm=_rpm(args.speed), limit_torque=limits,
                  workers=args.workers, progress=show, label="efficiency map")
     _write_map(ds, out, args)
     if not args.quiet:
@@ -265,8 +323,15 @@ def _write_map(ds, out, args):
     one = ds.squeeze(drop=True)
     save(efficiency_map(one.ratio.values, one.output_torque.values, one.eta.values,
                         one.limit_torque.values, f"Efficiency map, {args.arch} idler, "
-                        f"$F_{{N0}}$ = {args.clamp:g} N, {args.speed:g} rpm",
+                        f"{_clamp_label(args)}, {args.speed:g} rpm",
                         limit_eta=one.eta_at_limit.values), out, "map")
+
+
+def _clamp_label(args) -> str:
+    if args.clamp_law == "constant":
+        force = PAPER_POINT["clamp"] if args.clamp is None else args.clamp
+        return f"$F_{{N0}}$ = {force:g} N"
+    return f"{args.clamp_law} clamping"
 
 
 def _cmd_reproduce(args) -> int:

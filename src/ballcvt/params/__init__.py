@@ -1,9 +1,9 @@
 """Layer 0: parameter sets (design, material, bearings, fluid, operating point)."""
 
 from .io import BUILTIN_DRIVES, builtin_text, drive_to_toml, load_builtin, load_drive, parse_drive
-from .models import (ARCHITECTURES, Architecture, BearingModel, Design, Fluid, Material,
-                     OperatingPoint, ParameterModel)
+from .models import (ARCHITECTURES, Architecture, BearingModel, CamModel, Design, Fluid,
+                     Material, OperatingPoint, ParameterModel)
 
-__all__ = ["ARCHITECTURES", "Architecture", "BearingModel", "Design", "Fluid", "Material",
-           "OperatingPoint", "ParameterModel", "BUILTIN_DRIVES", "builtin_text",
+__all__ = ["ARCHITECTURES", "Architecture", "BearingModel", "CamModel", "Design", "Fluid",
+           "Material", "OperatingPoint", "ParameterModel", "BUILTIN_DRIVES", "builtin_text",
            "drive_to_toml", "load_builtin", "load_drive", "parse_drive"]

@@ -114,6 +114,9 @@ def _update(container, key, data) -> None:
         container[key] = tomlkit.table()
     table = container[key]
     for name, value in data.items():
+        if value is None:                 # an optional table the drive does not have
+            table.pop(name, None)
+            continue
         if isinstance(value, dict):
             _update(table, name, value)
             continue

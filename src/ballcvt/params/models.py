@@ -22,6 +22,7 @@ __all__ = [
     "ParameterModel",
     "Material",
     "BearingModel",
+    "CamModel",
     "Design",
     "Fluid",
     "OperatingPoint",
@@ -162,6 +163,30 @@ class BearingModel(ParameterModel):
     diameter_exponent: float = _f("-", "exponent b of the mean diameter in Eq. 16", gt=0, lt=3)
 
 
+class CamModel(ParameterModel):
+    """Torque-sensing loading cam: a ball ramp plus a preload spring (docs/model.md §11).
+
+    The cam turns the torque of the disc it sits on into axial thrust,
+    ``F_ax = F_pre + |T| / (r_m tan(phi + atan(mu_r)))`` (the power-screw relation,
+    Budynas and Nisbett, Shigley's Mechanical Engineering Design, 10th ed., Eq. 8-1;
+    loading cams of traction drives: Loewenthal and Zaretsky, NASA RP-1154, 1985).
+    """
+
+    disc: Literal["input", "output"] = Field(
+        ..., description="disc whose torque the cam senses ('input' or 'output')")
+    preload: float = _f("N", "axial preload of the spring F_pre (> 0: without it the "
+                        "cam never grips)", gt=0, lt=math.inf)
+    ramp_angle_deg: float = _f("deg", "ramp angle phi at the mean radius", gt=0, lt=60)
+    mean_radius: float = _f("m", "mean radius r_m of the ramp balls", gt=0, lt=10)
+    friction: float = _f("-", "ramp friction coefficient mu_r (rolling balls: ~0.005)",
+                         ge=0, lt=1)
+
+    @property
+    def ramp_angle(self) -> float:
+        """Ramp angle [rad]."""
+        return math.radians(self.ramp_angle_deg)
+
+
 class Design(ParameterModel):
     """Geometry of a planetary ball variator (Sec. II.A, Table I, docs/model.md §1).
 
@@ -200,6 +225,8 @@ class Design(ParameterModel):
                                   "warning)", gt=0, lt=1e-3)
     material: Material
     bearings: BearingModel
+    cam: CamModel | None = Field(None, description="loading cam of the 'cam' clamping law "
+                                 "(optional: only that law needs it)")
 
     @model_validator(mode="after")
     def _buildable(self) -> "Design":

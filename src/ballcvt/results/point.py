@@ -14,17 +14,17 @@ from types import MappingProxyType
 from typing import Any, Mapping
 
 import numpy as np
-
 from pydantic import TypeAdapter, ValidationError
 
 from .._fileio import atomic_write_text
 from .._version import __version__
+from ..clamping.laws import axial_force
 from ..contact.quadrature import Quadrature
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import InputError
+from ..params.models import Design, Fluid
 from ..performance.efficiency import efficiency, power_losses
 from ..performance.validity import validity, warning_messages
-from ..params.models import Design, Fluid
 from ..solver.point import PointSolution
 
 __all__ = ["ContactResult", "OperatingResult", "make_result"]
@@ -114,6 +114,9 @@ class OperatingResult:
     warnings : tuple of str
         Validity warnings (docs/model.md §10), one line each; empty when the point lies
         within every assumption of the model.
+    clamp_law : str
+        The clamping law that set ``clamp_force`` (``constant``, ``cam``, ``optimal``;
+        docs/model.md §11).
     version : str
         ballcvt version that computed the result.
     """
@@ -142,6 +145,7 @@ class OperatingResult:
     iterations: int
     quadrature: str
     warnings: tuple[str, ...] = ()
+    clamp_law: str = "constant"
     version: str = __version__
 
     @property
@@ -153,6 +157,11 @@ class OperatingResult:
     def input_speed_rpm(self) -> float:
         """Input speed [rpm] (rounded to 12 significant digits: no conversion noise)."""
         return float(f"{self.input_speed * 30.0 / math.pi:.12g}")
+
+    @property
+    def axial_force(self) -> float:
+        """Axial thrust on each disc ``n F_N0 sin(theta_0)`` (docs/model.md §1) [N]."""
+        return float(axial_force(self.design, self.clamp_force))
 
     @property
     def input_power(self) -> float:
@@ -180,6 +189,7 @@ class OperatingResult:
             out[f.name] = value
         out["tilt_deg"] = self.tilt_deg
         out["input_speed_rpm"] = self.input_speed_rpm
+        out["axial_force"] = self.axial_force
         names = list(self.contacts)
         for key in ("creep", "spin", "mu", "chi", "p_max", "film_thickness"):
             out[key] = {n: getattr(self.contacts[n], key) for n in names}
@@ -202,11 +212,12 @@ class OperatingResult:
         if not isinstance(data, Mapping):
             raise InputError(source, type(data).__name__, "a JSON object",
                              message=f"{source}: not a result (a JSON object is expected)")
-        missing = [f.name for f in fields(cls) if f.name not in data]
+        # files written before the clamping laws (0.1.0) have no clamp_law: constant
+        missing = [f.name for f in fields(cls) if f.name not in data and f.name != "clamp_law"]
         if missing:
             raise InputError(missing[0], None, "a value",
                              message=f"{source}: required key '{missing[0]}' is missing")
-        kw = {f.name: data[f.name] for f in fields(cls)}
+        kw = {f.name: data[f.name] for f in fields(cls) if f.name in data}
         try:
             kw["design"] = Design(**kw["design"])
             kw["fluid"] = Fluid(**kw["fluid"])
@@ -299,7 +310,7 @@ def _finite(obj: Any) -> Any:
 
 
 def make_result(problem: EquilibriumProblem, solution: PointSolution,
-                quadrature: Quadrature) -> OperatingResult:
+                quadrature: Quadrature, clamp_law: str = "constant") -> OperatingResult:
     """Collect a solved single point into an `OperatingResult`."""
     st, lay = solution.state, problem.layout
     loss = power_losses(problem, st)
@@ -332,7 +343,7 @@ def make_result(problem: EquilibriumProblem, solution: PointSolution,
         eta_speed=f(eff.speed), eta_torque=f(eff.torque), converged=solution.converged,
         residual_norm=solution.residual_norm, iterations=solution.evaluations,
         quadrature=_label(quadrature),
-        warnings=tuple(warning_messages(problem, valid, lay.names)))
+        warnings=tuple(warning_messages(problem, valid, lay.names)), clamp_law=clamp_law)
 
 
 def _label(q: Quadrature) -> str:

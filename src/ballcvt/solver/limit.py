@@ -16,6 +16,7 @@ import numpy as np
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import NoEquilibriumError
 from .batch import solve_batch
+from .clamped import pressure_bound_force, solve_clamped, with_clamp
 from .point import SolverOptions, solve_point
 
 __all__ = ["limit_torque", "limit_torque_batch", "traction_ceiling_torque",
@@ -58,7 +59,8 @@ def traction_ceiling_torque(problem: EquilibriumProblem) -> np.ndarray:
 
 
 def limit_torque(problem: EquilibriumProblem, creep_limit: float,
-                 options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL) -> float:
+                 options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL,
+                 law=None) -> float:
     """Largest admissible output torque of a single operating point [N m].
 
     `limit_torque_batch` on one point, so that a point, a sweep and a map give the same
@@ -74,6 +76,9 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
         Solver options.
     rtol : float
         Relative width of the final torque bracket [-].
+    law : clamping law, optional
+        A law whose force follows the torque (`ballcvt.clamping`); by default the
+        problem's constant ``clamp_force``.
 
     Returns
     -------
@@ -84,10 +89,19 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
     NoEquilibriumError
         If no admissible equilibrium exists even at zero output torque.
     """
-    torque = float(limit_torque_batch(problem, creep_limit, options, rtol))
+    torque = float(limit_torque_batch(problem, creep_limit, options, rtol, law=law))
     if not np.isnan(torque):
         return torque
-    best = solve_point(replace(problem, output_torque=np.asarray(0.0)), options)
+    zero = replace(problem, output_torque=np.asarray(0.0))
+    if _follows_torque(law):
+        zero, best = solve_clamped(zero, law, lambda p, x: solve_point(p, options, x))
+        if float(zero.clamp_force) > float(pressure_bound_force(zero, zero.design.max_pressure)):
+            raise NoEquilibriumError(
+                f"no admissible equilibrium even at zero output torque: the {law.name} law's "
+                f"clamping force {float(zero.clamp_force):.4g} N already exceeds the pressure "
+                f"limit max_pressure = {zero.design.max_pressure:g} Pa")
+    else:
+        best = solve_point(zero, options)
     where = (f"ratio {float(problem.ratio):g}, clamp_force {float(problem.clamp_force):g} N, "
              f"input speed {float(problem.input_speed):g} rad/s")
     if best.converged:
@@ -101,9 +115,14 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
                              f"({where}): {why}")
 
 
+def _follows_torque(law) -> bool:
+    """Whether ``law`` sets a torque-dependent force (else the problem's force is used)."""
+    return law is not None and getattr(law, "name", "constant") != "constant"
+
+
 def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
                        options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL,
-                       callback=None) -> np.ndarray:
+                       callback=None, law=None) -> np.ndarray:
     """Limiting output torque of every point of a batch (its ``output_torque`` is ignored).
 
     The same bisection as `limit_torque`, run on all points at once with the batched
@@ -125,6 +144,12 @@ def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
         Relative width of the final torque brackets [-].
     callback : callable, optional
         Called with no argument after each bisection step (progress bars).
+    law : clamping law, optional
+        A law whose force follows the torque (`ballcvt.clamping`). Its force grows with
+        the torque, so the capacity is also bounded by the peak pressure: a trial counts as
+        admissible only if its force keeps every contact at or below
+        ``design.max_pressure`` (docs/model.md §11). By default the problem's constant
+        ``clamp_force``.
 
     Returns
     -------
@@ -138,18 +163,35 @@ def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
         failed without its creeps running past the limit (a failure of the method, not
         of the equilibrium), so that this search agrees with `limit_torque`."""
         pb = replace(flat.take(index), output_torque=torque)
-        sol = solve_batch(pb, options, x0, fallback=False)
+        pb, sol = solve(pb, x0, False)
         big = np.max(np.abs(sol.state.creep), axis=-1)
         conv, creep = sol.converged.copy(), sol.state.creep.copy()
         unsure = np.flatnonzero(~conv & ~(big > creep_limit))
         if unsure.size:
-            again = solve_batch(pb.take(unsure), options, None if x0 is None else x0[unsure])
+            _, again = solve(pb.take(unsure), None if x0 is None else x0[unsure], True)
             conv[unsure], creep[unsure] = again.converged, again.state.creep
         ok = conv & (np.max(np.abs(creep), axis=-1) <= creep_limit)
+        if follows:
+            ok &= pb.clamp_force <= f_cap[index] * (1.0 + 1e-12)
         return ok, creep
 
+    follows = _follows_torque(law)
+    if follows:
+        f_cap = pressure_bound_force(flat, flat.design.max_pressure)
+        hi = np.minimum(law.output_torque_bound(flat.design, f_cap, flat.ratio),
+                        traction_ceiling_torque(with_clamp(flat, f_cap)))
+
+        def solve(pb, x0, fallback):
+            return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x, fallback),
+                                 x0)
+    else:
+        hi = traction_ceiling_torque(flat)
+
+        def solve(pb, x0, fallback):
+            return pb, solve_batch(pb, options, x0, fallback=fallback)
+
     ok0, best = admissible(np.arange(flat.size), np.zeros(flat.size), None)
-    lo, hi = np.zeros(flat.size), traction_ceiling_torque(flat)
+    lo = np.zeros(flat.size)
     # bisect until every bracket is narrow: a loose ceiling (extreme designs) needs more
     # than the bisection_steps() of a typical one
     steps = bisection_steps(rtol)

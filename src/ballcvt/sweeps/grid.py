@@ -18,23 +18,22 @@ import numpy as np
 import xarray as xr
 
 from .._version import __version__
+from ..clamping.laws import clamp_law as clamp_law_of
 from ..equilibrium.problem import build_problem
-from ..equilibrium.residual import evaluate
 from ..errors import InputError
 from ..geometry.layout import CONTACT_NAMES
 from ..params.models import ARCHITECTURES, Design, Fluid
-from ..performance.efficiency import efficiency, power_losses
-from ..performance.validity import validity
-from ..solver.batch import solve_batch
-from ..solver.limit import bisection_steps, limit_torque_batch
+from ..solver.limit import bisection_steps
 from ..solver.point import SolverOptions
+from .curves import solve_curves
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, STATUS, attrs_for
 
 __all__ = ["sweep", "STATUS"]
 
 
-def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
-          input_speed, architecture="double", options: SolverOptions = SolverOptions(),
+def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force=None,
+          input_speed, clamp_law=None, architecture="double",
+          options: SolverOptions = SolverOptions(),
           creep_limit: float | None = None, limit_torque=None, workers: int = 1,
           progress: bool | None = None, label: str | None = None) -> xr.Dataset:
     """Evaluate the model over a grid of operating conditions.
@@ -47,10 +46,15 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
         Ideal speed ratios ``tau_ID`` [-].
     output_torque : float or array_like
         Output torques ``T_2`` >= 0 [N m], increasing (the continuation axis).
-    clamp_force : float or array_like
-        Clamping forces ``F_N0`` > 0 [N].
+    clamp_force : float or array_like, optional
+        Clamping forces ``F_N0`` > 0 [N] of the constant law (a dimension of the result).
     input_speed : float or array_like
         Input speeds ``omega_0`` > 0 [rad/s].
+    clamp_law : str or law object, optional
+        ``"cam"``, ``"optimal"`` or a law of `ballcvt.clamping` (docs/model.md §11); then
+        ``clamp_force`` is not given, the result has no ``clamp_force`` dimension, and
+        ``clamp_force`` is a variable: the force the law sets at each point. The limiting
+        torque is the law's (`limit_torque_batch`).
     architecture : str or sequence of str
         ``"double"`` and/or ``"single"``.
     options : SolverOptions
@@ -71,7 +75,8 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
     Returns
     -------
     xarray.Dataset
-        Dimensions ``architecture, clamp_force, input_speed, ratio, output_torque`` (and
+        Dimensions ``architecture, clamp_force, input_speed, ratio, output_torque`` (no
+        ``clamp_force`` dimension under a clamping law other than ``constant``) (and
         ``contact`` for per-contact variables, ``loss`` for ``losses``); every variable has
         ``units`` and ``long_name``. ``status`` flags each point (0 converged, 1 beyond the
         limiting torque, 2 not converged); flagged points are NaN. ``warnings`` holds the
@@ -87,16 +92,25 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
     c_lim = design.creep_limit if creep_limit is None else float(creep_limit)
     if not 0.0 < c_lim < 1.0:
         raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
+    law = None
+    if clamp_law is None or clamp_law == "constant":      # the forces are a dimension
+        if clamp_force is None:
+            clamp_law_of(None, design, None)                # raises: says what is missing
+    else:
+        law = clamp_law_of(clamp_law, design, clamp_force)
+        if law.name == "constant":
+            law, clamp_force = None, law.force
     axes = {name: _axis(name, value) for name, value in
-            (("clamp_force", clamp_force), ("input_speed", input_speed), ("ratio", ratio),
-             ("output_torque", output_torque))}
+            (("clamp_force", np.nan if law else clamp_force), ("input_speed", input_speed),
+             ("ratio", ratio), ("output_torque", output_torque))}
     torque = axes["output_torque"]
     if np.any(np.diff(torque) < 0):
         raise InputError("output_torque", float(torque[np.argmax(np.diff(torque) < 0) + 1]),
                          "an increasing sequence (torque is the continuation axis)")
     # validate every input once (raises InputError on the first bad value)
     build_problem(design, fluid, archs[0], axes["ratio"][:, None], torque,
-                  axes["clamp_force"][:, None, None], axes["input_speed"][:, None, None, None])
+                  1.0 if law else axes["clamp_force"][:, None, None],
+                  axes["input_speed"][:, None, None, None])
     shape = tuple(len(axes[n]) for n in ("clamp_force", "input_speed", "ratio"))
     grid = np.meshgrid(axes["clamp_force"], axes["input_speed"], axes["ratio"], indexing="ij")
     flat = [g.ravel() for g in grid]
@@ -111,11 +125,18 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force,
     blocks = {}
     for arch in archs:
         jobs = [(design, fluid, arch, flat[0][c], flat[1][c], flat[2][c], torque, options,
-                 c_lim, None if limit_torque is None else limits[c]) for c in chunks]
+                 c_lim, None if limit_torque is None else limits[c], law) for c in chunks]
         text = f"{label}, {arch} idler" if label and len(archs) > 1 else label
         blocks[arch] = _run(jobs, workers, show, text or f"sweep, {arch} idler")
     ds = _assemble(blocks, archs, axes, shape, contacts)
+    if law is not None:
+        used = np.stack([blocks[a]["clamp_force"].reshape(shape + (torque.size,))
+                         for a in archs])[:, 0]
+        ds = ds.isel(clamp_force=0, drop=True)
+        ds["clamp_force"] = xr.Variable(("architecture", "input_speed", "ratio",
+                                         "output_torque"), used, attrs_for("clamp_force"))
     ds.attrs.update(
+        clamp_law=law.name if law else "constant",
         title="ballcvt sweep", Conventions="CF-1.10", institution="ballcvt",
         source=f"ballcvt {__version__}", ballcvt_version=__version__,
         references="Tomaselli, Bottiglione, Lino, Carbone, Mech. Mach. Theory 150 (2020) "
@@ -131,6 +152,8 @@ def flat_attrs(prefix: str, data: dict) -> dict:
     """Nested parameters as flat NetCDF attributes ``<prefix>_<key>[_<subkey>]``."""
     out = {}
     for key, value in data.items():
+        if value is None:                       # an optional table the design lacks
+            continue
         if isinstance(value, dict):
             out.update(flat_attrs(f"{prefix}_{key}", value))
         else:
@@ -171,99 +194,6 @@ def _run(jobs, workers, show, label):
 
 def _concat(parts):
     return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
-
-
-def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, torque,
-                 options, creep_limit, limit=None, callback=None):
-    """Solve the curves ``(clamp_force[i], input_speed[i], ratio[i])`` over ``torque``.
-
-    ``limit``: the curves' limiting torques if already known (else computed here).
-
-    Returns a dict of arrays ``(m, n_T)`` or ``(m, n_T, n_c)`` (and ``limit_torque``,
-    ``(m,)``) with the variables of `ballcvt.sweeps.variables`; run in worker processes.
-    """
-    m, nt = ratio.size, torque.size
-    base = build_problem(design, fluid, architecture, ratio, 0.0, clamp_force, input_speed)
-    if limit is None:
-        limit = limit_torque_batch(base, creep_limit, options, callback=callback)
-    nc = base.layout.n_contacts
-    creep = np.full((m, nt, nc), np.nan)
-    # points within the limit start as "not converged" (2) until solved
-    status = np.where(torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None], 2, 1)
-    iterations = np.zeros((m, nt), dtype=int)
-    residual = np.full((m, nt), np.nan)
-    x = None
-    for k in range(nt):
-        todo = np.flatnonzero(status[:, k] == 2)
-        if todo.size:
-            pb = build_problem(design, fluid, architecture, ratio[todo], torque[k],
-                               clamp_force[todo], input_speed[todo])
-            sol = solve_batch(pb, options, None if x is None else x[todo])
-            good = sol.converged
-            creep[todo[good], k] = sol.state.creep[good]
-            status[todo[good], k] = 0
-            iterations[todo, k] = sol.iterations
-            residual[todo, k] = sol.residual_norm
-            if x is None:
-                x = np.broadcast_to(sol.state.creep[:1], (m, nc)).copy()
-            x[todo[good]] = sol.state.creep[good]
-        if callback is not None:
-            callback()
-    out = {"limit_torque": limit, "eta_at_limit": _eta_at(design, fluid, architecture,
-                                                          clamp_force, input_speed, ratio,
-                                                          limit, options),
-           "status": status.astype(np.int8), "iterations": iterations,
-           "residual_norm": residual}
-    out.update(_derived(design, fluid, architecture, clamp_force, input_speed, ratio, torque,
-                        creep, status, options))
-    return out
-
-
-def _eta_at(design, fluid, arch, clamp_force, input_speed, ratio, torque, options):
-    """Overall efficiency (Eq. 38) at one torque per curve (NaN where there is none)."""
-    eta = np.full(ratio.size, np.nan)
-    ok = np.flatnonzero(np.isfinite(torque))
-    if ok.size:
-        pb = build_problem(design, fluid, arch, ratio[ok], torque[ok], clamp_force[ok],
-                           input_speed[ok])
-        sol = solve_batch(pb, options)
-        eta[ok] = np.where(sol.converged, efficiency(pb, sol.state).overall, np.nan)
-    return eta
-
-
-def _derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep, status,
-             options):
-    """Every reported quantity at the converged points (NaN elsewhere)."""
-    m, nt, nc = creep.shape
-    ok = status == 0
-    i, k = np.nonzero(ok)
-    values = {name: np.full((m, nt), np.nan) for name in POINT_VARIABLES}
-    values.update({name: np.full((m, nt, nc), np.nan) for name in CONTACT_VARIABLES})
-    values["losses"] = np.full((m, nt, len(LOSS_KINDS)), np.nan)
-    values["warnings"] = np.zeros((m, nt), dtype=np.int8)
-    if i.size == 0:
-        return values
-    pb = build_problem(design, fluid, arch, ratio[i], torque[k], clamp_force[i], input_speed[i])
-    st = evaluate(pb, creep[i, k], options.quadrature)
-    loss = power_losses(pb, st)
-    eff = efficiency(pb, st, loss)
-    valid = validity(pb, st)
-    point = {"eta": eff.overall, "eta_loss": eff.from_losses, "eta_speed": eff.speed,
-             "eta_torque": eff.torque, "input_torque": st.input_torque,
-             "actual_ratio": st.omega[:, -1] / st.omega[:, 0], "tilt_deg": np.degrees(pb.tilt)}
-    contact = {"creep": st.creep, "spin": st.spin, "mu": st.mu, "chi": st.chi,
-               "p_max": pb.p_max, "film_thickness": st.film, "normal_load": pb.load,
-               "creep_loss": loss.creep, "spin_loss": loss.spin,
-               "lambda_ratio": valid.lambda_ratio}
-    for name, v in point.items():
-        values[name][i, k] = v
-    for name, v in contact.items():
-        values[name][i, k] = v
-    values["losses"][i, k] = np.stack(
-        [loss.creep.sum(-1), loss.spin.sum(-1), loss.roller_bearings,
-         loss.idler_bearings.sum(-1), loss.bearing, loss.total], axis=-1)
-    values["warnings"][i, k] = valid.flags
-    return values
 
 
 def _assemble(blocks, archs, axes, shape, contacts):

@@ -20,6 +20,7 @@ VARIABLES = {
     "ratio": ("1", "ideal speed ratio tau_ID"),
     "output_torque": ("N m", "output torque T_2"),
     "clamp_force": ("N", "clamping force at the input contact F_N0"),
+    "axial_force": ("N", "axial thrust on each disc n F_N0 sin(theta_0)"),
     "input_speed": ("rad/s", "input speed omega_0"),
     "input_speed_rpm": ("rpm", "input speed omega_0"),
     "limit_torque": ("N m", "limiting output torque (all |creep| <= creep_limit)"),
@@ -50,7 +51,7 @@ VARIABLES = {
 }
 
 POINT_VARIABLES = ("eta", "eta_loss", "eta_speed", "eta_torque", "input_torque",
-                   "actual_ratio", "tilt_deg")
+                   "actual_ratio", "tilt_deg", "axial_force")
 CONTACT_VARIABLES = ("creep", "spin", "mu", "chi", "p_max", "film_thickness", "normal_load",
                      "creep_loss", "spin_loss", "lambda_ratio")
 

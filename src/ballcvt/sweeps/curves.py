@@ -1,0 +1,190 @@
+"""The curves of a sweep: one ratio and speed each, solved over the torque axis.
+
+This is the work a sweep hands to its worker processes: the limiting torques (under the
+clamping law), then every torque with continuation from the last solution, then every
+reported quantity at the converged points.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..clamping.laws import axial_force
+from ..equilibrium.problem import build_problem
+from ..equilibrium.residual import evaluate
+from ..errors import TractionLimitError
+from ..optimize.clamp import optimal_clamp_force
+from ..performance.efficiency import efficiency, power_losses
+from ..performance.validity import validity
+from ..solver.batch import solve_batch
+from ..solver.clamped import pressure_bound_force, solve_clamped, with_clamp
+from ..solver.limit import limit_torque_batch
+from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
+
+__all__ = ["solve_curves", "limit_torques"]
+
+
+def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, torque,
+                 options, creep_limit, limit=None, law=None, callback=None):
+    """Solve the curves ``(clamp_force[i], input_speed[i], ratio[i])`` over ``torque``.
+
+    ``limit``: the curves' limiting torques if already known (else computed here).
+    ``law``: a clamping law other than constant (then ``clamp_force`` is ignored and the
+    force the law sets at each point is returned as ``clamp_force``, ``(m, n_T)``).
+
+    Returns a dict of arrays ``(m, n_T)`` or ``(m, n_T, n_c)`` (and ``limit_torque``,
+    ``(m,)``) with the variables of `ballcvt.sweeps.variables`; run in worker processes.
+    """
+    m, nt = ratio.size, torque.size
+    optimal = law is not None and law.name == "optimal"
+    base, limit = limit_torques(design, fluid, architecture, ratio, input_speed, clamp_force,
+                                law, options, creep_limit, callback, limit)
+    nc = base.layout.n_contacts
+    creep = np.full((m, nt, nc), np.nan)
+    force = np.broadcast_to(base.clamp_force[:, None], (m, nt)).copy()
+    # points within the limit start as "not converged" (2) until solved
+    status = np.where(torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None], 2, 1)
+    iterations = np.zeros((m, nt), dtype=int)
+    residual = np.full((m, nt), np.nan)
+    x = None
+    for k in range(nt):
+        todo = np.flatnonzero(status[:, k] == 2)
+        if todo.size:
+            pb = build_problem(design, fluid, architecture, ratio[todo], torque[k],
+                               force[todo, k], input_speed[todo])
+            pb, sol = _solve_column(pb, law, options, None if x is None else x[todo])
+            good = sol.converged
+            force[todo, k] = pb.clamp_force
+            creep[todo[good], k] = sol.state.creep[good]
+            status[todo[good], k] = 0
+            iterations[todo, k] = sol.iterations
+            residual[todo, k] = sol.residual_norm
+            if x is None:
+                x = np.broadcast_to(sol.state.creep[:1], (m, nc)).copy()
+            x[todo[good]] = sol.state.creep[good]
+        if callback is not None:
+            callback()
+    out = {"limit_torque": limit,
+           "eta_at_limit": _eta_at(design, fluid, architecture, base.clamp_force,
+                                   input_speed, ratio, limit, options,
+                                   None if optimal else law),
+           "status": status.astype(np.int8), "iterations": iterations,
+           "residual_norm": residual}
+    out.update(_derived(design, fluid, architecture, force, input_speed, ratio, torque,
+                        creep, status, options))
+    if law is not None:
+        out["clamp_force"] = np.where(status == 0, force, np.nan)
+    return out
+
+
+def limit_torques(design, fluid, architecture, ratio, input_speed, clamp_force, law, options,
+                  creep_limit, callback=None, limit=None):
+    """Limiting torques of the curves ``(ratio[i], input_speed[i])`` under a clamping law.
+
+    Parameters
+    ----------
+    design, fluid, architecture
+        The drive.
+    ratio, input_speed : ndarray
+        Ideal ratios [-] and input speeds [rad/s] of the curves, shape ``(m,)``.
+    clamp_force : ndarray or None
+        ``F_N0`` [N] of the constant law (``law`` None).
+    law : clamping law or None
+        A torque-following law (``cam``), ``optimal`` (the limit at the largest force
+        within the pressure limit, which the optimiser may pick), or None (constant).
+    options : SolverOptions
+        Solver options.
+    creep_limit : float
+        ``C_lim`` [-] (the optimal law's own, if it has one, wins).
+    callback : callable, optional
+        Called after each bisection step.
+    limit : ndarray, optional
+        Limits already known (returned as they are).
+
+    Returns
+    -------
+    (EquilibriumProblem, ndarray)
+        The curves at zero torque (at the constant force, or the optimal law's bound)
+        and their limiting torques [N m] (NaN where none).
+    """
+    start = np.ones(ratio.size) if law is not None else clamp_force
+    base = build_problem(design, fluid, architecture, ratio, 0.0, start, input_speed)
+    follows = law
+    if law is not None and law.name == "optimal":
+        p_lim = design.max_pressure if law.max_pressure is None else law.max_pressure
+        base = with_clamp(base, pressure_bound_force(base, p_lim))
+        creep_limit = creep_limit if law.creep_limit is None else law.creep_limit
+        follows = None
+    if limit is None:
+        limit = limit_torque_batch(base, creep_limit, options, callback=callback,
+                                   law=follows)
+    return base, limit
+
+
+def _solve_column(pb, law, options, x0):
+    """Solve the points of one torque under ``law`` -> (problem at the forces used, sol)."""
+    if law is None:
+        return pb, solve_batch(pb, options, x0)
+    if law.name != "optimal":
+        return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x), x0)
+    forces = np.empty(pb.size)
+    for j in range(pb.size):        # one optimisation per point (batched inside)
+        try:
+            forces[j] = optimal_clamp_force(
+                pb.design, pb.fluid, pb.layout.architecture, float(pb.ratio[j]),
+                float(pb.output_torque[j]), float(pb.input_speed[j]), options,
+                law.creep_limit, law.max_pressure).clamp_force
+        except TractionLimitError:
+            forces[j] = pb.clamp_force[j]        # solved at the bound, flagged below
+    pb = with_clamp(pb, forces)
+    return pb, solve_batch(pb, options, x0)
+
+
+def _eta_at(design, fluid, arch, clamp_force, input_speed, ratio, torque, options, law=None):
+    """Overall efficiency (Eq. 38) at one torque per curve (NaN where there is none)."""
+    eta = np.full(ratio.size, np.nan)
+    ok = np.flatnonzero(np.isfinite(torque))
+    if ok.size:
+        pb = build_problem(design, fluid, arch, ratio[ok], torque[ok], clamp_force[ok],
+                           input_speed[ok])
+        pb, sol = _solve_column(pb, law, options, None)
+        eta[ok] = np.where(sol.converged, efficiency(pb, sol.state).overall, np.nan)
+    return eta
+
+
+def _derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep, status,
+             options):
+    """Every reported quantity at the converged points (NaN elsewhere); ``clamp_force``
+    has the shape ``(m, n_T)`` of the points."""
+    m, nt, nc = creep.shape
+    ok = status == 0
+    i, k = np.nonzero(ok)
+    values = {name: np.full((m, nt), np.nan) for name in POINT_VARIABLES}
+    values.update({name: np.full((m, nt, nc), np.nan) for name in CONTACT_VARIABLES})
+    values["losses"] = np.full((m, nt, len(LOSS_KINDS)), np.nan)
+    values["warnings"] = np.zeros((m, nt), dtype=np.int8)
+    if i.size == 0:
+        return values
+    pb = build_problem(design, fluid, arch, ratio[i], torque[k], clamp_force[i, k],
+                       input_speed[i])
+    st = evaluate(pb, creep[i, k], options.quadrature)
+    loss = power_losses(pb, st)
+    eff = efficiency(pb, st, loss)
+    valid = validity(pb, st)
+    point = {"eta": eff.overall, "eta_loss": eff.from_losses, "eta_speed": eff.speed,
+             "eta_torque": eff.torque, "input_torque": st.input_torque,
+             "actual_ratio": st.omega[:, -1] / st.omega[:, 0], "tilt_deg": np.degrees(pb.tilt),
+             "axial_force": axial_force(design, pb.clamp_force)}
+    contact = {"creep": st.creep, "spin": st.spin, "mu": st.mu, "chi": st.chi,
+               "p_max": pb.p_max, "film_thickness": st.film, "normal_load": pb.load,
+               "creep_loss": loss.creep, "spin_loss": loss.spin,
+               "lambda_ratio": valid.lambda_ratio}
+    for name, v in point.items():
+        values[name][i, k] = v
+    for name, v in contact.items():
+        values[name][i, k] = v
+    values["losses"][i, k] = np.stack(
+        [loss.creep.sum(-1), loss.spin.sum(-1), loss.roller_bearings,
+         loss.idler_bearings.sum(-1), loss.bearing, loss.total], axis=-1)
+    values["warnings"][i, k] = valid.flags
+    return values

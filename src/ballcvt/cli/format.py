@@ -46,7 +46,10 @@ def point_table(r: OperatingResult) -> str:
     lines += [
         "",
         f"losses [W]  creep {ls['creep']:.2f}  spin {ls['spin']:.2f}  bearings "
-        f"{ls['bearing']:.2f}  total {ls['total']:.2f}",
+        f"{ls['bearing']:.2f}" + (f"  churning {ls['churning']:.2f}  seals {ls['seals']:.2f}"
+                                  f"  disc bearings {ls['disc_bearings']:.2f}"
+                                  if ls.get("parasitic") else "")
+        + f"  total {ls['total']:.2f}",
         f"efficiency  overall {r.eta:.5f} (Eq. 38)  {r.eta_loss:.5f} (Eq. 39)  "
         f"speed {r.eta_speed:.5f}  torque {r.eta_torque:.5f}",
         f"solver      {'converged' if r.converged else 'NOT CONVERGED'}, max|residual| "

@@ -10,6 +10,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..bearings.parasitic import parasitic_torques
 from ..contact.hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
 from ..contact.rheology import roelands_pressure_limit
 from ..geometry.kinematics import check_ratio, rolling_radius, spin_axis_projection, \
@@ -26,8 +27,8 @@ __all__ = ["EquilibriumProblem", "build_problem"]
 MIN_POSITIVE = 1e-6
 
 #: Fields with the batch shape ``(...)`` and with ``(..., n_c)``.
-_BATCH = ("ratio", "tilt", "output_torque", "clamp_force", "input_speed")
-_PER_CONTACT = ("rho", "sz", "load", "ax", "ay", "p_max")
+_BATCH = ("ratio", "tilt", "output_torque", "clamp_force", "input_speed", "ball_drag")
+_PER_CONTACT = ("rho", "sz", "load", "ax", "ay", "p_max", "input_drag", "output_drag")
 
 
 @dataclass(frozen=True)
@@ -53,6 +54,12 @@ class EquilibriumProblem:
         Equivalent rolling-direction radii ``R_x`` [m], ``(n_c,)``.
     ax, ay, p_max : ndarray
         Hertz semi-axes [m] and peak pressure [Pa], ``(..., n_c)``.
+    ball_drag : ndarray
+        Churning torque on each ball about its spin axis [N m], ``(...)``; zero without
+        ``design.parasitic`` (docs/model.md §12).
+    input_drag, output_drag : ndarray
+        Parasitic drag torques on the input and output shafts by kind
+        (``churning, seals, disc_bearings``) [N m], ``(..., 3)``.
     """
 
     design: Design
@@ -71,6 +78,9 @@ class EquilibriumProblem:
     ax: np.ndarray
     ay: np.ndarray
     p_max: np.ndarray
+    ball_drag: np.ndarray
+    input_drag: np.ndarray
+    output_drag: np.ndarray
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -89,8 +99,7 @@ class EquilibriumProblem:
 
     def flat(self) -> "EquilibriumProblem":
         """The same points as a 1-D batch (C order)."""
-        nc = self.layout.n_contacts
-        return self._map(lambda a: a.reshape(-1), lambda a: a.reshape(-1, nc))
+        return self._map(lambda a: a.reshape(-1), lambda a: a.reshape(-1, a.shape[-1]))
 
     def take(self, index) -> "EquilibriumProblem":
         """The points ``index`` (integer or boolean array) of a 1-D batch."""
@@ -148,11 +157,16 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
     load = fn0[..., None] * layout.load_factor
     ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
     _check_pressure(fluid, fn0, p_max)
+    rho = rolling_radius(layout, tilt)
+    # parasitic drags at the creep-free speeds (docs/model.md §12)
+    ball, drag0, drag2 = parasitic_torques(
+        design, fluid, w0, ratio * w0, w0 * layout.radius[0] / np.abs(rho[..., 0]),
+        design.n_rollers * fn0 * np.sin(design.theta0))
     return EquilibriumProblem(
         design=design, fluid=fluid, layout=layout, ratio=ratio, tilt=tilt, output_torque=t2,
-        clamp_force=fn0, input_speed=w0, rho=rolling_radius(layout, tilt),
-        sz=spin_axis_projection(layout, tilt), load=load, radius=layout.radius * rs, rx=rx,
-        ax=ax, ay=ay, p_max=p_max)
+        clamp_force=fn0, input_speed=w0, rho=rho, sz=spin_axis_projection(layout, tilt),
+        load=load, radius=layout.radius * rs, rx=rx, ax=ax, ay=ay, p_max=p_max,
+        ball_drag=ball, input_drag=drag0, output_drag=drag2)
 
 
 def _check_pressure(fluid: Fluid, clamp_force: np.ndarray, p_max: np.ndarray) -> None:

@@ -70,6 +70,8 @@ class EquilibriumState:
         ``T_BL,c`` of each contact's body (0 where not an idler) [N m].
     residual : ndarray
         Dimensionless residuals, shape ``(..., n_c)``: ball moment, idlers, output.
+    input_drag : ndarray
+        Parasitic drag on the input shaft [N m] (docs/model.md §12; zero by default).
     """
 
     creep: np.ndarray
@@ -87,11 +89,13 @@ class EquilibriumState:
     roller_bearing_torque: np.ndarray
     idler_bearing_torque: np.ndarray
     residual: np.ndarray
+    input_drag: np.ndarray
 
     @property
     def input_torque(self) -> np.ndarray:
-        """Input torque ``T_0 = -T_body,0`` [N m]."""
-        return -self.body_torque[..., 0]
+        """Input shaft torque ``T_0 = -T_body,0`` plus the input shaft's parasitic drag
+        (zero without ``design.parasitic``) [N m]."""
+        return -self.body_torque[..., 0] + self.input_drag
 
 
 def evaluate(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()
@@ -202,13 +206,17 @@ def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> Eq
     body = n * (-force * pb.radius - moment * lay.z_j)
     scale = pb.torque_scale[..., None]
     res = np.empty(body.shape)
-    res[..., 0] = (m_s - np.sign(omega_s) * t_bls) / (pb.clamp_force * rs)
+    # parasitic drags (zero without design.parasitic, docs/model.md §12): churning on the
+    # ball's spin like its axle bearings; the output shaft's drag adds to the load torque
+    res[..., 0] = (m_s - np.sign(omega_s) * (t_bls + pb.ball_drag)) / (pb.clamp_force * rs)
     res[..., 1:-1] = ((body - np.sign(omega) * t_bl) / scale)[..., 1:-1]
-    res[..., -1] = (body[..., -1] - pb.output_torque) / scale[..., 0]
+    res[..., -1] = ((body[..., -1] - (pb.output_torque + np.sum(pb.output_drag, axis=-1)))
+                    / scale[..., 0])
     return EquilibriumState(creep=creep, omega_s=omega_s, omega=omega, spin=sigma, u_ref=u_ref,
                             film=film, mu=mu, chi=chi, force=force, moment=moment,
                             body_torque=body, axle_reactions=axle, roller_bearing_torque=t_bls,
-                            idler_bearing_torque=t_bl, residual=res)
+                            idler_bearing_torque=t_bl, residual=res,
+                            input_drag=np.sum(pb.input_drag, axis=-1))
 
 
 def residual(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()):

@@ -2,8 +2,9 @@
 
 from .io import BUILTIN_DRIVES, builtin_text, drive_to_toml, load_builtin, load_drive, parse_drive
 from .models import (ARCHITECTURES, Architecture, BearingModel, CamModel, Design, Fluid,
-                     Material, OperatingPoint, ParameterModel)
+                     Material, OperatingPoint, ParameterModel, ParasiticModel)
 
 __all__ = ["ARCHITECTURES", "Architecture", "BearingModel", "CamModel", "Design", "Fluid",
-           "Material", "OperatingPoint", "ParameterModel", "BUILTIN_DRIVES", "builtin_text",
+           "Material", "OperatingPoint", "ParameterModel", "ParasiticModel",
+           "BUILTIN_DRIVES", "builtin_text",
            "drive_to_toml", "load_builtin", "load_drive", "parse_drive"]

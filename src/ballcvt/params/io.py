@@ -2,7 +2,8 @@
 
 A drive file has two tables, ``[design]`` (with ``[design.material]`` and
 ``[design.bearings]``) and ``[fluid]``. Every key is required; unknown keys are
-rejected. The built-in Table I drive ships as ``data/table1.toml`` with its citations.
+rejected. The built-in Table I drive ships as ``data/table1.toml`` with its citations, and
+the same drive built as a hub (cam and parasitic losses, ASSUMED) as ``data/hub.toml``.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ __all__ = ["BUILTIN_DRIVES", "builtin_text", "load_builtin", "load_drive", "pars
            "drive_to_toml"]
 
 #: Named, cited drive definitions shipped with the package.
-BUILTIN_DRIVES = {"table1": "table1.toml"}
+BUILTIN_DRIVES = {"table1": "table1.toml", "hub": "hub.toml"}
 
 
 def builtin_text(name: str = "table1") -> str:

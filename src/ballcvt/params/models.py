@@ -23,6 +23,7 @@ __all__ = [
     "Material",
     "BearingModel",
     "CamModel",
+    "ParasiticModel",
     "Design",
     "Fluid",
     "OperatingPoint",
@@ -187,6 +188,28 @@ class CamModel(ParameterModel):
         return math.radians(self.ramp_angle_deg)
 
 
+class ParasiticModel(ParameterModel):
+    """Losses beyond the paper's contacts and bearings (docs/model.md §12); optional."""
+
+    oil_fraction: float = _f("-", "volume fraction of oil in the oil-air mixture around the "
+                             "balls and discs (effective density = fraction x density)",
+                             ge=0, le=1)
+    churning_factor: float = _f("-", "multiplier on the moment coefficient of the churning "
+                                "model (1 = as published)", ge=0, lt=math.inf)
+    disc_radius: float = _f("m", "outer radius of the discs (churning)", gt=0, lt=10)
+    seal_diameter: float = _f("m", "counterface diameter of the shaft seals (one on each "
+                              "shaft)", ge=0, lt=10)
+    seal_k1: float = _f("N mm", "K_S1 of the seal torque K_S1 d_s^beta + K_S2 (d_s in mm)",
+                        ge=0, lt=math.inf)
+    seal_beta: float = _f("-", "beta of the seal torque", ge=0, lt=5)
+    seal_k2: float = _f("N mm", "K_S2 of the seal torque", ge=0, lt=math.inf)
+    disc_bearing_diameter: float = _f("m", "bore diameter of the thrust bearing that "
+                                      "closes the clamping loop between the discs; 0 for "
+                                      "none", ge=0, lt=10)
+    disc_bearing_friction: float = _f("-", "its constant friction coefficient (SKF: 0.0013 "
+                                      "for thrust ball bearings)", ge=0, lt=1)
+
+
 class Design(ParameterModel):
     """Geometry of a planetary ball variator (Sec. II.A, Table I, docs/model.md §1).
 
@@ -227,6 +250,8 @@ class Design(ParameterModel):
     bearings: BearingModel
     cam: CamModel | None = Field(None, description="loading cam of the 'cam' clamping law "
                                  "(optional: only that law needs it)")
+    parasitic: ParasiticModel | None = Field(None, description="churning, seal and disc "
+                                             "bearing losses (optional: none without it)")
 
     @model_validator(mode="after")
     def _buildable(self) -> "Design":

@@ -14,7 +14,13 @@ from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState
 from ..geometry.kinematics import creep_term
 
-__all__ = ["PowerLosses", "Efficiency", "power_losses", "efficiency"]
+__all__ = ["PowerLosses", "Efficiency", "power_losses", "efficiency", "loss_breakdown",
+           "LOSS_KINDS"]
+
+#: Kinds of power loss, the keys of `loss_breakdown` (``bearing`` = roller + idler
+#: bearings, ``parasitic`` = churning + seals + disc bearings, ``total`` = all).
+LOSS_KINDS = ("creep", "spin", "roller_bearings", "idler_bearings", "bearing", "churning",
+              "seals", "disc_bearings", "parasitic", "total")
 
 
 @dataclass(frozen=True)
@@ -29,12 +35,19 @@ class PowerLosses:
         ``n T_BLS |omega_S|``, shape ``(...)``.
     idler_bearings : ndarray
         ``T_BL,c |Omega_c|`` per contact (0 at the discs), shape ``(..., n_c)``.
+    churning, seals, disc_bearings : ndarray
+        Parasitic losses (docs/model.md §12; zero without ``design.parasitic``), shape
+        ``(...)``: churning of the balls and discs, the two shaft seals, the discs' thrust
+        bearings.
     """
 
     creep: np.ndarray
     spin: np.ndarray
     roller_bearings: np.ndarray
     idler_bearings: np.ndarray
+    churning: np.ndarray
+    seals: np.ndarray
+    disc_bearings: np.ndarray
 
     @property
     def bearing(self) -> np.ndarray:
@@ -42,9 +55,24 @@ class PowerLosses:
         return self.roller_bearings + np.sum(self.idler_bearings, axis=-1)
 
     @property
+    def parasitic(self) -> np.ndarray:
+        """Churning, seal and disc-bearing losses [W]."""
+        return self.churning + self.seals + self.disc_bearings
+
+    @property
     def total(self) -> np.ndarray:
-        """``P_loss = P_CR + P_SP + P_BL`` [W]."""
-        return np.sum(self.creep + self.spin, axis=-1) + self.bearing
+        """``P_loss = P_CR + P_SP + P_BL`` (Eq. 40) plus the parasitic losses [W]."""
+        return np.sum(self.creep + self.spin, axis=-1) + self.bearing + self.parasitic
+
+
+def loss_breakdown(losses: "PowerLosses") -> dict:
+    """Every kind of `LOSS_KINDS` summed over the contacts [W], shape ``(...)`` each."""
+    return {"creep": np.sum(losses.creep, axis=-1), "spin": np.sum(losses.spin, axis=-1),
+            "roller_bearings": losses.roller_bearings,
+            "idler_bearings": np.sum(losses.idler_bearings, axis=-1),
+            "bearing": losses.bearing, "churning": losses.churning, "seals": losses.seals,
+            "disc_bearings": losses.disc_bearings, "parasitic": losses.parasitic,
+            "total": losses.total}
 
 
 @dataclass(frozen=True)
@@ -78,7 +106,12 @@ def power_losses(problem: EquilibriumProblem, state: EquilibriumState) -> PowerL
     spin = n * np.abs(state.moment * state.spin * state.omega)
     roller = n * state.roller_bearing_torque * np.abs(state.omega_s)
     idler = state.idler_bearing_torque * np.abs(state.omega)
-    return PowerLosses(creep=creep, spin=spin, roller_bearings=roller, idler_bearings=idler)
+    # parasitic drags times the actual speeds (docs/model.md §12)
+    shafts = (problem.input_drag * state.omega[..., :1]
+              + problem.output_drag * state.omega[..., -1:])
+    churning = shafts[..., 0] + n * problem.ball_drag * np.abs(state.omega_s)
+    return PowerLosses(creep=creep, spin=spin, roller_bearings=roller, idler_bearings=idler,
+                       churning=churning, seals=shafts[..., 1], disc_bearings=shafts[..., 2])
 
 
 def efficiency(problem: EquilibriumProblem, state: EquilibriumState,

@@ -23,7 +23,7 @@ from ..contact.quadrature import Quadrature
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import InputError
 from ..params.models import Design, Fluid
-from ..performance.efficiency import efficiency, power_losses
+from ..performance.efficiency import efficiency, loss_breakdown, power_losses
 from ..performance.validity import validity, warning_messages
 from ..solver.point import PointSolution
 
@@ -100,7 +100,10 @@ class OperatingResult:
     axle_reactions : tuple of float
         ``(F_Ra, F_Rb)`` on each ball axle [N].
     losses : Mapping[str, float]
-        ``creep``, ``spin``, ``roller_bearings``, ``idler_bearings``, ``bearing``, ``total`` [W].
+        Power loss by kind [W]: ``creep``, ``spin``, ``roller_bearings``,
+        ``idler_bearings``, ``bearing``, ``churning``, ``seals``, ``disc_bearings``,
+        ``parasitic``, ``total`` (``LOSS_KINDS``; the parasitic ones are zero without
+        ``design.parasitic``, docs/model.md §12).
     eta, eta_loss, eta_speed, eta_torque : float
         Overall efficiency by Eq. 38 and by Eq. 39, speed (Eq. 9) and torque (Eq. 37) [-].
     converged : bool
@@ -254,7 +257,10 @@ class OperatingResult:
         except (OSError, UnicodeDecodeError, ValueError) as exc:
             raise InputError("result file", str(path), "a readable JSON result",
                              message=f"{source}: cannot be read ({exc})") from None
-        return cls.from_dict(_unfinite(data), source)
+        if isinstance(data, dict):       # parameter sets keep null (an absent table)
+            data = {k: v if k in ("design", "fluid") else _unfinite(v)
+                    for k, v in data.items()}
+        return cls.from_dict(data, source)
 
 
 _ADAPTER = TypeAdapter(OperatingResult)
@@ -274,8 +280,8 @@ def _check_consistent(r: OperatingResult, source: str) -> None:
         ("eta_loss", r.eta_loss, 1.0 - ls.get("total", math.nan) / r.input_power
          if r.input_power else r.eta_loss, 1e-12, "1 - losses.total / input power (Eq. 39)"),
         ("losses.total", ls.get("total", math.nan),
-         ls.get("creep", math.nan) + ls.get("spin", math.nan) + ls.get("bearing", math.nan),
-         1e-9, "creep + spin + bearing"),
+         ls.get("creep", math.nan) + ls.get("spin", math.nan) + ls.get("bearing", math.nan)
+         + ls.get("parasitic", 0.0), 1e-9, "creep + spin + bearing + parasitic"),
         ("eta_loss", r.eta_loss, r.eta, 1e-6, "eta (Eq. 38 = Eq. 39)"),
     ]
     for name, value, expected, tol, what in checks:
@@ -327,10 +333,7 @@ def make_result(problem: EquilibriumProblem, solution: PointSolution,
             creep_loss=f(loss.creep[i]), spin_loss=f(loss.spin[i]),
             lambda_ratio=f(valid.lambda_ratio[i]))
         for i, name in enumerate(lay.names)}
-    losses = {"creep": f(np.sum(loss.creep)), "spin": f(np.sum(loss.spin)),
-              "roller_bearings": f(loss.roller_bearings),
-              "idler_bearings": f(np.sum(loss.idler_bearings)), "bearing": f(loss.bearing),
-              "total": f(loss.total)}
+    losses = {kind: f(value) for kind, value in loss_breakdown(loss).items()}
     return OperatingResult(
         architecture=lay.architecture, design=problem.design, fluid=problem.fluid,
         ratio=f(problem.ratio), output_torque=f(problem.output_torque),

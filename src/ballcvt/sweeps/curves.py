@@ -14,7 +14,7 @@ from ..equilibrium.problem import build_problem
 from ..equilibrium.residual import evaluate
 from ..errors import TractionLimitError
 from ..optimize.clamp import optimal_clamp_force
-from ..performance.efficiency import efficiency, power_losses
+from ..performance.efficiency import efficiency, loss_breakdown, power_losses
 from ..performance.validity import validity
 from ..solver.batch import solve_batch
 from ..solver.clamped import pressure_bound_force, solve_clamped, with_clamp
@@ -183,8 +183,7 @@ def _derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep
         values[name][i, k] = v
     for name, v in contact.items():
         values[name][i, k] = v
-    values["losses"][i, k] = np.stack(
-        [loss.creep.sum(-1), loss.spin.sum(-1), loss.roller_bearings,
-         loss.idler_bearings.sum(-1), loss.bearing, loss.total], axis=-1)
+    kinds = loss_breakdown(loss)
+    values["losses"][i, k] = np.stack([kinds[kind] for kind in LOSS_KINDS], axis=-1)
     values["warnings"][i, k] = valid.flags
     return values

@@ -53,7 +53,7 @@ def parameters(ds: xr.Dataset, prefix: str) -> dict:
     ``Design(**parameters(ds, "design"))`` and ``Fluid(**parameters(ds, "fluid"))`` rebuild
     the parameter sets a sweep was computed with.
     """
-    nested = {"design": ("material", "bearings", "cam")}.get(prefix, ())
+    nested = {"design": ("material", "bearings", "cam", "parasitic")}.get(prefix, ())
     out: dict = {}
     for key, value in ds.attrs.items():
         if not key.startswith(prefix + "_"):

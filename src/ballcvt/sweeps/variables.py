@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..performance.efficiency import LOSS_KINDS  # the ``loss`` axis of a sweep
 from ..performance.validity import WARNINGS
 
 __all__ = ["VARIABLES", "POINT_VARIABLES", "CONTACT_VARIABLES", "LOSS_KINDS", "STATUS",
@@ -12,8 +13,6 @@ __all__ = ["VARIABLES", "POINT_VARIABLES", "CONTACT_VARIABLES", "LOSS_KINDS", "S
 #: ``status`` values.
 STATUS = {"converged": 0, "beyond_limit": 1, "not_converged": 2}
 
-#: Kinds of power loss: the ``loss`` axis of a sweep, the keys of ``OperatingResult.losses``.
-LOSS_KINDS = ("creep", "spin", "roller_bearings", "idler_bearings", "bearing", "total")
 
 #: name -> (units, long name). Dimensionless quantities have units "1" (CF conventions).
 VARIABLES = {
@@ -35,7 +34,8 @@ VARIABLES = {
     "input_torque": ("N m", "input torque T_0"),
     "actual_ratio": ("1", "actual speed ratio omega_2 / omega_0"),
     "tilt_deg": ("degree", "ball tilt angle gamma"),
-    "losses": ("W", "power loss by kind (Eq. 40; total = creep + spin + bearing)"),
+    "losses": ("W", "power loss by kind (Eq. 40; total = creep + spin + bearing + "
+                    "parasitic)"),
     "warnings": ("1", "validity warnings (bit flags, docs/model.md section 10)"),
     "creep": ("1", "creep coefficient C (Eq. 7)"),
     "spin": ("1", "spin coefficient sigma (Eqs. 11-14)"),

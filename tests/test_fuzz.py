@@ -1,6 +1,8 @@
 """Fuzzed command lines and design files: always exit 0 or 2, one line on stderr, no
 traceback, never NaN in the output (more examples with HYPOTHESIS_PROFILE=thorough)."""
 
+from pathlib import Path
+
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -10,8 +12,18 @@ from ballcvt.params.io import builtin_text
 
 BAD_NUMBERS = ["-1", "-1e9", "0", "inf", "-inf", "nan", "1e400", "-1e400", "", "abc", "1,5",
                "0x10", "--", " "]
-#: Cheap values of the other options, so that a valid fuzzed value finishes quickly.
-CHEAP = {"map": ["--n-ratio", "2", "--n-torque", "2", "--quiet"]}
+TINY_CYCLE = str(Path(__file__).parent / "data" / "tiny_cycle.csv")
+#: Cheap values of the other options, so that a valid fuzzed value finishes quickly
+#: (flag -> values; the fuzzed flag itself is left out).
+CHEAP = {"map": {"--n-ratio": ["2"], "--n-torque": ["2"], "--quiet": []},
+         "table": {"--n-ratio": ["2"], "--n-speed": ["2"], "--n-torque": ["2"],
+                   "--quiet": []},
+         "cycle": {"": [TINY_CYCLE], "--target-speed": ["180"], "--quiet": []}}
+
+
+def _cheap(command, flag):
+    return [a for f, vals in CHEAP.get(command, {}).items() if f != flag
+            for a in ([f] if f else []) + vals]
 
 
 def _numeric_flags():
@@ -62,8 +74,8 @@ def test_every_numeric_flag_is_fuzzed():
 @pytest.mark.parametrize("value", BAD_NUMBERS)
 def test_bad_numbers_exit_2(capsys, tmp_path, command, flag, nargs, value):
     values = [value] * (nargs if isinstance(nargs, int) else 1)
-    argv = [command, flag, *values, *CHEAP.get(command, [])]
-    if command in ("map", "reproduce"):
+    argv = [command, flag, *values, *_cheap(command, flag)]
+    if command in ("map", "reproduce", "cycle", "table"):
         argv += ["--out", str(tmp_path / "out")]
     code, out, err = run(capsys, argv)
     if value == "0" and flag == "--torque" and command == "point":

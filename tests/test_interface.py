@@ -77,17 +77,39 @@ def _variants(design, tmp):
     limit_cam = (["limit", "--json", *law], dict(cam))
     map_cam = (["map", "--out", str(tmp / "m2"), *small, *law],
                {"--cam-angle": ["--cam-angle", "4"]})
+    tiny = str(Path(__file__).parent / "data" / "tiny_cycle.csv")
+    cycle = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c0"), "--json"], {
+        "--arch": ["--arch", "single"], "--clamp": ["--clamp", "2500"],
+        "--clamp-law": ["--clamp-law", "optimal"], "--design": ["--design", design],
+        "--strategy": ["--strategy", "max-efficiency", "--ratio-range", "0.8", "1.3"],
+        "--target-speed": ["--target-speed", "150"],
+        "--candidates": ["--strategy", "max-efficiency", "--candidates", "3"],
+        "--ratio-range": ["--strategy", "max-efficiency", "--ratio-range", "0.9", "1.2"],
+        "--out": ["--out", str(tmp / "c1")], "--json": None, "--quiet": ["--quiet"]})
+    cycle_cam = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c2"), "--json",
+                  *law], {"--cam-preload": ["--cam-preload", "3000"]})
+    table = (["table", "--out", str(tmp / "t0"), "--n-ratio", "2", "--n-speed", "2",
+              "--n-torque", "3"], {
+        "--arch": ["--arch", "single"], "--clamp": ["--clamp", "2500"],
+        "--clamp-law": law, "--design": ["--design", design],
+        "--ratio-range": ["--ratio-range", "0.7", "1.4"], "--n-ratio": ["--n-ratio", "3"],
+        "--speed-range": ["--speed-range", "800", "1500"], "--n-speed": ["--n-speed", "3"],
+        "--torque-max": ["--torque-max", "50"], "--n-torque": ["--n-torque", "4"],
+        "--out": ["--out", str(tmp / "t1")], "--workers": ["--workers", "2"],
+        "--quiet": ["--quiet"]})
     return {"point": point, "limit": limit, "clamp": clamp, "map": mapping,
-            "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam}
+            "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam,
+            "cycle": cycle, "cycle:cam": cycle_cam, "table": table}
 
 
 def _output(code, out, err, argv):
     """What a command produced: stdout, and the data of the map it wrote (if any)."""
     assert code == 0, (argv, err)
     files = ""
-    if argv[0] == "map":
+    if argv[0] in ("map", "cycle", "table"):
         folder = Path(argv[argv.index("--out") + 1])
-        files = (folder / "map.csv").read_text()
+        name = {"map": "map.csv", "cycle": "steps.csv", "table": "table.csv"}[argv[0]]
+        files = (folder / name).read_text()
     return re.sub(r"\d+\.\d s on", "", out) + files
 
 
@@ -97,11 +119,14 @@ def test_every_flag_changes_the_output(capsys, tmp_path, small_design):
     covered = {}
     for name, (_, changes) in variants.items():
         covered.setdefault(name.split(":")[0], set()).update(changes)
+    # every subcommand but reproduce and design (tested below) is covered here
+    assert set(covered) == set(subs) - {"reproduce", "design"}
     for command, flags in covered.items():
-        # every flag covered (the map's cam options act like the point's: one suffices)
+        # every flag covered (the cam options act alike everywhere: one suffices for the
+        # commands that only pass them on)
         cam_rest = {f for f in _options(subs[command]) if f.startswith("--cam-")}
-        assert flags | (cam_rest if command == "map" else set()) == _options(subs[command]), \
-            command
+        assert flags | (cam_rest if command in ("map", "cycle", "table") else set()) == \
+            _options(subs[command]), command
     for command, (base, changes) in variants.items():
         reference = _output(*run(capsys, base), base)
         for flag, extra in changes.items():

@@ -8,8 +8,8 @@ import ballcvt
 ROOT = Path(ballcvt.__file__).parent
 #: Lowest first. Modules at the top level that are not listed are base (errors, _version).
 LAYERS = ["params", "geometry", "clamping", "contact", "bearings", "equilibrium", "solver",
-          "performance", "optimize", "results", "sweeps", "variator", "plotting", "reports",
-          "cli"]
+          "performance", "optimize", "results", "sweeps", "cycles", "variator", "plotting",
+          "reports", "cli"]
 
 
 def _layer(module: str) -> int | None:

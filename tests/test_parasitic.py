@@ -9,8 +9,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ballcvt import TractionLimitError, Variator, load_builtin
-from ballcvt.bearings.parasitic import (moment_coefficient, parasitic_torques, seal_torque,
-                                        thrust_bearing_torque, windage_torque)
+from ballcvt.bearings.parasitic import (
+    moment_coefficient,
+    parasitic_torques,
+    seal_torque,
+    thrust_bearing_torque,
+    windage_torque,
+)
 
 
 @pytest.fixture(scope="module")

@@ -13,8 +13,11 @@ import pytest
 
 from ballcvt.cli.main import main
 
-README = Path(__file__).resolve().parents[1] / "README.md"
+ROOT = Path(__file__).resolve().parents[1]
+README = ROOT / "README.md"
 BLOCKS = re.findall(r"```(\w*)\n(.*?)```", README.read_text(), re.S)
+#: Other documents whose command lines must run (continuation lines joined).
+DOCS = [ROOT / "docs" / "cycles.md"]
 
 
 def test_readme_has_examples():
@@ -26,6 +29,7 @@ def test_python_blocks_run_in_order(tmp_path, monkeypatch):
     import matplotlib
     matplotlib.use("Agg")                 # the test has no display
     monkeypatch.chdir(tmp_path)
+    (tmp_path / "examples").symlink_to(ROOT / "examples")   # as in a clone
     namespace: dict = {}
     for i, (kind, code) in enumerate(BLOCKS):
         if kind == "python":
@@ -33,12 +37,18 @@ def test_python_blocks_run_in_order(tmp_path, monkeypatch):
     assert (tmp_path / "point.json").exists() and (tmp_path / "sweep.csv").exists()
 
 
-def _cli_lines():
-    for kind, code in BLOCKS:
+def _run_line(line):
+    """Run one documented command line, with the repository's example files."""
+    args = [str(ROOT / a) if a.startswith("examples/") else a for a in shlex.split(line)[1:]]
+    return main(args)
+
+
+def _cli_lines(blocks=BLOCKS):
+    for kind, code in blocks:
         if kind == "bash":
-            for line in code.splitlines():
+            for line in code.replace("\\\n", " ").splitlines():
                 if line.startswith("ballcvt "):
-                    yield line
+                    yield " ".join(line.split())
 
 
 @pytest.fixture(scope="module")
@@ -51,4 +61,14 @@ def test_cli_examples_run(line, workdir, monkeypatch, capsys):
     monkeypatch.chdir(workdir)
     if "--design my_drive.toml" in line and not (workdir / "my_drive.toml").exists():
         assert main(["design", "export", "my_drive.toml"]) == 0
-    assert main(shlex.split(line)[1:]) == 0, capsys.readouterr().err
+    assert _run_line(line) == 0, capsys.readouterr().err
+
+
+DOC_LINES = [(doc.name, line) for doc in DOCS
+             for line in _cli_lines(re.findall(r"```(\w*)\n(.*?)```", doc.read_text(), re.S))]
+
+
+@pytest.mark.parametrize("doc, line", DOC_LINES)
+def test_doc_cli_examples_run(doc, line, workdir, monkeypatch, capsys):
+    monkeypatch.chdir(workdir)
+    assert _run_line(line) == 0, (doc, capsys.readouterr().err)

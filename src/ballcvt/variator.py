@@ -259,6 +259,47 @@ class Variator:
                                    float(output_torque), _speed(input_speed, input_speed_rpm),
                                    self.options, creep_limit, max_pressure)
 
+    def run_cycle(self, cycle, *, strategy: str = "target-input-speed",
+                  target_input_speed: float | None = None,
+                  target_input_speed_rpm: float | None = None,
+                  clamp_force: float | None = None, clamp_law=None, candidates: int = 9,
+                  ratio_range=None, progress: bool | None = None):
+        """Run this drive over a duty cycle (see `ballcvt.cycles.run_cycle`).
+
+        Parameters
+        ----------
+        cycle : Cycle or path
+            A `ballcvt.cycles.Cycle`, or a cycle CSV file (docs/cycles.md).
+        strategy : {"target-input-speed", "max-efficiency"}
+            How the ratio is chosen.
+        target_input_speed, target_input_speed_rpm : float, optional
+            Input speed held by ``target-input-speed`` [rad/s] or [rpm].
+        clamp_force, clamp_law
+            As in `solve`.
+        candidates : int
+            Ratios tried per step by ``max-efficiency``.
+        ratio_range : (float, float), optional
+            Ratios ``max-efficiency`` may use [-].
+        progress : bool, optional
+            Progress bar (default: when stderr is a terminal).
+
+        Returns
+        -------
+        CycleResult
+        """
+        from .cycles import Cycle, read_cycle, run_cycle
+        if not isinstance(cycle, Cycle):
+            cycle = read_cycle(cycle)
+        if target_input_speed is not None and target_input_speed_rpm is not None:
+            raise InputError("target_input_speed", target_input_speed,
+                             "at most one of target_input_speed [rad/s] or "
+                             "target_input_speed_rpm [rpm]")
+        target = (target_input_speed_rpm * math.pi / 30.0
+                  if target_input_speed_rpm is not None else target_input_speed)
+        return run_cycle(self, cycle, strategy=strategy, target_input_speed=target,
+                         clamp_force=clamp_force, clamp_law=clamp_law, candidates=candidates,
+                         ratio_range=ratio_range, progress=progress)
+
     def with_quadrature(self, quadrature: Quadrature) -> "Variator":
         """A copy using another traction-integral rule."""
         return replace(self, options=replace(self.options, quadrature=quadrature))

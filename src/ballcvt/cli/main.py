@@ -22,8 +22,9 @@ from pathlib import Path
 from .._fileio import atomic_write_text, check_output_dir, check_output_file
 from .._version import __version__
 from ..clamping.laws import CLAMP_LAWS
+from ..cycles.io import STRATEGIES
 from ..errors import BallCVTError, InputError
-from ..params.io import builtin_text, drive_to_toml, load_builtin, load_drive
+from ..params.io import BUILTIN_DRIVES, builtin_text, drive_to_toml, load_builtin, load_drive
 from ..params.models import ARCHITECTURES
 from ..variator import Variator
 from .format import clamp_table, limit_table, point_table
@@ -98,8 +99,9 @@ OPTIONS = {
               "help": "input speed [rpm] (default: %(default)s)"},
     "creep-limit": {"type": _number, "default": None,
                     "help": "largest admissible |creep| (default: the design's, 0.10)"},
-    "design": {"type": Path, "metavar": "FILE.toml",
-               "help": "drive definition (default: the paper's Table I drive)"},
+    "design": {"metavar": "FILE.toml",
+               "help": "drive definition: a TOML file, or a built-in drive's name (table1, "
+                       "hub) (default: table1, the paper's Table I drive)"},
     "json": {"action": "store_true", "help": "print one JSON object"},
 }
 
@@ -114,6 +116,23 @@ CAM_KEYS = {"cam_disc": "disc", "cam_preload": "preload", "cam_angle": "ramp_ang
 def _add(p, *names):
     for name in names:
         p.add_argument(f"--{name}", **OPTIONS[name])
+
+
+def _out(p, default: str):
+    p.add_argument("--out", type=Path, default=Path(default),
+                   help="output folder (default: %(default)s)")
+
+
+def _grid_options(p, *, n_ratio: int, n_torque: int, most: int, torque_max: str):
+    """The ratio x torque grid of ``map`` and ``table``."""
+    p.add_argument("--ratio-range", type=_number, nargs=2, default=(0.5, 2.0),
+                   metavar=("MIN", "MAX"), help="ratio range (default: 0.5 2)")
+    p.add_argument("--n-ratio", type=_count(2, most), default=n_ratio,
+                   help=f"ratios, 2-{most} (default: %(default)s)")
+    p.add_argument("--torque-max", type=_number, default=None,
+                   help=f"largest torque [N m] (default: {torque_max})")
+    p.add_argument("--n-torque", type=_count(2, most), default=n_torque,
+                   help=f"torques, 2-{most} (default: %(default)s)")
 
 
 def _run_options(p):
@@ -161,16 +180,53 @@ def build_parser() -> argparse.ArgumentParser:
              "map.csv in --out. Points beyond the limit have status 1.",
              "ballcvt map --out map_dir --clamp 2000 --speed 2000 --n-ratio 31 --n-torque 35")
     _add(p, "arch", *CLAMP_OPTIONS, "speed", "design")
-    p.add_argument("--out", type=Path, default=Path("ballcvt-map"),
-                   help="output folder (default: %(default)s)")
-    p.add_argument("--ratio-range", type=_number, nargs=2, default=(0.5, 2.0),
-                   metavar=("MIN", "MAX"), help="ratio range (default: 0.5 2)")
-    p.add_argument("--n-ratio", type=_count(2, 1000), default=31,
-                   help="ratios, 2-1000 (default: %(default)s)")
-    p.add_argument("--torque-max", type=_number, default=None,
-                   help="largest torque [N m] (default: 1.02 x the largest limiting torque)")
-    p.add_argument("--n-torque", type=_count(2, 1000), default=35,
-                   help="torques, 2-1000 (default: %(default)s)")
+    _out(p, "ballcvt-map")
+    _grid_options(p, n_ratio=31, n_torque=35, most=1000,
+                  torque_max="1.02 x the largest limiting torque")
+    _run_options(p)
+
+    p = _sub(sub, "cycle", "a duty cycle: energy, efficiency and losses over a time series",
+             "Run the drive over a duty cycle (a CSV time series with the units in the "
+             "header: time and output speed and torque, or time and input speed and power "
+             "with an optional ratio; docs/cycles.md). A strategy picks the ratio at each "
+             "step; all steps are solved batched. Writes steps.csv, summary.json and "
+             "cycle.png/.svg in --out; steps beyond the capacity or outside the ratio range "
+             "are flagged, never hidden.",
+             "ballcvt cycle examples/cycles/ebike_commute.csv --design hub --clamp-law cam "
+             "--strategy target-input-speed --target-speed 180 --out commute")
+    p.add_argument("cycle_file", type=Path, metavar="CYCLE.csv", help="the duty cycle")
+    _add(p, "arch", *CLAMP_OPTIONS, "design")
+    p.add_argument("--strategy", choices=STRATEGIES, default="target-input-speed",
+                   help="how the ratio is chosen (default: %(default)s)")
+    p.add_argument("--target-speed", type=_number, default=None,
+                   help="input speed held by target-input-speed [rpm] (required by it)")
+    p.add_argument("--candidates", type=_count(3, 101), default=9,
+                   help="ratios tried per step by max-efficiency, 3-101 (default: 9)")
+    p.add_argument("--ratio-range", type=_number, nargs=2, default=None,
+                   metavar=("MIN", "MAX"),
+                   help="ratios max-efficiency may use (default: the usable range)")
+    _out(p, "ballcvt-cycle")
+    _add(p, "json")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress bar and no summary line")
+
+    p = _sub(sub, "table", "lookup tables (ratio x input speed x torque) for system "
+             "simulation: CSV, MATLAB .mat, Modelica",
+             "Efficiency, input torque and losses over ideal ratio x input speed x output "
+             "torque under a clamping law, as table.csv, table.mat (Simscape table-based "
+             "blocks), table_modelica.txt (Modelica CombiTable2Ds) and table.nc in --out "
+             "(layout: docs/cycles.md). Beyond the traction capacity the .mat and Modelica "
+             "tables hold the value at the limit; status and limit_torque say where.",
+             "ballcvt table --design hub --clamp-law cam --speed-range 100 3000 --n-speed 6 "
+             "--out tables")
+    _add(p, "arch", *CLAMP_OPTIONS, "design")
+    _grid_options(p, n_ratio=16, n_torque=20, most=200, torque_max="the largest limiting "
+                  "torque; torques start at 0")
+    p.add_argument("--speed-range", type=_number, nargs=2, default=(500.0, 4000.0),
+                   metavar=("MIN", "MAX"), help="input speed range [rpm] (default: 500 4000)")
+    p.add_argument("--n-speed", type=_count(2, 100), default=5,
+                   help="input speeds, 2-100 (default: %(default)s)")
+    _out(p, "ballcvt-table")
     _run_options(p)
 
     p = _sub(sub, "reproduce", "recompute every result of the paper: figures, data and "
@@ -179,8 +235,7 @@ def build_parser() -> argparse.ArgumentParser:
              "drive: figNN.png/.svg/.csv, data/*.nc, claims.csv, report.md and report.html "
              "in --out.",
              "ballcvt reproduce --out reproduction --quick --workers 2")
-    p.add_argument("--out", type=Path, default=Path("ballcvt-reproduction"),
-                   help="output folder (default: %(default)s)")
+    _out(p, "ballcvt-reproduction")
     p.add_argument("--quick", action="store_true", help="coarse grids (seconds)")
     _run_options(p)
 
@@ -195,8 +250,17 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _drive(design):
+    """A ``--design`` value: a built-in drive's name or a TOML file."""
+    if design is None:
+        return load_builtin()
+    if design in BUILTIN_DRIVES and not Path(design).exists():
+        return load_builtin(design)
+    return load_drive(design)
+
+
 def _variator(args) -> Variator:
-    design, fluid = load_drive(args.design) if args.design else load_builtin()
+    design, fluid = _drive(args.design)
     cam = {key: getattr(args, opt) for opt, key in CAM_KEYS.items()
            if getattr(args, opt, None) is not None}
     if cam:
@@ -262,36 +326,43 @@ def _cmd_clamp(args) -> int:
     return 0
 
 
-def _cmd_map(args) -> int:
+def _grid(args):
+    """Validated grid options of ``map`` and ``table``: (out, variator, law, ratios)."""
     import numpy as np
-
-    from ..equilibrium.problem import build_problem
     lo, hi = args.ratio_range
     if not 0 < lo < hi:
         raise InputError("ratio_range", f"{lo:g} {hi:g}", "0 < MIN < MAX")
     if args.torque_max is not None and not args.torque_max > 0:
         raise InputError("torque_max", args.torque_max, "> 0 N m")
-    out = check_output_dir(args.out)
-    v = _variator(args)
-    law = _law(args)
-    ratios = np.linspace(lo, hi, args.n_ratio)
-    speed = np.full(ratios.size, _rpm(args.speed) * np.pi / 30.0)
-    build_problem(v.design, v.fluid, v.architecture, ratios, 0.0,
-                  law.get("clamp_force", 1.0), speed)              # validates every input
-    # the limiting torque of every ratio, found once: it sets the default torque range
-    # and is handed to the sweep
-    show = _show(args)
+    return check_output_dir(args.out), _variator(args), _law(args), np.linspace(lo, hi,
+                                                                                args.n_ratio)
+
+
+def _limits(args, v, law, ratios, speeds):
+    """The limiting torque of every (ratio, speed), found once (with a progress bar): it
+    sets the default torque range and is handed to the sweep."""
+    import numpy as np
     from tqdm.auto import tqdm
 
+    from ..equilibrium.problem import build_problem
     from ..solver.limit import bisection_steps
     from ..sweeps import limit_torques
     force = law.get("clamp_force")
-    resolved = None if force is not None else v.clamp_law(args.clamp_law)
-    with tqdm(total=bisection_steps(), desc=f"limiting torque at {ratios.size} ratios",
-              unit="step", disable=not show) as bar:
-        _, limits = limit_torques(v.design, v.fluid, v.architecture, ratios, speed,
-                                  None if force is None else np.full(ratios.size, force),
-                                  resolved, v.options, v.design.creep_limit, bar.update)
+    build_problem(v.design, v.fluid, v.architecture, ratios, 0.0,
+                  1.0 if force is None else force, speeds)          # validates every input
+    with tqdm(total=bisection_steps(), desc=f"limiting torque at {ratios.size} points",
+              unit="step", disable=not _show(args)) as bar:
+        return limit_torques(v.design, v.fluid, v.architecture, ratios, speeds,
+                             None if force is None else np.full(ratios.size, force),
+                             None if force is not None else v.clamp_law(args.clamp_law),
+                             v.options, v.design.creep_limit, bar.update)[1]
+
+
+def _cmd_map(args) -> int:
+    import numpy as np
+    out, v, law, ratios = _grid(args)
+    show = _show(args)
+    limits = _limits(args, v, law, ratios, np.full(ratios.size, _rpm(args.speed) * np.pi / 30))
     top = 1.02 * float(np.nanmax(limits)) if args.torque_max is None else args.torque_max
     ds = v.sweep(ratio=ratios, output_torque=np.linspace(top / args.n_torque, top,
                                                          args.n_torque),
@@ -327,6 +398,64 @@ def _write_map(ds, out, args):
                         limit_eta=one.eta_at_limit.values), out, "map")
 
 
+def _cmd_cycle(args) -> int:
+    from ..cycles import read_cycle, run_cycle
+    out = check_output_dir(args.out)
+    cycle = read_cycle(args.cycle_file)
+    v = _variator(args)
+    target = None if args.target_speed is None else _rpm(args.target_speed) * math.pi / 30
+    law = _law(args)
+    result = run_cycle(v, cycle, strategy=args.strategy, target_input_speed=target,
+                       clamp_force=law.get("clamp_force"), clamp_law=law.get("clamp_law"),
+                       candidates=args.candidates, ratio_range=args.ratio_range,
+                       progress=_show(args))
+    result.save(out)
+    import matplotlib
+    matplotlib.use("Agg")                    # the CLI writes files only
+    from ..plotting import cycle_figure, save
+    save(cycle_figure(result.steps, f"{cycle.name}: {v.design.name}, "
+                      f"{result.summary['strategy']}, {_clamp_label(args)}"), out, "cycle")
+    s = result.summary
+    if args.json:
+        print(json.dumps(s, indent=2))
+    elif not args.quiet:
+        eff = "n/a" if s["efficiency"] is None else f"{s['efficiency']:.4f}"
+        print(f"wrote {out}/steps.csv, summary.json, cycle.png, cycle.svg: {s['steps']} steps "
+              f"({s['duration_s']:.0f} s), energy in {s['energy_in_J'] / 3.6e3:.2f} Wh, out "
+              f"{s['energy_out_J'] / 3.6e3:.2f} Wh, efficiency {eff}; {s['steps_flagged']} "
+              f"steps flagged; {s['run_time_s']:.1f} s")
+    return 0
+
+
+def _cmd_table(args) -> int:
+    import numpy as np
+
+    from ..sweeps import to_netcdf
+    from ..sweeps.tables import write_tables
+    w_lo, w_hi = args.speed_range
+    if not 0 < w_lo < w_hi or not math.isfinite(w_hi):
+        raise InputError("speed_range", f"{w_lo:g} {w_hi:g}", "0 < MIN < MAX rpm")
+    out, v, law, ratios = _grid(args)
+    rpm = np.linspace(w_lo, w_hi, args.n_speed)
+    r_grid, w_grid = (g.ravel() for g in np.meshgrid(ratios, rpm * math.pi / 30))
+    limits = _limits(args, v, law, r_grid, w_grid)
+    top = float(np.nanmax(limits)) if args.torque_max is None else args.torque_max
+    ds = v.sweep(ratio=ratios, output_torque=np.linspace(0.0, top, args.n_torque), **law,
+                 input_speed_rpm=rpm, limit_torque=limits.reshape(rpm.size, ratios.size),
+                 workers=args.workers, progress=_show(args), label="lookup table")
+    to_netcdf(ds, out / "table.nc")
+    files = write_tables(ds, out)
+    if not args.quiet:
+        st = ds.status.values
+        print(f"wrote {out}/table.csv, table.mat, table_modelica.txt, table.nc "
+              f"({ratios.size} ratios x {rpm.size} speeds x {args.n_torque} torques, "
+              f"{v.design.name}, {args.clamp_law} clamping): {int((st == 0).sum())} points "
+              f"within the capacity, {int((st == 1).sum())} beyond, {int((st == 2).sum())} "
+              f"not converged; {ds.attrs['run_time_s']:.1f} s on {args.workers} worker(s)")
+    del files
+    return 0
+
+
 def _clamp_label(args) -> str:
     if args.clamp_law == "constant":
         force = PAPER_POINT["clamp"] if args.clamp is None else args.clamp
@@ -356,8 +485,12 @@ def _cmd_design(args) -> int:
                          message="design show takes no PATH (use 'design export PATH')")
     if args.path is not None:
         check_output_file(args.path, "PATH")
-    text = (drive_to_toml(*load_drive(args.design), template=args.design.read_text())
-            if args.design else builtin_text())
+    if args.design is None or (args.design in BUILTIN_DRIVES
+                               and not Path(args.design).exists()):
+        text = builtin_text(args.design or "table1")
+    else:
+        text = drive_to_toml(*load_drive(args.design),
+                             template=Path(args.design).read_text())
     if args.action == "export":
         atomic_write_text(args.path, text)
         print(f"wrote {args.path}", file=sys.stderr)
@@ -377,7 +510,8 @@ def _rpm(speed: float) -> float:
 
 
 COMMANDS = {"point": _cmd_point, "limit": _cmd_limit, "clamp": _cmd_clamp, "map": _cmd_map,
-            "reproduce": _cmd_reproduce, "design": _cmd_design}
+            "cycle": _cmd_cycle, "table": _cmd_table, "reproduce": _cmd_reproduce,
+            "design": _cmd_design}
 
 
 def main(argv: list[str] | None = None) -> int:

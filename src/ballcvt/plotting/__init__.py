@@ -3,8 +3,9 @@
 Importing this package does not change matplotlib's backend.
 """
 
+from .cycles import cycle_figure
 from .figures import (LABELS, draw_efficiency_map, efficiency_map, line_panels,
                       plot_curves, plot_efficiency_map, ratio_vs_tilt, save)
 
-__all__ = ["save", "line_panels", "efficiency_map", "draw_efficiency_map",
+__all__ = ["cycle_figure", "save", "line_panels", "efficiency_map", "draw_efficiency_map",
            "plot_efficiency_map", "plot_curves", "ratio_vs_tilt", "LABELS"]

@@ -178,6 +178,10 @@ def _inputs(design, fluid, quick, workers):
     return {
         "design": design.name, "fluid": fluid.name,
         "operating point": f"F_N0 = {CLAMP:g} N, omega_0 = {RPM:g} rpm (Figs. 7, 9-13)",
+        "model options (every figure)": "constant clamping force (clamp law 'constant'), "
+                                        "isothermal traction (Eqs. 51-66), carrier held, no "
+                                        "parasitic losses (the paper's model; the Table I "
+                                        "file's example cam is not used)",
         "creep limit": f"{design.creep_limit:g}",
         "max pressure (clamp optimisation)": f"{design.max_pressure / 1e9:g} GPa",
         "grids": "quick (coarse)" if quick else "full",

@@ -9,7 +9,7 @@ to be admissible (continuation).
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -19,8 +19,8 @@ from .batch import solve_batch
 from .clamped import pressure_bound_force, solve_clamped, with_clamp
 from .point import SolverOptions, solve_point
 
-__all__ = ["limit_torque", "limit_torque_batch", "traction_ceiling_torque",
-           "saturated_traction", "bisection_steps", "LIMIT_RTOL"]
+__all__ = ["limit_torque", "limit_torque_batch", "solve_admissible", "Admissibility",
+           "traction_ceiling_torque", "saturated_traction", "bisection_steps", "LIMIT_RTOL"]
 
 
 #: Default relative width of the final torque bracket of the limit bisections.
@@ -115,6 +115,78 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
                              f"({where}): {why}")
 
 
+@dataclass(frozen=True)
+class Admissibility:
+    """Outcome of `solve_admissible`; arrays have the batch shape ``(n,)``.
+
+    Attributes
+    ----------
+    problem : EquilibriumProblem
+        The points at the forces their clamping law set.
+    ok : ndarray of bool
+        Converged with every ``|C| <= creep_limit`` (and, under a torque-following law,
+        every peak pressure within ``design.max_pressure``).
+    converged : ndarray of bool
+        The equilibrium (and clamping equation) converged.
+    creep : ndarray
+        Final creeps, ``(n, n_c)``.
+    """
+
+    problem: EquilibriumProblem
+    ok: np.ndarray
+    converged: np.ndarray
+    creep: np.ndarray
+
+
+def solve_admissible(problem: EquilibriumProblem, creep_limit: float,
+                     options: SolverOptions = SolverOptions(), law=None,
+                     x0=None) -> Admissibility:
+    """Solve a 1-D batch and say which points lie within the traction capacity.
+
+    Newton alone first; the point solver only for the points whose Newton run failed
+    without its creeps running past the limit (a failure of the method, not of the
+    equilibrium). A point whose Newton run fails with its creeps beyond the limit is
+    beyond the capacity at once. This is the admissibility test of the limiting torque
+    (docs/model.md §8, §11), so a point is admissible exactly when its torque is at most
+    the limit.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating points, 1-D batch.
+    creep_limit : float
+        ``C_lim`` [-].
+    options : SolverOptions
+        Solver options.
+    law : clamping law, optional
+        A torque-following law (`ballcvt.clamping`); by default the problem's forces.
+    x0 : array_like, optional
+        Starting creeps ``(n, n_c)``.
+
+    Returns
+    -------
+    Admissibility
+    """
+    law = law if _follows_torque(law) else None
+    if law is not None:
+        def solve(pb, x, fallback):
+            return solve_clamped(pb, law, lambda p, y: solve_batch(p, options, y, fallback), x)
+    else:
+        def solve(pb, x, fallback):
+            return pb, solve_batch(pb, options, x, fallback=fallback)
+    pb, sol = solve(problem, x0, False)
+    big = np.max(np.abs(sol.state.creep), axis=-1)
+    conv, creep = sol.converged.copy(), sol.state.creep.copy()
+    unsure = np.flatnonzero(~conv & ~(big > creep_limit))
+    if unsure.size:
+        _, again = solve(pb.take(unsure), None if x0 is None else np.asarray(x0)[unsure], True)
+        conv[unsure], creep[unsure] = again.converged, again.state.creep
+    ok = conv & (np.max(np.abs(creep), axis=-1) <= creep_limit)
+    if law is not None:
+        ok &= pb.clamp_force <= pressure_bound_force(pb, pb.design.max_pressure) * (1 + 1e-12)
+    return Admissibility(pb, ok, conv, creep)
+
+
 def _follows_torque(law) -> bool:
     """Whether ``law`` sets a torque-dependent force (else the problem's force is used)."""
     return law is not None and getattr(law, "name", "constant") != "constant"
@@ -157,38 +229,18 @@ def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
         Limiting torques [N m], shape ``(...)``; NaN where even ``T_2 = 0`` is inadmissible.
     """
     flat = problem.flat()
-
-    def admissible(index, torque, x0):
-        """Newton alone first; the point solver only for the points whose Newton run
-        failed without its creeps running past the limit (a failure of the method, not
-        of the equilibrium), so that this search agrees with `limit_torque`."""
-        pb = replace(flat.take(index), output_torque=torque)
-        pb, sol = solve(pb, x0, False)
-        big = np.max(np.abs(sol.state.creep), axis=-1)
-        conv, creep = sol.converged.copy(), sol.state.creep.copy()
-        unsure = np.flatnonzero(~conv & ~(big > creep_limit))
-        if unsure.size:
-            _, again = solve(pb.take(unsure), None if x0 is None else x0[unsure], True)
-            conv[unsure], creep[unsure] = again.converged, again.state.creep
-        ok = conv & (np.max(np.abs(creep), axis=-1) <= creep_limit)
-        if follows:
-            ok &= pb.clamp_force <= f_cap[index] * (1.0 + 1e-12)
-        return ok, creep
-
-    follows = _follows_torque(law)
-    if follows:
+    law = law if _follows_torque(law) else None
+    if law is not None:
         f_cap = pressure_bound_force(flat, flat.design.max_pressure)
         hi = np.minimum(law.output_torque_bound(flat.design, f_cap, flat.ratio),
                         traction_ceiling_torque(with_clamp(flat, f_cap)))
-
-        def solve(pb, x0, fallback):
-            return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x, fallback),
-                                 x0)
     else:
         hi = traction_ceiling_torque(flat)
 
-        def solve(pb, x0, fallback):
-            return pb, solve_batch(pb, options, x0, fallback=fallback)
+    def admissible(index, torque, x0):
+        got = solve_admissible(replace(flat.take(index), output_torque=torque), creep_limit,
+                               options, law, x0)
+        return got.ok, got.creep
 
     ok0, best = admissible(np.arange(flat.size), np.zeros(flat.size), None)
     lo = np.zeros(flat.size)

@@ -21,7 +21,7 @@ from ..solver.clamped import pressure_bound_force, solve_clamped, with_clamp
 from ..solver.limit import limit_torque_batch
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
 
-__all__ = ["solve_curves", "limit_torques"]
+__all__ = ["solve_curves", "limit_torques", "derived", "solve_column"]
 
 
 def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, torque,
@@ -52,7 +52,7 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
         if todo.size:
             pb = build_problem(design, fluid, architecture, ratio[todo], torque[k],
                                force[todo, k], input_speed[todo])
-            pb, sol = _solve_column(pb, law, options, None if x is None else x[todo])
+            pb, sol = solve_column(pb, law, options, None if x is None else x[todo])
             good = sol.converged
             force[todo, k] = pb.clamp_force
             creep[todo[good], k] = sol.state.creep[good]
@@ -70,7 +70,7 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
                                    None if optimal else law),
            "status": status.astype(np.int8), "iterations": iterations,
            "residual_norm": residual}
-    out.update(_derived(design, fluid, architecture, force, input_speed, ratio, torque,
+    out.update(derived(design, fluid, architecture, force, input_speed, ratio, torque,
                         creep, status, options))
     if law is not None:
         out["clamp_force"] = np.where(status == 0, force, np.nan)
@@ -121,7 +121,7 @@ def limit_torques(design, fluid, architecture, ratio, input_speed, clamp_force, 
     return base, limit
 
 
-def _solve_column(pb, law, options, x0):
+def solve_column(pb, law, options, x0):
     """Solve the points of one torque under ``law`` -> (problem at the forces used, sol)."""
     if law is None:
         return pb, solve_batch(pb, options, x0)
@@ -147,15 +147,15 @@ def _eta_at(design, fluid, arch, clamp_force, input_speed, ratio, torque, option
     if ok.size:
         pb = build_problem(design, fluid, arch, ratio[ok], torque[ok], clamp_force[ok],
                            input_speed[ok])
-        pb, sol = _solve_column(pb, law, options, None)
+        pb, sol = solve_column(pb, law, options, None)
         eta[ok] = np.where(sol.converged, efficiency(pb, sol.state).overall, np.nan)
     return eta
 
 
-def _derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep, status,
+def derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep, status,
              options):
     """Every reported quantity at the converged points (NaN elsewhere); ``clamp_force``
-    has the shape ``(m, n_T)`` of the points."""
+    has the shape ``(m, n_T)`` of the points, ``torque`` is ``(n_T,)`` or ``(m, n_T)``."""
     m, nt, nc = creep.shape
     ok = status == 0
     i, k = np.nonzero(ok)
@@ -165,7 +165,8 @@ def _derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep
     values["warnings"] = np.zeros((m, nt), dtype=np.int8)
     if i.size == 0:
         return values
-    pb = build_problem(design, fluid, arch, ratio[i], torque[k], clamp_force[i, k],
+    torque = np.broadcast_to(torque, (m, nt))        # one axis for all, or per point
+    pb = build_problem(design, fluid, arch, ratio[i], torque[i, k], clamp_force[i, k],
                        input_speed[i])
     st = evaluate(pb, creep[i, k], options.quadrature)
     loss = power_losses(pb, st)

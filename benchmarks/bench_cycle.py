@@ -1,0 +1,46 @@
+"""Duty-cycle throughput: ``python benchmarks/bench_cycle.py [--steps N]``.
+
+Runs the example e-bike commute, repeated to N steps (default 10,000), on the built-in
+``hub`` drive with its cam, by both strategies, and prints steps per second.
+"""
+
+import argparse
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ballcvt import Variator, load_builtin
+from ballcvt.cycles import cycle_from_arrays, read_cycle, run_cycle
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--steps", type=int, default=10_000)
+    args = ap.parse_args()
+    base = read_cycle(ROOT / "examples" / "cycles" / "ebike_commute.csv")
+    reps = int(np.ceil(args.steps / base.size))
+    t = np.concatenate([base.time + k * (base.time[-1] + 1.0) for k in range(reps)])
+    cycle = cycle_from_arrays(time=t[:args.steps],
+                              output_speed=np.tile(base.output_speed, reps)[:args.steps],
+                              output_torque=np.tile(base.output_torque, reps)[:args.steps],
+                              name=f"commute x{reps}")
+    v = Variator(*load_builtin("hub"))
+    run_cycle(v, cycle_from_arrays(time=[0.0, 1.0], output_speed=[20.0, 20.0],
+                                   output_torque=[10.0, 10.0]),
+              target_input_speed=19.0, clamp_law="cam", progress=False)      # JIT warm-up
+    print(f"ballcvt duty cycle, {cycle.size} steps ({cycle.name}), hub drive, cam clamping")
+    for strategy, kw in (("target-input-speed", {"target_input_speed": 180 * np.pi / 30}),
+                         ("max-efficiency", {"ratio_range": (0.5, 2.0)})):
+        start = time.perf_counter()
+        res = run_cycle(v, cycle, strategy=strategy, clamp_law="cam", progress=False, **kw)
+        dt = time.perf_counter() - start
+        s = res.summary
+        print(f"  {strategy:<20} {dt:7.1f} s  {cycle.size / dt:8.0f} steps/s  efficiency "
+              f"{s['efficiency']:.4f}  flagged {s['steps_flagged']}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,150 @@
+"""Duty cycles (docs/cycles.md): reading and validating cycle files, energy bookkeeping,
+strategies, flags, and the command line."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from ballcvt import InputError, Variator, load_builtin
+from ballcvt.cli import main as cli
+from ballcvt.cycles import cycle_from_arrays, read_cycle, run_cycle
+
+RPM = math.pi / 30
+
+
+@pytest.fixture(scope="module")
+def hub():
+    return Variator(*load_builtin("hub"))
+
+
+@pytest.fixture(scope="module")
+def cruise():
+    """Output side: 20 s of steady cruising, a stop, and 5 s of braking."""
+    t = np.arange(0.0, 30.0)
+    w2 = np.where(t < 20, 190.0, np.where(t < 25, 0.0, 150.0)) * RPM
+    t2 = np.where(t < 20, 12.0, np.where(t < 25, 0.0, -5.0))
+    return cycle_from_arrays(time=t, output_speed=w2, output_torque=t2, name="cruise")
+
+
+def test_steady_steps_equal_single_points(hub, cruise):
+    res = run_cycle(hub, cruise, target_input_speed=180 * RPM, clamp_law="cam",
+                    progress=False)
+    row = res.steps.iloc[5]
+    r = hub.solve(row["ratio"], 12.0, clamp_law="cam", input_speed=180 * RPM)
+    assert row["eta"] == pytest.approx(r.eta, abs=1e-9)
+    assert row["input_speed_rpm"] == pytest.approx(180.0)
+    # the output turns at the cycle's speed (second pass corrects the creep)
+    assert row["output_speed_rpm"] == pytest.approx(190.0, rel=1e-4)
+    assert row["loss_total"] == pytest.approx(r.losses["total"], rel=1e-9)
+
+
+def test_energy_bookkeeping(hub, cruise):
+    res = run_cycle(hub, cruise, target_input_speed=180 * RPM, clamp_law="cam",
+                    progress=False)
+    s = res.summary
+    steps = res.steps
+    assert s["steps"] == 30
+    assert s["flags"]["idle"]["steps"] == 5 and s["flags"]["negative_torque"]["steps"] == 5
+    assert s["steps_flagged"] == 5                     # braking only; idle is not a fault
+    # energy in - energy out = the losses (Eq. 39 integrated over the cycle)
+    assert s["energy_in_J"] - s["energy_out_J"] == pytest.approx(s["losses_J"]["total"],
+                                                                 rel=1e-9)
+    assert s["efficiency"] == pytest.approx(s["energy_out_J"] / s["energy_in_J"])
+    ok = steps["flag"] == "ok"
+    dt = steps["duration"]
+    assert s["energy_out_J"] == pytest.approx(float((steps["output_power"] * dt)[ok].sum()))
+    assert float(dt.sum()) == pytest.approx(29.0)
+    assert sum(f["time_s"] for f in s["flags"].values()) == pytest.approx(29.0)
+
+
+def test_max_efficiency_beats_a_fixed_target(hub, cruise):
+    a = run_cycle(hub, cruise, target_input_speed=180 * RPM, clamp_law="cam",
+                  progress=False)
+    b = run_cycle(hub, cruise, strategy="max-efficiency", clamp_law="cam",
+                  ratio_range=(0.5, 2.0), progress=False)
+    assert b.summary["efficiency"] >= a.summary["efficiency"] - 1e-9
+    # and the chosen ratio is no worse than its neighbours on the candidate grid
+    row = b.steps.iloc[3]
+    best = hub.solve(row["ratio"], 12.0, clamp_law="cam",
+                     input_speed=row["input_speed_rpm"] * RPM).eta
+    for r in (0.9 * row["ratio"], 1.1 * row["ratio"]):
+        other = hub.solve(r, 12.0, clamp_law="cam", input_speed=190 * RPM / r).eta
+        assert best >= other - 1e-6
+
+
+def test_beyond_capacity_and_ratio_limits_are_flagged(hub):
+    c = cycle_from_arrays(time=[0.0, 1.0, 2.0], output_speed=np.array([190, 190, 5]) * RPM,
+                          output_torque=[10.0, 5000.0, 10.0])
+    res = run_cycle(Variator(), c, target_input_speed=180 * RPM, clamp_force=2000.0,
+                    progress=False)
+    assert list(res.steps["flag"]) == ["ok", "beyond_capacity", "ratio_limited"]
+    assert res.summary["energy_not_delivered_J"] == pytest.approx(190 * RPM * 5000.0 * 1.0)
+    assert math.isnan(res.steps["eta"][1])
+
+
+def test_input_side_cycle_meets_the_power(hub):
+    c = cycle_from_arrays(time=[0.0, 1.0, 2.0, 3.0], input_speed=np.full(4, 2000 * RPM),
+                          input_power=[3000.0, 5000.0, 8000.0, 300.0],
+                          ratio=[0.6, 1.0, 1.8, 1.0])
+    res = run_cycle(hub, c, clamp_force=2000.0, progress=False)
+    assert np.allclose(res.steps["input_power"][:3], [3000.0, 5000.0, 8000.0], rtol=1e-6)
+    assert np.allclose(res.steps["ratio"], [0.6, 1.0, 1.8, 1.0])
+    # 300 W cannot even turn the hub's churning, seals and bearings at 2000 rpm
+    assert list(res.steps["flag"]) == ["ok", "ok", "ok", "power_below_drag"]
+
+
+def test_cycle_file_errors(tmp_path):
+    good = tmp_path / "c.csv"
+    good.write_text("time [s],output_speed [rpm],output_torque [N m]\n0,100,10\n1,120,12\n")
+    c = read_cycle(good)
+    assert c.kind == "output" and c.output_speed[1] == pytest.approx(120 * RPM)
+    cases = {
+        "time [s],output_speed [rpm],output_torque [N m]\n0,100,10\n0,120,12\n": "time",
+        "time [s],output_speed [rpm],torque [N m]\n0,100,10\n": "unknown column",
+        "time [s],output_speed [mph],output_torque [N m]\n0,100,10\n": "unit",
+        "time [s],output_speed,output_torque [N m]\n0,100,10\n": "unit",
+        "time [s],output_speed [rpm],output_torque [N m]\n0,abc,10\n": "not a number",
+        "time [s],output_speed [rpm],output_torque [N m]\n0,-100,10\n": "output_speed",
+        "time [s],input_speed [rpm]\n0,100\n": "cycle columns",
+        "": "cannot be read",
+    }
+    for text, fragment in cases.items():
+        good.write_text(text)
+        with pytest.raises(InputError, match=fragment) as err:
+            read_cycle(good)
+        assert "\n" not in str(err.value)
+
+
+def test_strategy_errors(hub, cruise):
+    with pytest.raises(InputError, match="target_input_speed"):
+        run_cycle(hub, cruise, clamp_law="cam", progress=False)
+    with pytest.raises(InputError, match="strategy"):
+        run_cycle(hub, cruise, strategy="fastest", clamp_law="cam", progress=False)
+    with pytest.raises(InputError, match="ratio_range"):
+        run_cycle(hub, cruise, strategy="max-efficiency", clamp_law="cam",
+                  ratio_range=(2.0, 1.0), progress=False)
+
+
+def test_cli_cycle(tmp_path, capsys):
+    path = tmp_path / "c.csv"
+    path.write_text("time [s],output_speed [rpm],output_torque [N m]\n"
+                    + "".join(f"{t},190,12\n" for t in range(10)))
+    out = tmp_path / "run"
+    assert cli.main(["cycle", str(path), "--design", "hub", "--clamp-law", "cam",
+                     "--target-speed", "180", "--out", str(out), "--json"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    for key in ("energy_in_J", "energy_out_J", "efficiency", "losses_J", "steps",
+                "steps_flagged"):
+        assert key in s
+    assert s["steps"] == 10 and s["steps_flagged"] == 0
+    for name in ("steps.csv", "summary.json", "cycle.png", "cycle.svg"):
+        assert (out / name).stat().st_size > 0
+    import pandas as pd
+    frame = pd.read_csv(out / "steps.csv")
+    assert "eta [1]" in frame.columns and "loss_total [W]" in frame.columns
+    assert cli.main(["cycle", str(path), "--out", str(out)]) == 2      # no target speed
+    assert "target_input_speed" in capsys.readouterr().err
+    assert cli.main(["cycle", str(tmp_path / "none.csv"), "--target-speed", "180",
+                     "--out", str(out)]) == 2

@@ -177,3 +177,20 @@ def test_cli_clamp_law(capsys):
         assert cli.main(argv) == 2
         err = capsys.readouterr().err.strip()
         assert text in err and "\n" not in err
+
+
+def test_cam_force_without_friction_is_preload_plus_torque_over_r_tan(v):
+    # friction off: F_ax = F_pre + T / (r_m tan(phi)) at the solution (issue 9)
+    law = CamClamp(800.0, math.radians(8.0), 0.04, 0.0, disc="input")
+    r = v.solve(1.3, 30.0, clamp_law=law, input_speed_rpm=RPM)
+    expected = 800.0 + r.input_torque / (0.04 * math.tan(math.radians(8.0)))
+    assert r.axial_force == pytest.approx(expected, rel=1e-10)
+
+
+def test_cam_between_constant_and_optimal_at_light_load(v):
+    for torque in (5.0, 10.0, 20.0):
+        cam = v.solve(1.0, torque, clamp_law="cam", input_speed_rpm=RPM).eta
+        rig = v.solve(1.0, torque, clamp_force=2000.0, input_speed_rpm=RPM).eta
+        opt = v.solve(1.0, torque, clamp_law="optimal", input_speed_rpm=RPM).eta
+        assert cam > rig + 0.05            # far higher than the over-clamped rig
+        assert cam <= opt + 1e-6           # never above the optimal clamp

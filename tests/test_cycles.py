@@ -148,3 +148,16 @@ def test_cli_cycle(tmp_path, capsys):
     assert "target_input_speed" in capsys.readouterr().err
     assert cli.main(["cycle", str(tmp_path / "none.csv"), "--target-speed", "180",
                      "--out", str(out)]) == 2
+
+
+def test_workers_give_the_same_results(hub):
+    n = 1100                                   # more than one chunk of evaluate_points
+    t = np.arange(float(n))
+    c = cycle_from_arrays(time=t, output_speed=(150 + 40 * np.sin(t / 30)) * RPM,
+                          output_torque=10 + 8 * np.cos(t / 17))
+    one = run_cycle(hub, c, target_input_speed=180 * RPM, clamp_law="cam", progress=False)
+    two = run_cycle(hub, c, target_input_speed=180 * RPM, clamp_law="cam", progress=False,
+                    workers=2)
+    # the same chunks are solved either way: equal to round-off (batch-size dependent sums)
+    assert np.allclose(one.steps["eta"], two.steps["eta"], rtol=0, atol=1e-12)
+    assert one.summary["energy_in_J"] == pytest.approx(two.summary["energy_in_J"], rel=1e-12)

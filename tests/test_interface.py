@@ -85,7 +85,10 @@ def _variants(design, tmp):
         "--target-speed": ["--target-speed", "150"],
         "--candidates": ["--strategy", "max-efficiency", "--candidates", "3"],
         "--ratio-range": ["--strategy", "max-efficiency", "--ratio-range", "0.9", "1.2"],
-        "--out": ["--out", str(tmp / "c1")], "--json": None, "--quiet": ["--quiet"]})
+        "--out": ["--out", str(tmp / "c1")], "--json": None,
+        "--workers": ["--workers", "2"]})
+    cycle_text = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c3")],
+                  {"--quiet": ["--quiet"]})
     cycle_cam = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c2"), "--json",
                   *law], {"--cam-preload": ["--cam-preload", "3000"]})
     table = (["table", "--out", str(tmp / "t0"), "--n-ratio", "2", "--n-speed", "2",
@@ -99,7 +102,7 @@ def _variants(design, tmp):
         "--quiet": ["--quiet"]})
     return {"point": point, "limit": limit, "clamp": clamp, "map": mapping,
             "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam,
-            "cycle": cycle, "cycle:cam": cycle_cam, "table": table}
+            "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table}
 
 
 def _output(code, out, err, argv):
@@ -110,6 +113,7 @@ def _output(code, out, err, argv):
         folder = Path(argv[argv.index("--out") + 1])
         name = {"map": "map.csv", "cycle": "steps.csv", "table": "table.csv"}[argv[0]]
         files = (folder / name).read_text()
+    out = re.sub(r'"run_time_s": [-+0-9.e]+', "", out)
     return re.sub(r"\d+\.\d s on", "", out) + files
 
 

@@ -263,7 +263,7 @@ class Variator:
                   target_input_speed: float | None = None,
                   target_input_speed_rpm: float | None = None,
                   clamp_force: float | None = None, clamp_law=None, candidates: int = 9,
-                  ratio_range=None, progress: bool | None = None):
+                  ratio_range=None, progress: bool | None = None, workers: int = 1):
         """Run this drive over a duty cycle (see `ballcvt.cycles.run_cycle`).
 
         Parameters
@@ -282,6 +282,8 @@ class Variator:
             Ratios ``max-efficiency`` may use [-].
         progress : bool, optional
             Progress bar (default: when stderr is a terminal).
+        workers : int
+            Processes to solve the steps on.
 
         Returns
         -------
@@ -298,7 +300,7 @@ class Variator:
                   if target_input_speed_rpm is not None else target_input_speed)
         return run_cycle(self, cycle, strategy=strategy, target_input_speed=target,
                          clamp_force=clamp_force, clamp_law=clamp_law, candidates=candidates,
-                         ratio_range=ratio_range, progress=progress)
+                         ratio_range=ratio_range, progress=progress, workers=workers)
 
     def with_quadrature(self, quadrature: Quadrature) -> "Variator":
         """A copy using another traction-integral rule."""

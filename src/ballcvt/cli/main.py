@@ -207,8 +207,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="ratios max-efficiency may use (default: the usable range)")
     _out(p, "ballcvt-cycle")
     _add(p, "json")
-    p.add_argument("--quiet", action="store_true",
-                   help="no progress bar and no summary line")
+    _run_options(p)
 
     p = _sub(sub, "table", "lookup tables (ratio x input speed x torque) for system "
              "simulation: CSV, MATLAB .mat, Modelica",
@@ -408,7 +407,7 @@ def _cmd_cycle(args) -> int:
     result = run_cycle(v, cycle, strategy=args.strategy, target_input_speed=target,
                        clamp_force=law.get("clamp_force"), clamp_law=law.get("clamp_law"),
                        candidates=args.candidates, ratio_range=args.ratio_range,
-                       progress=_show(args))
+                       progress=_show(args), workers=args.workers)
     result.save(out)
     import matplotlib
     matplotlib.use("Agg")                    # the CLI writes files only
@@ -423,7 +422,7 @@ def _cmd_cycle(args) -> int:
         print(f"wrote {out}/steps.csv, summary.json, cycle.png, cycle.svg: {s['steps']} steps "
               f"({s['duration_s']:.0f} s), energy in {s['energy_in_J'] / 3.6e3:.2f} Wh, out "
               f"{s['energy_out_J'] / 3.6e3:.2f} Wh, efficiency {eff}; {s['steps_flagged']} "
-              f"steps flagged; {s['run_time_s']:.1f} s")
+              f"steps flagged; {s['run_time_s']:.1f} s on {args.workers} worker(s)")
     return 0
 
 

@@ -10,6 +10,9 @@ Strategies (``strategy=``):
   geometrically over the ratio range (or ``ratio_range``), refined by a parabola through
   the best and its neighbours; the input speed follows from the output speed.
 
+The ratio search and the creep correction use the solver's coarse predictor rule; every
+reported value comes from a final solve on the full quadrature.
+
 Input-side cycles (test rigs) give the input speed and power; with a ``ratio`` column the
 ratio is commanded, else ``max-efficiency`` picks it. Their output torque is found by a
 batched secant iteration on ``P_in = T_0 omega_0``.
@@ -27,7 +30,9 @@ from __future__ import annotations
 import json
 import math
 import time as _time
-from dataclasses import dataclass, field
+from concurrent.futures import ProcessPoolExecutor
+from contextlib import nullcontext
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -86,7 +91,7 @@ class CycleResult:
 def run_cycle(variator, cycle: Cycle, *, strategy: str = "target-input-speed",
               target_input_speed: float | None = None, clamp_force: float | None = None,
               clamp_law=None, candidates: int = 9, ratio_range=None,
-              progress: bool | None = None) -> CycleResult:
+              progress: bool | None = None, workers: int = 1) -> CycleResult:
     """Evaluate a drive over a duty cycle, all steps batched.
 
     Parameters
@@ -108,6 +113,8 @@ def run_cycle(variator, cycle: Cycle, *, strategy: str = "target-input-speed",
         Ratios ``max-efficiency`` may use [-]; the usable range by default.
     progress : bool, optional
         Progress bar (default: when stderr is a terminal).
+    workers : int
+        Processes to solve the steps on (1-64; the same results, to round-off).
 
     Returns
     -------
@@ -123,6 +130,8 @@ def run_cycle(variator, cycle: Cycle, *, strategy: str = "target-input-speed",
         raise InputError("strategy", strategy, "one of: " + ", ".join(STRATEGIES))
     if not 3 <= int(candidates) <= 101:
         raise InputError("candidates", candidates, "3-101")
+    if not 1 <= int(workers) <= 64:
+        raise InputError("workers", workers, "1-64")
     design = variator.design
     law = resolve_law(clamp_law, design, clamp_force)
     lo, hi = usable_ratio_range(design)
@@ -160,13 +169,20 @@ def run_cycle(variator, cycle: Cycle, *, strategy: str = "target-input-speed",
     bar = tqdm(total=passes * run.size, desc=f"duty cycle, {n} steps", unit="point",
                disable=not show)
 
-    def solve(ratio, t2, w0):
+    # the ratio search and the creep correction run on the solver's coarse rule (the
+    # predictor); every reported value comes from a final solve on the full rule
+    fine = variator.options
+    coarse = replace(fine, quadrature=fine.predictor or fine.quadrature, predictor=None)
+
+    def solve(ratio, t2, w0, rough=False):
         return evaluate_points(design, variator.fluid, variator.architecture, ratio, t2, w0,
                                clamp_force=law.force if law.name == "constant" else None,
                                law=None if law.name == "constant" else law,
-                               options=variator.options, callback=bar.update)
+                               options=coarse if rough else fine, callback=bar.update,
+                               executor=pool)
 
-    with bar:
+    pool = ProcessPoolExecutor(max_workers=workers) if workers > 1 else None
+    with bar, (pool or nullcontext()):
         if cycle.kind == "output":
             ratio, w0, res = _output_side(solve, strategy, speed_out[run], torque[run],
                                           target_input_speed, lo, hi, r_lo, r_hi,
@@ -184,6 +200,7 @@ def run_cycle(variator, cycle: Cycle, *, strategy: str = "target-input-speed",
     steps = _table(cycle, n, run, ratio, w0, t2, res, flag)
     summary = _summary(variator, cycle, steps, strategy, law, target_input_speed,
                        _time.perf_counter() - start)
+    summary["workers"] = int(workers)
     return CycleResult(steps=pd.DataFrame(steps), summary=summary)
 
 
@@ -193,14 +210,15 @@ def _output_side(solve, strategy, w2, t2, target, lo, hi, r_lo, r_hi, candidates
         ratio = np.clip(want, lo, hi)
         limited = ratio != want
         flag[run[limited]] = "ratio_limited"
-        res = solve(ratio, t2, w2 / ratio)
+        res = solve(ratio, t2, w2 / ratio, rough=True)
         # second pass: the creep's speed loss, so that the input turns at the target
         speed_eff = np.where(res["status"] == 0, res["eta_speed"], 1.0)
         ratio2 = np.where(limited, ratio, np.clip(want / speed_eff, lo, hi))
         w0 = np.where(limited, w2 / ratio, target)
         return ratio2, w0, solve(ratio2, t2, w0)
-    ratio = _best_ratio(lambda r: solve(r, t2, w2 / r), t2.size, r_lo, r_hi, candidates)
-    first = solve(ratio, t2, w2 / ratio)
+    ratio = _best_ratio(lambda r: solve(r, t2, w2 / r, rough=True), t2.size, r_lo, r_hi,
+                        candidates)
+    first = solve(ratio, t2, w2 / ratio, rough=True)
     speed_eff = np.where(first["status"] == 0, first["eta_speed"], 1.0)
     w0 = w2 / (ratio * speed_eff)                   # the output turns at the cycle's speed
     return ratio, w0, solve(ratio, t2, w0)

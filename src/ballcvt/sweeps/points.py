@@ -25,7 +25,8 @@ CHUNK = 1024
 
 def evaluate_points(design, fluid, architecture, ratio, output_torque, input_speed, *,
                     clamp_force=None, law=None, options: SolverOptions = SolverOptions(),
-                    creep_limit: float | None = None, callback=None) -> dict:
+                    creep_limit: float | None = None, callback=None,
+                    executor=None) -> dict:
     """Solve scattered operating points and report every quantity of a sweep at each.
 
     Parameters
@@ -47,6 +48,8 @@ def evaluate_points(design, fluid, architecture, ratio, output_torque, input_spe
         ``C_lim`` [-]; the design's by default.
     callback : callable, optional
         Called with the number of points done after each chunk (progress bars).
+    executor : concurrent.futures.Executor, optional
+        Solve the chunks in its worker processes (the same results, to round-off).
 
     Returns
     -------
@@ -65,11 +68,24 @@ def evaluate_points(design, fluid, architecture, ratio, output_torque, input_spe
     force = np.ones(n) if law is not None else np.broadcast_to(
         np.asarray(clamp_force, dtype=float), (n,)).astype(float)
     build_problem(design, fluid, architecture, ratio, torque, force, speed)   # validate all
+    # the same chunks with or without worker processes: the same results to round-off
+    parts = np.array_split(np.arange(n), -(-n // CHUNK))
+    if executor is not None and len(parts) > 1:
+        futures = [executor.submit(evaluate_points, design, fluid, architecture, ratio[i],
+                                   torque[i], speed[i],
+                                   clamp_force=None if law is not None else force[i],
+                                   law=law, options=options, creep_limit=c_lim)
+                   for i in parts]
+        done = []
+        for i, f in zip(parts, futures):
+            done.append(f.result())
+            if callback is not None:
+                callback(i.size)
+        return {k: np.concatenate([d[k] for d in done]) for k in done[0]}
     status = np.full(n, STATUS["not_converged"], dtype=np.int8)
     creep = np.full((n, 1, 4 if architecture == "double" else 3), np.nan)
     used = force.copy()
-    for start in range(0, n, CHUNK):
-        idx = np.arange(start, min(start + CHUNK, n))
+    for idx in parts:
         pb = build_problem(design, fluid, architecture, ratio[idx], torque[idx], force[idx],
                            speed[idx])
         if optimal:                     # the optimiser's force, then the constant law

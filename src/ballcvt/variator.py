@@ -18,7 +18,7 @@ from .params.feasibility import check_architecture
 from .params.io import load_builtin
 from .params.models import ARCHITECTURES, Design, Fluid
 from .results.point import OperatingResult, make_result
-from .solver.clamped import pressure_bound_force, solve_clamped
+from .solver.clamped import capacity_basis, pressure_bound_force, solve_clamped
 from .solver.limit import limit_torque
 from .solver.point import SolverOptions, solve_point
 
@@ -151,8 +151,7 @@ class Variator:
             over = over or float(problem.clamp_force) > float(
                 pressure_bound_force(problem, self.design.max_pressure)) * (1 + 1e-12)
         if check_capacity and (over or not sol.converged):
-            lim = limit_torque(problem, self.design.creep_limit, self.options,
-                               law=law if follows else None)
+            lim = limit_torque(problem, self.design.creep_limit, self.options, law=law)
             if output_torque > lim:
                 where = (f"clamp {float(problem.clamp_force):g} N" if not follows else
                          f"{name} clamping law")
@@ -181,14 +180,10 @@ class Variator:
         if not 0.0 < c_lim < 1.0:
             raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
         law = self.clamp_law(clamp_law, clamp_force)
-        if law.name == "optimal":
-            ref = self._problem(ratio, 0.0, ConstantClamp(1000.0), input_speed,
-                                input_speed_rpm)
-            p_lim = self.design.max_pressure if law.max_pressure is None else law.max_pressure
-            law = ConstantClamp(float(pressure_bound_force(ref, p_lim)))
-        problem = self._problem(ratio, 0.0, law, input_speed, input_speed_rpm)
-        follows = not isinstance(law, ConstantClamp)
-        return limit_torque(problem, c_lim, self.options, law=law if follows else None)
+        start = ConstantClamp(1.0) if law.name == "optimal" else law
+        problem, law, c_lim = capacity_basis(
+            self._problem(ratio, 0.0, start, input_speed, input_speed_rpm), law, c_lim)
+        return limit_torque(problem, c_lim, self.options, law=law)
 
     def sweep(self, *, ratio, output_torque, clamp_force=None, clamp_law=None,
               input_speed=None, input_speed_rpm=None, architecture=None,

@@ -443,7 +443,7 @@ def _cmd_table(args) -> int:
                  input_speed_rpm=rpm, limit_torque=limits.reshape(rpm.size, ratios.size),
                  workers=args.workers, progress=_show(args), label="lookup table")
     to_netcdf(ds, out / "table.nc")
-    files = write_tables(ds, out)
+    write_tables(ds, out)
     if not args.quiet:
         st = ds.status.values
         print(f"wrote {out}/table.csv, table.mat, table_modelica.txt, table.nc "
@@ -451,7 +451,6 @@ def _cmd_table(args) -> int:
               f"{v.design.name}, {args.clamp_law} clamping): {int((st == 0).sum())} points "
               f"within the capacity, {int((st == 1).sum())} beyond, {int((st == 2).sum())} "
               f"not converged; {ds.attrs['run_time_s']:.1f} s on {args.workers} worker(s)")
-    del files
     return 0
 
 

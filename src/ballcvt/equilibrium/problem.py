@@ -13,8 +13,8 @@ import numpy as np
 from ..bearings.parasitic import parasitic_torques
 from ..contact.hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
 from ..contact.rheology import roelands_pressure_limit
-from ..geometry.kinematics import check_ratio, rolling_radius, spin_axis_projection, \
-    tilt_from_ratio
+from ..geometry.kinematics import body_speeds, check_ratio, rolling_radius, \
+    spin_axis_projection, tilt_from_ratio
 from ..geometry.layout import ContactLayout, contact_layout
 from ..errors import InputError
 from ..params.models import Design, Fluid
@@ -157,14 +157,14 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
     load = fn0[..., None] * layout.load_factor
     ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
     _check_pressure(fluid, fn0, p_max)
-    rho = rolling_radius(layout, tilt)
     # parasitic drags at the creep-free speeds (docs/model.md §12)
-    ball, drag0, drag2 = parasitic_torques(
-        design, fluid, w0, ratio * w0, w0 * layout.radius[0] / np.abs(rho[..., 0]),
-        design.n_rollers * fn0 * np.sin(design.theta0))
+    omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
+    ball, drag0, drag2 = parasitic_torques(design, fluid, w0, omega[..., -1], omega_s,
+                                           design.n_rollers * fn0 * np.sin(design.theta0))
     return EquilibriumProblem(
         design=design, fluid=fluid, layout=layout, ratio=ratio, tilt=tilt, output_torque=t2,
-        clamp_force=fn0, input_speed=w0, rho=rho, sz=spin_axis_projection(layout, tilt),
+        clamp_force=fn0, input_speed=w0, rho=rolling_radius(layout, tilt),
+        sz=spin_axis_projection(layout, tilt),
         load=load, radius=layout.radius * rs, rx=rx, ax=ax, ay=ay, p_max=p_max,
         ball_drag=ball, input_drag=drag0, output_drag=drag2)
 

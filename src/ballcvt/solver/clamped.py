@@ -18,8 +18,8 @@ import numpy as np
 from ..contact.rheology import roelands_pressure_limit
 from ..equilibrium.problem import EquilibriumProblem, build_problem
 
-__all__ = ["with_clamp", "solve_clamped", "pressure_bound_force", "CLAMP_RTOL",
-           "MAX_CLAMP_ITERATIONS"]
+__all__ = ["with_clamp", "solve_clamped", "pressure_bound_force", "capacity_basis",
+           "CLAMP_RTOL", "MAX_CLAMP_ITERATIONS"]
 
 #: Relative tolerance of the clamping equation ``F_N0 = law(T_0, T_2)`` [-].
 CLAMP_RTOL = 1e-11
@@ -45,6 +45,21 @@ def pressure_bound_force(problem: EquilibriumProblem, max_pressure: float) -> np
     p_lim = min(float(max_pressure), roelands_pressure_limit(
         fl.viscosity, fl.pole_viscosity, fl.pole_pressure, fl.roelands_index))
     return problem.clamp_force * (p_lim / np.max(problem.p_max, axis=-1)) ** 3
+
+
+def capacity_basis(problem: EquilibriumProblem, law, creep_limit: float):
+    """What the limiting torque under ``law`` is searched on: ``(problem, law, creep_limit)``.
+
+    Under ``optimal`` the optimiser may pick any force up to the pressure bound, so its
+    capacity is that of the constant law at the largest force within the law's (or the
+    design's) ``max_pressure``, with the law's own ``creep_limit`` if it has one
+    (docs/model.md §11). Any other law is returned unchanged.
+    """
+    if law is None or law.name != "optimal":
+        return problem, law, creep_limit
+    p_lim = problem.design.max_pressure if law.max_pressure is None else law.max_pressure
+    c_lim = creep_limit if law.creep_limit is None else law.creep_limit
+    return with_clamp(problem, pressure_bound_force(problem, p_lim)), None, c_lim
 
 
 def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):

@@ -17,11 +17,11 @@ from ..optimize.clamp import optimal_clamp_force
 from ..performance.efficiency import efficiency, loss_breakdown, power_losses
 from ..performance.validity import validity
 from ..solver.batch import solve_batch
-from ..solver.clamped import pressure_bound_force, solve_clamped, with_clamp
+from ..solver.clamped import capacity_basis, solve_clamped, with_clamp
 from ..solver.limit import limit_torque_batch
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
 
-__all__ = ["solve_curves", "limit_torques", "derived", "solve_column"]
+__all__ = ["solve_curves", "limit_torques", "derived", "solve_column", "at_optimal_forces"]
 
 
 def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, torque,
@@ -109,12 +109,7 @@ def limit_torques(design, fluid, architecture, ratio, input_speed, clamp_force, 
     """
     start = np.ones(ratio.size) if law is not None else clamp_force
     base = build_problem(design, fluid, architecture, ratio, 0.0, start, input_speed)
-    follows = law
-    if law is not None and law.name == "optimal":
-        p_lim = design.max_pressure if law.max_pressure is None else law.max_pressure
-        base = with_clamp(base, pressure_bound_force(base, p_lim))
-        creep_limit = creep_limit if law.creep_limit is None else law.creep_limit
-        follows = None
+    base, follows, creep_limit = capacity_basis(base, law, creep_limit)
     if limit is None:
         limit = limit_torque_batch(base, creep_limit, options, callback=callback,
                                    law=follows)
@@ -127,17 +122,24 @@ def solve_column(pb, law, options, x0):
         return pb, solve_batch(pb, options, x0)
     if law.name != "optimal":
         return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x), x0)
-    forces = np.empty(pb.size)
-    for j in range(pb.size):        # one optimisation per point (batched inside)
+    pb = at_optimal_forces(pb, law, options)
+    return pb, solve_batch(pb, options, x0)
+
+
+def at_optimal_forces(pb, law, options):
+    """The points of a 1-D batch at their efficiency-optimal clamping forces (one
+    optimisation per point, batched inside); a point no force can carry keeps its force
+    and is flagged by the solve that follows."""
+    forces = np.array(pb.clamp_force, dtype=float)
+    for j in range(pb.size):
         try:
             forces[j] = optimal_clamp_force(
                 pb.design, pb.fluid, pb.layout.architecture, float(pb.ratio[j]),
                 float(pb.output_torque[j]), float(pb.input_speed[j]), options,
                 law.creep_limit, law.max_pressure).clamp_force
         except TractionLimitError:
-            forces[j] = pb.clamp_force[j]        # solved at the bound, flagged below
-    pb = with_clamp(pb, forces)
-    return pb, solve_batch(pb, options, x0)
+            pass
+    return with_clamp(pb, forces)
 
 
 def _eta_at(design, fluid, arch, clamp_force, input_speed, ratio, torque, options, law=None):

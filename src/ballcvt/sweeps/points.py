@@ -12,9 +12,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..equilibrium.problem import build_problem
+from ..geometry.layout import CONTACT_NAMES
 from ..solver.limit import solve_admissible
 from ..solver.point import SolverOptions
-from .curves import derived, solve_column
+from .curves import at_optimal_forces, derived
 from .variables import STATUS
 
 __all__ = ["evaluate_points", "CHUNK"]
@@ -83,13 +84,13 @@ def evaluate_points(design, fluid, architecture, ratio, output_torque, input_spe
                 callback(i.size)
         return {k: np.concatenate([d[k] for d in done]) for k in done[0]}
     status = np.full(n, STATUS["not_converged"], dtype=np.int8)
-    creep = np.full((n, 1, 4 if architecture == "double" else 3), np.nan)
+    creep = np.full((n, 1, len(CONTACT_NAMES[architecture])), np.nan)
     used = force.copy()
     for idx in parts:
         pb = build_problem(design, fluid, architecture, ratio[idx], torque[idx], force[idx],
                            speed[idx])
         if optimal:                     # the optimiser's force, then the constant law
-            pb, _ = solve_column(pb, law, options, None)
+            pb = at_optimal_forces(pb, law, options)
         got = solve_admissible(pb, c_lim, options, follows)
         used[idx] = got.problem.clamp_force
         # converged but inadmissible (creep or, under a cam, pressure), or running away

@@ -8,7 +8,9 @@ from hypothesis import HealthCheck, settings
 
 from ballcvt import Variator, load_builtin
 
-settings.register_profile("default", max_examples=25, deadline=None,
+# The default suite is reproducible: the same examples on every run and every machine,
+# so CI fails only when the code changes. "thorough" draws new random examples.
+settings.register_profile("default", max_examples=25, deadline=None, derandomize=True,
                           suppress_health_check=[HealthCheck.too_slow])
 settings.register_profile("thorough", max_examples=300, deadline=None,
                           suppress_health_check=[HealthCheck.too_slow])

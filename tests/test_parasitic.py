@@ -9,6 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ballcvt import TractionLimitError, Variator, load_builtin
+from ballcvt.errors import NoEquilibriumError
 from ballcvt.bearings.parasitic import (
     moment_coefficient,
     parasitic_torques,
@@ -67,7 +68,9 @@ def test_eq38_equals_eq39_with_parasitic_losses(ratio, torque, rpm):
     v = Variator(*load_builtin("hub"))
     try:
         r = v.solve(ratio, torque, clamp_law="cam", input_speed_rpm=rpm)
-    except TractionLimitError:
+    except (TractionLimitError, NoEquilibriumError):
+        # honest refusals: beyond capacity, or the cam's preload cannot carry the
+        # drive's own drag at this speed (e.g. ratio 2, 2 N m, 2,799 rpm)
         return
     assert r.losses["parasitic"] > 0
     assert r.eta == pytest.approx(r.eta_loss, abs=1e-9)

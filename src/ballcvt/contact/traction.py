@@ -18,6 +18,8 @@ Then (Eqs. 57-66, lever arms with their semi-axes, docs/model.md §3)
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from ..params.models import Fluid
@@ -124,16 +126,36 @@ def _rule(kind, yp, params, fluid: Fluid, n_radial, n_angular, derivatives, engi
         return np.concatenate([np.stack(values[:2]), values[2].T, values[3].T])
     out = np.empty((yp.size, kernels.N_OUT))
     par = np.ascontiguousarray(params)
-    fl, tab = kernels.viscosity_table(fluid, float(np.max(par[4])))
+    fl, tab = _viscosity_table(fluid, float(np.max(par[4])))
     if kind == "pole":
-        r01, wr = radial_rule(n_radial)
-        phi = 2.0 * np.pi * np.arange(n_angular) / n_angular
-        kernels.pole_kernel(yp, par, r01, wr, np.sin(phi), np.cos(phi),
+        r01, wr, sin_phi, cos_phi = _pole_nodes(n_radial, n_angular)
+        kernels.pole_kernel(yp, par, r01, wr, sin_phi, cos_phi,
                             2.0 * np.pi / n_angular, fl, tab, derivatives, out)
     else:
-        x, y, w = (np.ascontiguousarray(v) for v in centred_rule(n_radial, n_angular))
-        kernels.centred_kernel(par, x, y, w, fl, tab, derivatives, out)
+        kernels.centred_kernel(par, *_centred_nodes(n_radial, n_angular), fl, tab,
+                               derivatives, out)
     return out.T
+
+
+@lru_cache(maxsize=32)
+def _viscosity_table(fluid: Fluid, p_max: float):
+    """`kernels.viscosity_table`, kept for the iterations of a solve (same fluid and
+    pressure range: the same table, so caching changes no result)."""
+    return kernels.viscosity_table(fluid, p_max)
+
+
+@lru_cache(maxsize=16)
+def _pole_nodes(n_radial, n_angular):
+    """Radial nodes and weights, sines and cosines of the ray angles (read-only)."""
+    r01, wr = radial_rule(n_radial)
+    phi = 2.0 * np.pi * np.arange(n_angular) / n_angular
+    return r01, wr, np.sin(phi), np.cos(phi)
+
+
+@lru_cache(maxsize=16)
+def _centred_nodes(n_radial, n_angular):
+    """Nodes and weights of the centred rule as contiguous 1-D arrays."""
+    return tuple(np.ascontiguousarray(v) for v in centred_rule(n_radial, n_angular))
 
 
 #: Range of |Y_p| over which the pole-centred rule hands over to the centred rule.

@@ -21,7 +21,7 @@ import numpy as np
 from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState, evaluate, evaluate_with_jacobian
 
-__all__ = ["BatchSolution", "solve_batch", "initial_creep", "CREEP_BOUNDS"]
+__all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "CREEP_BOUNDS"]
 
 #: Creeps outside this open interval are unphysical (speeds reverse).
 CREEP_BOUNDS = (-0.5, 0.98)
@@ -60,7 +60,7 @@ def initial_creep(problem: EquilibriumProblem) -> np.ndarray:
 
 
 def solve_batch(problem: EquilibriumProblem, options=None, x0=None,
-                fallback: bool = True) -> BatchSolution:
+                fallback: bool = True, predict: bool = True) -> BatchSolution:
     """Solve every operating point of ``problem`` for its creeps.
 
     Parameters
@@ -74,6 +74,10 @@ def solve_batch(problem: EquilibriumProblem, options=None, x0=None,
         Starting creeps, broadcastable to ``(..., n_c)`` (e.g. a neighbour's solution).
     fallback : bool
         Whether unconverged points go to the point solver (otherwise they are flagged).
+    predict : bool
+        Whether to run the predictor stage (``options.predictor``); False when ``x0`` is
+        already close to the solution on the requested rule (e.g. a solution found by
+        `solve_pinned` at the same torque), which the predictor would only move away.
 
     Returns
     -------
@@ -86,7 +90,7 @@ def solve_batch(problem: EquilibriumProblem, options=None, x0=None,
     x = initial_creep(flat) if x0 is None else \
         np.broadcast_to(np.asarray(x0, dtype=float), shape + (nc,)).reshape(-1, nc).copy()
     iterations = np.zeros(flat.size, dtype=int)
-    if options.predictor is not None and options.predictor != options.quadrature:
+    if predict and options.predictor is not None and options.predictor != options.quadrature:
         coarse = replace(options, quadrature=options.predictor, tol=options.predictor_tol)
         x_fine = x.copy()
         _newton(flat, x, iterations, coarse)
@@ -108,18 +112,70 @@ def solve_batch(problem: EquilibriumProblem, options=None, x0=None,
                          residual_norm=norm.reshape(shape), iterations=iterations.reshape(shape))
 
 
-def _newton(flat, x, iterations, options):
+def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
+    """Solve with one contact's creep held, for the output torque that goes with it.
+
+    The output torque enters only the output disc's balance, and linearly (the last
+    residual, docs/model.md §5). With the creep of ``contact`` held at its value in
+    ``x0``, the other balances fix the other creeps; the output torque is then the one
+    that balances the output disc: ``T_2 = T_body,2 - T_drag,2``. This gives the torque
+    at which a creep reaches a given value in one Newton solve (`ballcvt.solver.limit`).
+    The problem's own ``output_torque`` is not used.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating points, 1-D batch ``(n,)``, at a torque-independent clamping force.
+    contact : int
+        Index of the contact whose creep is held.
+    x0 : array_like
+        Starting creeps ``(n, n_c)``; column ``contact`` holds the prescribed creep [-].
+    options : SolverOptions, optional
+        As in `solve_batch` (no fallback: a point that fails is flagged).
+
+    Returns
+    -------
+    torque : ndarray
+        Output torque ``T_2`` at the solution [N m], ``(n,)``.
+    solution : BatchSolution
+        Creeps and state; ``converged`` refers to the balances other than the output's.
+    """
+    from .point import SolverOptions
+    options = SolverOptions() if options is None else options
+    flat = problem.flat()
+    x = np.array(x0, dtype=float).reshape(flat.size, -1)
+    iterations = np.zeros(flat.size, dtype=int)
+    if options.predictor is not None and options.predictor != options.quadrature:
+        coarse = replace(options, quadrature=options.predictor, tol=options.predictor_tol)
+        start = x.copy()
+        _newton(flat, x, iterations, coarse, pinned=contact)
+        x = np.where(np.all(np.isfinite(x), axis=-1, keepdims=True), x, start)
+    state = _newton(flat, x, iterations, options, pinned=contact)
+    norm = _norm(state.residual[:, :-1])
+    torque = state.body_torque[:, -1] - np.sum(flat.output_drag, axis=-1)
+    return torque, BatchSolution(state=state, converged=norm <= options.tol,
+                                 residual_norm=norm, iterations=iterations)
+
+
+def _newton(flat, x, iterations, options, pinned=None):
     """Damped Newton on the points of the 1-D batch ``flat``; updates ``x`` in place.
+
+    ``pinned``: the index of a contact whose creep stays at its value in ``x``; the
+    output balance (the last residual) is then dropped, the output torque being the
+    unknown it defines (`solve_pinned`).
 
     Returns the state at the final ``x`` of every point: each point's last evaluation,
     or a fresh one for the points whose last move was not evaluated.
     """
+    nc = x.shape[-1]
+    free = np.arange(nc) if pinned is None else np.delete(np.arange(nc), pinned)
+    rows = slice(None) if pinned is None else slice(0, nc - 1)
     active = np.arange(flat.size)
     final = None
     fresh = np.zeros(flat.size, dtype=bool)       # last evaluation was at the current x
     best = np.full(flat.size, np.inf)          # residual norm at the last accepted creeps
     prev_x = x.copy()
-    prev_dx = np.zeros_like(x)
+    prev_dx = np.zeros((flat.size, free.size))
     for _ in range(options.max_iterations):
         if active.size == 0:
             break
@@ -128,7 +184,7 @@ def _newton(flat, x, iterations, options):
         iterations[active] += 1
         final = state if final is None else _scatter(final, state, active)
         fresh[active] = True
-        res = state.residual
+        res = state.residual[:, rows]
         norm = _norm(res)
         done = norm <= options.tol
         worse = ~done & ~(norm < best[active])        # includes NaN residuals
@@ -136,17 +192,17 @@ def _newton(flat, x, iterations, options):
         ok = ~done & ~worse
         dx = np.zeros_like(res)
         if np.any(ok):
-            dx[ok] = _newton_step(jac[ok], res[ok], x[active][ok])
+            dx[ok] = _newton_step(jac[ok][:, rows][:, :, free], res[ok], x[active][ok][:, free])
         idx = active
         back = idx[worse]
         prev_dx[back] *= 0.5
-        x[back] = prev_x[back] + prev_dx[back]
+        x[back[:, None], free] = prev_x[back][:, free] + prev_dx[back]
         stuck = worse & ~(np.max(np.abs(prev_dx[idx]), axis=-1) > 1e-14)
         step = idx[ok]
         best[step] = norm[ok]
         prev_x[step] = x[step]
         prev_dx[step] = dx[ok]
-        x[step] = x[step] + dx[ok]
+        x[step[:, None], free] = x[step][:, free] + dx[ok]
         fresh[back] = False
         fresh[step] = False
         active = idx[~done & ~stuck]

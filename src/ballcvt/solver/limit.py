@@ -2,9 +2,11 @@
 
 The traction law saturates (``mu -> a + tau_L0 A / F_N``), so creep runs away over a
 narrow torque band instead of stopping at a sharp maximum. The limiting torque is the
-largest ``T_2`` with a converged equilibrium and every ``|C| <= C_lim``. It is found by
-bisection on ``T_2``, each trial started from the solution at the highest torque known
-to be admissible (continuation).
+largest ``T_2`` with a converged equilibrium and every ``|C| <= C_lim``. Under a constant
+clamping force it is found directly, by holding a disc creep at ``C_lim`` and solving for
+the output torque (`limit_search`, `ballcvt.solver.batch.solve_pinned`); otherwise, and as
+the fallback, by bisection on ``T_2``, each trial started from the solution at the highest
+torque known to be admissible (continuation).
 """
 
 from __future__ import annotations
@@ -15,11 +17,12 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import NoEquilibriumError
-from .batch import solve_batch
+from .batch import solve_batch, solve_pinned
 from .clamped import pressure_bound_force, solve_clamped, with_clamp
 from .point import SolverOptions, solve_point
 
-__all__ = ["limit_torque", "limit_torque_batch", "solve_admissible", "Admissibility",
+__all__ = ["limit_torque", "limit_torque_batch", "limit_search", "LimitSearch",
+           "limit_torque_bisection", "solve_admissible", "Admissibility",
            "traction_ceiling_torque", "saturated_traction", "bisection_steps", "LIMIT_RTOL"]
 
 
@@ -192,17 +195,53 @@ def _follows_torque(law) -> bool:
     return law is not None and getattr(law, "name", "constant") != "constant"
 
 
+@dataclass(frozen=True)
+class LimitSearch:
+    """Outcome of `limit_search`; arrays have the batch shape ``(...)`` of the problem.
+
+    Attributes
+    ----------
+    torque : ndarray
+        Limiting output torques [N m]; NaN where even ``T_2 = 0`` is inadmissible.
+    creep : ndarray
+        Creeps at the limit, ``(..., n_c)`` (NaN where there is none) [-]: a warm start
+        for the points at or near the limit.
+    creep_zero : ndarray
+        Creeps at zero output torque, ``(..., n_c)`` [-] (NaN where not converged).
+    """
+
+    torque: np.ndarray
+    creep: np.ndarray
+    creep_zero: np.ndarray
+
+
 def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
                        options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL,
                        callback=None, law=None) -> np.ndarray:
     """Limiting output torque of every point of a batch (its ``output_torque`` is ignored).
 
-    The same bisection as `limit_torque`, run on all points at once with the batched
-    Newton solver, each trial started from the point's last admissible creeps. A trial
-    counts as admissible only if it converges with every ``|C| <= creep_limit``. A trial
-    whose Newton run fails with its creeps beyond the limit counts as beyond it at once
-    (the common case above the limit, kept cheap); one that fails with its creeps within
-    the limit goes to the point solver, as in `limit_torque`.
+    `limit_search` returning the torques only: shape ``(...)`` [N m], NaN where even
+    ``T_2 = 0`` is inadmissible. Parameters as in `limit_search`.
+    """
+    return limit_search(problem, creep_limit, options, rtol, callback, law).torque
+
+
+def limit_search(problem: EquilibriumProblem, creep_limit: float,
+                 options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL,
+                 callback=None, law=None) -> LimitSearch:
+    """Limiting output torque of every point of a batch, and the creeps there.
+
+    Every point is first solved at ``T_2 = 0``: a point inadmissible there has no limit
+    (NaN). Under a constant clamping force the limit is then found directly: the creep
+    of a disc contact is held at ``creep_limit`` and the output torque that goes with it
+    solved for (`solve_pinned`), first at the disc contact with the lower traction
+    ceiling, then at the other one for the points where that answer is inadmissible (the
+    other disc's creep beyond the limit). The creeps grow with the torque, so that torque
+    is the largest admissible one, exact to the solver tolerance. A point for which
+    neither answer is admissible (a non-monotone creep, a failed solve), and every point
+    under a torque-following law, goes to the bisection on ``T_2`` of
+    `limit_torque_bisection`. The two methods agree within ``rtol``
+    (tests/test_fast_solver.py).
 
     Parameters
     ----------
@@ -213,9 +252,9 @@ def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
     options : SolverOptions
         Solver options.
     rtol : float
-        Relative width of the final torque brackets [-].
+        Relative width of the final torque brackets of the bisection [-].
     callback : callable, optional
-        Called with no argument after each bisection step (progress bars).
+        Called with no argument `bisection_steps` times in all (progress bars).
     law : clamping law, optional
         A law whose force follows the torque (`ballcvt.clamping`). Its force grows with
         the torque, so the capacity is also bounded by the peak pressure: a trial counts as
@@ -225,37 +264,100 @@ def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
 
     Returns
     -------
-    ndarray
-        Limiting torques [N m], shape ``(...)``; NaN where even ``T_2 = 0`` is inadmissible.
+    LimitSearch
     """
     flat = problem.flat()
     law = law if _follows_torque(law) else None
+    nc = flat.layout.n_contacts
+    calls = [0]
+
+    def tick(n=1):
+        for _ in range(n if callback is not None else 0):
+            if calls[0] < bisection_steps(rtol):
+                calls[0] += 1
+                callback()
+
+    zero = solve_admissible(replace(flat, output_torque=np.zeros(flat.size)), creep_limit,
+                            options, law)
+    tick()
+    torque = np.full(flat.size, np.nan)
+    creep = np.full((flat.size, nc), np.nan)
+    todo = np.flatnonzero(zero.ok)
+    if law is None and todo.size:
+        torque[todo], creep[todo] = _pinned_limits(flat.take(todo), creep_limit, options,
+                                                   zero.creep[todo])
+        tick()
+    todo = todo[np.isnan(torque[todo])]
+    if todo.size:
+        torque[todo], creep[todo] = limit_torque_bisection(
+            flat.take(todo), creep_limit, options, rtol, tick, law, zero.creep[todo])
+    tick(bisection_steps(rtol))
+    shape = problem.shape
+    x_zero = np.where(zero.converged[:, None], zero.creep, np.nan)
+    return LimitSearch(torque.reshape(shape), creep.reshape(shape + (nc,)),
+                       x_zero.reshape(shape + (nc,)))
+
+
+def _pinned_limits(flat, creep_limit, options, x_zero):
+    """Torques at which a disc creep reaches ``creep_limit`` with every creep admissible
+    (`limit_search`); NaN where neither disc contact gives one."""
+    nc = flat.layout.n_contacts
+    torque = np.full(flat.size, np.nan)
+    creep = np.full((flat.size, nc), np.nan)
+    # the disc contact with the lower traction ceiling usually limits: try it first
+    cap = (flat.load * flat.radius * saturated_traction(flat))[:, [0, -1]]
+    cap[:, 0] /= flat.ratio
+    first = np.where(cap[:, 0] <= cap[:, 1], 0, nc - 1)
+    for attempt in range(2):
+        for k in (0, nc - 1):
+            idx = np.flatnonzero(np.isnan(torque) & ((first == k) == (attempt == 0)))
+            if idx.size == 0:
+                continue
+            x0 = x_zero[idx].copy()
+            x0[:, [0, -1]] = creep_limit
+            t, sol = solve_pinned(flat.take(idx), k, x0, options)
+            x = sol.state.creep
+            good = (sol.converged & np.isfinite(t) & (t >= 0.0)
+                    & (np.max(np.abs(x), axis=-1) <= creep_limit * (1.0 + 1e-9)))
+            torque[idx[good]], creep[idx[good]] = t[good], x[good]
+    return torque, creep
+
+
+def limit_torque_bisection(flat: EquilibriumProblem, creep_limit: float, options: SolverOptions,
+                           rtol: float, callback, law, x_zero):
+    """Bisection on ``T_2`` for the limits of a 1-D batch admissible at ``T_2 = 0``.
+
+    Each trial is started from the point's last admissible creeps (continuation) and
+    counts as admissible only if it converges with every ``|C| <= creep_limit`` (and,
+    under a torque-following ``law``, within the pressure limit; `solve_admissible`).
+
+    Returns
+    -------
+    torque : ndarray
+        The highest admissible torque found, within ``rtol`` of the limit [N m].
+    creep : ndarray
+        The creeps there.
+    """
     if law is not None:
         f_cap = pressure_bound_force(flat, flat.design.max_pressure)
         hi = np.minimum(law.output_torque_bound(flat.design, f_cap, flat.ratio),
                         traction_ceiling_torque(with_clamp(flat, f_cap)))
     else:
         hi = traction_ceiling_torque(flat)
-
-    def admissible(index, torque, x0):
-        got = solve_admissible(replace(flat.take(index), output_torque=torque), creep_limit,
-                               options, law, x0)
-        return got.ok, got.creep
-
-    ok0, best = admissible(np.arange(flat.size), np.zeros(flat.size), None)
+    best = np.array(x_zero, dtype=float)
     lo = np.zeros(flat.size)
     # bisect until every bracket is narrow: a loose ceiling (extreme designs) needs more
     # than the bisection_steps() of a typical one
     steps = bisection_steps(rtol)
     for step in range(MAX_BISECTIONS):
-        active = np.flatnonzero(ok0 & ((step < steps) | (hi - lo > rtol * hi)))
+        active = np.flatnonzero((step < steps) | (hi - lo > rtol * hi))
         if active.size == 0:
             break
         mid = 0.5 * (lo[active] + hi[active])
-        ok, x = admissible(active, mid, best[active])
-        lo[active] = np.where(ok, mid, lo[active])
-        hi[active] = np.where(ok, hi[active], mid)
-        best[active] = np.where(ok[:, None], x, best[active])
-        if callback is not None and step < steps:
-            callback()
-    return np.where(ok0, lo, np.nan).reshape(problem.shape)
+        got = solve_admissible(replace(flat.take(active), output_torque=mid), creep_limit,
+                               options, law, best[active])
+        lo[active] = np.where(got.ok, mid, lo[active])
+        hi[active] = np.where(got.ok, hi[active], mid)
+        best[active] = np.where(got.ok[:, None], got.creep, best[active])
+        callback()
+    return lo, best

@@ -18,7 +18,7 @@ from ..performance.efficiency import efficiency, loss_breakdown, power_losses
 from ..performance.validity import validity
 from ..solver.batch import solve_batch
 from ..solver.clamped import capacity_basis, solve_clamped, with_clamp
-from ..solver.limit import limit_torque_batch
+from ..solver.limit import limit_search
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
 
 __all__ = ["solve_curves", "limit_torques", "derived", "solve_column", "at_optimal_forces"]
@@ -32,49 +32,94 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
     ``law``: a clamping law other than constant (then ``clamp_force`` is ignored and the
     force the law sets at each point is returned as ``clamp_force``, ``(m, n_T)``).
 
+    When the limit search ran here, every point within the limits is solved in one batch,
+    each started from the creeps interpolated in torque between the curve's solutions at
+    zero torque and at its limit; otherwise (limits given, the optimal law) torque by
+    torque, each started from the last solution (continuation).
+
     Returns a dict of arrays ``(m, n_T)`` or ``(m, n_T, n_c)`` (and ``limit_torque``,
     ``(m,)``) with the variables of `ballcvt.sweeps.variables`; run in worker processes.
     """
     m, nt = ratio.size, torque.size
     optimal = law is not None and law.name == "optimal"
-    base, limit = limit_torques(design, fluid, architecture, ratio, input_speed, clamp_force,
-                                law, options, creep_limit, callback, limit)
+    base, search = limit_search_curves(design, fluid, architecture, ratio, input_speed,
+                                       clamp_force, law, options, creep_limit, callback,
+                                       limit)
+    limit = search.torque if search is not None else limit
     nc = base.layout.n_contacts
-    creep = np.full((m, nt, nc), np.nan)
-    force = np.broadcast_to(base.clamp_force[:, None], (m, nt)).copy()
-    # points within the limit start as "not converged" (2) until solved
-    status = np.where(torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None], 2, 1)
-    iterations = np.zeros((m, nt), dtype=int)
-    residual = np.full((m, nt), np.nan)
-    x = None
-    for k in range(nt):
-        todo = np.flatnonzero(status[:, k] == 2)
-        if todo.size:
-            pb = build_problem(design, fluid, architecture, ratio[todo], torque[k],
-                               force[todo, k], input_speed[todo])
-            pb, sol = solve_column(pb, law, options, None if x is None else x[todo])
-            good = sol.converged
-            force[todo, k] = pb.clamp_force
-            creep[todo[good], k] = sol.state.creep[good]
-            status[todo[good], k] = 0
-            iterations[todo, k] = sol.iterations
-            residual[todo, k] = sol.residual_norm
-            if x is None:
-                x = np.broadcast_to(sol.state.creep[:1], (m, nc)).copy()
-            x[todo[good]] = sol.state.creep[good]
-        if callback is not None:
+    state = {"creep": np.full((m, nt, nc), np.nan),
+             "force": np.broadcast_to(base.clamp_force[:, None], (m, nt)).copy(),
+             # points within the limit start as "not converged" (2) until solved
+             "status": np.where(torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None],
+                                2, 1),
+             "iterations": np.zeros((m, nt), dtype=int),
+             "residual": np.full((m, nt), np.nan)}
+    if search is not None and not optimal:
+        i, k = np.nonzero(state["status"] == 2)
+        share = (torque[k] / search.torque[i])[:, None]
+        x0 = search.creep_zero[i] + share * (search.creep[i] - search.creep_zero[i])
+        _solve_points(state, design, fluid, architecture, ratio, torque, input_speed, law,
+                      options, i, k, x0)
+        for _ in range(nt) if callback is not None else ():
             callback()
+    else:
+        x = None
+        for k in range(nt):
+            i = np.flatnonzero(state["status"][:, k] == 2)
+            if i.size:
+                sol = _solve_points(state, design, fluid, architecture, ratio, torque,
+                                    input_speed, law, options, i, np.full(i.size, k),
+                                    None if x is None else x[i])
+                if x is None:
+                    x = np.broadcast_to(sol.state.creep[:1], (m, nc)).copy()
+                good = sol.converged
+                x[i[good]] = sol.state.creep[good]
+            if callback is not None:
+                callback()
+    creep, force, status = state["creep"], state["force"], state["status"]
     out = {"limit_torque": limit,
            "eta_at_limit": _eta_at(design, fluid, architecture, base.clamp_force,
                                    input_speed, ratio, limit, options,
-                                   None if optimal else law),
-           "status": status.astype(np.int8), "iterations": iterations,
-           "residual_norm": residual}
+                                   None if optimal else law,
+                                   None if search is None else search.creep),
+           "status": status.astype(np.int8), "iterations": state["iterations"],
+           "residual_norm": state["residual"]}
     out.update(derived(design, fluid, architecture, force, input_speed, ratio, torque,
                         creep, status, options))
     if law is not None:
         out["clamp_force"] = np.where(status == 0, force, np.nan)
     return out
+
+
+def _solve_points(state, design, fluid, architecture, ratio, torque, input_speed, law,
+                  options, i, k, x0):
+    """Solve the points ``(curve i[j], torque k[j])`` in one batch; record them in
+    ``state`` and return the batch solution."""
+    pb = build_problem(design, fluid, architecture, ratio[i], torque[k],
+                       state["force"][i, k], input_speed[i])
+    pb, sol = solve_column(pb, law, options, x0)
+    good = sol.converged
+    state["force"][i, k] = pb.clamp_force
+    state["creep"][i[good], k[good]] = sol.state.creep[good]
+    state["status"][i[good], k[good]] = 0
+    state["iterations"][i, k] = sol.iterations
+    state["residual"][i, k] = sol.residual_norm
+    return sol
+
+
+def limit_search_curves(design, fluid, architecture, ratio, input_speed, clamp_force, law,
+                        options, creep_limit, callback=None, limit=None):
+    """Limit search of the curves ``(ratio[i], input_speed[i])`` under a clamping law.
+
+    As `limit_torques`, but returns the `ballcvt.solver.limit.LimitSearch` (limits and
+    the creeps at zero torque and at the limits), or None when ``limit`` is given.
+    """
+    start = np.ones(ratio.size) if law is not None else clamp_force
+    base = build_problem(design, fluid, architecture, ratio, 0.0, start, input_speed)
+    base, follows, creep_limit = capacity_basis(base, law, creep_limit)
+    if limit is not None:
+        return base, None
+    return base, limit_search(base, creep_limit, options, callback=callback, law=follows)
 
 
 def limit_torques(design, fluid, architecture, ratio, input_speed, clamp_force, law, options,
@@ -97,7 +142,7 @@ def limit_torques(design, fluid, architecture, ratio, input_speed, clamp_force, 
     creep_limit : float
         ``C_lim`` [-] (the optimal law's own, if it has one, wins).
     callback : callable, optional
-        Called after each bisection step.
+        Called after each step of the limit search.
     limit : ndarray, optional
         Limits already known (returned as they are).
 
@@ -107,13 +152,10 @@ def limit_torques(design, fluid, architecture, ratio, input_speed, clamp_force, 
         The curves at zero torque (at the constant force, or the optimal law's bound)
         and their limiting torques [N m] (NaN where none).
     """
-    start = np.ones(ratio.size) if law is not None else clamp_force
-    base = build_problem(design, fluid, architecture, ratio, 0.0, start, input_speed)
-    base, follows, creep_limit = capacity_basis(base, law, creep_limit)
-    if limit is None:
-        limit = limit_torque_batch(base, creep_limit, options, callback=callback,
-                                   law=follows)
-    return base, limit
+    base, search = limit_search_curves(design, fluid, architecture, ratio, input_speed,
+                                       clamp_force, law, options, creep_limit, callback,
+                                       limit)
+    return base, (limit if search is None else search.torque)
 
 
 def solve_column(pb, law, options, x0):
@@ -142,14 +184,19 @@ def at_optimal_forces(pb, law, options):
     return with_clamp(pb, forces)
 
 
-def _eta_at(design, fluid, arch, clamp_force, input_speed, ratio, torque, options, law=None):
-    """Overall efficiency (Eq. 38) at one torque per curve (NaN where there is none)."""
+def _eta_at(design, fluid, arch, clamp_force, input_speed, ratio, torque, options, law=None,
+            x0=None):
+    """Overall efficiency (Eq. 38) at one torque per curve (NaN where there is none);
+    ``x0``: starting creeps per curve (the limit search's, at these torques)."""
     eta = np.full(ratio.size, np.nan)
     ok = np.flatnonzero(np.isfinite(torque))
     if ok.size:
         pb = build_problem(design, fluid, arch, ratio[ok], torque[ok], clamp_force[ok],
                            input_speed[ok])
-        pb, sol = solve_column(pb, law, options, None)
+        if x0 is not None and law is None:        # the limit search's own solutions
+            sol = solve_batch(pb, options, x0[ok], predict=False)
+        else:
+            pb, sol = solve_column(pb, law, options, None if x0 is None else x0[ok])
         eta[ok] = np.where(sol.converged, efficiency(pb, sol.state).overall, np.nan)
     return eta
 

@@ -12,7 +12,7 @@ from ballcvt.equilibrium.problem import build_problem
 from ballcvt.equilibrium.residual import evaluate, evaluate_with_jacobian
 from ballcvt.performance.efficiency import efficiency
 from ballcvt.solver.batch import solve_batch
-from ballcvt.solver.limit import limit_torque_batch
+from ballcvt.solver.limit import limit_search, limit_torque_batch
 from test_invariants import cases
 
 REF = SolverOptions(quadrature=Quadrature("pole", 64, 64, 128))
@@ -106,3 +106,81 @@ def test_analytic_jacobian_matches_finite_differences(drive):
         fd[:, j] = (evaluate(pb, x + h).residual - evaluate(pb, x - h).residual) / 2e-8
     # the node motion with the pole is not differentiated: a Newton Jacobian, ~1 % off
     assert np.allclose(jac, fd, rtol=0.02, atol=0.02 * np.max(np.abs(fd)))
+
+
+# --- the fast user-facing paths (issue 13) against the straightforward ones ------------
+
+def _bisection(problem, creep_limit):
+    """The bisection limit and its final bracket from T_2 = 0 (the former method)."""
+    from dataclasses import replace
+    from ballcvt.solver.limit import LIMIT_RTOL, limit_torque_bisection, solve_admissible
+    zero = solve_admissible(replace(problem, output_torque=np.zeros(problem.size)),
+                            creep_limit, FAST)
+    lo = np.full(problem.size, np.nan)
+    ok = np.flatnonzero(zero.ok)
+    if ok.size:
+        lo[ok], _ = limit_torque_bisection(problem.take(ok), creep_limit, FAST, LIMIT_RTOL,
+                                           lambda: None, None, zero.creep[ok])
+    return lo, LIMIT_RTOL
+
+
+def test_pinned_limits_equal_bisection_on_the_map(drive):
+    design, fluid = drive
+    for arch in ("double", "single"):
+        base = build_problem(design, fluid, arch, np.linspace(0.5, 2.0, 12), 0.0, 2000.0,
+                             SPEED)
+        fast = limit_search(base, design.creep_limit, FAST)
+        lo, rtol = _bisection(base, design.creep_limit)
+        # the exact limit lies in the bisection's last bracket [lo, lo + rtol hi]
+        assert np.all(fast.torque >= lo * (1 - 1e-9))
+        assert np.all(fast.torque <= lo * (1 + 1.01 * rtol / (1 - rtol)))
+        # at the limit a creep is at C_lim, none beyond it
+        big = np.max(np.abs(fast.creep), axis=-1)
+        assert np.allclose(big, design.creep_limit, rtol=1e-9)
+
+
+@given(cases())
+def test_pinned_limits_equal_bisection_on_random_designs(case):
+    v, ratio, clamp, rpm, _ = case
+    pb = build_problem(v.design, v.fluid, v.architecture, np.array([ratio]), 0.0, clamp,
+                       rpm * np.pi / 30)
+    fast = limit_search(pb, v.design.creep_limit, FAST).torque
+    lo, rtol = _bisection(pb, v.design.creep_limit)
+    assert np.isnan(fast[0]) == np.isnan(lo[0])
+    if not np.isnan(lo[0]):
+        assert lo[0] * (1 - 1e-9) <= fast[0] <= lo[0] * (1 + 1.01 * rtol / (1 - rtol))
+        # the solve at the limit converges within it: the limit is admissible
+        r = v.solve(ratio=ratio, output_torque=float(fast[0]), clamp_force=clamp,
+                    input_speed_rpm=rpm)
+        assert max(abs(c.creep) for c in r.contacts.values()) <= v.design.creep_limit * (
+            1 + 1e-8)
+
+
+@pytest.mark.parametrize("law", [None, "cam"])
+def test_one_batch_sweep_equals_torque_continuation(law):
+    """The sweep's single batch from interpolated creeps (its limits found here) against
+    the former walk up the torque axis (taken when the limits are given): the same points
+    converge, to the same values."""
+    from ballcvt import Variator, load_builtin
+    v = Variator(*load_builtin("hub")) if law else Variator()
+    kw = {"clamp_law": "cam"} if law else {"clamp_force": 2000.0}
+    grid = {"ratio": np.linspace(0.5, 2.0, 6), "output_torque": np.linspace(0.0, 120.0, 9),
+            "input_speed_rpm": 2000.0, **kw}
+    fast = v.sweep(**grid)
+    walk = v.sweep(**grid, limit_torque=fast.limit_torque.squeeze().values)
+    assert (fast.status.values == walk.status.values).all()
+    assert (fast.status.values == 0).sum() > 20
+    assert np.allclose(fast.eta, walk.eta, rtol=0, atol=1e-9, equal_nan=True)
+    assert np.allclose(fast.creep, walk.creep, rtol=1e-6, atol=1e-12, equal_nan=True)
+
+
+def test_small_batches_skip_the_predictor_to_the_same_answer(drive):
+    from dataclasses import replace
+    design, fluid = drive
+    pb = build_problem(design, fluid, "double", np.array([0.6, 1.2, 1.9]), 50.0, 2000.0,
+                       SPEED)
+    direct = solve_batch(pb)                                  # 3 points: no predictor
+    staged = solve_batch(pb, replace(FAST, predictor_min_points=1))
+    assert direct.converged.all() and staged.converged.all()
+    assert direct.iterations.max() < staged.iterations.min()
+    assert np.allclose(direct.state.creep, staged.state.creep, rtol=1e-7, atol=1e-13)

@@ -226,7 +226,6 @@ class Variator:
             raise InputError("input_speed", input_speed, "exactly one of input_speed [rad/s] "
                              "or input_speed_rpm [rpm]")
         from .sweeps.grid import sweep  # xarray and pandas load only when a sweep is asked for
-        from .sweeps.variables import attrs_for
         rpm = None if input_speed_rpm is None else np.atleast_1d(
             np.asarray(input_speed_rpm, float))
         speed = np.asarray(input_speed, float) if rpm is None else rpm * math.pi / 30.0
@@ -234,10 +233,7 @@ class Variator:
                    clamp_force=clamp_force, clamp_law=clamp_law, input_speed=speed,
                    architecture=architecture or self.architecture, options=self.options,
                    creep_limit=creep_limit, limit_torque=limit_torque, workers=workers,
-                   progress=progress, label=label)
-        if rpm is not None:
-            ds = ds.swap_dims(input_speed="input_speed_rpm").assign_coords(
-                input_speed_rpm=("input_speed_rpm", rpm, attrs_for("input_speed_rpm")))
+                   progress=progress, label=label, input_speed_rpm=rpm)
         return ds
 
     def optimal_clamp_force(self, ratio: float, output_torque: float, *,

@@ -91,6 +91,10 @@ class EquilibriumState:
     residual: np.ndarray
     input_drag: np.ndarray
 
+    def take(self, index) -> "EquilibriumState":
+        """The points ``index`` (integer or boolean array) of a 1-D batch."""
+        return EquilibriumState(**{name: np.asarray(v)[index] for name, v in vars(self).items()})
+
     @property
     def input_torque(self) -> np.ndarray:
         """Input shaft torque ``T_0 = -T_body,0`` plus the input shaft's parasitic drag
@@ -152,24 +156,29 @@ def evaluate_with_jacobian(problem: EquilibriumProblem, creep,
     """
     creep = np.asarray(creep, dtype=float)
     nc = creep.shape[-1]
-    omega_s, omega, sigma, u_ref, film = _contact_inputs(problem, creep)
-    c = creep_term(creep)
-    mu, chi, dmu, dchi = traction_coefficients(c, sigma, problem.ax, problem.ay,
-                                               problem.p_max, problem.load, problem.radius,
-                                               u_ref, film, problem.fluid, quadrature,
-                                               derivatives=True)
-    state = _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi)
     h = step * np.maximum(np.abs(creep), 1e-4)
-    pert = creep[..., None, :] + h[..., None] * np.eye(nc)            # (..., j, n_c)
+    # row 0: the creeps themselves; row j + 1: creep j perturbed by h_j (one pass for all)
+    offsets = np.concatenate([np.zeros((1, nc)), np.eye(nc)])
+    pert = creep[..., None, :] + h[..., None, :] * offsets              # (..., 1 + n_c, n_c)
     wide = problem.expand()
     ws, w, sg, u, hf = _contact_inputs(wide, pert)
+    c = creep_term(pert)
+    at = (slice(None),) * len(problem.shape) + (0,)                     # row 0 of the wide axis
+    mu, chi, dmu, dchi = traction_coefficients(c[at], sg[at], problem.ax, problem.ay,
+                                               problem.p_max, problem.load, problem.radius,
+                                               u[at], hf[at], problem.fluid, quadrature,
+                                               derivatives=True)
     ex = lambda v: v[..., None, :]  # noqa: E731
-    delta = np.stack([creep_term(pert) - ex(c), sg - ex(sigma),
-                      np.log(u / ex(u_ref)) - np.log(hf / ex(film))], axis=-1)
-    mu_p = ex(mu) + np.sum(ex(dmu) * delta, axis=-1)
-    chi_p = ex(chi) + np.sum(ex(dchi) * delta, axis=-1)
-    res_p = _balances(wide, pert, ws, w, sg, u, hf, mu_p, chi_p).residual
-    jac = (res_p - state.residual[..., None, :]) / h[..., :, None]    # (..., j, i)
+    delta = np.stack([c - ex(c[at]), sg - ex(sg[at]),
+                      np.log(u / ex(u[at])) - np.log(hf / ex(hf[at]))], axis=-1)
+    mu_p = ex(mu) + np.sum(dmu[..., None, :, :] * delta, axis=-1)
+    chi_p = ex(chi) + np.sum(dchi[..., None, :, :] * delta, axis=-1)
+    mu_p[at], chi_p[at] = mu, chi
+    wide_state = _balances(wide, pert, ws, w, sg, u, hf, mu_p, chi_p)
+    state = EquilibriumState(**{name: np.asarray(v)[at] if np.ndim(v) > len(at) - 1 else v
+                                for name, v in vars(wide_state).items()})
+    res = wide_state.residual
+    jac = (res[..., 1:, :] - res[..., :1, :]) / h[..., :, None]        # (..., j, i)
     return state, np.swapaxes(jac, -1, -2)
 
 

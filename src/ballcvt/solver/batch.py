@@ -90,7 +90,7 @@ def solve_batch(problem: EquilibriumProblem, options=None, x0=None,
     x = initial_creep(flat) if x0 is None else \
         np.broadcast_to(np.asarray(x0, dtype=float), shape + (nc,)).reshape(-1, nc).copy()
     iterations = np.zeros(flat.size, dtype=int)
-    if predict and options.predictor is not None and options.predictor != options.quadrature:
+    if predict and _predicts(options, flat.size):
         coarse = replace(options, quadrature=options.predictor, tol=options.predictor_tol)
         x_fine = x.copy()
         _newton(flat, x, iterations, coarse)
@@ -145,7 +145,7 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     flat = problem.flat()
     x = np.array(x0, dtype=float).reshape(flat.size, -1)
     iterations = np.zeros(flat.size, dtype=int)
-    if options.predictor is not None and options.predictor != options.quadrature:
+    if _predicts(options, flat.size):
         coarse = replace(options, quadrature=options.predictor, tol=options.predictor_tol)
         start = x.copy()
         _newton(flat, x, iterations, coarse, pinned=contact)
@@ -155,6 +155,12 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     torque = state.body_torque[:, -1] - np.sum(flat.output_drag, axis=-1)
     return torque, BatchSolution(state=state, converged=norm <= options.tol,
                                  residual_norm=norm, iterations=iterations)
+
+
+def _predicts(options, n_points: int) -> bool:
+    """Whether a batch of ``n_points`` runs the predictor stage first."""
+    return (options.predictor is not None and options.predictor != options.quadrature
+            and n_points >= options.predictor_min_points)
 
 
 def _newton(flat, x, iterations, options, pinned=None):

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import NoEquilibriumError
-from .batch import solve_batch, solve_pinned
+from .batch import initial_creep, solve_batch, solve_pinned
 from .clamped import pressure_bound_force, solve_clamped, with_clamp
 from .point import SolverOptions, solve_point
 
@@ -207,7 +207,8 @@ class LimitSearch:
         Creeps at the limit, ``(..., n_c)`` (NaN where there is none) [-]: a warm start
         for the points at or near the limit.
     creep_zero : ndarray
-        Creeps at zero output torque, ``(..., n_c)`` [-] (NaN where not converged).
+        Creeps at zero output torque, ``(..., n_c)`` [-], where they were solved for
+        (points that needed the bisection or have no limit; NaN elsewhere).
     """
 
     torque: np.ndarray
@@ -231,17 +232,17 @@ def limit_search(problem: EquilibriumProblem, creep_limit: float,
                  callback=None, law=None) -> LimitSearch:
     """Limiting output torque of every point of a batch, and the creeps there.
 
-    Every point is first solved at ``T_2 = 0``: a point inadmissible there has no limit
-    (NaN). Under a constant clamping force the limit is then found directly: the creep
-    of a disc contact is held at ``creep_limit`` and the output torque that goes with it
-    solved for (`solve_pinned`), first at the disc contact with the lower traction
-    ceiling, then at the other one for the points where that answer is inadmissible (the
-    other disc's creep beyond the limit). The creeps grow with the torque, so that torque
-    is the largest admissible one, exact to the solver tolerance. A point for which
-    neither answer is admissible (a non-monotone creep, a failed solve), and every point
-    under a torque-following law, goes to the bisection on ``T_2`` of
-    `limit_torque_bisection`. The two methods agree within ``rtol``
-    (tests/test_fast_solver.py).
+    Under a constant clamping force the limit is found directly: the creep of a disc
+    contact is held at ``creep_limit`` and the output torque that goes with it solved for
+    (`solve_pinned`), first at the disc contact with the lower traction ceiling, then at
+    the other one for the points where that answer is inadmissible (the other disc's creep
+    beyond the limit). The creeps grow with the torque, so a non-negative torque found so,
+    with every creep within the limit, is the largest admissible one, exact to the solver
+    tolerance. The other points, and every point under a torque-following law, are solved
+    at ``T_2 = 0``: inadmissible there, they have no limit (NaN); otherwise the pinned
+    solve is tried again from those creeps and, failing that (a non-monotone creep, a
+    failed solve), the bisection on ``T_2`` of `limit_torque_bisection` decides. The two
+    methods agree within ``rtol`` (tests/test_fast_solver.py).
 
     Parameters
     ----------
@@ -277,23 +278,28 @@ def limit_search(problem: EquilibriumProblem, creep_limit: float,
                 calls[0] += 1
                 callback()
 
-    zero = solve_admissible(replace(flat, output_torque=np.zeros(flat.size)), creep_limit,
-                            options, law)
-    tick()
     torque = np.full(flat.size, np.nan)
     creep = np.full((flat.size, nc), np.nan)
-    todo = np.flatnonzero(zero.ok)
-    if law is None and todo.size:
-        torque[todo], creep[todo] = _pinned_limits(flat.take(todo), creep_limit, options,
-                                                   zero.creep[todo])
+    x_zero = np.full((flat.size, nc), np.nan)
+    if law is None:
+        torque, creep = _pinned_limits(flat, creep_limit, options, initial_creep(flat))
         tick()
-    todo = todo[np.isnan(torque[todo])]
-    if todo.size:
-        torque[todo], creep[todo] = limit_torque_bisection(
-            flat.take(todo), creep_limit, options, rtol, tick, law, zero.creep[todo])
+    rest = np.flatnonzero(np.isnan(torque))
+    if rest.size:
+        zero = solve_admissible(replace(flat.take(rest), output_torque=np.zeros(rest.size)),
+                                creep_limit, options, law)
+        tick()
+        x_zero[rest] = np.where(zero.converged[:, None], zero.creep, np.nan)
+        todo = rest[zero.ok]
+        if law is None and todo.size:                   # once more, from the T_2 = 0 creeps
+            torque[todo], creep[todo] = _pinned_limits(flat.take(todo), creep_limit, options,
+                                                       x_zero[todo])
+        todo = todo[np.isnan(torque[todo])]
+        if todo.size:
+            torque[todo], creep[todo] = limit_torque_bisection(
+                flat.take(todo), creep_limit, options, rtol, tick, law, x_zero[todo])
     tick(bisection_steps(rtol))
     shape = problem.shape
-    x_zero = np.where(zero.converged[:, None], zero.creep, np.nan)
     return LimitSearch(torque.reshape(shape), creep.reshape(shape + (nc,)),
                        x_zero.reshape(shape + (nc,)))
 

@@ -48,6 +48,11 @@ class SolverOptions:
         (a cheap starting point for the iterations on ``quadrature``); None to skip.
     predictor_tol : float
         Tolerance of the predictor stage [-].
+    predictor_min_points : int
+        Smallest batch that runs the predictor stage. On a few points an iteration
+        costs the same on either rule (Python, not the integrals, dominates), and Newton
+        on the requested rule alone needs 3-5 iterations where the two stages need 7;
+        the predictor pays from a few tens of points up (benchmarks/bench_paths.py).
     max_evaluations : int
         Residual evaluations allowed to the hybrid method before the fallback.
     """
@@ -59,6 +64,7 @@ class SolverOptions:
     max_evaluations: int = 400
     predictor: Quadrature | None = Quadrature("pole", 12, 8, 12)
     predictor_tol: float = 1e-6
+    predictor_min_points: int = 32
 
     def __post_init__(self):
         if self.method not in METHODS:

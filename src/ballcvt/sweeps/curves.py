@@ -16,7 +16,7 @@ from ..errors import TractionLimitError
 from ..optimize.clamp import optimal_clamp_force
 from ..performance.efficiency import efficiency, loss_breakdown, power_losses
 from ..performance.validity import validity
-from ..solver.batch import solve_batch
+from ..solver.batch import initial_creep, solve_batch
 from ..solver.clamped import capacity_basis, solve_clamped, with_clamp
 from ..solver.limit import limit_search
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
@@ -33,8 +33,8 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
     force the law sets at each point is returned as ``clamp_force``, ``(m, n_T)``).
 
     When the limit search ran here, every point within the limits is solved in one batch,
-    each started from the creeps interpolated in torque between the curve's solutions at
-    zero torque and at its limit; otherwise (limits given, the optimal law) torque by
+    each started from the creeps interpolated in torque between the curve's solution at
+    its limit and the creeps at zero torque (or the solver's cold start); otherwise (limits given, the optimal law) torque by
     torque, each started from the last solution (continuation).
 
     Returns a dict of arrays ``(m, n_T)`` or ``(m, n_T, n_c)`` (and ``limit_torque``,
@@ -57,19 +57,21 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
     if search is not None and not optimal:
         i, k = np.nonzero(state["status"] == 2)
         share = (torque[k] / search.torque[i])[:, None]
-        x0 = search.creep_zero[i] + share * (search.creep[i] - search.creep_zero[i])
-        _solve_points(state, design, fluid, architecture, ratio, torque, input_speed, law,
-                      options, i, k, x0)
+        zero = np.where(np.isnan(search.creep_zero), initial_creep(base), search.creep_zero)
+        x0 = zero[i] + share * (search.creep[i] - zero[i])
+        pb, sol = _solve_points(state, design, fluid, architecture, ratio, torque,
+                                input_speed, law, options, i, k, x0)
+        solved = (pb.take(sol.converged), sol.state.take(sol.converged))
         for _ in range(nt) if callback is not None else ():
             callback()
     else:
-        x = None
+        x, solved = None, None
         for k in range(nt):
             i = np.flatnonzero(state["status"][:, k] == 2)
             if i.size:
-                sol = _solve_points(state, design, fluid, architecture, ratio, torque,
-                                    input_speed, law, options, i, np.full(i.size, k),
-                                    None if x is None else x[i])
+                _, sol = _solve_points(state, design, fluid, architecture, ratio, torque,
+                                       input_speed, law, options, i, np.full(i.size, k),
+                                       None if x is None else x[i])
                 if x is None:
                     x = np.broadcast_to(sol.state.creep[:1], (m, nc)).copy()
                 good = sol.converged
@@ -85,7 +87,7 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
            "status": status.astype(np.int8), "iterations": state["iterations"],
            "residual_norm": state["residual"]}
     out.update(derived(design, fluid, architecture, force, input_speed, ratio, torque,
-                        creep, status, options))
+                        creep, status, options, solved))
     if law is not None:
         out["clamp_force"] = np.where(status == 0, force, np.nan)
     return out
@@ -94,7 +96,7 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
 def _solve_points(state, design, fluid, architecture, ratio, torque, input_speed, law,
                   options, i, k, x0):
     """Solve the points ``(curve i[j], torque k[j])`` in one batch; record them in
-    ``state`` and return the batch solution."""
+    ``state`` and return the problem (at the forces used) and the batch solution."""
     pb = build_problem(design, fluid, architecture, ratio[i], torque[k],
                        state["force"][i, k], input_speed[i])
     pb, sol = solve_column(pb, law, options, x0)
@@ -104,7 +106,7 @@ def _solve_points(state, design, fluid, architecture, ratio, torque, input_speed
     state["status"][i[good], k[good]] = 0
     state["iterations"][i, k] = sol.iterations
     state["residual"][i, k] = sol.residual_norm
-    return sol
+    return pb, sol
 
 
 def limit_search_curves(design, fluid, architecture, ratio, input_speed, clamp_force, law,
@@ -202,9 +204,12 @@ def _eta_at(design, fluid, arch, clamp_force, input_speed, ratio, torque, option
 
 
 def derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep, status,
-             options):
+             options, solved=None):
     """Every reported quantity at the converged points (NaN elsewhere); ``clamp_force``
-    has the shape ``(m, n_T)`` of the points, ``torque`` is ``(n_T,)`` or ``(m, n_T)``."""
+    has the shape ``(m, n_T)`` of the points, ``torque`` is ``(n_T,)`` or ``(m, n_T)``.
+
+    ``solved``: the problem and state of exactly the converged points, in C order,
+    when the solve already has them (else they are evaluated here)."""
     m, nt, nc = creep.shape
     ok = status == 0
     i, k = np.nonzero(ok)
@@ -214,10 +219,13 @@ def derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep,
     values["warnings"] = np.zeros((m, nt), dtype=np.int8)
     if i.size == 0:
         return values
-    torque = np.broadcast_to(torque, (m, nt))        # one axis for all, or per point
-    pb = build_problem(design, fluid, arch, ratio[i], torque[i, k], clamp_force[i, k],
-                       input_speed[i])
-    st = evaluate(pb, creep[i, k], options.quadrature)
+    if solved is None:
+        torque = np.broadcast_to(torque, (m, nt))    # one axis for all, or per point
+        pb = build_problem(design, fluid, arch, ratio[i], torque[i, k], clamp_force[i, k],
+                           input_speed[i])
+        st = evaluate(pb, creep[i, k], options.quadrature)
+    else:
+        pb, st = solved
     loss = power_losses(pb, st)
     eff = efficiency(pb, st, loss)
     valid = validity(pb, st)

@@ -35,7 +35,8 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force=Non
           input_speed, clamp_law=None, architecture="double",
           options: SolverOptions = SolverOptions(),
           creep_limit: float | None = None, limit_torque=None, workers: int = 1,
-          progress: bool | None = None, label: str | None = None) -> xr.Dataset:
+          progress: bool | None = None, label: str | None = None,
+          input_speed_rpm=None) -> xr.Dataset:
     """Evaluate the model over a grid of operating conditions.
 
     Parameters
@@ -71,6 +72,9 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force=Non
         Show a progress bar; by default only when stderr is a terminal.
     label : str, optional
         What the progress bar says it computes (default: ``"sweep, <arch> idler"``).
+    input_speed_rpm : array_like, optional
+        The same input speeds in rpm: the speed dimension is then ``input_speed_rpm``
+        with these values, and ``input_speed`` [rad/s] a second coordinate on it.
 
     Returns
     -------
@@ -128,12 +132,13 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force=Non
                  c_lim, None if limit_torque is None else limits[c], law) for c in chunks]
         text = f"{label}, {arch} idler" if label and len(archs) > 1 else label
         blocks[arch] = _run(jobs, workers, show, text or f"sweep, {arch} idler")
-    ds = _assemble(blocks, archs, axes, shape, contacts)
+    speed_dim = "input_speed" if input_speed_rpm is None else "input_speed_rpm"
+    ds = _assemble(blocks, archs, axes, shape, contacts, input_speed_rpm)
     if law is not None:
         used = np.stack([blocks[a]["clamp_force"].reshape(shape + (torque.size,))
                          for a in archs])[:, 0]
         ds = ds.isel(clamp_force=0, drop=True)
-        ds["clamp_force"] = xr.Variable(("architecture", "input_speed", "ratio",
+        ds["clamp_force"] = xr.Variable(("architecture", speed_dim, "ratio",
                                          "output_torque"), used, attrs_for("clamp_force"))
     ds.attrs.update(
         clamp_law=law.name if law else "constant",
@@ -196,8 +201,9 @@ def _concat(parts):
     return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 
-def _assemble(blocks, archs, axes, shape, contacts):
-    dims = ("clamp_force", "input_speed", "ratio")
+def _assemble(blocks, archs, axes, shape, contacts, rpm=None):
+    speed_dim = "input_speed" if rpm is None else "input_speed_rpm"
+    dims = ("clamp_force", speed_dim, "ratio")
     data = {}
     for name in ("limit_torque", "eta_at_limit", "status", "warnings", "iterations",
                  "residual_norm",
@@ -227,4 +233,8 @@ def _assemble(blocks, archs, axes, shape, contacts):
               "loss": ("loss", np.array(LOSS_KINDS), {"long_name": "kind of power loss"})}
     for n, v in axes.items():
         coords[n] = (n, v, attrs_for(n))
+    if rpm is not None:
+        coords["input_speed"] = (speed_dim, axes["input_speed"], attrs_for("input_speed"))
+        coords[speed_dim] = (speed_dim, np.atleast_1d(np.asarray(rpm, dtype=float)),
+                             attrs_for(speed_dim))
     return xr.Dataset(data, coords=coords)

@@ -108,12 +108,14 @@ if AVAILABLE:
         ek = e * k[6]                                     # eta / (h tau_L)
         eh = ek * (fl[0] + fl[1] * p)                     # eta / h
         a = ek * speed
-        if a < 1e-8:
-            sat = 1.0 - 0.5 * a
+        # saturation (1 - exp(-a)) / a: series below 1e-3 (error a^5 / 720), else exp
+        # (cheaper than expm1; cancellation costs at most 1e-13 relative there)
+        if a < 1e-3:
+            sat = 1.0 - a * (0.5 - a * (1.0 / 6.0 - a * (1.0 / 24.0 - a * (1.0 / 120.0))))
             inv_a = 0.0
         else:
             inv_a = 1.0 / a
-            sat = -math.expm1(-a) * inv_a
+            sat = (1.0 - math.exp(-a)) * inv_a
         g = eh * sat
         wx = w * k[8] * x
         wy = w * k[9] * y

@@ -17,7 +17,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from ..equilibrium.problem import build_problem
 from ..errors import InputError, TractionLimitError
@@ -149,6 +148,7 @@ def optimal_clamp_force(design: Design, fluid: Fluid, architecture: str, ratio: 
     a = max(f_c, forces[max(best - 1, 0)])
     b = forces[min(best + 1, grid - 1)]
     if b - a > xtol:
+        from scipy.optimize import minimize_scalar  # loaded when needed (0.4 s import)
         res = minimize_scalar(lambda f: -evaluate(f)[0][0], bounds=(a, b), method="bounded",
                               options={"xatol": xtol})
         f_opt = float(res.x)

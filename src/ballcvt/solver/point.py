@@ -14,7 +14,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import root
 
 from ..contact.quadrature import Quadrature
 from ..equilibrium.problem import EquilibriumProblem
@@ -103,6 +102,7 @@ def _attempt(problem, x0, options):
         cols = [(fun(x + np.eye(x.size)[j] * h[j]) - f0) / h[j] for j in range(x.size)]
         return np.column_stack(cols)
 
+    from scipy.optimize import root  # loaded when needed: scipy.optimize takes 0.4 s to import
     sol = root(fun, x0, jac=jac, method="hybr",
                options={"xtol": 1e-14, "maxfev": options.max_evaluations})
     return sol, count[0]

@@ -2,10 +2,12 @@
 
 `sweep` evaluates every combination of architecture, clamping force, input speed, ratio and
 output torque. For each curve (all inputs but the torque fixed) it first finds the limiting
-torque by batched bisection (`limit_torque_batch`), then walks up the torque grid with
-continuation: each point starts from the solution at the torque below. Points above the
-limit are not solved; they are NaN with ``status = 1``. Points that do not converge are NaN
-with ``status = 2``. Nothing is dropped.
+torque (`ballcvt.solver.limit.limit_search`), then solves every point below it in one
+batch, each started from the creeps interpolated in torque towards the curve's solution at
+its limit (with the limits given instead, it walks up the torque grid, each point started
+from the solution at the torque below). Points above the limit are not solved; they are NaN
+with ``status = 1``. Points that do not converge are NaN with ``status = 2``. Nothing is
+dropped.
 """
 
 from __future__ import annotations

@@ -338,23 +338,24 @@ def _grid(args):
 
 
 def _limits(args, v, law, ratios, speeds):
-    """The limiting torque of every (ratio, speed), found once (with a progress bar): it
-    sets the default torque range and is handed to the sweep."""
+    """The limit search of every (ratio, speed), run once (with a progress bar): its
+    torques set the default torque range, and the search (torques and the creeps there)
+    is handed to the sweep."""
     import numpy as np
     from tqdm.auto import tqdm
 
     from ..equilibrium.problem import build_problem
     from ..solver.limit import bisection_steps
-    from ..sweeps import limit_torques
+    from ..sweeps.curves import limit_search_curves
     force = law.get("clamp_force")
     build_problem(v.design, v.fluid, v.architecture, ratios, 0.0,
                   1.0 if force is None else force, speeds)          # validates every input
     with tqdm(total=bisection_steps(), desc=f"limiting torque at {ratios.size} points",
               unit="step", disable=not _show(args)) as bar:
-        return limit_torques(v.design, v.fluid, v.architecture, ratios, speeds,
-                             None if force is None else np.full(ratios.size, force),
-                             None if force is not None else v.clamp_law(args.clamp_law),
-                             v.options, v.design.creep_limit, bar.update)[1]
+        return limit_search_curves(v.design, v.fluid, v.architecture, ratios, speeds,
+                                   None if force is None else np.full(ratios.size, force),
+                                   None if force is not None else v.clamp_law(args.clamp_law),
+                                   v.options, v.design.creep_limit, bar.update)[1]
 
 
 def _cmd_map(args) -> int:
@@ -362,7 +363,7 @@ def _cmd_map(args) -> int:
     out, v, law, ratios = _grid(args)
     show = _show(args)
     limits = _limits(args, v, law, ratios, np.full(ratios.size, _rpm(args.speed) * np.pi / 30))
-    top = 1.02 * float(np.nanmax(limits)) if args.torque_max is None else args.torque_max
+    top = 1.02 * float(np.nanmax(limits.torque)) if args.torque_max is None else args.torque_max
     ds = v.sweep(ratio=ratios, output_torque=np.linspace(top / args.n_torque, top,
                                                          args.n_torque),
                  **law, input_speed_rpm=_rpm(args.speed), limit_torque=limits,
@@ -379,7 +380,8 @@ def _cmd_map(args) -> int:
               f"{args.workers} worker(s)")
         if (st == 1).sum() > st.size / 2:
             print(f"note: most points lie beyond the limiting torque (max "
-                  f"{float(np.nanmax(limits)):.1f} N m); lower --torque-max", file=sys.stderr)
+                  f"{float(np.nanmax(limits.torque)):.1f} N m); lower --torque-max",
+                  file=sys.stderr)
     return 0
 
 
@@ -438,9 +440,9 @@ def _cmd_table(args) -> int:
     rpm = np.linspace(w_lo, w_hi, args.n_speed)
     r_grid, w_grid = (g.ravel() for g in np.meshgrid(ratios, rpm * math.pi / 30))
     limits = _limits(args, v, law, r_grid, w_grid)
-    top = float(np.nanmax(limits)) if args.torque_max is None else args.torque_max
+    top = float(np.nanmax(limits.torque)) if args.torque_max is None else args.torque_max
     ds = v.sweep(ratio=ratios, output_torque=np.linspace(0.0, top, args.n_torque), **law,
-                 input_speed_rpm=rpm, limit_torque=limits.reshape(rpm.size, ratios.size),
+                 input_speed_rpm=rpm, limit_torque=limits,
                  workers=args.workers, progress=_show(args), label="lookup table")
     to_netcdf(ds, out / "table.nc")
     write_tables(ds, out)

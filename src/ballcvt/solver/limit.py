@@ -215,6 +215,16 @@ class LimitSearch:
     creep: np.ndarray
     creep_zero: np.ndarray
 
+    def flat(self) -> "LimitSearch":
+        """The same points as a 1-D batch (C order)."""
+        nc = self.creep.shape[-1]
+        return LimitSearch(self.torque.reshape(-1), self.creep.reshape(-1, nc),
+                           self.creep_zero.reshape(-1, nc))
+
+    def take(self, index) -> "LimitSearch":
+        """The points ``index`` of a 1-D batch."""
+        return LimitSearch(self.torque[index], self.creep[index], self.creep_zero[index])
+
 
 def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
                        options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL,

@@ -18,7 +18,7 @@ from ..performance.efficiency import efficiency, loss_breakdown, power_losses
 from ..performance.validity import validity
 from ..solver.batch import initial_creep, solve_batch
 from ..solver.clamped import capacity_basis, solve_clamped, with_clamp
-from ..solver.limit import limit_search
+from ..solver.limit import LimitSearch, limit_search
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
 
 __all__ = ["solve_curves", "limit_torques", "derived", "solve_column", "at_optimal_forces"]
@@ -28,11 +28,13 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
                  options, creep_limit, limit=None, law=None, callback=None):
     """Solve the curves ``(clamp_force[i], input_speed[i], ratio[i])`` over ``torque``.
 
-    ``limit``: the curves' limiting torques if already known (else computed here).
+    ``limit``: the curves' limiting torques if already known, or their
+    `ballcvt.solver.limit.LimitSearch` (else computed here).
     ``law``: a clamping law other than constant (then ``clamp_force`` is ignored and the
     force the law sets at each point is returned as ``clamp_force``, ``(m, n_T)``).
 
-    When the limit search ran here, every point within the limits is solved in one batch,
+    When the limit search ran here (or was handed over), every point within the limits is
+    solved in one batch,
     each started from the creeps interpolated in torque between the curve's solution at
     its limit and the creeps at zero torque (or the solver's cold start); otherwise (limits given, the optimal law) torque by
     torque, each started from the last solution (continuation).
@@ -114,11 +116,14 @@ def limit_search_curves(design, fluid, architecture, ratio, input_speed, clamp_f
     """Limit search of the curves ``(ratio[i], input_speed[i])`` under a clamping law.
 
     As `limit_torques`, but returns the `ballcvt.solver.limit.LimitSearch` (limits and
-    the creeps at zero torque and at the limits), or None when ``limit`` is given.
+    the creeps at zero torque and at the limits); ``limit`` may be one already made, or
+    bare torques (then None is returned in its place).
     """
     start = np.ones(ratio.size) if law is not None else clamp_force
     base = build_problem(design, fluid, architecture, ratio, 0.0, start, input_speed)
     base, follows, creep_limit = capacity_basis(base, law, creep_limit)
+    if isinstance(limit, LimitSearch):
+        return base, limit
     if limit is not None:
         return base, None
     return base, limit_search(base, creep_limit, options, callback=callback, law=follows)

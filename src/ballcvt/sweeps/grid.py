@@ -25,7 +25,7 @@ from ..equilibrium.problem import build_problem
 from ..errors import InputError
 from ..geometry.layout import CONTACT_NAMES
 from ..params.models import ARCHITECTURES, Design, Fluid
-from ..solver.limit import bisection_steps
+from ..solver.limit import LimitSearch, bisection_steps
 from ..solver.point import SolverOptions
 from .curves import solve_curves
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, STATUS, attrs_for
@@ -64,10 +64,13 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force=Non
         Solver options (the fast batched Newton method by default).
     creep_limit : float, optional
         ``C_lim`` of the limiting torque; ``design.creep_limit`` by default.
-    limit_torque : array_like, optional
+    limit_torque : array_like or LimitSearch, optional
         Limiting torques already found at these conditions (`limit_torque_batch` with
         the same ``creep_limit``), broadcastable to ``(clamp_force, input_speed, ratio)``
-        [N m]; one architecture only. By default they are computed.
+        [N m]; one architecture only. By default they are computed. A
+        `ballcvt.solver.limit.LimitSearch` of these curves (C order) also hands over the
+        creeps at the limits, from which every point is started in one batch; with bare
+        torques the sweep walks up the torque grid instead.
     workers : int
         Processes to use (curves are split between them).
     progress : bool, optional
@@ -124,14 +127,22 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force=Non
         if len(archs) != 1:
             raise InputError("architecture", ", ".join(archs),
                              "a single architecture when limit_torque is given")
-        limits = np.broadcast_to(np.asarray(limit_torque, dtype=float), shape).ravel()
+        if isinstance(limit_torque, LimitSearch):
+            limits = limit_torque.flat()
+            if limits.torque.size != int(np.prod(shape)):
+                raise InputError("limit_torque", f"a search of {limits.torque.size} curves",
+                                 f"one per (clamp_force, input_speed, ratio): "
+                                 f"{int(np.prod(shape))}")
+        else:
+            limits = np.broadcast_to(np.asarray(limit_torque, dtype=float), shape).ravel()
     contacts = _contact_axis(archs)
     show = sys.stderr.isatty() if progress is None else progress
     chunks = np.array_split(np.arange(flat[0].size), max(1, min(workers, flat[0].size)))
     blocks = {}
     for arch in archs:
         jobs = [(design, fluid, arch, flat[0][c], flat[1][c], flat[2][c], torque, options,
-                 c_lim, None if limit_torque is None else limits[c], law) for c in chunks]
+                 c_lim, None if limit_torque is None else _part(limits, c), law)
+                for c in chunks]
         text = f"{label}, {arch} idler" if label and len(archs) > 1 else label
         blocks[arch] = _run(jobs, workers, show, text or f"sweep, {arch} idler")
     speed_dim = "input_speed" if input_speed_rpm is None else "input_speed_rpm"
@@ -197,6 +208,11 @@ def _run(jobs, workers, show, label):
     steps = sum(len(job[6]) + (bisection_steps() if job[9] is None else 0) for job in jobs)
     with tqdm(total=steps, desc=label, disable=not show, unit="step") as bar:
         return _concat([solve_curves(*job, callback=bar.update) for job in jobs])
+
+
+def _part(limits, index):
+    """The limits of the curves ``index`` (an array or a `LimitSearch`)."""
+    return limits.take(index) if isinstance(limits, LimitSearch) else limits[index]
 
 
 def _concat(parts):

@@ -19,7 +19,8 @@ from ..geometry.layout import ContactLayout, contact_layout
 from ..errors import InputError
 from ..params.models import Design, Fluid
 
-__all__ = ["EquilibriumProblem", "build_problem"]
+__all__ = ["EquilibriumProblem", "build_problem", "ball_mass", "centrifugal_force",
+           "idler_share", "gyro_factor"]
 
 #: Smallest clamping force [N] and input speed [rad/s] accepted: far below any physical
 #: use (one revolution in 72 days), and above the range where the film thickness and the
@@ -27,7 +28,8 @@ __all__ = ["EquilibriumProblem", "build_problem"]
 MIN_POSITIVE = 1e-6
 
 #: Fields with the batch shape ``(...)`` and with ``(..., n_c)``.
-_BATCH = ("ratio", "tilt", "output_torque", "clamp_force", "input_speed", "ball_drag")
+_BATCH = ("ratio", "tilt", "output_torque", "clamp_force", "input_speed", "ball_drag",
+          "carrier_speed", "gyro_factor")
 _PER_CONTACT = ("rho", "sz", "load", "ax", "ay", "p_max", "input_drag", "output_drag")
 
 
@@ -60,6 +62,17 @@ class EquilibriumProblem:
     input_drag, output_drag : ndarray
         Parasitic drag torques on the input and output shafts by kind
         (``churning, seals, disc_bearings``) [N m], ``(..., 3)``.
+    carrier_speed : ndarray
+        Carrier speed ``omega_c`` [rad/s], ``(...)``; zero for the paper's drive. The
+        other speeds are relative to the carrier (docs/model.md §13).
+    gyro_factor : ndarray
+        ``I omega_c sin(gamma) / (2 r_S)`` [kg m/s]: times ``omega_S``, the force at each
+        axle end that carries the ball's gyroscopic moment (docs/model.md §13); zero
+        without it.
+    torque_weights : tuple of float
+        ``(a, b)`` of the torque condition ``a T_0 + b T_2 = output_torque`` closing the
+        last balance; ``(0, 1)`` (the output torque given) by default. Then
+        ``output_torque`` is the condition's target and may be negative.
     """
 
     design: Design
@@ -81,6 +94,14 @@ class EquilibriumProblem:
     ball_drag: np.ndarray
     input_drag: np.ndarray
     output_drag: np.ndarray
+    carrier_speed: np.ndarray = None  # type: ignore[assignment]
+    gyro_factor: np.ndarray = None  # type: ignore[assignment]
+    torque_weights: tuple = (0.0, 1.0)
+
+    def __post_init__(self):
+        for name in ("carrier_speed", "gyro_factor"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.zeros(self.tilt.shape))
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -121,7 +142,9 @@ class EquilibriumProblem:
 
 
 def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output_torque,
-                  clamp_force, input_speed) -> EquilibriumProblem:
+                  clamp_force, input_speed, *, carrier_speed=0.0,
+                  torque_weights=(0.0, 1.0), centrifugal: bool = True,
+                  gyroscopic: bool = True, signed_torque: bool = False) -> EquilibriumProblem:
     """Assemble an `EquilibriumProblem`; the four operating inputs broadcast together.
 
     Parameters
@@ -137,16 +160,32 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
     clamp_force : array_like
         Input-contact normal load ``F_N0`` > 0 [N].
     input_speed : array_like
-        Input speed ``omega_0`` > 0 [rad/s].
+        Input speed ``omega_0`` > 0 [rad/s] (relative to the carrier).
+    carrier_speed : array_like
+        Carrier speed ``omega_c`` [rad/s] (docs/model.md §13); 0: the paper's drive.
+    torque_weights : (float, float)
+        ``(a, b)`` of the torque condition ``a T_0 + b T_2 = output_torque``; with the
+        default ``(0, 1)`` ``output_torque`` is ``T_2 >= 0``, otherwise any finite target.
+    centrifugal, gyroscopic : bool
+        Include the balls' centrifugal force and gyroscopic moment when the carrier turns.
+    signed_torque : bool
+        Accept a negative ``output_torque`` (the output disc driving the balls, as a
+        planetary mode may have it in the carrier frame).
 
     Returns
     -------
     EquilibriumProblem
     """
     layout = contact_layout(design, architecture)
-    ratio, t2, fn0, w0 = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
-                                               (ratio, output_torque, clamp_force, input_speed)))
-    _check("output_torque", t2, "N m", strict=False)
+    ratio, t2, fn0, w0, wc = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (
+        ratio, output_torque, clamp_force, input_speed, carrier_speed)))
+    weights = (float(torque_weights[0]), float(torque_weights[1]))
+    if weights == (0.0, 1.0) and not signed_torque:
+        _check("output_torque", t2, "N m", strict=False)
+    elif not np.all(np.isfinite(t2)):
+        raise InputError("load_torque", float(t2[~np.isfinite(t2)].flat[0]), "finite")
+    if not np.all(np.isfinite(wc)):
+        raise InputError("carrier_speed", float(wc[~np.isfinite(wc)].flat[0]), "finite")
     _check("clamp_force", fn0, "N", floor=MIN_POSITIVE)
     _check("input_speed", w0, "rad/s", floor=MIN_POSITIVE)
     check_ratio(design, ratio)
@@ -155,6 +194,10 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
     rx = rolling_curvature_ratio(layout.radius, design.aspect_ratio) * rs
     ry = transverse_curvature_ratio(layout.groove_ratio) * rs
     load = fn0[..., None] * layout.load_factor
+    turning = np.any(wc != 0.0)
+    if turning and centrifugal:
+        _check_idler_loads(design, layout, fn0, wc)
+        load = load - centrifugal_force(design, wc)[..., None] * idler_share(layout, design)
     ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
     _check_pressure(fluid, fn0, p_max)
     # parasitic drags at the creep-free speeds (docs/model.md §12)
@@ -166,7 +209,62 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
         clamp_force=fn0, input_speed=w0, rho=rolling_radius(layout, tilt),
         sz=spin_axis_projection(layout, tilt),
         load=load, radius=layout.radius * rs, rx=rx, ax=ax, ay=ay, p_max=p_max,
-        ball_drag=ball, input_drag=drag0, output_drag=drag2)
+        ball_drag=ball, input_drag=drag0, output_drag=drag2, carrier_speed=wc,
+        gyro_factor=(gyro_factor(design, tilt, wc) if turning and gyroscopic
+                     else np.zeros(wc.shape)),
+        torque_weights=weights)
+
+
+def ball_mass(design: Design) -> float:
+    """Mass of one ball, a solid sphere of the design's material [kg]."""
+    return design.material.density * 4.0 / 3.0 * np.pi * design.roller_radius ** 3
+
+
+def centrifugal_force(design: Design, carrier_speed):
+    """Centrifugal force on one ball, ``m omega_c^2 R_c``, ``R_c = r_S (1 + k)`` [N]
+    (docs/model.md §13), along ``+k``."""
+    wc = np.asarray(carrier_speed, dtype=float)
+    return ball_mass(design) * wc ** 2 * design.roller_radius * (1.0 + design.aspect_ratio)
+
+
+def idler_share(layout: ContactLayout, design: Design) -> np.ndarray:
+    """Normal load each contact loses per newton of outward radial force on the ball
+    (docs/model.md §13): the idler contacts carry the radial balance, ``1 / (2 cos(alpha))``
+    each for the double idler and 1 for the single one; the discs' loads are set by the
+    axial balance and do not change."""
+    n_idler = int(layout.is_idler.sum())
+    per = 1.0 / (2.0 * np.cos(design.alpha)) if n_idler == 2 else 1.0
+    return np.where(layout.is_idler, per, 0.0)
+
+
+def gyro_factor(design: Design, tilt, carrier_speed):
+    """``I omega_c sin(gamma) / (2 r_S)`` [kg m/s], ``I = 2 m r_S^2 / 5``.
+
+    With the carrier turning the ball's spin axis ``s`` precesses about ``j``, and its
+    angular momentum ``I (omega_c j + omega_S s)`` changes at ``I omega_c omega_S j x s =
+    -I omega_c omega_S sin(gamma) i``: a moment about ``i`` that only forces along ``u`` at
+    the two axle ends, ``r_S`` from the centre, can supply (docs/model.md §13). Times
+    ``omega_S`` this is that force [N].
+    """
+    inertia = 0.4 * ball_mass(design) * design.roller_radius ** 2
+    return (inertia * np.asarray(carrier_speed, dtype=float) * np.sin(tilt)
+            / (2.0 * design.roller_radius))
+
+
+def _check_idler_loads(design, layout, clamp_force, carrier_speed) -> None:
+    """Refuse carrier speeds at which the balls' centrifugal force lifts them off the idler."""
+    share = idler_share(layout, design)[layout.is_idler]
+    f_max = np.min(clamp_force[..., None] * layout.load_factor[layout.is_idler] / share,
+                   axis=-1)                        # centrifugal force that unloads an idler
+    w_max = np.sqrt(f_max / (ball_mass(design) * design.roller_radius
+                             * (1.0 + design.aspect_ratio)))
+    bad = np.abs(carrier_speed) >= w_max
+    if np.any(bad):
+        i = np.argmax(bad)
+        raise InputError("carrier_speed", float(carrier_speed.flat[i]),
+                         f"|carrier_speed| < {float(w_max.flat[i]):.4g} rad/s at clamp_force "
+                         f"{float(clamp_force.flat[i]):g} N: faster, the balls' centrifugal "
+                         "force lifts them off the idler")
 
 
 def _check_pressure(fluid: Fluid, clamp_force: np.ndarray, p_max: np.ndarray) -> None:

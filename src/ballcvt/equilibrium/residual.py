@@ -206,8 +206,12 @@ def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> Eq
     f_sum = -np.sum(force, axis=-1)
     axle = np.stack([0.5 * (f_sum + 2.0 * m_u / rs), 0.5 * (f_sum - 2.0 * m_u / rs)], axis=-1)
     bm, nu = des.bearings, fl.kinematic_viscosity
+    # with the carrier turning, the axle ends also carry the gyroscopic moment (§13)
+    bearing_load = (np.hypot(axle, (pb.gyro_factor * omega_s)[..., None])
+                    if np.any(pb.gyro_factor) else axle)
     t_bls = (2.0 * speed_dependent_torque(omega_s, des.roller_bearing_diameter, nu, bm)
-             + np.sum(load_dependent_torque(axle, des.roller_bearing_diameter, bm), axis=-1))
+             + np.sum(load_dependent_torque(bearing_load, des.roller_bearing_diameter, bm),
+                      axis=-1))
     idler_thrust = n * pb.load * np.abs(lay.z_j)
     t_bl = np.where(lay.is_idler,
                     speed_dependent_torque(omega, des.idler_bearing_diameter, nu, bm)
@@ -219,13 +223,20 @@ def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> Eq
     # ball's spin like its axle bearings; the output shaft's drag adds to the load torque
     res[..., 0] = (m_s - np.sign(omega_s) * (t_bls + pb.ball_drag)) / (pb.clamp_force * rs)
     res[..., 1:-1] = ((body - np.sign(omega) * t_bl) / scale)[..., 1:-1]
-    res[..., -1] = ((body[..., -1] - (pb.output_torque + np.sum(pb.output_drag, axis=-1)))
-                    / scale[..., 0])
+    input_drag = np.sum(pb.input_drag, axis=-1)
+    if pb.torque_weights == (0.0, 1.0):
+        res[..., -1] = ((body[..., -1] - (pb.output_torque + np.sum(pb.output_drag, axis=-1)))
+                        / scale[..., 0])
+    else:    # the torque condition a T_0 + b T_2 = target of a planetary mode (§13)
+        a, b = pb.torque_weights
+        t0 = -body[..., 0] + input_drag
+        t2 = body[..., -1] - np.sum(pb.output_drag, axis=-1)
+        res[..., -1] = (a * t0 + b * t2 - pb.output_torque) / scale[..., 0]
     return EquilibriumState(creep=creep, omega_s=omega_s, omega=omega, spin=sigma, u_ref=u_ref,
                             film=film, mu=mu, chi=chi, force=force, moment=moment,
                             body_torque=body, axle_reactions=axle, roller_bearing_torque=t_bls,
                             idler_bearing_torque=t_bl, residual=res,
-                            input_drag=np.sum(pb.input_drag, axis=-1))
+                            input_drag=input_drag)
 
 
 def residual(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()):

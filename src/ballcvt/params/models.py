@@ -143,6 +143,10 @@ class Material(ParameterModel):
 
     youngs_modulus: float = _f("Pa", "Young's modulus E", gt=0, lt=math.inf)
     poisson_ratio: float = _f("-", "Poisson ratio nu", ge=0, lt=0.5)
+    density: float = Field(7810.0, description="density, for the balls' centrifugal force "
+                           "and gyroscopic moment with the carrier turning (docs/model.md "
+                           "§13); 7810 kg/m^3 is AISI 52100 bearing steel [kg/m^3]",
+                           json_schema_extra={"unit": "kg/m^3"}, gt=0, lt=math.inf)
 
     @property
     def reduced_modulus(self) -> float:

@@ -48,6 +48,10 @@ def _variants(design, tmp):
         "--torque": ["--torque", "20"], "--clamp": ["--clamp", "2500"],
         "--speed": ["--speed", "1000"], "--design": ["--design", design],
         "--json": None})                                           # --json: base vs table
+    planetary = (["point", "--json", "--held", "disc2", "--driver", "carrier", "--ratio", "1.5",
+                  "--speed", "300", "--torque", "20"], {
+        "--held": ["--held", "disc0"], "--driver": ["--driver", "disc0"],
+        "--no-centrifugal": ["--no-centrifugal"], "--no-gyroscopic": ["--no-gyroscopic"]})
     limit = (["limit", "--json"], {
         "--arch": ["--arch", "single"], "--ratio": ["--ratio", "1.5"],
         "--clamp": ["--clamp", "2500"], "--speed": ["--speed", "1000"],
@@ -100,7 +104,7 @@ def _variants(design, tmp):
         "--torque-max": ["--torque-max", "50"], "--n-torque": ["--n-torque", "4"],
         "--out": ["--out", str(tmp / "t1")], "--workers": ["--workers", "2"],
         "--quiet": ["--quiet"]})
-    return {"point": point, "limit": limit, "clamp": clamp, "map": mapping,
+    return {"point": point, "point:planetary": planetary, "limit": limit, "clamp": clamp, "map": mapping,
             "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam,
             "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table}
 

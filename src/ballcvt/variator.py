@@ -17,9 +17,12 @@ from .optimize.clamp import ClampOptimum, optimal_clamp_force
 from .params.feasibility import check_architecture
 from .params.io import load_builtin
 from .params.models import ARCHITECTURES, Design, Fluid
+from .modes import OperatingMode
+from .results.planetary import PlanetaryResult, make_planetary_result
 from .results.point import OperatingResult, make_result
 from .solver.clamped import capacity_basis, pressure_bound_force, solve_clamped
 from .solver.limit import limit_torque
+from .solver.planetary import solve_mode
 from .solver.point import SolverOptions, solve_point
 
 __all__ = ["Variator"]
@@ -101,7 +104,7 @@ class Variator:
     def solve(self, ratio: float, output_torque: float, *, clamp_force: float | None = None,
               clamp_law=None, input_speed: float | None = None,
               input_speed_rpm: float | None = None,
-              check_capacity: bool = True) -> OperatingResult:
+              check_capacity: bool = True, mode: OperatingMode | None = None):
         """Solve the steady operating point.
 
         Parameters
@@ -125,10 +128,18 @@ class Variator:
             ``design.creep_limit``, or has none, raises `TractionLimitError` with the limit;
             so does, under a torque-following law, a force whose peak pressure exceeds
             ``design.max_pressure``.
+        mode : OperatingMode, optional
+            The variator as a planetary (`ballcvt.modes.OperatingMode`, docs/model.md
+            §13): which member is held and which drives. Then ``output_torque`` is the
+            driven member's load torque [N m], ``input_speed`` (or ``input_speed_rpm``) the
+            driver's speed (signed), ``ratio`` still ``tau_ID`` relative to the carrier,
+            and a `PlanetaryResult` is returned. The default (carrier held, disc 0
+            drives) is the paper's drive.
 
         Returns
         -------
         OperatingResult
+            Or `PlanetaryResult` in a mode other than the default.
 
         Raises
         ------
@@ -137,6 +148,9 @@ class Variator:
         ConvergenceError
             If no equilibrium is found and ``check_capacity`` is False.
         """
+        if mode is not None and not mode.is_default:
+            return self._solve_mode(mode, ratio, output_torque, clamp_force, clamp_law,
+                                    _speed(input_speed, input_speed_rpm), check_capacity)
         law, name = self._resolve(ratio, output_torque, clamp_force, clamp_law, input_speed,
                                   input_speed_rpm)
         problem = self._problem(ratio, output_torque, law, input_speed, input_speed_rpm)
@@ -160,6 +174,27 @@ class Variator:
         if not sol.converged:
             raise ConvergenceError(sol.message)
         return make_result(problem, sol, self.options.quadrature, clamp_law=name)
+
+    def _solve_mode(self, mode, ratio, load_torque, clamp_force, clamp_law, driver_speed,
+                    check_capacity) -> PlanetaryResult:
+        """`solve` in a planetary mode (docs/model.md §13)."""
+        law = self.clamp_law(clamp_law, clamp_force)
+        if law.name != "constant":
+            raise InputError("clamp_law", law.name, "constant in a planetary mode (the cam "
+                             "and optimal laws are not yet defined with the carrier turning)")
+        if self.design.parasitic is not None:
+            raise InputError("design.parasitic", "set", "absent in a planetary mode (the "
+                             "shaft drags need the absolute speeds; not yet modelled)")
+        got = solve_mode(self.design, self.fluid, self.architecture, mode, float(ratio),
+                         float(load_torque), driver_speed, law.force, self.options)
+        creep = max(abs(c) for c in got.solution.state.creep)
+        if check_capacity and creep > self.design.creep_limit:
+            raise InputError("output_torque", float(load_torque),
+                             f"within the traction capacity: the largest creep {creep:.3g} "
+                             f"exceeds creep_limit {self.design.creep_limit:g} ({mode.label})")
+        rel = make_result(got.problem, got.solution, self.options.quadrature)
+        return make_planetary_result(mode, rel, got.sign, got.speeds, float(load_torque),
+                                     driver_speed, got.passes)
 
     def limit_torque(self, ratio: float, *, clamp_force: float | None = None, clamp_law=None,
                      input_speed: float | None = None, input_speed_rpm: float | None = None,

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+from ..results.planetary import PlanetaryResult
 from ..results.point import OperatingResult
 
-__all__ = ["point_table", "limit_table", "clamp_table"]
+__all__ = ["point_table", "planetary_table", "limit_table", "clamp_table"]
 
 _ROWS = [  # (label, attribute, unit, scale, format)
     ("creep C", "creep", "-", 1.0, "{:+.4e}"),
@@ -76,3 +77,32 @@ def clamp_table(data: dict) -> str:
             f"GPa\n  ({data['architecture']} idler, ratio {data['ratio']:g}, T2 "
             f"{data['output_torque']:g} N m, {data['input_speed_rpm']:g} rpm; feasible "
             f"F_N0 {lo:.0f}-{hi:.0f} N, active constraint: {data['active_constraint']})")
+
+
+def planetary_table(r: PlanetaryResult) -> str:
+    """Readable summary of an operating point in a planetary mode: the members, then the
+    carrier-frame point."""
+    rpm = 30 / 3.141592653589793
+    m = r.mode
+    lines = [f"planetary mode: {m.label}"
+             + ("" if m.centrifugal and m.gyroscopic else
+                "  (without " + " and ".join(
+                    n for n, on in (("centrifugal force", m.centrifugal),
+                                    ("gyroscopic moment", m.gyroscopic)) if not on) + ")"),
+             f"{'member':<10}{'speed [rpm]':>14}{'torque [N m]':>14}{'power [kW]':>12}"]
+    for name in ("disc0", "disc2", "carrier"):
+        tag = {m.held: " held", m.driver: " driver", m.driven: " driven"}[name]
+        lines.append(f"{name + tag:<16}{r.speeds[name] * rpm:8.1f}{r.torques[name]:14.3f}"
+                     f"{r.powers[name] / 1e3:12.4f}")
+    lines += [
+        f"overall ratio (driven / driver) {r.overall_ratio:+.5f}   torque ratio "
+        f"{r.torque_ratio:+.4f}",
+        f"efficiency  power out / power in {r.eta:.5f}   1 - losses / power in "
+        f"{r.eta_loss:.5f}",
+        f"power flow  {r.power_flow}; through the contacts {r.circulating_power / 1e3:.4f} kW"
+        f" (shaft power {abs(r.input_power) / 1e3:.4f} kW)",
+        "",
+        "in the carrier frame" + (" (mirrored: speeds and torques negated)" if r.sign < 0
+                                  else "") + ":",
+        point_table(r.relative)]
+    return "\n".join(lines)

@@ -24,10 +24,11 @@ from .._version import __version__
 from ..clamping.laws import CLAMP_LAWS
 from ..cycles.io import STRATEGIES
 from ..errors import BallCVTError, InputError
+from ..modes import MEMBERS
 from ..params.io import BUILTIN_DRIVES, builtin_text, drive_to_toml, load_builtin, load_drive
 from ..params.models import ARCHITECTURES
 from ..variator import Variator
-from .format import clamp_table, limit_table, point_table
+from .format import clamp_table, limit_table, planetary_table, point_table
 
 __all__ = ["main", "build_parser"]
 
@@ -154,8 +155,20 @@ def build_parser() -> argparse.ArgumentParser:
              "pressure and film at every contact, the losses and the efficiency (Eq. 38 and "
              "Eq. 39), with validity warnings. A torque beyond the traction capacity is "
              "refused with the limiting torque.",
-             "ballcvt point --arch double --ratio 1.76 --torque 40 --clamp 2000 --speed 2000")
+             "ballcvt point --arch double --ratio 1.76 --torque 40 --clamp 2000 --speed 2000\n"
+             "  ballcvt point --held disc0 --driver carrier --ratio 0.8 --torque 20 --speed 600")
     _add(p, "arch", "ratio", "torque", *CLAMP_OPTIONS, "speed", "design", "json")
+    p.add_argument("--held", choices=MEMBERS, default="carrier",
+                   help="member held at zero speed (default: carrier, the paper's drive); "
+                        "with another, --torque is the driven member's load torque and "
+                        "--speed the driver's speed (docs/model.md section 13)")
+    p.add_argument("--driver", choices=MEMBERS, default="disc0",
+                   help="member whose speed --speed gives (default: disc0); the third "
+                        "member is driven")
+    p.add_argument("--no-centrifugal", action="store_true",
+                   help="leave out the balls' centrifugal force with the carrier turning")
+    p.add_argument("--no-gyroscopic", action="store_true",
+                   help="leave out the balls' gyroscopic moment with the carrier turning")
 
     p = _sub(sub, "limit", "limiting output torque at a ratio, clamp and speed",
              "The largest output torque with a converged equilibrium and every |creep| <= "
@@ -290,10 +303,14 @@ def _law(args):
 
 
 def _cmd_point(args) -> int:
+    from ..modes import OperatingMode
     v = _variator(args)
+    mode = OperatingMode(args.held, args.driver, not args.no_centrifugal,
+                         not args.no_gyroscopic)
     r = v.solve(ratio=args.ratio, output_torque=args.torque, **_law(args),
-                input_speed_rpm=_rpm(args.speed))
-    print(r.to_json(indent=2) if args.json else point_table(r))
+                input_speed_rpm=_rpm(args.speed), mode=mode)
+    table = planetary_table if not mode.is_default else point_table
+    print(r.to_json(indent=2) if args.json else table(r))
     return 0
 
 

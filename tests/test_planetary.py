@@ -1,0 +1,206 @@
+"""The variator as a planetary (docs/model.md §13): modes, carrier effects, results."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from ballcvt import Variator, load_builtin
+from ballcvt.equilibrium.problem import (ball_mass, build_problem, centrifugal_force,
+                                         idler_share)
+from ballcvt.errors import InputError
+from ballcvt.modes import MEMBERS, OperatingMode, relative_ratio_coefficients
+from ballcvt.results.planetary import PlanetaryResult
+from ballcvt.solver.planetary import solve_mode
+from ballcvt.solver.point import solve_point
+
+F = 2000.0
+MODES = [OperatingMode(h, d) for h in MEMBERS for d in MEMBERS if h != d]
+
+
+@pytest.fixture(scope="module")
+def v():
+    return Variator()
+
+
+def test_modes_name_their_members():
+    m = OperatingMode("disc2", "carrier")
+    assert m.driven == "disc0" and not m.is_default
+    assert OperatingMode().is_default and OperatingMode().driven == "disc2"
+    with pytest.raises(InputError, match="driver"):
+        OperatingMode("disc0", "disc0")
+    with pytest.raises(InputError, match="held"):
+        OperatingMode("sun", "disc0")
+
+
+@pytest.mark.parametrize("mode", MODES, ids=lambda m: m.label)
+def test_speeds_satisfy_willis_relation(mode):
+    for tau in (0.5, 0.9, 1.7):
+        if abs(relative_ratio_coefficients(tau)[mode.driven]) < 1e-9:
+            continue
+        w = mode.speeds(120.0, tau)
+        assert w[mode.held] == 0.0 and w[mode.driver] == 120.0
+        assert w["disc2"] - w["carrier"] == pytest.approx(tau * (w["disc0"] - w["carrier"]),
+                                                          abs=1e-9)
+
+
+def test_infinite_speed_is_refused():
+    with pytest.raises(InputError, match="infinitely fast"):
+        OperatingMode("disc2", "disc0").speeds(100.0, 1.0)
+
+
+def test_the_default_mode_is_the_paper_drive(v):
+    a = v.solve(1.3, 50.0, clamp_force=F, input_speed_rpm=2000)
+    b = v.solve(1.3, 50.0, clamp_force=F, input_speed_rpm=2000, mode=OperatingMode())
+    assert a == b
+
+
+def test_carrier_held_through_the_mode_solver_equals_solve(v):
+    """The fixed point of the mode solver, with the carrier held, adds nothing."""
+    got = solve_mode(v.design, v.fluid, "double", OperatingMode(), 1.3, 50.0,
+                     2000 * math.pi / 30, F)
+    r = v.solve(1.3, 50.0, clamp_force=F, input_speed_rpm=2000)
+    assert got.sign == 1.0 and got.speeds["carrier"] == 0.0
+    assert np.allclose(got.solution.state.creep, [c.creep for c in r.contacts.values()],
+                       rtol=1e-12, atol=1e-15)
+
+
+def test_the_contacts_see_relative_speeds_only(v):
+    """Without the carrier's inertia effects a turning carrier changes nothing in the
+    carrier frame: the same creeps as the carrier held at the same relative speed and
+    output torque."""
+    mode = OperatingMode("disc2", "carrier", centrifugal=False, gyroscopic=False)
+    r = v.solve(1.5, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
+    assert r.speeds["carrier"] == 100.0
+    rel = r.relative
+    held = build_problem(v.design, v.fluid, "double", 1.5, rel.output_torque, F,
+                         rel.input_speed, signed_torque=True)
+    sol = solve_point(held)
+    assert np.allclose(sol.state.creep, [c.creep for c in rel.contacts.values()],
+                       rtol=1e-9, atol=1e-14)
+
+
+def test_zero_driver_speed_is_refused(v):
+    with pytest.raises(InputError, match="driver_speed"):
+        v.solve(1.5, 20.0, clamp_force=F, input_speed=0.0, mode=OperatingMode("disc2",
+                                                                                "carrier"))
+
+
+@pytest.mark.parametrize("mode", [OperatingMode("disc2", "carrier"),
+                                  OperatingMode("disc0", "carrier"),
+                                  OperatingMode("carrier", "disc2"),
+                                  OperatingMode("disc2", "disc0")], ids=lambda m: m.label)
+def test_ideal_relation_at_zero_torque(v, mode):
+    ratio = 0.7
+    r = v.solve(ratio, 0.0, clamp_force=F, input_speed=60.0, mode=mode)
+    w = r.speeds
+    tau = r.relative.actual_ratio
+    assert w["disc2"] - w["carrier"] == pytest.approx(tau * (w["disc0"] - w["carrier"]),
+                                                      rel=1e-12, abs=1e-9)
+    assert tau == pytest.approx(ratio, rel=2e-2)      # only the drag's creep
+
+
+@pytest.mark.parametrize("mode", [OperatingMode("disc2", "carrier"),
+                                  OperatingMode("disc0", "carrier"),
+                                  OperatingMode("carrier", "disc2"),
+                                  OperatingMode("disc2", "disc0")], ids=lambda m: m.label)
+def test_power_balance_per_mode(v, mode):
+    for ratio in (0.6, 1.4):
+        r = v.solve(ratio, 15.0, clamp_force=F, input_speed=40.0, mode=mode)
+        p = r.powers
+        assert sum(r.torques.values()) == pytest.approx(0.0, abs=1e-9)
+        # power in through the shafts = losses in the carrier frame (to the residual)
+        assert sum(p.values()) == pytest.approx(r.loss, rel=1e-8)
+        assert r.relative.losses["total"] >= 0.0
+
+
+def test_geared_neutral_is_where_the_kinematics_put_it(v):
+    """Disc 0 held, the carrier drives: omega_2 = omega_c (1 - tau_R), zero at tau_R = 1
+    (tau_ID a little below 1, by the creep), with a finite torque on the held disc."""
+    mode = OperatingMode("disc0", "carrier")
+    below = v.solve(0.98, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
+    above = v.solve(1.02, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
+    assert below.overall_ratio > 0 > above.overall_ratio
+    for r in (below, above):
+        assert r.speeds["disc2"] == pytest.approx(
+            r.speeds["carrier"] * (1 - r.relative.actual_ratio), abs=1e-9)
+        assert math.isfinite(r.torques["disc0"]) and r.torques["disc0"] > 0
+        assert r.circulating_power > abs(r.input_power)     # power circulates near neutral
+        assert "circulating" in r.power_flow
+
+
+def test_centrifugal_force_unloads_the_idlers_only(v):
+    d, fl = load_builtin()
+    rest = build_problem(d, fl, "double", 1.2, 20.0, F, 100.0)
+    turning = build_problem(d, fl, "double", 1.2, 20.0, F, 100.0, carrier_speed=120.0)
+    fc = ball_mass(d) * 120.0 ** 2 * d.roller_radius * (1 + d.aspect_ratio)
+    assert centrifugal_force(d, 120.0) == pytest.approx(fc)
+    assert np.allclose(rest.load - turning.load, fc * idler_share(rest.layout, d))
+    assert turning.load[0] == rest.load[0] and turning.load[-1] == rest.load[-1]
+    with pytest.raises(InputError, match="carrier_speed"):
+        build_problem(d, fl, "double", 1.2, 20.0, F, 100.0, carrier_speed=400.0)
+
+
+def test_gyroscopic_moment_loads_the_ball_bearings(v):
+    on = OperatingMode("disc2", "carrier", centrifugal=False, gyroscopic=True)
+    off = OperatingMode("disc2", "carrier", centrifugal=False, gyroscopic=False)
+    a = v.solve(1.6, 20.0, clamp_force=F, input_speed=150.0, mode=on)
+    b = v.solve(1.6, 20.0, clamp_force=F, input_speed=150.0, mode=off)
+    assert a.relative.losses["roller_bearings"] > b.relative.losses["roller_bearings"]
+    # no gyroscopic moment with the spin axis along the main axis (tau_ID ~ 1, tilt 0)
+    c = v.solve(1.0, 20.0, clamp_force=F, input_speed=100.0, mode=on)
+    d = v.solve(1.0, 20.0, clamp_force=F, input_speed=100.0, mode=off)
+    assert c.relative.losses["roller_bearings"] == pytest.approx(
+        d.relative.losses["roller_bearings"], rel=1e-9)
+
+
+def test_result_round_trip_and_edits_refused(v, tmp_path):
+    r = v.solve(1.4, 15.0, clamp_force=F, input_speed=80.0, mode=OperatingMode("disc2",
+                                                                                "carrier"))
+    path = tmp_path / "r.json"
+    r.save(path)
+    back = PlanetaryResult.load(path)
+    assert back.torques == r.torques and back.speeds == r.speeds and back.mode == r.mode
+    d = r.to_dict()
+    for key in ("overall_ratio", "carrier_speed", "carrier_torque", "power_flow", "speeds",
+                "torques", "eta", "creep" if "creep" in d else "contacts"):
+        assert key in d
+    d["torques"]["carrier"] += 1.0
+    with pytest.raises(InputError, match="torques.carrier"):
+        PlanetaryResult.from_dict(d)
+
+
+def test_planetary_modes_refuse_what_they_do_not_model():
+    hub = Variator(*load_builtin("hub"))
+    mode = OperatingMode("disc2", "carrier")
+    with pytest.raises(InputError, match="parasitic"):
+        hub.solve(1.2, 10.0, clamp_force=F, input_speed=50.0, mode=mode)
+    with pytest.raises(InputError, match="clamp_law"):
+        Variator(*load_builtin("hub")).solve(1.2, 10.0, clamp_law="cam", input_speed=50.0,
+                                             mode=mode)
+
+
+@settings(max_examples=12, deadline=None)
+@given(mode=st.sampled_from([OperatingMode("disc2", "carrier"),
+                             OperatingMode("disc0", "carrier"),
+                             OperatingMode("carrier", "disc2"),
+                             OperatingMode("disc2", "disc0")]),
+       ratio=st.floats(0.5, 1.9), torque=st.floats(0.0, 25.0), speed=st.floats(20.0, 120.0))
+def test_invariants_across_modes(mode, ratio, torque, speed):
+    v = Variator()
+    try:
+        r = v.solve(ratio, torque, clamp_force=F, input_speed=speed, mode=mode)
+    except InputError:                 # beyond the capacity, or a speed out of range
+        return
+    assert all(value >= 0.0 for value in r.relative.losses.values())
+    # the power balance holds to the residual: torques off by n F_N0 r_S eps at most, times
+    # the carrier-frame speeds (as in test_invariants), with a factor 2 for round-off
+    rel = r.relative
+    speeds = abs(rel.roller_speed) + sum(abs(c.body_speed) for c in rel.contacts.values())
+    slack = 2 * v.design.n_rollers * F * v.design.roller_radius * rel.residual_norm * speeds
+    assert sum(r.powers.values()) == pytest.approx(r.loss, abs=1e-12 + slack)
+    if r.input_power > 0 and r.output_power >= 0:
+        assert 0.0 <= r.eta <= 1.0
+        assert r.eta == pytest.approx(r.eta_loss, abs=1e-12 + slack / r.input_power)

@@ -51,7 +51,8 @@ def _variants(design, tmp):
     planetary = (["point", "--json", "--held", "disc2", "--driver", "carrier", "--ratio", "1.5",
                   "--speed", "300", "--torque", "20"], {
         "--held": ["--held", "disc0"], "--driver": ["--driver", "disc0"],
-        "--no-centrifugal": ["--no-centrifugal"], "--no-gyroscopic": ["--no-gyroscopic"]})
+        "--no-centrifugal": ["--no-centrifugal"], "--no-gyroscopic": ["--no-gyroscopic"],
+        "--held-speed": ["--held-speed", "30"]})
     limit = (["limit", "--json"], {
         "--arch": ["--arch", "single"], "--ratio": ["--ratio", "1.5"],
         "--clamp": ["--clamp", "2500"], "--speed": ["--speed", "1000"],

@@ -204,3 +204,47 @@ def test_invariants_across_modes(mode, ratio, torque, speed):
     if r.input_power > 0 and r.output_power >= 0:
         assert 0.0 <= r.eta <= 1.0
         assert r.eta == pytest.approx(r.eta_loss, abs=1e-12 + slack / r.input_power)
+
+
+def test_free_differential_takes_two_speeds(v):
+    """Disc 2 at a given speed instead of held: Willis' relation with both given speeds,
+    the power balance over three shafts, and held_speed = 0 is the held mode."""
+    free = OperatingMode("disc2", "carrier", held_speed=-5.0)
+    r = v.solve(1.5, 15.0, clamp_force=F, input_speed=40.0, mode=free)
+    w = r.speeds
+    assert w["disc2"] == -5.0 and w["carrier"] == 40.0
+    assert w["disc2"] - w["carrier"] == pytest.approx(
+        r.relative.actual_ratio * (w["disc0"] - w["carrier"]), rel=1e-12)
+    assert r.powers["disc2"] != 0.0
+    assert sum(r.powers.values()) == pytest.approx(r.loss, rel=1e-8)
+    assert r.input_power - r.output_power == pytest.approx(r.loss, rel=1e-8)
+    held = v.solve(1.5, 15.0, clamp_force=F, input_speed=40.0,
+                   mode=OperatingMode("disc2", "carrier", held_speed=0.0))
+    assert held.speeds["disc2"] == 0.0 and "free differential" in free.label
+
+
+def test_batch_equals_point_solves(v):
+    from ballcvt.sweeps.planetary import solve_mode_batch
+    mode = OperatingMode("disc0", "carrier")
+    ratios = np.array([0.6, 0.95, 1.3])
+    got = solve_mode_batch(v.design, v.fluid, "double", mode, ratios, 20.0, 100.0, F)
+    assert (got.status == 0).all()
+    for i, ratio in enumerate(ratios):
+        r = v.solve(ratio, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
+        for j, m in enumerate(MEMBERS):
+            assert got.speeds[j, i] == pytest.approx(r.speeds[m], rel=1e-9, abs=1e-9)
+            assert got.torques[j, i] == pytest.approx(r.torques[m], rel=1e-8, abs=1e-8)
+        assert got.eta[i] == pytest.approx(r.eta, abs=1e-9)
+    # speeds out of range are flagged, not raised
+    far = solve_mode_batch(v.design, v.fluid, "double", OperatingMode("disc2", "disc0"),
+                           np.array([0.5, 0.9]), 10.0, 100.0, F)
+    assert far.status.tolist() == [0, 3]
+
+
+def test_capacity_per_mode_matches_the_limit_with_the_carrier_held(v):
+    from ballcvt.sweeps.planetary import limit_load_batch
+    ratios = np.array([0.7, 1.5])
+    got = limit_load_batch(v.design, v.fluid, "double", OperatingMode(), ratios, 100.0, F)
+    for ratio, limit in zip(ratios, got):
+        ref = v.limit_torque(ratio, clamp_force=F, input_speed=100.0)
+        assert limit == pytest.approx(ref, rel=2e-3) and limit <= ref * (1 + 1e-9)

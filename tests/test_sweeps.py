@@ -121,8 +121,16 @@ def test_quick_reproduction_writes_everything(quick):
     for c in quick.claims:
         assert c.claim.replace("|", "\\|") in md                 # escaped in the table
         assert c.verdict in ("agrees", "differs")
-    assert page.count("<img") == len(FIGURES) and "data:image/png;base64," in page
+    planet = ("planet_ratio", "planet_efficiency", "planet_circulation", "planet_capacity")
+    assert page.count("<img") == len(FIGURES) + len(planet)
+    assert "data:image/png;base64," in page
     assert "Limiting torque." in md and "Single-idler pressure." in md
+    # beyond the paper, after its part: the planetary section with its figures and data
+    assert md.index("## Beyond the paper: planetary modes") > md.index("## Figures")
+    for name in planet:
+        assert (out / f"{name}.png").stat().st_size > 0
+    for name in ("planet_kinematics", "planet_curves", "planet_capacity", "planet_effects"):
+        assert (out / f"{name}.csv").stat().st_size > 0
 
 
 def test_envelope_never_below_a_clamp_curve(quick, tmp_path):

@@ -91,7 +91,8 @@ def planetary_table(r: PlanetaryResult) -> str:
                                     ("gyroscopic moment", m.gyroscopic)) if not on) + ")"),
              f"{'member':<10}{'speed [rpm]':>14}{'torque [N m]':>14}{'power [kW]':>12}"]
     for name in ("disc0", "disc2", "carrier"):
-        tag = {m.held: " held", m.driver: " driver", m.driven: " driven"}[name]
+        tag = {m.held: " held" if m.held_speed == 0.0 else " given", m.driver: " driver",
+               m.driven: " driven"}[name]
         lines.append(f"{name + tag:<16}{r.speeds[name] * rpm:8.1f}{r.torques[name]:14.3f}"
                      f"{r.powers[name] / 1e3:12.4f}")
     lines += [

@@ -165,6 +165,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--driver", choices=MEMBERS, default="disc0",
                    help="member whose speed --speed gives (default: disc0); the third "
                         "member is driven")
+    p.add_argument("--held-speed", type=_number, default=0.0, metavar="RPM",
+                   help="speed of the --held member [rpm] (default 0: held); another value "
+                        "makes the drive a free differential")
     p.add_argument("--no-centrifugal", action="store_true",
                    help="leave out the balls' centrifugal force with the carrier turning")
     p.add_argument("--no-gyroscopic", action="store_true",
@@ -305,8 +308,10 @@ def _law(args):
 def _cmd_point(args) -> int:
     from ..modes import OperatingMode
     v = _variator(args)
+    if not math.isfinite(args.held_speed):
+        raise InputError("held_speed", args.held_speed, "finite (rpm)")
     mode = OperatingMode(args.held, args.driver, not args.no_centrifugal,
-                         not args.no_gyroscopic)
+                         not args.no_gyroscopic, args.held_speed * math.pi / 30)
     r = v.solve(ratio=args.ratio, output_torque=args.torque, **_law(args),
                 input_speed_rpm=_rpm(args.speed), mode=mode)
     table = planetary_table if not mode.is_default else point_table

@@ -20,7 +20,7 @@ from ..errors import InputError
 from ..params.models import Design, Fluid
 
 __all__ = ["EquilibriumProblem", "build_problem", "ball_mass", "centrifugal_force",
-           "idler_share", "gyro_factor"]
+           "idler_share", "gyro_factor", "max_carrier_speed"]
 
 #: Smallest clamping force [N] and input speed [rad/s] accepted: far below any physical
 #: use (one revolution in 72 days), and above the range where the film thickness and the
@@ -251,13 +251,19 @@ def gyro_factor(design: Design, tilt, carrier_speed):
             / (2.0 * design.roller_radius))
 
 
+def max_carrier_speed(design: Design, layout: ContactLayout, clamp_force):
+    """Carrier speed at which the balls' centrifugal force unloads the idler contacts
+    [rad/s] (docs/model.md §13)."""
+    share = idler_share(layout, design)[layout.is_idler]
+    f_max = np.min(np.asarray(clamp_force, dtype=float)[..., None]
+                   * layout.load_factor[layout.is_idler] / share, axis=-1)
+    return np.sqrt(f_max / (ball_mass(design) * design.roller_radius
+                            * (1.0 + design.aspect_ratio)))
+
+
 def _check_idler_loads(design, layout, clamp_force, carrier_speed) -> None:
     """Refuse carrier speeds at which the balls' centrifugal force lifts them off the idler."""
-    share = idler_share(layout, design)[layout.is_idler]
-    f_max = np.min(clamp_force[..., None] * layout.load_factor[layout.is_idler] / share,
-                   axis=-1)                        # centrifugal force that unloads an idler
-    w_max = np.sqrt(f_max / (ball_mass(design) * design.roller_radius
-                             * (1.0 + design.aspect_ratio)))
+    w_max = max_carrier_speed(design, layout, clamp_force)
     bad = np.abs(carrier_speed) >= w_max
     if np.any(bad):
         i = np.argmax(bad)

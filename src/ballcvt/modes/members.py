@@ -7,8 +7,9 @@ Every contact relation of the model holds for speeds relative to the carrier, so
     ``omega_2 - omega_c = tau (omega_0 - omega_c)``,
 
 ``tau`` the actual ratio relative to the carrier (``tau_ID`` without creep, Eq. 8 with it).
-An `OperatingMode` names the member held (speed zero) and the driver (speed given); the
-third member is driven, and its load torque is given. In steady state the torques applied
+An `OperatingMode` names the member held (speed zero, or any given speed: a free
+differential) and the driver (speed given); the third member is driven, and its load
+torque is given. In steady state the torques applied
 to the three members from outside sum to zero, and the carrier's follows from the discs'.
 """
 
@@ -64,18 +65,24 @@ class OperatingMode:
     gyroscopic : bool
         Include the balls' gyroscopic moment ``I omega_c omega_S sin(gamma)`` (carried by
         the axle ends, it loads the ball bearings). No effect with the carrier held.
+    held_speed : float
+        Speed of the ``held`` member [rad/s]: 0 holds it; any other value makes the
+        drive a free differential (two speeds and one torque given).
     """
 
     held: str = "carrier"
     driver: str = "disc0"
     centrifugal: bool = True
     gyroscopic: bool = True
+    held_speed: float = 0.0
 
     def __post_init__(self):
         for name in ("held", "driver"):
             value = getattr(self, name)
             if value not in MEMBERS:
                 raise InputError(name, value, "one of: " + ", ".join(MEMBERS))
+        if not np.isfinite(self.held_speed):
+            raise InputError("held_speed", self.held_speed, "finite (rad/s)")
         if self.driver == self.held:
             raise InputError("driver", self.driver,
                              f"a member other than the held one ({self.held})")
@@ -88,14 +95,16 @@ class OperatingMode:
     @property
     def is_default(self) -> bool:
         """The paper's drive: carrier held, disc 0 drives, disc 2 driven."""
-        return self.held == "carrier" and self.driver == "disc0"
+        return self.held == "carrier" and self.driver == "disc0" and self.held_speed == 0.0
 
     @property
     def label(self) -> str:
         """E.g. ``"disc2 held, carrier drives disc0"``."""
-        return f"{self.held} held, {self.driver} drives {self.driven}"
+        held = ("held" if self.held_speed == 0.0 else
+                f"at {self.held_speed:g} rad/s (free differential)")
+        return f"{self.held} {held}, {self.driver} drives {self.driven}"
 
-    def speeds(self, driver_speed, ratio) -> dict:
+    def speeds(self, driver_speed, ratio, check: bool = True) -> dict:
         """Speeds of the three members [rad/s].
 
         Parameters
@@ -110,6 +119,9 @@ class OperatingMode:
         dict of ndarray
             ``disc0``, ``disc2``, ``carrier`` [rad/s].
 
+        check : bool
+            Raise where a speed would be infinite (else it is returned as ``inf``).
+
         Raises
         ------
         InputError
@@ -120,14 +132,18 @@ class OperatingMode:
         c = relative_ratio_coefficients(ratio)
         w = np.asarray(driver_speed, dtype=float)
         den = c[self.driven]
-        if np.any(np.abs(den) < 1e-9):
+        if not check:                       # batches: infinite speeds become inf or NaN
+            den = np.where(np.abs(den) < 1e-9, 0.0, den)
+        elif np.any(np.abs(den) < 1e-9):
             bad = float(np.asarray(ratio, dtype=float)[np.abs(den) < 1e-9].flat[0]) \
                 if np.ndim(ratio) else float(ratio)
             raise InputError("ratio", bad, f"!= 1: with {self.held} held and {self.driver} "
                              f"driving, the {self.driven} would turn infinitely fast there")
-        out = {self.held: np.zeros(np.broadcast(w, den).shape),
-               self.driver: np.broadcast_to(w, np.broadcast(w, den).shape).astype(float),
-               self.driven: -c[self.driver] * w / den}
+        shape = np.broadcast(w, den).shape
+        out = {self.held: np.full(shape, self.held_speed),
+               self.driver: np.broadcast_to(w, shape).astype(float),
+               self.driven: _divide(-(c[self.driver] * w + c[self.held] * self.held_speed),
+                                    den)}
         return {m: out[m] for m in MEMBERS}
 
     def torque_condition(self, load_torque):
@@ -165,3 +181,8 @@ def member_torques(input_torque, output_torque) -> dict:
     t0 = np.asarray(input_torque, dtype=float)
     t2 = np.asarray(output_torque, dtype=float)
     return {"disc0": t0, "disc2": -t2, "carrier": t2 - t0}
+
+
+def _divide(num, den):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return num / den

@@ -181,13 +181,66 @@ def _html(blocks, out: Path):
             + "</body></html>\n")
 
 
-def write_report(out: Path, data, claims, ceiling, peak, *, quick, run_time, inputs):
+def write_report(out: Path, data, claims, ceiling, peak, *, quick, run_time, inputs,
+                 planetary=None):
     """Write ``report.md`` and ``report.html`` in ``out``; returns their paths.
 
-    ``ceiling`` is `ceiling_numbers` of the double idler at tau_ID = 1.
+    ``ceiling`` is `ceiling_numbers` of the double idler at tau_ID = 1; ``planetary`` the
+    `ballcvt.reports.planetary.PlanetaryData` of the section beyond the paper, if any.
     """
     blocks = _blocks(data, claims, ceiling, peak, quick, run_time, inputs)
+    if planetary is not None:
+        blocks += _planetary_blocks(planetary)
     md, page = out / "report.md", out / "report.html"
     atomic_write_text(md, _md(blocks))
     atomic_write_text(page, _html(blocks, out))
     return [md, page]
+
+
+def _planetary_blocks(p):
+    """The section "Beyond the paper: planetary modes" (docs/model.md §13)."""
+    from .planetary import DRIVER_SPEED, LOADS, MODES
+    cap = p.capacity
+    ivt = MODES[1].label
+    at_one = float(np.interp(1.0, cap.ratio.values, cap[ivt].values))
+    curves = p.curves[(p.curves["mode"] == ivt) & (p.curves.status == 0)]
+    near = curves.iloc[int(np.argmin(np.abs(curves.overall_ratio.values)))] \
+        if len(curves) else None
+    b = [("h2", "Beyond the paper: planetary modes"),
+         ("p", "The authors' next step: release the carrier and the drive is a three-shaft "
+               "planetary (docs/model.md §13). The same Table I drive at F_N0 = 2 kN, the "
+               f"driver at {DRIVER_SPEED:g} rad/s, load torques of the driven member "
+               f"{', '.join(f'{x:g}' for x in LOADS)} N m, with the balls' centrifugal "
+               "force and gyroscopic moment. With disc 0 held and the carrier driving, the "
+               "output passes through zero at tau = 1 (geared neutral): there the torques stay "
+               "finite while the output speed and the efficiency go to zero, and the power "
+               "through the contacts exceeds the shaft power (circulation)."
+               + (f" Nearest to neutral on this grid (overall ratio "
+                  f"{near.overall_ratio:+.3f} at tau_ID = {near.ratio:.2f}, "
+                  f"{near.load_torque:g} N m): efficiency {near.eta:.3f}, "
+                  f"{near.circulation:.1f} times the shaft power through the contacts."
+                  if near is not None else "")
+               + f" Its capacity at tau_ID = 1 is {at_one:.0f} N m. Points where the carrier "
+                 "would have to turn fast enough for the balls to leave the idler are left "
+                 "out (gaps in the curves); for that reason the modes that drive the carrier "
+                 "from a disc (it then turns at tau / (tau - 1) or 1 / (1 - tau) times the "
+                 "driver) appear in the kinematics only: the Table I balls weigh 0.88 kg "
+                 "each."),
+         ("p", "**Effect of the balls' inertia** (disc 2 held, carrier at 150 rad/s, "
+               "tau_ID = 1.5, 20 N m on disc 0): the centrifugal force unloads the idler "
+               "contacts; the gyroscopic moment loads the ball bearings."),
+         ("table", list(p.effects.columns), p.effects.values.tolist())]
+    captions = {
+        "planet_ratio": "Overall ratio (driven over driver speed) against the tilt in each "
+                        "mode, ideal (no creep). Through zero where tau = 1 with a disc held "
+                        "and the carrier driving: geared neutral.",
+        "planet_efficiency": "Efficiency (power out over power in) against the overall "
+                             "ratio, at three load torques.",
+        "planet_circulation": "Power through the traction contacts over the shaft power: "
+                              "above 1 the power circulates; it grows without bound at "
+                              "geared neutral.",
+        "planet_capacity": "Capacity per mode: the largest load torque of the driven member "
+                           "with every |creep| <= 0.1."}
+    for name, caption in captions.items():
+        b.append(("figure", f"{name}.png", caption))
+    return b

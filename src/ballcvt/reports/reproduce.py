@@ -2,7 +2,8 @@
 
 Run from the command line as ``ballcvt reproduce --out DIR [--quick]``. Writes into DIR:
 ``figNN.png/.svg/.csv`` for Figs. 3, 5, 7-13, ``map.*``, the sweeps as NetCDF
-(``data/*.nc``), ``claims.csv``, ``report.md`` and ``report.html`` (figures inline).
+(``data/*.nc``), ``claims.csv``, ``report.md`` and ``report.html`` (figures inline), and,
+beyond the paper, the planetary section's ``planet_*.png/.svg/.csv``.
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ from ..sweeps.export import write_table
 from ..variator import Variator
 from .claims import ceiling_numbers, paper_claims
 from .figures import FIGURES, FigureData
+from .planetary import planetary_section
 from .report import write_report
 
 __all__ = ["reproduce", "Reproduction", "GRIDS"]
@@ -168,9 +170,14 @@ def reproduce(out, quick: bool = False, workers: int = 1,
     files.append(write_table(frame, out / "claims.csv", {}))
     ceiling = ceiling_numbers(build_problem(design, fluid, "double", 1.0, 0.0, CLAMP,
                                             RPM * math.pi / 30.0))
+    with tqdm(total=1, desc="beyond the paper: planetary modes", unit="section",
+              disable=not show) as bar:
+        planet = planetary_section(Variator(), CLAMP, out, quick)
+        bar.update()
+    files += planet.files
     run_time = time.perf_counter() - start
     files += write_report(out, data, claims, ceiling, peak, quick=quick, run_time=run_time,
-                          inputs=_inputs(design, fluid, quick, workers))
+                          inputs=_inputs(design, fluid, quick, workers), planetary=planet)
     return Reproduction(out=out, files=files, claims=claims, run_time=run_time)
 
 
@@ -178,10 +185,14 @@ def _inputs(design, fluid, quick, workers):
     return {
         "design": design.name, "fluid": fluid.name,
         "operating point": f"F_N0 = {CLAMP:g} N, omega_0 = {RPM:g} rpm (Figs. 7, 9-13)",
-        "model options (every figure)": "constant clamping force (clamp law 'constant'), "
-                                        "isothermal traction (Eqs. 51-66), carrier held, no "
-                                        "parasitic losses (the paper's model; the Table I "
-                                        "file's example cam is not used)",
+        "model options (the paper's figures)": "constant clamping force (clamp law "
+                                               "'constant'), isothermal traction (Eqs. 51-66), "
+                                               "carrier held, no parasitic losses (the paper's "
+                                               "model; the Table I file's example cam is not "
+                                               "used)",
+        "model options (planetary section)": "as above, with the carrier turning and the "
+                                             "balls' centrifugal force and gyroscopic moment "
+                                             "(docs/model.md §13)",
         "creep limit": f"{design.creep_limit:g}",
         "max pressure (clamp optimisation)": f"{design.max_pressure / 1e9:g} GPa",
         "grids": "quick (coarse)" if quick else "full",

@@ -65,13 +65,14 @@ class PlanetaryResult:
 
     @property
     def input_power(self) -> float:
-        """Power of the driver into the drive [W]."""
-        return self.powers[self.mode.driver]
+        """Power into the drive: the sum of the members' positive powers [W] (the driver's,
+        unless the load overhauls it)."""
+        return sum(max(p, 0.0) for p in self.powers.values())
 
     @property
     def output_power(self) -> float:
-        """Power delivered to the driven member's load, ``L omega_driven`` [W]."""
-        return -self.powers[self.mode.driven]
+        """Power out of the drive: the sum of the members' negative powers, negated [W]."""
+        return sum(max(-p, 0.0) for p in self.powers.values())
 
     @property
     def loss(self) -> float:
@@ -93,7 +94,8 @@ class PlanetaryResult:
 
     @property
     def eta(self) -> float:
-        """Power out over power in [-] (NaN when the driver takes power out)."""
+        """Power out over power in [-] (whichever members carry them; NaN with no power
+        in, e.g. at rest)."""
         return self.output_power / self.input_power if self.input_power > 0 else math.nan
 
     @property
@@ -124,7 +126,7 @@ class PlanetaryResult:
         out.update(
             mode={"held": self.mode.held, "driver": self.mode.driver,
                   "driven": self.mode.driven, "centrifugal": self.mode.centrifugal,
-                  "gyroscopic": self.mode.gyroscopic},
+                  "gyroscopic": self.mode.gyroscopic, "held_speed": self.mode.held_speed},
             mirrored=self.sign < 0, load_torque=self.load_torque,
             driver_speed=self.driver_speed, passes=self.passes,
             speeds=dict(self.speeds), torques=dict(self.torques), powers=self.powers,
@@ -157,7 +159,7 @@ class PlanetaryResult:
                                         source)
         m = data["mode"]
         mode = OperatingMode(m["held"], m["driver"], bool(m["centrifugal"]),
-                             bool(m["gyroscopic"]))
+                             bool(m["gyroscopic"]), float(m.get("held_speed", 0.0)))
         out = make_planetary_result(mode, rel, -1.0 if data["mirrored"] else 1.0,
                                     data["speeds"], float(data["load_torque"]),
                                     float(data["driver_speed"]), int(data["passes"]))

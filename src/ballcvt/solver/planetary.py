@@ -25,7 +25,7 @@ from ..errors import ConvergenceError, InputError
 from ..modes import OperatingMode
 from .point import PointSolution, SolverOptions, solve_point
 
-__all__ = ["ModeSolution", "solve_mode"]
+__all__ = ["ModeSolution", "solve_mode", "RATIO_TOL"]
 
 #: Relative tolerance of the fixed point on the actual ratio.
 RATIO_TOL = 1e-13

@@ -123,6 +123,16 @@ def test_geared_neutral_is_where_the_kinematics_put_it(v):
     below = v.solve(0.98, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
     above = v.solve(1.02, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
     assert below.overall_ratio > 0 > above.overall_ratio
+    # at neutral itself (found by bisection on the ratio): the output at rest, a finite
+    # torque on the held disc, and the result says so
+    lo, hi = 0.98, 1.02
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        r = v.solve(mid, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
+        lo, hi = (mid, hi) if r.overall_ratio > 0 else (lo, mid)
+    assert r.geared_neutral and abs(r.speeds["disc2"]) < 1e-6 * 100.0
+    assert r.relative.actual_ratio == pytest.approx(1.0, abs=1e-8)
+    assert 1.0 < r.torque_ratio < 10.0 and r.to_dict()["geared_neutral"]
     for r in (below, above):
         assert r.speeds["disc2"] == pytest.approx(
             r.speeds["carrier"] * (1 - r.relative.actual_ratio), abs=1e-9)
@@ -248,3 +258,21 @@ def test_capacity_per_mode_matches_the_limit_with_the_carrier_held(v):
     for ratio, limit in zip(ratios, got):
         ref = v.limit_torque(ratio, clamp_force=F, input_speed=100.0)
         assert limit == pytest.approx(ref, rel=2e-3) and limit <= ref * (1 + 1e-9)
+
+
+@pytest.mark.parametrize("mode", [OperatingMode(), OperatingMode("disc0", "carrier"),
+                                  OperatingMode("disc2", "carrier"),
+                                  OperatingMode("disc2", "disc0")], ids=lambda m: m.label)
+def test_carrier_torque_from_its_reactions(v, mode):
+    """The carrier's torque from the axle reactions and bearing torques equals the balance
+    of the three shafts, T_2 - T_0, in the carrier frame, held or turning."""
+    from ballcvt.equilibrium.residual import carrier_reaction_torque
+    from ballcvt.solver.planetary import solve_mode
+    for ratio in (0.6, 1.7):
+        if mode.driver == "disc0" and mode.held == "disc2" and ratio > 1:
+            continue                          # the carrier would turn too fast
+        got = solve_mode(v.design, v.fluid, "double", mode, ratio, 20.0, 60.0, F)
+        st, pb = got.solution.state, got.problem
+        balance = float(pb.output_torque) - float(st.input_torque)
+        assert float(carrier_reaction_torque(pb, st)) == pytest.approx(balance, rel=1e-9,
+                                                                         abs=1e-9)

@@ -98,8 +98,10 @@ def planetary_table(r: PlanetaryResult) -> str:
     lines += [
         f"overall ratio (driven / driver) {r.overall_ratio:+.5f}   torque ratio "
         f"{r.torque_ratio:+.4f}",
-        f"efficiency  power out / power in {r.eta:.5f}   1 - losses / power in "
-        f"{r.eta_loss:.5f}",
+        (f"efficiency  power out / power in {r.eta:.5f}   1 - losses / power in "
+         f"{r.eta_loss:.5f}" if not r.geared_neutral else
+         "geared neutral: the driven member is at rest, so the efficiency says nothing; "
+         f"read the torque ratio ({r.torque_ratio:+.4f})"),
         f"power flow  {r.power_flow}; through the contacts {r.circulating_power / 1e3:.4f} kW"
         f" (shaft power {abs(r.input_power) / 1e3:.4f} kW)",
         "",

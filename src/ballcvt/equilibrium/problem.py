@@ -66,8 +66,8 @@ class EquilibriumProblem:
         Carrier speed ``omega_c`` [rad/s], ``(...)``; zero for the paper's drive. The
         other speeds are relative to the carrier (docs/model.md §13).
     gyro_factor : ndarray
-        ``I omega_c sin(gamma) / (2 r_S)`` [kg m/s]: times ``omega_S``, the force at each
-        axle end that carries the ball's gyroscopic moment (docs/model.md §13); zero
+        ``I omega_c sin(gamma) / r_S`` [kg m/s]: times ``omega_S``, the force at each
+        axle bearing that carries the ball's gyroscopic moment (docs/model.md §13); zero
         without it.
     torque_weights : tuple of float
         ``(a, b)`` of the torque condition ``a T_0 + b T_2 = output_torque`` closing the
@@ -238,17 +238,18 @@ def idler_share(layout: ContactLayout, design: Design) -> np.ndarray:
 
 
 def gyro_factor(design: Design, tilt, carrier_speed):
-    """``I omega_c sin(gamma) / (2 r_S)`` [kg m/s], ``I = 2 m r_S^2 / 5``.
+    """``I omega_c sin(gamma) / r_S`` [kg m/s], ``I = 2 m r_S^2 / 5``.
 
     With the carrier turning the ball's spin axis ``s`` precesses about ``j``, and its
     angular momentum ``I (omega_c j + omega_S s)`` changes at ``I omega_c omega_S j x s =
     -I omega_c omega_S sin(gamma) i``: a moment about ``i`` that only forces along ``u`` at
-    the two axle ends, ``r_S`` from the centre, can supply (docs/model.md §13). Times
-    ``omega_S`` this is that force [N].
+    the two axle bearings can supply. They sit ``r_S / 2`` from the centre (the lever arm
+    of Eqs. 19/34), so each carries ``I omega_c omega_S sin(gamma) / r_S`` (docs/model.md
+    §13): this factor times ``omega_S`` [N].
     """
     inertia = 0.4 * ball_mass(design) * design.roller_radius ** 2
     return (inertia * np.asarray(carrier_speed, dtype=float) * np.sin(tilt)
-            / (2.0 * design.roller_radius))
+            / design.roller_radius)
 
 
 def max_carrier_speed(design: Design, layout: ContactLayout, clamp_force):

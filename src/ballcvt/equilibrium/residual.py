@@ -33,7 +33,8 @@ from ..contact.traction import traction_coefficients
 from ..geometry.kinematics import body_speeds, creep_term, entrainment_factor, spin
 from .problem import EquilibriumProblem
 
-__all__ = ["EquilibriumState", "evaluate", "evaluate_with_jacobian", "residual"]
+__all__ = ["EquilibriumState", "evaluate", "evaluate_with_jacobian", "residual",
+           "carrier_reaction_torque"]
 
 
 @dataclass(frozen=True)
@@ -242,3 +243,27 @@ def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> Eq
 def residual(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()):
     """Dimensionless residual vector of `evaluate` (shape ``(..., n_c)``)."""
     return evaluate(problem, creep, quadrature).residual
+
+
+def carrier_reaction_torque(problem: EquilibriumProblem, state: EquilibriumState):
+    """Torque about ``j`` applied to the carrier from outside, from the balls' axles [N m].
+
+    The carrier holds each ball's axle: it takes ``-F_Ra``, ``-F_Rb`` along ``i`` at the
+    bearings ``R_c k +- (r_S / 2) s`` (the lever arm of Eqs. 19/34), and the friction torques
+    of the ball bearings (about ``s``) and of the idler bearings (about ``j``) react on it.
+    The gyroscopic forces along ``u`` and the centrifugal force have no moment about ``j``.
+    So the torque the balls and idlers exert on the carrier is
+    ``n [-R_c (F_Ra + F_Rb) + (r_S / 2) sin(gamma) (F_Ra - F_Rb)
+    + sign(omega_S) T_BLS cos(gamma)] + sum sign(Omega) T_BL``, and the carrier's applied
+    torque is minus that (docs/model.md §13). It equals ``T_2 - T_0``, the balance of the
+    three shafts, at any equilibrium (tested): a check of the model's moment balances.
+    """
+    des = problem.design
+    rs, n = des.roller_radius, des.n_rollers
+    rc = rs * (1.0 + des.aspect_ratio)
+    fa, fb = state.axle_reactions[..., 0], state.axle_reactions[..., 1]
+    g = problem.tilt
+    inner = n * (-rc * (fa + fb) + 0.5 * rs * np.sin(g) * (fa - fb)
+                 + np.sign(state.omega_s) * state.roller_bearing_torque * np.cos(g))
+    inner = inner + np.sum(np.sign(state.omega) * state.idler_bearing_torque, axis=-1)
+    return -inner

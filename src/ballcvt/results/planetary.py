@@ -104,6 +104,12 @@ class PlanetaryResult:
         return 1.0 - self.loss / self.input_power if self.input_power > 0 else math.nan
 
     @property
+    def geared_neutral(self) -> bool:
+        """Whether the driven member is (nearly) at rest: ``|overall ratio| < 1e-3``. There
+        the efficiency is zero whatever the losses; read `torque_ratio` instead."""
+        return abs(self.overall_ratio) < 1e-3
+
+    @property
     def circulating_power(self) -> float:
         """Power through the traction contacts: disc 0's power in the carrier frame [W]."""
         rel = self.relative
@@ -131,6 +137,7 @@ class PlanetaryResult:
             driver_speed=self.driver_speed, passes=self.passes,
             speeds=dict(self.speeds), torques=dict(self.torques), powers=self.powers,
             overall_ratio=self.overall_ratio, torque_ratio=self.torque_ratio,
+            geared_neutral=self.geared_neutral,
             carrier_speed=self.speeds["carrier"], carrier_torque=self.torques["carrier"],
             overall_eta=self.eta, overall_eta_loss=self.eta_loss,
             circulating_power=self.circulating_power, power_flow=self.power_flow,

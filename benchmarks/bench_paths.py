@@ -39,18 +39,14 @@ from ballcvt.solver.point import solve_point
 
 sys.path.insert(0, os.path.dirname(__file__))
 from bench_batch import BASELINE_A, FIRST_CALL, REFERENCE, SPEED  # noqa: E402
+from bench_point import timed  # noqa: E402
 
 OP = {"clamp_force": 2000.0, "input_speed_rpm": 2000.0}
 
 
 def median_time(fn, repeat):
-    fn()                                                    # warm
-    times = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return float(np.median(times))
+    """Median wall time of ``repeat`` calls after a warm-up call [s]."""
+    return float(timed(fn, repeat)[0])
 
 
 def grid(n):

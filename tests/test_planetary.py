@@ -18,6 +18,8 @@ from ballcvt.solver.point import solve_point
 
 F = 2000.0
 MODES = [OperatingMode(h, d) for h in MEMBERS for d in MEMBERS if h != d]
+#: The five modes beyond the paper (the default returns the paper's OperatingResult).
+PLANETARY = [m for m in MODES if not m.is_default]
 
 
 @pytest.fixture(scope="module")
@@ -88,13 +90,11 @@ def test_zero_driver_speed_is_refused(v):
                                                                                 "carrier"))
 
 
-@pytest.mark.parametrize("mode", [OperatingMode("disc2", "carrier"),
-                                  OperatingMode("disc0", "carrier"),
-                                  OperatingMode("carrier", "disc2"),
-                                  OperatingMode("disc2", "disc0")], ids=lambda m: m.label)
+@pytest.mark.parametrize("mode", PLANETARY, ids=lambda m: m.label)
 def test_ideal_relation_at_zero_torque(v, mode):
     ratio = 0.7
-    r = v.solve(ratio, 0.0, clamp_force=F, input_speed=60.0, mode=mode)
+    # 20 rad/s: the modes that drive the carrier from a disc spin it up to 3.3 times faster
+    r = v.solve(ratio, 0.0, clamp_force=F, input_speed=20.0, mode=mode)
     w = r.speeds
     tau = r.relative.actual_ratio
     assert w["disc2"] - w["carrier"] == pytest.approx(tau * (w["disc0"] - w["carrier"]),
@@ -102,13 +102,10 @@ def test_ideal_relation_at_zero_torque(v, mode):
     assert tau == pytest.approx(ratio, rel=2e-2)      # only the drag's creep
 
 
-@pytest.mark.parametrize("mode", [OperatingMode("disc2", "carrier"),
-                                  OperatingMode("disc0", "carrier"),
-                                  OperatingMode("carrier", "disc2"),
-                                  OperatingMode("disc2", "disc0")], ids=lambda m: m.label)
+@pytest.mark.parametrize("mode", PLANETARY, ids=lambda m: m.label)
 def test_power_balance_per_mode(v, mode):
     for ratio in (0.6, 1.4):
-        r = v.solve(ratio, 15.0, clamp_force=F, input_speed=40.0, mode=mode)
+        r = v.solve(ratio, 15.0, clamp_force=F, input_speed=20.0, mode=mode)
         p = r.powers
         assert sum(r.torques.values()) == pytest.approx(0.0, abs=1e-9)
         # power in through the shafts = losses in the carrier frame (to the residual)

@@ -2,18 +2,16 @@
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Mapping
 
-from .._fileio import atomic_write_text
 from .._version import __version__
 from ..errors import InputError
 from ..modes import MEMBERS, OperatingMode, member_torques
-from .point import OperatingResult, _finite, _unfinite
+from .point import OperatingResult, _JsonFile, read_result
 
 __all__ = ["PlanetaryResult", "make_planetary_result"]
 
@@ -144,13 +142,8 @@ class PlanetaryResult:
             planetary_version=self.version)
         return out
 
-    def to_json(self, **kwargs: Any) -> str:
-        """JSON text of `to_dict` (non-finite numbers as ``null``)."""
-        return json.dumps(_finite(self.to_dict()), **kwargs)
-
-    def save(self, path: str | Path) -> None:
-        """Write as JSON (atomically)."""
-        atomic_write_text(path, self.to_json(indent=2))
+    to_json = _JsonFile.to_json
+    save = _JsonFile.save
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], source: str = "result") -> "PlanetaryResult":
@@ -183,15 +176,7 @@ class PlanetaryResult:
     @classmethod
     def load(cls, path: str | Path) -> "PlanetaryResult":
         """Read and validate a result written by `save`."""
-        source = f"result file {path}"
-        try:
-            data = json.loads(Path(path).read_text(), parse_constant=float)
-        except (OSError, UnicodeDecodeError, ValueError) as exc:
-            raise InputError("result file", str(path), "a readable JSON result",
-                             message=f"{source}: cannot be read ({exc})") from None
-        data = {k: v if k in ("design", "fluid", "mode") else _unfinite(v)
-                for k, v in data.items()}
-        return cls.from_dict(data, source)
+        return cls.from_dict(*read_result(path))
 
 
 def make_planetary_result(mode: OperatingMode, relative: OperatingResult, sign: float,

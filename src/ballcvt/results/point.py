@@ -75,6 +75,33 @@ class ContactResult:
     lambda_ratio: float
 
 
+class _JsonFile:
+    """JSON output shared by the result classes (each has ``to_dict``)."""
+
+    def to_json(self, **kwargs: Any) -> str:
+        """JSON text of `to_dict` (non-finite numbers are written as ``null``)."""
+        return json.dumps(_finite(self.to_dict()), **kwargs)  # type: ignore[attr-defined]
+
+    def save(self, path: str | Path) -> None:
+        """Write the result as JSON (atomically: never a truncated file)."""
+        atomic_write_text(path, self.to_json(indent=2))
+
+
+def read_result(path: str | Path, keep=("design", "fluid", "mode")):
+    """``(data, source)`` of a result file written by ``save``: its JSON object with
+    ``null`` and ``"inf"`` restored to floats outside the ``keep`` tables (parameter sets
+    keep ``null``: an absent table)."""
+    source = f"result file {path}"
+    try:
+        data = json.loads(Path(path).read_text(), parse_constant=float)
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        raise InputError("result file", str(path), "a readable JSON result",
+                         message=f"{source}: cannot be read ({exc})") from None
+    if isinstance(data, dict):
+        data = {k: v if k in keep else _unfinite(v) for k, v in data.items()}
+    return data, source
+
+
 @dataclass(frozen=True)
 class OperatingResult:
     """Solved operating point of a variator (SI units; names say where not).
@@ -240,27 +267,13 @@ class OperatingResult:
         _check_consistent(result, source)
         return result
 
-    def to_json(self, **kwargs: Any) -> str:
-        """JSON text of `to_dict` (non-finite numbers are written as ``null``)."""
-        return json.dumps(_finite(self.to_dict()), **kwargs)
-
-    def save(self, path: str | Path) -> None:
-        """Write the result as JSON (atomically: never a truncated file)."""
-        atomic_write_text(path, self.to_json(indent=2))
+    to_json = _JsonFile.to_json
+    save = _JsonFile.save
 
     @classmethod
     def load(cls, path: str | Path) -> "OperatingResult":
         """Read and validate a result written by `save` (see `from_dict`)."""
-        source = f"result file {path}"
-        try:
-            data = json.loads(Path(path).read_text(), parse_constant=float)
-        except (OSError, UnicodeDecodeError, ValueError) as exc:
-            raise InputError("result file", str(path), "a readable JSON result",
-                             message=f"{source}: cannot be read ({exc})") from None
-        if isinstance(data, dict):       # parameter sets keep null (an absent table)
-            data = {k: v if k in ("design", "fluid") else _unfinite(v)
-                    for k, v in data.items()}
-        return cls.from_dict(data, source)
+        return cls.from_dict(*read_result(path))
 
 
 _ADAPTER = TypeAdapter(OperatingResult)

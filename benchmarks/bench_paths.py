@@ -88,7 +88,8 @@ def main():
           f"32 x 32), {steps} solves per limit\n")
     print("  what the user calls                  wall time")
     for n in (30, 10, 1):
-        t = median_time(lambda: v.sweep(**grid(n), **OP), max(1, args.repeat // (n // 10 + 1)))
+        t = median_time(lambda n=n: v.sweep(**grid(n), **OP),
+                        max(1, args.repeat // (n // 10 + 1)))
         target = {30: ">= 2,000 pts/s", 10: "< 60 ms", 1: "< 10 ms"}[n]
         row(f"sweep {n} x {n} (limits, Dataset)", t, target, n * n + n * (steps + 1), t_a,
             n * n)

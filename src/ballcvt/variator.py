@@ -104,7 +104,8 @@ class Variator:
     def solve(self, ratio: float, output_torque: float, *, clamp_force: float | None = None,
               clamp_law=None, input_speed: float | None = None,
               input_speed_rpm: float | None = None,
-              check_capacity: bool = True, mode: OperatingMode | None = None):
+              check_capacity: bool = True,
+              mode: OperatingMode | None = None) -> OperatingResult | PlanetaryResult:
         """Solve the steady operating point.
 
         Parameters

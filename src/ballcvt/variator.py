@@ -183,9 +183,6 @@ class Variator:
         if law.name != "constant":
             raise InputError("clamp_law", law.name, "constant in a planetary mode (the cam "
                              "and optimal laws are not yet defined with the carrier turning)")
-        if self.design.parasitic is not None:
-            raise InputError("design.parasitic", "set", "absent in a planetary mode (the "
-                             "shaft drags need the absolute speeds; not yet modelled)")
         got = solve_mode(self.design, self.fluid, self.architecture, mode, float(ratio),
                          float(load_torque), driver_speed, law.force, self.options)
         creep = max(abs(c) for c in got.solution.state.creep)

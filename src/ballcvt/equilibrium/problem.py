@@ -195,6 +195,10 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
     ry = transverse_curvature_ratio(layout.groove_ratio) * rs
     load = fn0[..., None] * layout.load_factor
     turning = np.any(wc != 0.0)
+    if turning and design.parasitic is not None:
+        raise InputError("design.parasitic", "set", "absent with the carrier turning (the "
+                         "shaft drags need the absolute speeds; not modelled yet, "
+                         "docs/model.md §13)")
     if turning and centrifugal:
         _check_idler_loads(design, layout, fn0, wc)
         load = load - centrifugal_force(design, wc)[..., None] * idler_share(layout, design)

@@ -281,3 +281,18 @@ def test_map_writes_only_complete_files_into_out(capsys, tmp_path, monkeypatch):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["m"]            # nothing outside
     assert sorted(p.name for p in out.iterdir()) == ["map.csv", "map.nc", "map.png",
                                                      "map.svg"]
+
+
+def test_project_files():
+    """LICENSE, citation, changelog, contributing guide and the typing marker ship."""
+    import importlib.resources
+    import tomllib
+    root = Path(__file__).resolve().parents[1]
+    license_text = (root / "LICENSE").read_text()
+    meta = tomllib.loads((root / "pyproject.toml").read_text())["project"]
+    assert meta["license"] == "BSD-3-Clause" and "BSD 3-Clause License" in license_text
+    cff = (root / "CITATION.cff").read_text()
+    assert "cff-version: 1.2.0" in cff and "10.1016/j.mechmachtheory.2020.103877" in cff
+    assert "## Unreleased" in (root / "CHANGELOG.md").read_text()
+    assert "make_golden.py" in (root / "CONTRIBUTING.md").read_text()
+    assert importlib.resources.files("ballcvt").joinpath("py.typed").is_file()

@@ -34,7 +34,7 @@ from ..geometry.kinematics import body_speeds, creep_term, entrainment_factor, s
 from .problem import EquilibriumProblem
 
 __all__ = ["EquilibriumState", "evaluate", "evaluate_with_jacobian", "residual",
-           "carrier_reaction_torque"]
+           "balancing_output_torque", "carrier_reaction_torque"]
 
 
 @dataclass(frozen=True)
@@ -243,6 +243,12 @@ def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> Eq
 def residual(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()):
     """Dimensionless residual vector of `evaluate` (shape ``(..., n_c)``)."""
     return evaluate(problem, creep, quadrature).residual
+
+
+def balancing_output_torque(problem: EquilibriumProblem, state: EquilibriumState):
+    """The output torque ``T_2 = T_body,2 - T_drag,2`` that balances the output disc at
+    ``state`` [N m], whatever the problem's own torque condition (docs/model.md §5, §13)."""
+    return state.body_torque[..., -1] - np.sum(problem.output_drag, axis=-1)
 
 
 def carrier_reaction_torque(problem: EquilibriumProblem, state: EquilibriumState):

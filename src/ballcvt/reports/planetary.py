@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from ..geometry.kinematics import ideal_ratio, ratio_range
-from ..modes import OperatingMode
+from ..modes import MEMBERS, OperatingMode
 from ..plotting.figures import line_panels, save
 from ..sweeps.planetary import limit_load_batch, solve_mode_batch
 from ..sweeps.export import write_table
@@ -70,22 +70,20 @@ def planetary_section(v, clamp_force: float, out, quick: bool = False) -> Planet
     rows = []
     for mode in MODES:
         # the load brakes the driven member: the sign of its speed at zero load
-        zero = solve_mode_batch(d, v.fluid, v.architecture, mode, ratios, 0.0, DRIVER_SPEED,
-                                clamp_force, v.options)
-        drn = ["disc0", "disc2", "carrier"].index(mode.driven)
-        brake = np.where(np.nan_to_num(zero.speeds[drn]) < 0, -1.0, 1.0)
+        brake = solve_mode_batch(d, v.fluid, v.architecture, mode, ratios, 0.0, DRIVER_SPEED,
+                                 clamp_force, v.options).braking_direction(mode)
+        drn, drv = MEMBERS.index(mode.driven), MEMBERS.index(mode.driver)
         for load in LOADS:
             got = solve_mode_batch(d, v.fluid, v.architecture, mode, ratios, brake * load,
                                    DRIVER_SPEED, clamp_force, v.options)
-            p_in = np.sum(np.maximum(got.powers, 0.0), axis=0)
-            drv = ["disc0", "disc2", "carrier"].index(mode.driver)
             with np.errstate(divide="ignore", invalid="ignore"):
                 rows.append(pd.DataFrame({
                     "mode": mode.label, "load_torque": load, "ratio": ratios,
                     "status": got.status,
                     "overall_ratio": got.speeds[drn] / got.speeds[drv], "eta": got.eta,
-                    "circulation": got.circulating_power / p_in,
-                    "carrier_speed": got.speeds[2], "max_creep": got.max_creep}))
+                    "circulation": got.circulating_power / got.input_power,
+                    "carrier_speed": got.speeds[MEMBERS.index("carrier")],
+                    "max_creep": got.max_creep}))
     curves = pd.concat(rows, ignore_index=True)
     capacity = pd.DataFrame({"ratio": ratios, **{
         mode.label: limit_load_batch(d, v.fluid, v.architecture, mode, ratios, DRIVER_SPEED,

@@ -19,7 +19,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
-from ..equilibrium.residual import EquilibriumState, evaluate, evaluate_with_jacobian
+from ..equilibrium.residual import (EquilibriumState, balancing_output_torque, evaluate,
+                                    evaluate_with_jacobian)
 
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "CREEP_BOUNDS"]
 
@@ -90,12 +91,7 @@ def solve_batch(problem: EquilibriumProblem, options=None, x0=None,
     x = initial_creep(flat) if x0 is None else \
         np.broadcast_to(np.asarray(x0, dtype=float), shape + (nc,)).reshape(-1, nc).copy()
     iterations = np.zeros(flat.size, dtype=int)
-    if predict and _predicts(options, flat.size):
-        coarse = replace(options, quadrature=options.predictor, tol=options.predictor_tol)
-        x_fine = x.copy()
-        _newton(flat, x, iterations, coarse)
-        x = np.where(np.all(np.isfinite(x), axis=-1, keepdims=True), x, x_fine)
-    state = _newton(flat, x, iterations, options)
+    x, state = _staged_newton(flat, x, iterations, options, predict=predict)
     norm = _norm(state.residual)
     bad = np.flatnonzero(~(norm <= options.tol))
     if fallback and bad.size:
@@ -145,16 +141,22 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     flat = problem.flat()
     x = np.array(x0, dtype=float).reshape(flat.size, -1)
     iterations = np.zeros(flat.size, dtype=int)
-    if _predicts(options, flat.size):
+    _, state = _staged_newton(flat, x, iterations, options, pinned=contact)
+    norm = _norm(state.residual[:, :-1])
+    return balancing_output_torque(flat, state), BatchSolution(
+        state=state, converged=norm <= options.tol, residual_norm=norm, iterations=iterations)
+
+
+def _staged_newton(flat, x, iterations, options, pinned=None, predict=True):
+    """The predictor stage on the coarse rule (where it pays, `_predicts`), then Newton on
+    the requested rule; a point whose coarse run went non-finite restarts from ``x``.
+    Returns the final creeps (updated in place where possible) and state."""
+    if predict and _predicts(options, flat.size):
         coarse = replace(options, quadrature=options.predictor, tol=options.predictor_tol)
         start = x.copy()
-        _newton(flat, x, iterations, coarse, pinned=contact)
+        _newton(flat, x, iterations, coarse, pinned=pinned)
         x = np.where(np.all(np.isfinite(x), axis=-1, keepdims=True), x, start)
-    state = _newton(flat, x, iterations, options, pinned=contact)
-    norm = _norm(state.residual[:, :-1])
-    torque = state.body_torque[:, -1] - np.sum(flat.output_drag, axis=-1)
-    return torque, BatchSolution(state=state, converged=norm <= options.tol,
-                                 residual_norm=norm, iterations=iterations)
+    return x, _newton(flat, x, iterations, options, pinned=pinned)
 
 
 def _predicts(options, n_points: int) -> bool:

@@ -21,11 +21,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem, build_problem
+from ..equilibrium.residual import balancing_output_torque
 from ..errors import ConvergenceError, InputError
 from ..modes import OperatingMode
 from .point import PointSolution, SolverOptions, solve_point
 
-__all__ = ["ModeSolution", "solve_mode", "RATIO_TOL"]
+__all__ = ["ModeSolution", "solve_mode", "carrier_frame_problem", "RATIO_TOL"]
 
 #: Relative tolerance of the fixed point on the actual ratio.
 RATIO_TOL = 1e-13
@@ -97,20 +98,16 @@ def solve_mode(design, fluid, architecture: str, mode: OperatingMode, ratio: flo
     ConvergenceError
         If an equilibrium or the fixed point does not converge.
     """
-    a, b, target = mode.torque_condition(float(load_torque))
     tau, x, sol, pb = float(ratio), None, None, None
     for passes in range(1, max_passes + 1):
-        speeds = {m: float(v) for m, v in mode.speeds(float(driver_speed), tau).items()}
-        relative = speeds["disc0"] - speeds["carrier"]
-        if not abs(relative) > 0.0:
+        speeds = mode.speeds(float(driver_speed), tau)
+        if not abs(float(speeds["disc0"] - speeds["carrier"])) > 0.0:
             raise InputError("driver_speed", driver_speed, f"!= 0: with {mode.label} at "
                              f"ratio {ratio:g} the discs would not turn relative to the "
                              "carrier")
-        sign = 1.0 if relative > 0 else -1.0
-        pb = build_problem(design, fluid, architecture, ratio, sign * float(target),
-                           clamp_force, abs(relative), carrier_speed=sign * speeds["carrier"],
-                           torque_weights=(a, b), centrifugal=mode.centrifugal,
-                           gyroscopic=mode.gyroscopic, signed_torque=True)
+        pb, sign = carrier_frame_problem(design, fluid, architecture, mode, ratio,
+                                         float(load_torque), speeds, clamp_force)
+        sign = float(sign)
         sol = solve_point(pb, options, x)
         if not sol.converged:
             raise ConvergenceError(f"{mode.label}: {sol.message}")
@@ -123,6 +120,34 @@ def solve_mode(design, fluid, architecture: str, mode: OperatingMode, ratio: flo
         raise ConvergenceError(f"{mode.label}: the speeds did not settle in {max_passes} "
                                f"passes (actual ratio {tau:.15g})")
     speeds = {m: float(v) for m, v in mode.speeds(float(driver_speed), new).items()}
-    t2 = float(sol.state.body_torque[-1] - np.sum(pb.output_drag))
+    t2 = balancing_output_torque(pb, sol.state)
     standard = replace(pb, output_torque=np.asarray(t2), torque_weights=(0.0, 1.0))
     return ModeSolution(standard, sol, sign, speeds, passes)
+
+
+def carrier_frame_problem(design, fluid, architecture: str, mode: OperatingMode, ratio,
+                          load_torque, speeds, clamp_force):
+    """The point(s) in the carrier frame, mirrored where the relative input speed is
+    negative (module docstring).
+
+    Parameters
+    ----------
+    speeds : dict of array_like
+        Member speeds of `OperatingMode.speeds` [rad/s]; the relative input speed
+        ``omega_0 - omega_c`` must not be zero.
+    ratio, load_torque, clamp_force
+        As in `solve_mode` (arrays broadcast).
+
+    Returns
+    -------
+    (EquilibriumProblem, ndarray)
+        The problem, and ``sign``: +1, or -1 where mirrored.
+    """
+    a, b, target = mode.torque_condition(load_torque)
+    relative = np.asarray(speeds["disc0"] - speeds["carrier"], dtype=float)
+    sign = np.where(relative > 0, 1.0, -1.0)
+    pb = build_problem(design, fluid, architecture, ratio, sign * target, clamp_force,
+                       np.abs(relative), carrier_speed=sign * speeds["carrier"],
+                       torque_weights=(a, b), centrifugal=mode.centrifugal,
+                       gyroscopic=mode.gyroscopic, signed_torque=True)
+    return pb, sign

@@ -34,10 +34,10 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
     force the law sets at each point is returned as ``clamp_force``, ``(m, n_T)``).
 
     When the limit search ran here (or was handed over), every point within the limits is
-    solved in one batch,
-    each started from the creeps interpolated in torque between the curve's solution at
-    its limit and the creeps at zero torque (or the solver's cold start); otherwise (limits given, the optimal law) torque by
-    torque, each started from the last solution (continuation).
+    solved in one batch, each started from the creeps interpolated in torque between the
+    curve's solution at its limit and the creeps at zero torque (or the solver's cold
+    start); otherwise (bare limits given, the optimal law) torque by torque, each started
+    from the last solution (continuation).
 
     Returns a dict of arrays ``(m, n_T)`` or ``(m, n_T, n_c)`` (and ``limit_torque``,
     ``(m,)``) with the variables of `ballcvt.sweeps.variables`; run in worker processes.
@@ -58,7 +58,8 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
              "residual": np.full((m, nt), np.nan)}
     if search is not None and not optimal:
         i, k = np.nonzero(state["status"] == 2)
-        share = (torque[k] / search.torque[i])[:, None]
+        lim = search.torque[i]
+        share = np.divide(torque[k], lim, out=np.zeros(lim.size), where=lim > 0)[:, None]
         zero = np.where(np.isnan(search.creep_zero), initial_creep(base), search.creep_zero)
         x0 = zero[i] + share * (search.creep[i] - zero[i])
         pb, sol = _solve_points(state, design, fluid, architecture, ratio, torque,

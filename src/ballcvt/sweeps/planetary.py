@@ -12,13 +12,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..equilibrium.problem import build_problem, max_carrier_speed
-from ..equilibrium.residual import evaluate
+from ..equilibrium.residual import balancing_output_torque
 from ..geometry.layout import contact_layout
 from ..modes import MEMBERS, OperatingMode, member_torques
 from ..performance.efficiency import power_losses
-from ..solver.batch import solve_batch
+from ..solver.batch import initial_creep, solve_batch
 from ..solver.limit import traction_ceiling_torque
-from ..solver.planetary import RATIO_TOL
+from ..solver.planetary import RATIO_TOL, carrier_frame_problem
 from ..solver.point import SolverOptions
 
 __all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch", "MODE_STATUS"]
@@ -49,12 +49,22 @@ class ModeBatch:
         return self.torques * self.speeds
 
     @property
+    def input_power(self) -> np.ndarray:
+        """Power into the drive: the sum of the members' positive powers [W]."""
+        return np.sum(np.maximum(self.powers, 0.0), axis=0)
+
+    @property
     def eta(self) -> np.ndarray:
         """Power out over power in [-] (as `PlanetaryResult.eta`)."""
-        p = self.powers
-        p_in = np.sum(np.maximum(p, 0.0), axis=0)
+        p_in = self.input_power
         with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(p_in > 0, np.sum(np.maximum(-p, 0.0), axis=0) / p_in, np.nan)
+            return np.where(p_in > 0, np.sum(np.maximum(-self.powers, 0.0), axis=0) / p_in,
+                            np.nan)
+
+    def braking_direction(self, mode: OperatingMode) -> np.ndarray:
+        """Sign of a load that brakes the driven member: that of its speed in this batch
+        (solved at zero load), +1 where it is zero or unknown."""
+        return np.where(np.nan_to_num(self.speeds[MEMBERS.index(mode.driven)]) < 0, -1.0, 1.0)
 
 
 def solve_mode_batch(design, fluid, architecture: str, mode: OperatingMode, ratio,
@@ -64,20 +74,22 @@ def solve_mode_batch(design, fluid, architecture: str, mode: OperatingMode, rati
     """`solve_mode` on a batch of points, batched through the fast solver.
 
     ``ratio``, ``load_torque`` and ``driver_speed`` broadcast to ``(n,)``. Every pass of the
-    fixed point on the actual ratio is one `solve_batch` of the points not yet settled.
-    Points whose speeds are out of range are flagged (status 3), not raised; points whose
-    creeps exceed ``design.creep_limit`` are flagged 1.
+    fixed point on the actual ratio is one `solve_batch` of the points not yet settled;
+    a point's figures are taken from the pass in which it settles. Points whose speeds are
+    out of range are flagged (status 3), not raised; points whose creeps exceed
+    ``design.creep_limit`` are flagged 1.
     """
     ratio, load, w = (np.ravel(v) for v in np.broadcast_arrays(
         *(np.asarray(v, dtype=float) for v in (ratio, load_torque, driver_speed))))
     n = ratio.size
-    a, b, target = mode.torque_condition(load)
-    w_max = float(max_carrier_speed(design, contact_layout(design, architecture),
-                                    clamp_force)) if mode.centrifugal else np.inf
+    layout = contact_layout(design, architecture)
+    w_max = float(max_carrier_speed(design, layout, clamp_force)) if mode.centrifugal \
+        else np.inf
     status = np.full(n, 2)
-    tau, x = ratio.copy(), np.full((n, contact_layout(design, architecture).n_contacts),
-                                   np.nan)
-    creep = x.copy()
+    tau = ratio.copy()
+    x = np.full((n, layout.n_contacts), np.nan)
+    speeds, torques = np.full((3, n), np.nan), np.full((3, n), np.nan)
+    loss, circ, big = (np.full(n, np.nan) for _ in range(3))
     settled = np.zeros(n, dtype=bool)
     for _ in range(max_passes):
         sp = mode.speeds(w, tau, check=False)
@@ -88,45 +100,27 @@ def solve_mode_batch(design, fluid, architecture: str, mode: OperatingMode, rati
         todo = np.flatnonzero(ok & ~settled)
         if todo.size == 0:
             break
-        sign = np.where(rel[todo] > 0, 1.0, -1.0)
-        pb = build_problem(design, fluid, architecture, ratio[todo], sign * target[todo],
-                           clamp_force, np.abs(rel[todo]), carrier_speed=sign * sp["carrier"][todo],
-                           torque_weights=(a, b), centrifugal=mode.centrifugal,
-                           gyroscopic=mode.gyroscopic, signed_torque=True)
-        x0 = x[todo]
-        sol = solve_batch(pb, options, None if np.isnan(x0).any() else x0)
-        x[todo] = sol.state.creep
-        new = sol.state.omega[:, -1] / sol.state.omega[:, 0]
+        pb, sign = carrier_frame_problem(design, fluid, architecture, mode, ratio[todo],
+                                         load[todo], {m: v[todo] for m, v in sp.items()},
+                                         clamp_force)
+        sol = solve_batch(pb, options, np.where(np.isnan(x[todo]), initial_creep(pb), x[todo]))
+        st = sol.state
+        x[todo] = st.creep
+        new = st.omega[:, -1] / st.omega[:, 0]
         done = ~sol.converged | (np.abs(new - tau[todo]) <= RATIO_TOL * np.abs(tau[todo]))
-        status[todo[~sol.converged]] = 2
-        fin = todo[done & sol.converged]
-        status[fin] = 0
-        creep[fin] = sol.state.creep[done & sol.converged]
         settled[todo[done]] = True
+        fin = done & sol.converged
+        j = todo[fin]
+        status[j] = 0
+        members = member_torques(sign * st.input_torque, sign * balancing_output_torque(pb, st))
+        for row, m in enumerate(MEMBERS):
+            speeds[row, j] = sp[m][todo][fin]
+            torques[row, j] = members[m][fin]
+        loss[j] = power_losses(pb, st).total[fin]
+        circ[j] = np.abs(st.input_torque * pb.input_speed)[fin]
+        big[j] = np.max(np.abs(st.creep[fin]), axis=-1)
         tau[todo] = np.where(sol.converged, new, tau[todo])
-    # the converged points once more, in one batch, for their torques and losses
-    good = np.flatnonzero(status == 0)
-    speeds = np.full((3, n), np.nan)
-    torques = np.full((3, n), np.nan)
-    loss, circ, big = (np.full(n, np.nan) for _ in range(3))
-    if good.size:
-        sp = mode.speeds(w[good], tau[good], check=False)
-        rel = sp["disc0"] - sp["carrier"]
-        sign = np.where(rel > 0, 1.0, -1.0)
-        pb = build_problem(design, fluid, architecture, ratio[good], sign * target[good],
-                           clamp_force, np.abs(rel), carrier_speed=sign * sp["carrier"],
-                           torque_weights=(a, b), centrifugal=mode.centrifugal,
-                           gyroscopic=mode.gyroscopic, signed_torque=True)
-        st = evaluate(pb, creep[good], options.quadrature)
-        t2 = st.body_torque[:, -1] - np.sum(pb.output_drag, axis=-1)
-        mt = member_torques(sign * st.input_torque, sign * t2)
-        for i, m in enumerate(MEMBERS):
-            speeds[i, good] = sp[m]
-            torques[i, good] = mt[m]
-        loss[good] = power_losses(pb, st).total
-        circ[good] = np.abs(st.input_torque * np.abs(rel))
-        big[good] = np.max(np.abs(creep[good]), axis=-1)
-        status[good[big[good] > design.creep_limit]] = 1
+    status[(status == 0) & (big > design.creep_limit)] = 1
     keep = status == 0
     return ModeBatch(status, np.where(keep, speeds, np.nan), np.where(keep, torques, np.nan),
                      np.where(keep, loss, np.nan), np.where(keep, tau, np.nan),
@@ -157,8 +151,7 @@ def limit_load_batch(design, fluid, architecture: str, mode: OperatingMode, rati
 
     zero = solve_mode_batch(design, fluid, architecture, mode, ratio, 0.0, driver_speed,
                             clamp_force, options)
-    direction = np.where(np.nan_to_num(zero.speeds[MEMBERS.index(mode.driven)]) < 0, -1.0,
-                         1.0)
+    direction = zero.braking_direction(mode)
     ok0 = zero.status == 0
     hi = traction_ceiling_torque(build_problem(design, fluid, architecture, ratio, 0.0,
                                                clamp_force, 1.0))

@@ -63,7 +63,8 @@ def viscosity_table(fluid, p_max: float, intervals: int = 2048, log_step: float 
     Returns
     -------
     fl : ndarray
-        ``(tau_L0 [Pa], a [-], intervals / p_max [1/Pa])``.
+        ``(tau_L0 [Pa], a [-], intervals / p_max [1/Pa], G [Pa])``: ``G`` is the film's
+        shear modulus of the visco-elastic law, 0 for a rigid-plastic film.
     tab : ndarray
         ``(intervals + 1, 2)``: ``E`` [s] and its derivative times the interval [s].
     """
@@ -83,7 +84,8 @@ def viscosity_table(fluid, p_max: float, intervals: int = 2048, log_step: float 
     log_e = np.log(fluid.viscosity / (tl0 + slope_tl * p)) + log_ratio * np.expm1(
         z * np.log1p(p / cp))
     e = np.exp(log_e)
-    fl = np.array([tl0, slope_tl, n / top])
+    modulus = fluid.shear_modulus if fluid.traction_law == "viscoelastic" else 0.0
+    fl = np.array([tl0, slope_tl, n / top, modulus])
     return fl, np.column_stack([e, e * log_slope(p) * (top / n)])
 
 
@@ -117,6 +119,19 @@ if AVAILABLE:
             inv_a = 1.0 / a
             sat = (1.0 - math.exp(-a)) * inv_a
         g = eh * sat
+        corr = 1.0
+        lin_extra = 0.0
+        if fl[3] > 0.0:
+            # Maxwell elasticity (docs/model.md §14): tau = tau_steady (1 - exp(-theta)),
+            # theta = G t / (eta sat), t = a_x (X + sqrt(1 - Y^2)) / u since entry
+            q_in = 1.0 - y * y
+            t_in = k[8] * (x + (math.sqrt(q_in) if q_in > 0.0 else 0.0))
+            theta = fl[3] * t_in * k[6] / (k[5] * g) if k[5] * g > 0.0 else 1e300
+            em = math.exp(-theta)
+            f = theta * (1.0 - 0.5 * theta) if theta < 1e-5 else 1.0 - em
+            corr = f - theta * em
+            lin_extra = -g * theta * em
+            g = g * f
         wx = w * k[8] * x
         wy = w * k[9] * y
         tx = g * vx
@@ -129,6 +144,8 @@ if AVAILABLE:
             else:
                 slope = ((1.0 - sat) - a * sat) * inv_a
             kk = eh * ek * slope / speed if speed > 0.0 else 0.0
+            if fl[3] > 0.0:
+                kk *= corr
             # d/dc: dV = (u, 0)
             u = k[5]
             dtx = g * u + kk * vx * u * vx
@@ -145,6 +162,8 @@ if AVAILABLE:
             acc[6] += wx * dty - wy * dtx
             # d/dlog u: dV = V
             lin = g + kk * speed * speed
+            if fl[3] > 0.0:
+                lin += lin_extra
             acc[4] += w * lin * vx
             acc[7] += lin * (wx * vy - wy * vx)
 

@@ -48,6 +48,11 @@ def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, 
                           derivatives: bool = False):
     """Traction coefficient ``mu`` and spin-moment coefficient ``chi`` of contacts.
 
+    The shear law is node-local: the isothermal law of Eq. 53 or, with a fluid whose
+    ``traction_law`` is ``"viscoelastic"``, that law with Maxwell elasticity
+    (docs/model.md §14). The thermal law wraps this function
+    (`ballcvt.contact.thermal`); `ballcvt.contact.laws.law_coefficients` dispatches.
+
     All array arguments broadcast together to the shape ``(...)`` of the result.
 
     Parameters
@@ -87,6 +92,10 @@ def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, 
         differentiated (it changes the result only by the discretisation error), nor is the
         blend weight: these are Jacobians for Newton's method, not exact gradients.
     """
+    if fluid.traction_law == "thermal":
+        raise ValueError("the thermal law's coefficients are "
+                         "ballcvt.contact.thermal.thermal_coefficients (or dispatch with "
+                         "ballcvt.contact.laws.law_coefficients)")
     args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
                                  (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)))
     shape = args[0].shape
@@ -187,6 +196,14 @@ def _integrate(nodes, params, fluid: Fluid, derivatives: bool = False):
     arg = eta * speed / (ex(h) * tau_l)
     sat = saturation_factor(arg)
     g = eta / ex(h) * sat                                 # tau = g V
+    corr, lin_extra = 1.0, 0.0
+    if fluid.traction_law == "viscoelastic":              # Maxwell elasticity (§14)
+        t_in = ex(ax) * (x + np.sqrt(np.maximum(1.0 - y * y, 0.0))) / ex(u)
+        theta = fluid.shear_modulus * t_in / (ex(h) * g)
+        em = np.exp(-theta)
+        f = -np.expm1(-theta)
+        corr, lin_extra = f - theta * em, -g * theta * em
+        g = g * f
     area = ax * ay
     wx, wy = w * ex(ax) * x, w * ex(ay) * y               # lever-arm weights of chi
 
@@ -199,12 +216,12 @@ def _integrate(nodes, params, fluid: Fluid, derivatives: bool = False):
         return mu, chi
     # d tau = g dV + (dg/d|V|) (V.dV / |V|) V; k = (dg/d|V|) / |V| stays finite times V.V
     k = (eta / ex(h)) ** 2 / tau_l * saturation_slope(arg, sat)
-    k = np.divide(k, speed, out=np.zeros_like(k), where=speed > 0.0)
+    k = np.divide(k, speed, out=np.zeros_like(k), where=speed > 0.0) * corr
     dvx_s, dvy_s = -ex(u * ay / rc) * y, ex(u * ax / rc) * x          # dV / d sigma
     d_c = moments(g * ex(u) + k * vx * ex(u) * vx, k * vx * ex(u) * vy)
     dot_s = vx * dvx_s + vy * dvy_s
     d_s = moments(g * dvx_s + k * dot_s * vx, g * dvy_s + k * dot_s * vy)
-    lin = g + k * speed * speed                                       # dV / d log u = V
+    lin = g + k * speed * speed + lin_extra                           # dV / d log u = V
     d_u = moments(lin * vx, lin * vy)
     return (mu, chi, np.stack([d_c[0], d_s[0], d_u[0]], axis=-1),
             np.stack([d_c[1], d_s[1], d_u[1]], axis=-1))

@@ -29,7 +29,7 @@ import numpy as np
 from ..bearings.friction import load_dependent_torque, speed_dependent_torque
 from ..contact.film import central_film_thickness
 from ..contact.quadrature import Quadrature
-from ..contact.traction import traction_coefficients
+from ..contact.laws import law_coefficients
 from ..geometry.kinematics import body_speeds, creep_term, entrainment_factor, spin
 from .problem import EquilibriumProblem
 
@@ -122,9 +122,9 @@ def evaluate(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadra
     """
     creep = np.asarray(creep, dtype=float)
     omega_s, omega, sigma, u_ref, film = _contact_inputs(problem, creep)
-    mu, chi = traction_coefficients(creep_term(creep), sigma, problem.ax, problem.ay,
-                                    problem.p_max, problem.load, problem.radius, u_ref, film,
-                                    problem.fluid, quadrature)
+    mu, chi = law_coefficients(creep_term(creep), sigma, problem.ax, problem.ay,
+                               problem.p_max, problem.load, problem.radius, u_ref, film,
+                               problem.fluid, quadrature)
     return _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi)
 
 
@@ -133,7 +133,7 @@ def evaluate_with_jacobian(problem: EquilibriumProblem, creep,
     """`evaluate` and the Jacobian of its residual with respect to the creeps.
 
     The traction integrals, the costly part, are evaluated once with their analytic
-    derivatives (`traction_coefficients` with ``derivatives=True``). The Jacobian then
+    derivatives (`law_coefficients` with ``derivatives=True``). The Jacobian then
     follows by forward differences of the cheap rest (kinematics, film thickness,
     balances, bearings) with the traction coefficients linearised, all creeps perturbed
     at once along an extra batch axis.
@@ -165,10 +165,10 @@ def evaluate_with_jacobian(problem: EquilibriumProblem, creep,
     ws, w, sg, u, hf = _contact_inputs(wide, pert)
     c = creep_term(pert)
     at = (slice(None),) * len(problem.shape) + (0,)                     # row 0 of the wide axis
-    mu, chi, dmu, dchi = traction_coefficients(c[at], sg[at], problem.ax, problem.ay,
-                                               problem.p_max, problem.load, problem.radius,
-                                               u[at], hf[at], problem.fluid, quadrature,
-                                               derivatives=True)
+    mu, chi, dmu, dchi = law_coefficients(c[at], sg[at], problem.ax, problem.ay,
+                                          problem.p_max, problem.load, problem.radius,
+                                          u[at], hf[at], problem.fluid, quadrature,
+                                          derivatives=True)
     ex = lambda v: v[..., None, :]  # noqa: E731
     delta = np.stack([c - ex(c[at]), sg - ex(sg[at]),
                       np.log(u / ex(u[at])) - np.log(hf / ex(hf[at]))], axis=-1)

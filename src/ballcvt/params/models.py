@@ -1,7 +1,9 @@
 """Parameter sets: drive design, material, bearings, fluid and operating point.
 
-All models are frozen pydantic models, validated on construction. No field has a
-default: the numbers live in named parameter files (``ballcvt/params/data``), so a
+All models are frozen pydantic models, validated on construction. No field the paper's
+model uses has a default (the few that do are named constants of an opt-in model, or
+optional fields an opt-in law checks for): the numbers live in named parameter files
+(``ballcvt/params/data``), so a
 design file that omits a key is an error, never a silent fallback. Every field's
 unit is in its ``unit`` metadata and in its description. Angles are stored in degrees
 (the name says ``_deg``); everything else is SI.
@@ -29,6 +31,8 @@ __all__ = [
     "OperatingPoint",
     "Architecture",
     "ARCHITECTURES",
+    "TRACTION_LAWS",
+    "LAW_FIELDS",
 ]
 
 Architecture = Literal["double", "single"]
@@ -39,6 +43,24 @@ def _f(unit: str, description: str, **constraints: Any) -> Any:
     """A required field with its unit recorded in the schema."""
     return Field(..., description=f"{description} [{unit}]", json_schema_extra={"unit": unit},
                  **constraints)
+
+
+def _opt(unit: str, description: str, **constraints: Any) -> Any:
+    """An optional field (None: not given) with its unit recorded in the schema."""
+    return Field(None, description=f"{description} [{unit}]", json_schema_extra={"unit": unit},
+                 **constraints)
+
+
+#: Shear laws of the film (`ballcvt.contact.laws`), and the `Fluid` fields each needs.
+TractionLaw = Literal["isothermal", "thermal", "viscoelastic"]
+LAW_FIELDS: dict[str, tuple[str, ...]] = {
+    "isothermal": (),
+    "thermal": ("temperature_viscosity_coefficient", "limiting_shear_temperature_coefficient",
+                "thermal_conductivity", "inlet_temperature", "surface_conductivity",
+                "surface_diffusivity"),
+    "viscoelastic": ("shear_modulus",),
+}
+TRACTION_LAWS: tuple[str, ...] = tuple(LAW_FIELDS)
 
 
 _BOUND_TEXT = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
@@ -299,6 +321,37 @@ class Fluid(ParameterModel):
     max_rolling_speed: float = _f("m/s", "largest rolling (entrainment) speed covered by the "
                                   "fluid's traction data (validity warning)", gt=0,
                                   lt=math.inf)
+    traction_law: TractionLaw = Field(
+        "isothermal", description="shear law of the film (docs/model.md §14): 'isothermal' "
+        "(the paper's Eq. 53), 'thermal' (shear heating thins the film) or 'viscoelastic' "
+        "(Maxwell elasticity gives the initial slope) [-]", json_schema_extra={"unit": "-"})
+    temperature_viscosity_coefficient: float | None = _opt(
+        "1/K", "beta in eta ~ exp(-beta dT), thermal law", ge=0, lt=1)
+    limiting_shear_temperature_coefficient: float | None = _opt(
+        "1/K", "beta_L in tau_L ~ exp(-beta_L dT), thermal law", ge=0, lt=1)
+    thermal_conductivity: float | None = _opt("W/(m K)", "of the fluid, thermal law",
+                                              gt=0, lt=math.inf)
+    inlet_temperature: float | None = _opt(
+        "K", "of the fluid entering the contacts, at which eta_0 and tau_L0 apply, thermal "
+        "law", gt=0, lt=math.inf)
+    surface_conductivity: float | None = _opt(
+        "W/(m K)", "of the solids bounding the film (steel: about 46), thermal law",
+        gt=0, lt=math.inf)
+    surface_diffusivity: float | None = _opt(
+        "m^2/s", "of the solids bounding the film (steel: about 1.3e-5), thermal law",
+        gt=0, lt=math.inf)
+    shear_modulus: float | None = _opt("Pa", "elastic shear modulus G of the film, "
+                                       "viscoelastic law", gt=0, lt=math.inf)
+
+    @model_validator(mode="after")
+    def _law_complete(self) -> "Fluid":
+        missing = [k for k in LAW_FIELDS[self.traction_law] if getattr(self, k) is None]
+        if missing:
+            raise InputError(missing[0], None, "a value", message=(
+                f"fluid '{self.name}' has no {missing[0]} [{self.unit(missing[0])}], which "
+                f"the {self.traction_law} traction law needs: add it to [fluid] (the "
+                f"{self.traction_law} law needs {', '.join(LAW_FIELDS[self.traction_law])})"))
+        return self
 
     @property
     def kinematic_viscosity(self) -> float:

@@ -105,7 +105,33 @@ def _variants(design, tmp):
         "--torque-max": ["--torque-max", "50"], "--n-torque": ["--n-torque", "4"],
         "--out": ["--out", str(tmp / "t1")], "--workers": ["--workers", "2"],
         "--quiet": ["--quiet"]})
-    return {"point": point, "point:planetary": planetary, "limit": limit, "clamp": clamp, "map": mapping,
+    # the fluid and its traction law (docs/model.md section 14), on every drive command
+    fluid = {"--fluid": ["--fluid", "mineral-oil"],
+             "--traction-law": ["--traction-law", "viscoelastic"]}
+    for _, changes in (point, limit, clamp, mapping, cycle, table):
+        changes.update(fluid)
+    soft = tmp / "soft.toml"                         # another material: another E'
+    soft.write_text(Path(design).read_text().replace("youngs_modulus = 210.0e9",
+                                                     "youngs_modulus = 190.0e9"))
+    curve = (["traction-curve", "--rx", "0.02", "--ry", "0.05", "--load", "1400", "--speed",
+              "10", "--n-creep", "5", "--json"], {
+        "--law": ["--law", "thermal"], "--rx": ["--rx", "0.03"], "--ry": ["--ry", "0.04"],
+        "--load": ["--load", "1000"], "--speed": ["--speed", "20"],
+        "--spin": ["--spin", "0.2"], "--creep-max": ["--creep-max", "0.05"],
+        "--n-creep": ["--n-creep", "7"], "--fluid": ["--fluid", "mineral-oil"],
+        "--design": ["--design", str(soft)], "--json": None,
+        "--out": None})                              # --out: without --json, files written
+    curve_p = (["traction-curve", "--rx", "0.02", "--ry", "0.05", "--load", "1400", "--speed",
+                "10", "--n-creep", "5", "--json"],
+               {"--pmax": ["--load", "--pmax", "1.2e9"]})
+    curves = str(Path(__file__).parent / "data" / "tiny_curves.csv")
+    fit = (["fit-fluid", curves, "--out", str(tmp / "f0"), "--json"], {
+        "--law": ["--law", "viscoelastic"],
+        "--params": ["--params", "limiting_shear_slope"],
+        "--fluid": ["--fluid", "mineral-oil"], "--design": ["--design", str(soft)],
+        "--out": ["--out", str(tmp / "f1")], "--json": None})
+    return {"traction-curve": curve, "traction-curve:pmax": curve_p, "fit-fluid": fit,
+            "point": point, "point:planetary": planetary, "limit": limit, "clamp": clamp, "map": mapping,
             "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam,
             "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table}
 
@@ -114,10 +140,11 @@ def _output(code, out, err, argv):
     """What a command produced: stdout, and the data of the map it wrote (if any)."""
     assert code == 0, (argv, err)
     files = ""
-    if argv[0] in ("map", "cycle", "table"):
+    names = {"map": "map.csv", "cycle": "steps.csv", "table": "table.csv",
+             "traction-curve": "traction_curve.csv", "fit-fluid": "fluid.toml"}
+    if argv[0] in names and "--out" in argv:
         folder = Path(argv[argv.index("--out") + 1])
-        name = {"map": "map.csv", "cycle": "steps.csv", "table": "table.csv"}[argv[0]]
-        files = (folder / name).read_text()
+        files = (folder / names[argv[0]]).read_text() + str(folder)
     out = re.sub(r'"run_time_s": [-+0-9.e]+', "", out)
     return re.sub(r"\d+\.\d s on", "", out) + files
 
@@ -139,7 +166,13 @@ def test_every_flag_changes_the_output(capsys, tmp_path, small_design):
     for command, (base, changes) in variants.items():
         reference = _output(*run(capsys, base), base)
         for flag, extra in changes.items():
-            argv = [a for a in base if a != flag] if extra is None else base + extra
+            if flag == "--out" and extra is None:          # traction-curve: files, no JSON
+                argv = [a for a in base if a != "--json"] + ["--out", str(tmp_path / "tc")]
+            elif flag == "--pmax":                             # --pmax replaces --load
+                i = base.index("--load")
+                argv = base[:i] + base[i + 2:] + extra[1:]
+            else:
+                argv = [a for a in base if a != flag] if extra is None else base + extra
             got = _output(*run(capsys, argv), argv)
             assert got != reference, (command, flag)
 
@@ -154,9 +187,10 @@ def test_reproduce_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
     monkeypatch.setattr(ballcvt.reports, "reproduce",
                         lambda out, **kw: calls.append({"out": str(out), **kw}) or Done)
     base = ["reproduce", "--out", str(tmp_path / "a")]
-    assert _options(_subcommands()["reproduce"]) == {"--out", "--quick", "--workers", "--quiet"}
+    assert _options(_subcommands()["reproduce"]) == {"--out", "--quick", "--workers", "--quiet",
+                                                     "--traction-law"}
     variants = [[], ["--out", str(tmp_path / "b")], ["--quick"], ["--workers", "2"],
-                ["--quiet"]]
+                ["--quiet"], ["--traction-law", "thermal"]]
     outputs = []
     for extra in variants:
         argv = base + extra if extra[:1] != ["--out"] else ["reproduce", *extra]
@@ -172,10 +206,14 @@ def test_design_flag_and_path(capsys, tmp_path, small_design):
     assert code == 0 and "n_rollers = 6" in shown
     code, builtin, _ = run(capsys, ["design", "show"])
     assert builtin != shown
-    assert _options(_subcommands()["design"]) == {"--design"}
+    assert _options(_subcommands()["design"]) == {"--design", "--fluid", "--traction-law"}
     path = tmp_path / "out.toml"
     assert run(capsys, ["design", "export", str(path)])[0] == 0
     assert path.read_text() == builtin
+    code, thermal, _ = run(capsys, ["design", "show", "--traction-law", "thermal"])
+    assert code == 0 and 'traction_law = "thermal"' in thermal
+    code, oil, _ = run(capsys, ["design", "show", "--fluid", "mineral-oil"])
+    assert code == 0 and "Heavy machine oil" in oil and oil != builtin
 
 
 def test_subcommand_help_has_description_and_example(capsys):

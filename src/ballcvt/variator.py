@@ -46,6 +46,10 @@ class Variator:
         Two idlers (the disassembled drive) or one cylindrical idler (original patent).
     options : SolverOptions
         Solver and quadrature settings.
+    traction_law : {"isothermal", "thermal", "viscoelastic"}, optional
+        Shear law of the film (docs/model.md §14); default: the fluid's own
+        (``Fluid.traction_law``, the paper's isothermal law for Table I). The fluid must
+        carry the law's parameters.
 
     Examples
     --------
@@ -60,12 +64,18 @@ class Variator:
     fluid: Fluid = field(default=None)  # type: ignore[assignment]
     architecture: str = "double"
     options: SolverOptions = SolverOptions()
+    traction_law: str | None = None
 
     def __post_init__(self):
         if self.design is None or self.fluid is None:
             d, f = _default_drive()
             object.__setattr__(self, "design", self.design or d)
             object.__setattr__(self, "fluid", self.fluid or f)
+        if self.traction_law is not None and self.traction_law != self.fluid.traction_law:
+            # validated (the law's parameters must be there), the fluid's name unchanged
+            fluid = Fluid(**{**self.fluid.model_dump(), "traction_law": self.traction_law})
+            object.__setattr__(self, "fluid", fluid)
+        object.__setattr__(self, "traction_law", self.fluid.traction_law)
         if self.architecture not in ARCHITECTURES:
             raise InputError("architecture", self.architecture,
                              "one of: " + ", ".join(ARCHITECTURES))

@@ -36,7 +36,7 @@ def point_table(r: OperatingResult) -> str:
         f"output {r.output_speed * 30 / 3.141592653589793:8.1f} rpm  {r.output_torque:9.3f} N m  "
         f"{r.output_power / 1e3:8.3f} kW",
         f"clamp F_N0 {r.clamp_force:.1f} N ({r.clamp_law} law), disc thrust "
-        f"{r.axial_force:.1f} N",
+        f"{r.axial_force:.1f} N, {r.traction_law} traction law",
         "",
         f"{'contact':<22}" + "".join(f"{n:>{w}}" for n in names),
     ]

@@ -25,8 +25,9 @@ from ..clamping.laws import CLAMP_LAWS
 from ..cycles.io import STRATEGIES
 from ..errors import BallCVTError, InputError
 from ..modes import MEMBERS
-from ..params.io import BUILTIN_DRIVES, builtin_text, drive_to_toml, load_builtin, load_drive
-from ..params.models import ARCHITECTURES
+from ..params.io import (BUILTIN_DRIVES, BUILTIN_FLUIDS, builtin_text, drive_to_toml,
+                         load_builtin, load_builtin_fluid, load_drive, load_fluid)
+from ..params.models import ARCHITECTURES, TRACTION_LAWS, Fluid
 from ..variator import Variator
 from .format import clamp_table, limit_table, planetary_table, point_table
 
@@ -104,9 +105,19 @@ OPTIONS = {
                "help": "drive definition: a TOML file, or a built-in drive's name (table1, "
                        "hub) (default: table1, the paper's Table I drive)"},
     "json": {"action": "store_true", "help": "print one JSON object"},
+    "traction-law": {"choices": TRACTION_LAWS, "default": None,
+                     "help": "shear law of the film (docs/model.md section 14): the paper's "
+                             "isothermal law, thermal or viscoelastic (default: the fluid's "
+                             "own, isothermal for the built-in drives)"},
+    "fluid": {"metavar": "FILE.toml",
+              "help": "fluid replacing the drive's: a TOML file with a [fluid] table (a "
+                      "drive file or one written by fit-fluid), or a built-in fluid's name "
+                      f"({', '.join(BUILTIN_FLUIDS)}) (default: the drive's fluid)"},
 }
 
 
+#: The drive and fluid options of every command that solves the drive.
+FLUID_OPTIONS = ("design", "fluid", "traction-law")
 #: The clamping-law options, and the [design.cam] key each overrides.
 CLAMP_OPTIONS = ("clamp", "clamp-law", "cam-disc", "cam-preload", "cam-angle", "cam-radius",
                  "cam-friction")
@@ -157,7 +168,7 @@ def build_parser() -> argparse.ArgumentParser:
              "refused with the limiting torque.",
              "ballcvt point --arch double --ratio 1.76 --torque 40 --clamp 2000 --speed 2000\n"
              "  ballcvt point --held disc0 --driver carrier --ratio 0.8 --torque 20 --speed 600")
-    _add(p, "arch", "ratio", "torque", *CLAMP_OPTIONS, "speed", "design", "json")
+    _add(p, "arch", "ratio", "torque", *CLAMP_OPTIONS, "speed", *FLUID_OPTIONS, "json")
     p.add_argument("--held", choices=MEMBERS, default="carrier",
                    help="member held at zero speed (default: carrier, the paper's drive); "
                         "with another, --torque is the driven member's load torque and "
@@ -178,7 +189,7 @@ def build_parser() -> argparse.ArgumentParser:
              "the creep limit (docs/model.md section 8); under the cam law also every peak "
              "pressure <= the design's max_pressure (section 11).",
              "ballcvt limit --arch single --ratio 2 --clamp 2000 --speed 2000")
-    _add(p, "arch", "ratio", *CLAMP_OPTIONS, "speed", "creep-limit", "design", "json")
+    _add(p, "arch", "ratio", *CLAMP_OPTIONS, "speed", "creep-limit", *FLUID_OPTIONS, "json")
 
     p = _sub(sub, "clamp", "clamping force of maximum efficiency under the creep and "
              "pressure limits",
@@ -186,7 +197,7 @@ def build_parser() -> argparse.ArgumentParser:
              "this ratio, torque and speed, keeping every |creep| <= the creep limit and "
              "every Hertz peak pressure <= the pressure limit.",
              "ballcvt clamp --ratio 1 --torque 60 --speed 2000 --max-pressure 3e9")
-    _add(p, "arch", "ratio", "torque", "speed", "creep-limit", "design", "json")
+    _add(p, "arch", "ratio", "torque", "speed", "creep-limit", *FLUID_OPTIONS, "json")
     p.add_argument("--max-pressure", type=_number, default=None,
                    help="largest admissible Hertz peak pressure [Pa] (default: the design's)")
 
@@ -195,7 +206,7 @@ def build_parser() -> argparse.ArgumentParser:
              "with the limiting-torque curve: map.png, map.svg, map.nc (NetCDF-4, CF) and "
              "map.csv in --out. Points beyond the limit have status 1.",
              "ballcvt map --out map_dir --clamp 2000 --speed 2000 --n-ratio 31 --n-torque 35")
-    _add(p, "arch", *CLAMP_OPTIONS, "speed", "design")
+    _add(p, "arch", *CLAMP_OPTIONS, "speed", *FLUID_OPTIONS)
     _out(p, "ballcvt-map")
     _grid_options(p, n_ratio=31, n_torque=35, most=1000,
                   torque_max="1.02 x the largest limiting torque")
@@ -211,7 +222,7 @@ def build_parser() -> argparse.ArgumentParser:
              "ballcvt cycle examples/cycles/ebike_commute.csv --design hub --clamp-law cam "
              "--strategy target-input-speed --target-speed 180 --out commute")
     p.add_argument("cycle_file", type=Path, metavar="CYCLE.csv", help="the duty cycle")
-    _add(p, "arch", *CLAMP_OPTIONS, "design")
+    _add(p, "arch", *CLAMP_OPTIONS, *FLUID_OPTIONS)
     p.add_argument("--strategy", choices=STRATEGIES, default="target-input-speed",
                    help="how the ratio is chosen (default: %(default)s)")
     p.add_argument("--target-speed", type=_number, default=None,
@@ -234,7 +245,7 @@ def build_parser() -> argparse.ArgumentParser:
              "tables hold the value at the limit; status and limit_torque say where.",
              "ballcvt table --design hub --clamp-law cam --speed-range 100 3000 --n-speed 6 "
              "--out tables")
-    _add(p, "arch", *CLAMP_OPTIONS, "design")
+    _add(p, "arch", *CLAMP_OPTIONS, *FLUID_OPTIONS)
     _grid_options(p, n_ratio=16, n_torque=20, most=200, torque_max="the largest limiting "
                   "torque; torques start at 0")
     p.add_argument("--speed-range", type=_number, nargs=2, default=(500.0, 4000.0),
@@ -252,7 +263,56 @@ def build_parser() -> argparse.ArgumentParser:
              "ballcvt reproduce --out reproduction --quick --workers 2")
     _out(p, "ballcvt-reproduction")
     p.add_argument("--quick", action="store_true", help="coarse grids (seconds)")
+    _add(p, "traction-law")
     _run_options(p)
+
+    p = _sub(sub, "traction-curve", "traction coefficient vs slide-to-roll ratio of one "
+             "contact (twin-disc or ball-on-disc)",
+             "Traction coefficient mu and spin-moment coefficient chi of one elliptical "
+             "contact against the slide-to-roll ratio, under any traction law (docs/model.md "
+             "section 14): traction_curve.csv, .png and .svg in --out, or --json.",
+             "ballcvt traction-curve --law thermal --rx 0.02 --ry 0.05 --load 1400 "
+             "--speed 10 --spin 0 --creep-max 0.08")
+    p.add_argument("--law", choices=TRACTION_LAWS, default=None,
+                   help="traction law (default: the fluid's own)")
+    p.add_argument("--rx", type=_number, required=True, metavar="M",
+                   help="equivalent radius along the rolling direction [m]")
+    p.add_argument("--ry", type=_number, required=True, metavar="M",
+                   help="equivalent radius across the rolling direction [m]")
+    group = p.add_mutually_exclusive_group(required=True)
+    group.add_argument("--load", type=_number, metavar="N", help="normal load [N]")
+    group.add_argument("--pmax", type=_number, metavar="PA", help="Hertz peak pressure [Pa]")
+    p.add_argument("--speed", type=_number, required=True, metavar="M_PER_S",
+                   help="rolling (entrainment) speed [m/s]")
+    p.add_argument("--spin", type=_number, default=0.0, metavar="S",
+                   help="spin-to-roll ratio omega_spin R_x / U [-] (default: 0)")
+    p.add_argument("--creep-max", type=_number, default=0.1, metavar="C",
+                   help="largest slide-to-roll ratio, 0 < C < 2 (default: 0.1)")
+    p.add_argument("--n-creep", type=_count(2, 2001), default=101,
+                   help="points on the curve, 2-2001 (default: 101)")
+    _add(p, "fluid", "design")
+    _out(p, "ballcvt-traction-curve")
+    _add(p, "json")
+
+    p = _sub(sub, "fit-fluid", "fit a fluid's traction parameters to measured traction "
+             "curves",
+             "Least-squares fit of the fluid's traction parameters to measured curves "
+             "(CSV columns condition, rx [m], ry [m], load [N], speed [m/s], spin, creep, mu; "
+             "docs/model.md section 14): estimates with standard errors and correlations, "
+             "warnings for parameters the data do not determine, residual plots, and the "
+             "fitted fluid as fluid.toml, which every command loads with --fluid.",
+             "ballcvt fit-fluid examples/traction/curves.csv --law thermal --out fit")
+    p.add_argument("curves_file", type=Path, metavar="CURVES.csv",
+                   help="measured traction curves")
+    p.add_argument("--law", choices=TRACTION_LAWS, default=None,
+                   help="traction law to fit (default: the start fluid's own)")
+    p.add_argument("--params", default=None, metavar="NAME,NAME",
+                   help="fluid fields to fit, comma-separated (default: the law's: "
+                        "limiting shear stress and slope, and the temperature-viscosity "
+                        "coefficient (thermal) or the shear modulus (viscoelastic))")
+    _add(p, "fluid", "design")
+    _out(p, "ballcvt-fit")
+    _add(p, "json")
 
     p = _sub(sub, "design", "show or export the drive definition as TOML",
              "Print the drive definition (the built-in Table I drive, with its sources, or "
@@ -261,7 +321,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("action", choices=("show", "export"))
     p.add_argument("path", nargs="?", type=Path,
                    help="output file of 'export' (required for export)")
-    _add(p, "design")
+    _add(p, *FLUID_OPTIONS)
     return parser
 
 
@@ -274,8 +334,20 @@ def _drive(design):
     return load_drive(design)
 
 
+def _fluid(args, fluid):
+    """The drive's fluid, or the ``--fluid`` one, under ``--traction-law`` if given."""
+    if getattr(args, "fluid", None) is not None:
+        fluid = (load_builtin_fluid(args.fluid) if args.fluid in BUILTIN_FLUIDS
+                 and not Path(args.fluid).exists() else load_fluid(args.fluid))
+    law = getattr(args, "traction_law", None)
+    if law is not None and law != fluid.traction_law:
+        fluid = Fluid(**{**fluid.model_dump(), "traction_law": law})
+    return fluid
+
+
 def _variator(args) -> Variator:
     design, fluid = _drive(args.design)
+    fluid = _fluid(args, fluid)
     cam = {key: getattr(args, opt) for opt, key in CAM_KEYS.items()
            if getattr(args, opt, None) is not None}
     if cam:
@@ -489,12 +561,98 @@ def _cmd_reproduce(args) -> int:
     import matplotlib
     matplotlib.use("Agg")                    # the CLI writes files only
     from ..reports import reproduce
-    r = reproduce(args.out, quick=args.quick, workers=args.workers, progress=_show(args))
+    r = reproduce(args.out, quick=args.quick, workers=args.workers, progress=_show(args),
+                  traction_law=args.traction_law)
     n_agree = sum(c.verdict == "agrees" for c in r.claims)
     if not args.quiet:
         print(f"wrote {len(r.files)} files to {r.out} (report: {r.out / 'report.html'}); "
               f"{n_agree} of {len(r.claims)} claims agree; run time {r.run_time:.1f} s on "
               f"{args.workers} worker(s)")
+    return 0
+
+
+def _contact_fluid(args):
+    """(fluid, E') of a single-contact command: --fluid (default the drive's) under --law."""
+    design, fluid = _drive(args.design)
+    fluid = _fluid(args, fluid)
+    if args.law is not None and args.law != fluid.traction_law:
+        fluid = Fluid(**{**fluid.model_dump(), "traction_law": args.law})
+    return fluid, design.material.reduced_modulus
+
+
+def _cmd_traction_curve(args) -> int:
+    import numpy as np
+
+    from ..contact.curve import traction_curve
+    if not 0 < args.creep_max < 2:
+        raise InputError("creep_max", args.creep_max, "0 < C < 2")
+    fluid, modulus = _contact_fluid(args)
+    curve = traction_curve(fluid, rx=args.rx, ry=args.ry, speed=args.speed,
+                           creep=np.linspace(0.0, args.creep_max, args.n_creep),
+                           load=args.load, p_max=args.pmax, spin=args.spin,
+                           reduced_modulus=modulus)
+    if args.json:
+        print(json.dumps(curve.as_dict(), indent=2))
+        return 0
+    import matplotlib
+    matplotlib.use("Agg")
+    import pandas as pd
+
+    from ..plotting import save, traction_curve_figure
+    out = check_output_dir(args.out)
+    frame = pd.DataFrame({"creep": curve.creep, "mu": curve.mu, "chi": curve.chi,
+                          "temperature_rise_K": curve.temperature_rise})
+    atomic_write_text(out / "traction_curve.csv", frame.to_csv(index=False))
+    c = curve.conditions
+    save(traction_curve_figure([curve], f"{fluid.name}: {curve.law} law, p_max "
+                               f"{c['p_max'] / 1e9:.2f} GPa, U {c['speed']:g} m/s, spin "
+                               f"{c['spin']:g}"), out, "traction_curve")
+    peak = int(np.argmax(curve.mu))
+    print(f"wrote {out}/traction_curve.csv, .png, .svg: {curve.law} law, p_max "
+          f"{c['p_max'] / 1e9:.3f} GPa, film {c['film'] * 1e6:.3f} um; mu peaks at "
+          f"{curve.mu[peak]:.4f} at slide-to-roll {curve.creep[peak]:.4f}")
+    return 0
+
+
+def _cmd_fit_fluid(args) -> int:
+    from ..fitting import fit_fluid, read_curves
+    from ..params.io import fluid_to_toml
+    fluid, modulus = _contact_fluid(args)
+    curves = read_curves(args.curves_file)
+    params = None if args.params is None else [p.strip() for p in args.params.split(",")
+                                               if p.strip()]
+    out = check_output_dir(args.out)
+    fit = fit_fluid(curves, fluid, params, reduced_modulus=modulus)
+    header = (f"ballcvt {__version__} fit-fluid: {fit.fluid.traction_law} law fitted to "
+              f"{args.curves_file} ({fit.model.size} points, rms residual {fit.rms:.3e})\n"
+              + "\n".join(f"{n} = {fit.estimates[n]:.6g} +/- {fit.standard_errors[n]:.3g} "
+                          f"[{Fluid.unit(n)}] (one standard error)" for n in fit.parameters)
+              + "".join(f"\nWARNING: {w}" for w in fit.warnings)
+              + f"\nthe other values are those of the start fluid '{fluid.name}'")
+    named = Fluid(**{**fit.fluid.model_dump(), "name": f"{fluid.name} (fitted to "
+                                                       f"{Path(args.curves_file).name})"})
+    atomic_write_text(out / "fluid.toml", fluid_to_toml(named, header))
+    summary = fit.as_dict()
+    atomic_write_text(out / "fit.json", json.dumps(summary, indent=2))
+    import matplotlib
+    matplotlib.use("Agg")
+    import pandas as pd
+
+    from ..plotting import fit_figure, save
+    frame = pd.DataFrame({"condition": curves.condition, "creep": curves.creep,
+                          "mu": curves.mu, "mu_model": fit.model, "residual": fit.residuals})
+    atomic_write_text(out / "fit.csv", frame.to_csv(index=False))
+    save(fit_figure(curves, fit, f"{fit.fluid.traction_law} law"), out, "fit_residuals")
+    for w in fit.warnings:
+        print(f"ballcvt: warning: {w}", file=sys.stderr)
+    if args.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(f"wrote {out}/fluid.toml, fit.json, fit.csv, fit_residuals.png/.svg: rms "
+              f"residual {fit.rms:.3e} over {fit.model.size} points")
+        for n in fit.parameters:
+            print(f"  {n} = {fit.estimates[n]:.6g} +/- {fit.standard_errors[n]:.3g} "
+                  f"[{Fluid.unit(n)}]")
     return 0
 
 
@@ -509,10 +667,13 @@ def _cmd_design(args) -> int:
         check_output_file(args.path, "PATH")
     if args.design is None or (args.design in BUILTIN_DRIVES
                                and not Path(args.design).exists()):
-        text = builtin_text(args.design or "table1")
+        template = builtin_text(args.design or "table1")
     else:
-        text = drive_to_toml(*load_drive(args.design),
-                             template=Path(args.design).read_text())
+        template = Path(args.design).read_text()
+    design, fluid = _drive(args.design)
+    new_fluid = _fluid(args, fluid)
+    text = (template if new_fluid == fluid and args.design in (None, *BUILTIN_DRIVES)
+            else drive_to_toml(design, new_fluid, template=template))
     if args.action == "export":
         atomic_write_text(args.path, text)
         print(f"wrote {args.path}", file=sys.stderr)
@@ -533,7 +694,8 @@ def _rpm(speed: float) -> float:
 
 COMMANDS = {"point": _cmd_point, "limit": _cmd_limit, "clamp": _cmd_clamp, "map": _cmd_map,
             "cycle": _cmd_cycle, "table": _cmd_table, "reproduce": _cmd_reproduce,
-            "design": _cmd_design}
+            "design": _cmd_design, "traction-curve": _cmd_traction_curve,
+            "fit-fluid": _cmd_fit_fluid}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -44,7 +44,7 @@ class TractionCurve:
         Traction law.
     conditions : dict
         ``rx, ry`` [m], ``load`` [N], ``speed`` [m/s], ``spin`` [-], ``p_max`` [Pa],
-        ``ax, ay`` [m], ``film`` [m], ``fluid`` (name).
+        ``ax, ay`` [m], ``film`` [m], ``reduced_modulus`` [Pa], ``fluid`` (name).
     """
 
     creep: np.ndarray
@@ -123,6 +123,7 @@ def traction_curve(fluid: Fluid, *, rx: float, ry: float, speed: float, creep,
     rise = (film_temperature_rise(*args, fluid) if fluid.traction_law == "thermal"
             else np.zeros_like(s))
     conditions = {"fluid": fluid.name, "rx": rx, "ry": ry, "load": load, "speed": speed,
-                  "spin": spin, "p_max": pm, "ax": ax, "ay": ay, "film": film}
+                  "spin": spin, "p_max": pm, "ax": ax, "ay": ay, "film": film,
+                  "reduced_modulus": reduced_modulus}
     return TractionCurve(s, np.asarray(mu), np.asarray(chi), np.asarray(rise),
                          fluid.traction_law, conditions)

@@ -17,23 +17,93 @@ import tomlkit
 from ..errors import InputError
 from .models import Design, Fluid
 
-__all__ = ["BUILTIN_DRIVES", "builtin_text", "load_builtin", "load_drive", "parse_drive",
-           "drive_to_toml"]
+__all__ = ["BUILTIN_DRIVES", "BUILTIN_FLUIDS", "builtin_text", "load_builtin", "load_drive",
+           "parse_drive", "drive_to_toml", "load_fluid", "load_builtin_fluid", "parse_fluid",
+           "fluid_to_toml"]
 
 #: Named, cited drive definitions shipped with the package.
 BUILTIN_DRIVES = {"table1": "table1.toml", "hub": "hub.toml"}
+#: Named, cited fluids: Table I's (in its drive file) and fluid-only files.
+BUILTIN_FLUIDS = {"table1": "table1.toml", "mineral-oil": "mineral_oil.toml"}
 
 
 def builtin_text(name: str = "table1") -> str:
     """TOML text (with its citation comments) of a built-in drive."""
     if name not in BUILTIN_DRIVES:
         raise InputError("drive", name, "one of " + ", ".join(BUILTIN_DRIVES))
-    return resources.files("ballcvt.params").joinpath("data", BUILTIN_DRIVES[name]).read_text()
+    return _data_text(BUILTIN_DRIVES[name])
 
 
 def load_builtin(name: str = "table1") -> tuple[Design, Fluid]:
     """The built-in ``(design, fluid)`` pair ``name`` (default: the paper's Table I)."""
     return parse_drive(builtin_text(name), source=f"built-in drive '{name}'")
+
+
+def _data_text(filename: str) -> str:
+    return resources.files("ballcvt.params").joinpath("data", filename).read_text()
+
+
+def load_builtin_fluid(name: str = "table1") -> Fluid:
+    """The built-in fluid ``name`` (`BUILTIN_FLUIDS`)."""
+    if name not in BUILTIN_FLUIDS:
+        raise InputError("fluid", name, "one of " + ", ".join(BUILTIN_FLUIDS))
+    return parse_fluid(_data_text(BUILTIN_FLUIDS[name]), source=f"built-in fluid '{name}'")
+
+
+def load_fluid(path: str | Path) -> Fluid:
+    """The ``[fluid]`` table of a TOML file (a drive file, or a fluid-only file such as
+    ``fit-fluid`` writes), validated."""
+    return parse_fluid(_read(path, "fluid file"), source=f"fluid file {path}")
+
+
+def parse_fluid(text: str, source: str = "fluid file") -> Fluid:
+    """Parse and validate the ``[fluid]`` table of TOML text (other tables are ignored)."""
+    data = _toml(text, source)
+    if not isinstance(data.get("fluid"), dict):
+        raise InputError("fluid", None, "a table",
+                         message=f"{source} is incomplete: table [fluid] is missing")
+    try:
+        return Fluid(**data["fluid"])
+    except InputError as exc:
+        raise InputError(exc.quantity, exc.value, exc.allowed,
+                         message=f"{source}: {exc}") from None
+
+
+def fluid_to_toml(fluid: Fluid, header: str = "") -> str:
+    """TOML text of a fluid-only file (``[fluid]``) that `load_fluid` reads back.
+
+    ``header`` is written first as comment lines (sources, how the values were found).
+    """
+    doc = tomlkit.document()
+    for line in header.splitlines():
+        doc.add(tomlkit.comment(line))
+    table = tomlkit.table()
+    for name, value in fluid.model_dump().items():
+        if value is not None:
+            table[name] = value
+    doc["fluid"] = table
+    return tomlkit.dumps(doc)
+
+
+def _read(path: str | Path, what: str) -> str:
+    path = Path(path)
+    try:
+        return path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise InputError(what, str(path), "a readable TOML file",
+                         message=f"{what} {path}: cannot be read ({exc.strerror})") from None
+    except UnicodeDecodeError:
+        raise InputError(what, str(path), "a UTF-8 TOML file",
+                         message=f"{what} {path}: not a text file (not UTF-8)") from None
+
+
+def _toml(text: str, source: str) -> dict:
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(source, None, "valid TOML",
+                         message=f"{source} is not valid TOML: {str(exc).splitlines()[0]}"
+                         ) from None
 
 
 def load_drive(path: str | Path) -> tuple[Design, Fluid]:
@@ -44,26 +114,12 @@ def load_drive(path: str | Path) -> tuple[Design, Fluid]:
     InputError
         If the file is missing, is not TOML, or has a missing, unknown or out-of-range key.
     """
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise InputError("design file", str(path), "a readable TOML file",
-                         message=f"design file {path}: cannot be read ({exc.strerror})") from None
-    except UnicodeDecodeError:
-        raise InputError("design file", str(path), "a UTF-8 TOML file",
-                         message=f"design file {path}: not a text file (not UTF-8)") from None
-    return parse_drive(text, source=f"design file {path}")
+    return parse_drive(_read(path, "design file"), source=f"design file {path}")
 
 
 def parse_drive(text: str, source: str = "design file") -> tuple[Design, Fluid]:
     """Parse and validate the TOML text of a drive definition."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(source, None, "valid TOML",
-                         message=f"{source} is not valid TOML: {str(exc).splitlines()[0]}"
-                         ) from None
+    data = _toml(text, source)
     for table in ("design", "fluid"):
         if not isinstance(data.get(table), dict):
             raise InputError(table, None, "a table",

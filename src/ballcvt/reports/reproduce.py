@@ -61,13 +61,16 @@ def _torques(n, top=180.0):
     return np.unique(np.concatenate([[0.0, 1.0, 2.5], np.linspace(5.0, top, n - 3)]))
 
 
-def compute(quick: bool = False, workers: int = 1, progress: bool | None = None):
+def compute(quick: bool = False, workers: int = 1, progress: bool | None = None,
+            traction_law: str | None = None):
     """Run every sweep the figures need; returns (FigureData, Fig. 11 peak).
+
+    ``traction_law`` replaces the paper's isothermal law (docs/model.md §14) in every sweep.
 
     Every sweep and the Fig. 8c envelope run on ``workers`` processes, each with a labelled
     progress bar.
     """
-    v = Variator()
+    v = Variator(traction_law=traction_law)
     speed = RPM * math.pi / 30.0
     torque = _torques(_grid("torque", quick))
     common = {"input_speed": speed, "workers": workers, "progress": progress}
@@ -135,7 +138,7 @@ def _fig11_peak(v, ratio_curves):
 
 
 def reproduce(out, quick: bool = False, workers: int = 1,
-              progress: bool | None = None) -> Reproduction:
+              progress: bool | None = None, traction_law: str | None = None) -> Reproduction:
     """Recompute the paper's results on the Table I drive and write figures and report.
 
     Parameters
@@ -148,6 +151,9 @@ def reproduce(out, quick: bool = False, workers: int = 1,
         Processes for the sweeps.
     progress : bool, optional
         Progress bars (default: when stderr is a terminal).
+    traction_law : str, optional
+        A traction law other than the paper's isothermal one (docs/model.md §14): every
+        figure and claim is then recomputed under it, and the report says so.
 
     Returns
     -------
@@ -156,7 +162,7 @@ def reproduce(out, quick: bool = False, workers: int = 1,
     start = time.perf_counter()
     out = check_output_dir(out)
     check_output_dir(out / "data")
-    data, peak = compute(quick, workers, progress)
+    data, peak = compute(quick, workers, progress, traction_law)
     files = []
     show = sys.stderr.isatty() if progress is None else progress
     for name, (fn, _) in tqdm(FIGURES.items(), desc="figures and data files", unit="figure",
@@ -164,7 +170,8 @@ def reproduce(out, quick: bool = False, workers: int = 1,
         files += fn(data, out)
     for name in ("torque_curves", "clamp_curves", "ratio_curves", "efficiency_map"):
         files.append(to_netcdf(getattr(data, name), out / "data" / f"{name}.nc"))
-    design, fluid = load_builtin()
+    v = Variator(traction_law=traction_law)
+    design, fluid = v.design, v.fluid
     claims = paper_claims(data, peak)
     frame = pd.DataFrame([c.__dict__ for c in claims])
     files.append(write_table(frame, out / "claims.csv", {}))
@@ -172,7 +179,7 @@ def reproduce(out, quick: bool = False, workers: int = 1,
                                             RPM * math.pi / 30.0))
     with tqdm(total=1, desc="beyond the paper: planetary modes", unit="section",
               disable=not show) as bar:
-        planet = planetary_section(Variator(), CLAMP, out, quick)
+        planet = planetary_section(v, CLAMP, out, quick)
         bar.update()
     files += planet.files
     run_time = time.perf_counter() - start
@@ -185,11 +192,13 @@ def _inputs(design, fluid, quick, workers):
     return {
         "design": design.name, "fluid": fluid.name,
         "operating point": f"F_N0 = {CLAMP:g} N, omega_0 = {RPM:g} rpm (Figs. 7, 9-13)",
-        "model options (the paper's figures)": "constant clamping force (clamp law "
-                                               "'constant'), isothermal traction (Eqs. 51-66), "
-                                               "carrier held, no parasitic losses (the paper's "
-                                               "model; the Table I file's example cam is not "
-                                               "used)",
+        "model options (the paper's figures)": (
+            "constant clamping force (clamp law 'constant'), "
+            + ("isothermal traction (Eqs. 51-66)" if fluid.traction_law == "isothermal" else
+               f"{fluid.traction_law} traction law (docs/model.md §14), NOT the paper's "
+               "isothermal law")
+            + ", carrier held, no parasitic losses (the paper's model; the Table I file's "
+            "example cam is not used)"),
         "model options (planetary section)": "as above, with the carrier turning and the "
                                              "balls' centrifugal force and gyroscopic moment "
                                              "(docs/model.md §13)",

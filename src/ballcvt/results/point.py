@@ -203,6 +203,11 @@ class OperatingResult:
         """``T_2 omega_2`` [W]."""
         return self.output_torque * self.output_speed
 
+    @property
+    def traction_law(self) -> str:
+        """Shear law of the film the point was solved with (``fluid.traction_law``)."""
+        return self.fluid.traction_law
+
     def to_dict(self) -> dict[str, Any]:
         """Plain, JSON-able data, including the CLI keys (``tilt_deg``, per-contact maps)."""
         out: dict[str, Any] = {}
@@ -218,6 +223,7 @@ class OperatingResult:
                 value = list(value)
             out[f.name] = value
         out["tilt_deg"] = self.tilt_deg
+        out["traction_law"] = self.traction_law
         out["input_speed_rpm"] = self.input_speed_rpm
         out["axial_force"] = self.axial_force
         names = list(self.contacts)

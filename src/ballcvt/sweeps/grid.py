@@ -154,7 +154,7 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force=Non
         ds["clamp_force"] = xr.Variable(("architecture", speed_dim, "ratio",
                                          "output_torque"), used, attrs_for("clamp_force"))
     ds.attrs.update(
-        clamp_law=law.name if law else "constant",
+        clamp_law=law.name if law else "constant", traction_law=fluid.traction_law,
         title="ballcvt sweep", Conventions="CF-1.10", institution="ballcvt",
         source=f"ballcvt {__version__}", ballcvt_version=__version__,
         references="Tomaselli, Bottiglione, Lino, Carbone, Mech. Mach. Theory 150 (2020) "

@@ -8,6 +8,9 @@ Map: ratio 0.5-2 x output torque 5 N m to 90 % of the limiting torque, F_N0 = 2 
 
 * first-call latency (fresh interpreter: import + first point, JIT included);
 * points per second of the default solver on one core and on both cores (processes);
+* the same on one core under the thermal and the visco-elastic traction laws (docs/model.md
+  §14), each on its own map (torques to 90 % of that law's limiting torques), next to the
+  isothermal figure (issue 10's target: >= 1,000 points/s/core with the thermal law);
 * max and mean |eta - eta_ref| and relative creep error (creeps above 1e-6) against the
   high-order reference (pole-centred rule, 64 x 64 nodes, 128 in the centred part);
 * speed-up against (a) the package's straightforward path: SciPy ``root`` (hybr) with a
@@ -31,6 +34,7 @@ import numpy as np
 from scipy.optimize import root
 
 from ballcvt import Quadrature, SolverOptions, __version__, load_builtin
+from ballcvt.params.models import Fluid
 from ballcvt.contact.reference import traction_coefficients_adaptive
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.equilibrium.residual import _balances, _contact_inputs
@@ -49,8 +53,9 @@ FIRST_CALL = ("import time; t = time.perf_counter(); from ballcvt import Variato
               "input_speed_rpm=2000); print(time.perf_counter() - t)")
 
 
-def the_map(arch, n=30):
+def the_map(arch, n=30, law="isothermal"):
     design, fluid = load_builtin()
+    fluid = Fluid(**{**fluid.model_dump(), "traction_law": law})
     ratio = np.linspace(0.5, 2.0, n)
     base = build_problem(design, fluid, arch, ratio, 0.0, 2000.0, SPEED)
     t = time.perf_counter()
@@ -136,6 +141,17 @@ def main():
               f"{fast.iterations.mean():.1f} (coarse predictor + fine Newton)")
         print(f"  one core : {t1:.3f} s = {n_pts / t1:,.0f} points/s")
         print(f"  two cores: {t2:.3f} s = {n_pts / t2:,.0f} points/s (speed-up {t1 / t2:.2f}x)")
+        for law, target in (("thermal", "target >= 1,000"), ("viscoelastic", "")):
+            d_l, f_l, r_l, q_l, t_lim = the_map(arch, args.n, law)
+            pb_l = build_problem(d_l, f_l, arch, r_l[:, None], q_l, 2000.0, SPEED)
+            solve_batch(pb_l)                                 # warm
+            t = time.perf_counter()
+            sol_l = solve_batch(pb_l)
+            t_l = time.perf_counter() - t
+            print(f"  one core, {law} law: {t_l:.3f} s = {q_l.size / t_l:,.0f} points/s "
+                  f"({target + ', ' if target else ''}isothermal {n_pts / t1:,.0f}; converged "
+                  f"{int(sol_l.converged.sum())}/{q_l.size}; its {r_l.size} limits "
+                  f"{t_lim:.2f} s)")
         print(f"  |eta - eta_ref| max {err.max():.2e}, mean {err.mean():.2e}; relative creep "
               f"error max {rel.max():.2e}, mean {rel.mean():.2e} (reference solved in "
               f"{t_ref:.1f} s)")

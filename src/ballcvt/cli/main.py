@@ -665,12 +665,12 @@ def _cmd_design(args) -> int:
                          message="design show takes no PATH (use 'design export PATH')")
     if args.path is not None:
         check_output_file(args.path, "PATH")
+    design, fluid = _drive(args.design)                    # validated first
     if args.design is None or (args.design in BUILTIN_DRIVES
                                and not Path(args.design).exists()):
         template = builtin_text(args.design or "table1")
     else:
-        template = Path(args.design).read_text()
-    design, fluid = _drive(args.design)
+        template = Path(args.design).read_text(encoding="utf-8")
     new_fluid = _fluid(args, fluid)
     text = (template if new_fluid == fluid and args.design in (None, *BUILTIN_DRIVES)
             else drive_to_toml(design, new_fluid, template=template))

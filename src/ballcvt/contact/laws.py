@@ -26,7 +26,7 @@ from .quadrature import Quadrature
 from .thermal import thermal_coefficients
 from .traction import traction_coefficients
 
-__all__ = ["LAWS", "law_coefficients"]
+__all__ = ["LAWS", "MONOTONE", "law_coefficients", "traction_rises_with_creep"]
 
 #: Law name -> coefficient function (signature of `traction_coefficients`).
 LAWS: dict[str, Callable] = {
@@ -34,7 +34,16 @@ LAWS: dict[str, Callable] = {
     "viscoelastic": traction_coefficients,    # the elastic factor is node-local
     "thermal": thermal_coefficients,
 }
-assert set(LAWS) == set(TRACTION_LAWS)
+#: Whether a law's traction coefficient rises monotonically with the creep. Where it can
+#: fall (the thermal law past its peak), the limiting torque is the peak of the traction
+#: curve when that comes before the creep limit (`ballcvt.solver.limit`).
+MONOTONE: dict[str, bool] = {"isothermal": True, "viscoelastic": True, "thermal": False}
+assert set(LAWS) == set(TRACTION_LAWS) == set(MONOTONE)
+
+
+def traction_rises_with_creep(fluid: Fluid) -> bool:
+    """Whether ``fluid``'s traction law gives a traction that never falls with the creep."""
+    return MONOTONE[fluid.traction_law]
 
 
 def law_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, film,

@@ -64,7 +64,14 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
         x0 = zero[i] + share * (search.creep[i] - zero[i])
         pb, sol = _solve_points(state, design, fluid, architecture, ratio, torque,
                                 input_speed, law, options, i, k, x0)
-        solved = (pb.take(sol.converged), sol.state.take(sol.converged))
+        stray = _off_branch(state, i, k, sol, creep_limit)
+        if stray.size:        # another equilibrium than the one reached from T_2 = 0
+            _continue_from_below(state, design, fluid, architecture, ratio, torque,
+                                 input_speed, law, options, i[stray], k[stray], zero,
+                                 creep_limit)
+            solved = None                                  # evaluated again in `derived`
+        else:
+            solved = (pb.take(sol.converged), sol.state.take(sol.converged))
         for _ in range(nt) if callback is not None else ():
             callback()
     else:
@@ -94,6 +101,37 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
     if law is not None:
         out["clamp_force"] = np.where(status == 0, force, np.nan)
     return out
+
+
+def _off_branch(state, i, k, sol, creep_limit):
+    """Points of one batch that converged with a creep beyond ``creep_limit`` although
+    their torque is within the limit: where the traction can fall with the creep (the
+    thermal law, docs/model.md §14) a second equilibrium exists past the peak of the
+    traction curve, and Newton reached it. They go back to "not converged" (indices into
+    the batch)."""
+    big = np.max(np.abs(sol.state.creep), axis=-1) > creep_limit * (1.0 + 1e-9)
+    stray = np.flatnonzero(sol.converged & big)
+    state["status"][i[stray], k[stray]] = 2
+    state["creep"][i[stray], k[stray]] = np.nan
+    return stray
+
+
+def _continue_from_below(state, design, fluid, architecture, ratio, torque, input_speed,
+                         law, options, i, k, zero, creep_limit):
+    """Solve the points ``(i, k)`` torque by torque up their curves, each from the last
+    admissible solution below it (from ``zero``, the creeps at ``T_2 = 0``, at first):
+    the equilibrium reached continuously from no load. Points that still end past the
+    creep limit stay "not converged"."""
+    for kk in np.unique(k):
+        sel = k == kk
+        ii = i[sel]
+        below = state["status"][ii, :kk] == 0
+        last = (np.where(below.any(axis=1), kk - 1 - np.argmax(below[:, ::-1], axis=1), -1)
+                if kk > 0 else np.full(ii.size, -1))
+        x0 = np.where((last >= 0)[:, None], state["creep"][ii, np.maximum(last, 0)], zero[ii])
+        _, sol = _solve_points(state, design, fluid, architecture, ratio, torque,
+                               input_speed, law, options, ii, np.full(ii.size, kk), x0)
+        _off_branch(state, ii, np.full(ii.size, kk), sol, creep_limit)
 
 
 def _solve_points(state, design, fluid, architecture, ratio, torque, input_speed, law,

@@ -155,8 +155,8 @@ def test_every_flag_changes_the_output(capsys, tmp_path, small_design):
     covered = {}
     for name, (_, changes) in variants.items():
         covered.setdefault(name.split(":")[0], set()).update(changes)
-    # every subcommand but reproduce and design (tested below) is covered here
-    assert set(covered) == set(subs) - {"reproduce", "design"}
+    # every subcommand but reproduce, design and explore (tested below) is covered here
+    assert set(covered) == set(subs) - {"reproduce", "design", "explore"}
     for command, flags in covered.items():
         # every flag covered (the cam options act alike everywhere: one suffices for the
         # commands that only pass them on)
@@ -195,6 +195,37 @@ def test_reproduce_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
     for extra in variants:
         argv = base + extra if extra[:1] != ["--out"] else ["reproduce", *extra]
         code, out, _ = run(capsys, argv)
+        assert code == 0
+        outputs.append((json.dumps(calls[-1], sort_keys=True), out))
+    for other in outputs[1:]:
+        assert other != outputs[0]
+
+
+def test_explore_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
+    from ballcvt.studies import run_study
+    tiny = Path(__file__).parent / "data" / "study_tiny.toml"
+    from ballcvt.studies import read_study
+    done = run_study(read_study(tiny), tmp_path / "done", in_process=True, progress=False)
+    calls = []
+
+    def fake(spec, out, **kw):
+        calls.append({"out": str(out), **kw})
+        return done
+
+    import ballcvt.reports.study
+    import ballcvt.studies
+    monkeypatch.setattr(ballcvt.studies, "run_study", fake)
+    monkeypatch.setattr(ballcvt.reports.study, "study_report", lambda *a, **k: [])
+    assert _options(_subcommands()["explore"]) == {"--out", "--workers", "--scheduler",
+                                                   "--in-process", "--resume", "--quiet",
+                                                   "--json"}
+    base = ["explore", str(tiny), "--out", str(tmp_path / "done")]
+    variants = [[], ["--out", str(tmp_path / "b")], ["--workers", "3"],
+                ["--scheduler", "tcp://127.0.0.1:8786"], ["--in-process"], ["--resume"],
+                ["--quiet"], ["--json"]]
+    outputs = []
+    for extra in variants:
+        code, out, _ = run(capsys, base + extra)
         assert code == 0
         outputs.append((json.dumps(calls[-1], sort_keys=True), out))
     for other in outputs[1:]:

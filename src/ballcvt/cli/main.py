@@ -314,6 +314,28 @@ def build_parser() -> argparse.ArgumentParser:
     _out(p, "ballcvt-fit")
     _add(p, "json")
 
+    p = _sub(sub, "explore", "design study: sample or optimise designs on Dask, Pareto front "
+             "and the chosen design",
+             "Evaluate the designs of a study file (docs/studies.md) on a local Dask cluster "
+             "or a running one: every design with its objectives and status in designs.zarr "
+             "(written as designs finish; --resume continues an interrupted study), "
+             "designs.csv, pareto.csv, chosen_design.toml, summary.json, figures and a "
+             "report in --out.",
+             "ballcvt explore examples/studies/study_quick.toml --out study --workers 2")
+    p.add_argument("study_file", type=Path, metavar="STUDY.toml", help="the study")
+    _out(p, "ballcvt-study")
+    p.add_argument("--workers", type=_count(1, 256), default=2,
+                   help="processes of the local Dask cluster, 1-256 (default: 2)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786 "
+                        "(default: a local cluster of --workers processes)")
+    p.add_argument("--in-process", action="store_true",
+                   help="evaluate in this process, without Dask")
+    p.add_argument("--resume", action="store_true",
+                   help="continue the study in --out: evaluated designs are kept")
+    p.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
+    _add(p, "json")
+
     p = _sub(sub, "design", "show or export the drive definition as TOML",
              "Print the drive definition (the built-in Table I drive, with its sources, or "
              "--design FILE after validation), or write it to PATH.",
@@ -656,6 +678,34 @@ def _cmd_fit_fluid(args) -> int:
     return 0
 
 
+def _cmd_explore(args) -> int:
+    import matplotlib
+    matplotlib.use("Agg")
+    from ..reports.study import study_report
+    from ..studies import read_study, run_study
+    spec = read_study(args.study_file)
+    if args.scheduler is not None and args.in_process:
+        raise InputError("scheduler", args.scheduler, "not with --in-process")
+    result = run_study(spec, args.out, workers=args.workers, scheduler=args.scheduler,
+                       in_process=args.in_process, resume=args.resume,
+                       progress=_show(args))
+    files = result.files + study_report(result, spec, args.out)
+    counts = result.counts()
+    if args.json:
+        print((Path(args.out) / "summary.json").read_text())
+    elif not args.quiet:
+        chosen = ("none feasible" if result.chosen < 0 else
+                  f"chosen design {int(result.dataset['design'].values[result.chosen])} -> "
+                  f"{Path(args.out) / 'chosen_design.toml'}")
+        print(f"wrote {len(files)} files and {Path(args.out) / 'designs.zarr'} to {args.out}: "
+              f"{result.dataset.sizes['design']} designs ({result.evaluated_now} evaluated "
+              f"now), {counts['evaluated']} feasible, {counts['cannot be built']} cannot be "
+              f"built, {counts['constraint violated']} violate a constraint; "
+              f"{int(result.dataset['pareto'].sum())} on the Pareto front; {chosen}; "
+              f"{result.run_time:.1f} s")
+    return 0
+
+
 def _cmd_design(args) -> int:
     if args.action == "export" and args.path is None:
         raise InputError("path", None, "an output file",
@@ -695,7 +745,7 @@ def _rpm(speed: float) -> float:
 COMMANDS = {"point": _cmd_point, "limit": _cmd_limit, "clamp": _cmd_clamp, "map": _cmd_map,
             "cycle": _cmd_cycle, "table": _cmd_table, "reproduce": _cmd_reproduce,
             "design": _cmd_design, "traction-curve": _cmd_traction_curve,
-            "fit-fluid": _cmd_fit_fluid}
+            "fit-fluid": _cmd_fit_fluid, "explore": _cmd_explore}
 
 
 def main(argv: list[str] | None = None) -> int:

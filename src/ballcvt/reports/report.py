@@ -153,7 +153,7 @@ def _inline(text):
     return "".join(f"<code>{p}</code>" if i % 2 else p for i, p in enumerate(parts))
 
 
-def _html(blocks, out: Path):
+def _html(blocks, out: Path, title: str = "ballcvt reproduction"):
     body = []
     for kind, *args in blocks:
         if kind in ("h1", "h2"):
@@ -176,9 +176,22 @@ def _html(blocks, out: Path):
              "line-height:1.45}table{border-collapse:collapse;margin:1em 0}"
              "td,th{border:1px solid #bbb;padding:3px 7px;font-size:90%}"
              "img{max-width:100%}figure{margin:1.5em 0}")
-    return ("<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>ballcvt reproduction"
-            f"</title><style>{style}</style></head><body>" + "\n".join(body)
+    return ("<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>"
+            f"{html.escape(title)}</title><style>{style}</style></head><body>"
+            + "\n".join(body)
             + "</body></html>\n")
+
+
+def write_blocks(out: Path, name: str, blocks, title: str) -> list[Path]:
+    """Write report ``blocks`` as ``name.md`` and a self-contained ``name.html`` in ``out``.
+
+    Blocks are ``("h1"|"h2"|"p", text)``, ``("table", head, rows)`` and ``("figure",
+    png file name in out, caption)``.
+    """
+    paths = [out / f"{name}.md", out / f"{name}.html"]
+    atomic_write_text(paths[0], _md(blocks))
+    atomic_write_text(paths[1], _html(blocks, out, title))
+    return paths
 
 
 def write_report(out: Path, data, claims, ceiling, peak, *, quick, run_time, inputs,

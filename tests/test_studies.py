@@ -171,3 +171,16 @@ def test_quick_example_is_valid():
     spec = read_study(ROOT / "examples" / "studies" / "study_quick.toml")
     assert spec.study.samples == 32 and set(spec.objectives) == {"eta_mean",
                                                                  "torque_per_volume"}
+
+
+@pytest.mark.parametrize("path", sorted((ROOT / "examples" / "studies").glob("*.toml")))
+def test_example_studies_parse_and_their_first_design_evaluates(path):
+    from ballcvt.studies import design_vectors, evaluate_chunk, make_context
+    spec = read_study(path)
+    ctx = make_context(spec)
+    n = 2
+    if spec.study.method == "nsga2":
+        spec = spec.model_copy(update={"study": spec.study.model_copy(
+            update={"method": "sobol", "samples": n})})
+    got = evaluate_chunk(ctx, np.arange(n), design_vectors(spec, n))
+    assert got["status"].shape == (n,) and set(got["status"]) <= {0, 1, 2}

@@ -9,7 +9,7 @@ ROOT = Path(ballcvt.__file__).parent
 #: Lowest first. Modules at the top level that are not listed are base (errors, _version).
 LAYERS = ["params", "geometry", "modes", "clamping", "contact", "bearings", "equilibrium",
           "solver", "performance", "optimize", "fitting", "results", "sweeps", "cycles",
-          "variator", "studies", "plotting", "reports", "cli"]
+          "variator", "studies", "plotting", "reports", "ui", "cli"]
 
 
 def _layer(module: str) -> int | None:

@@ -15,12 +15,27 @@ Quick start::
 from ._version import __version__
 from .contact.quadrature import REFERENCE, Quadrature
 from .errors import BallCVTError, ConvergenceError, InputError, TractionLimitError
-from .params import (Design, Fluid, OperatingPoint, drive_to_toml, load_builtin, load_drive)
+from .params import Design, Fluid, OperatingPoint, drive_to_toml, load_builtin, load_drive
 from .results.point import ContactResult, OperatingResult
 from .solver.point import SolverOptions
 from .variator import Variator
 
-__all__ = ["__version__", "Variator", "Design", "Fluid", "OperatingPoint", "load_builtin",
-           "load_drive", "drive_to_toml", "OperatingResult", "ContactResult", "SolverOptions",
-           "Quadrature", "REFERENCE", "BallCVTError", "InputError", "TractionLimitError",
-           "ConvergenceError"]
+__all__ = [
+    "__version__",
+    "Variator",
+    "Design",
+    "Fluid",
+    "OperatingPoint",
+    "load_builtin",
+    "load_drive",
+    "drive_to_toml",
+    "OperatingResult",
+    "ContactResult",
+    "SolverOptions",
+    "Quadrature",
+    "REFERENCE",
+    "BallCVTError",
+    "InputError",
+    "TractionLimitError",
+    "ConvergenceError",
+]

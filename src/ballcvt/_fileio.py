@@ -12,8 +12,8 @@ from __future__ import annotations
 import contextlib
 import os
 import tempfile
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Iterator
 
 from .errors import InputError
 
@@ -28,8 +28,9 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     format from it). On an exception it is removed and ``path`` is left untouched.
     """
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".part{path.suffix}",
-                               dir=path.parent)
+    fd, tmp = tempfile.mkstemp(
+        prefix=f".{path.stem}.", suffix=f".part{path.suffix}", dir=path.parent
+    )
     os.close(fd)
     try:
         yield Path(tmp)
@@ -58,16 +59,20 @@ def check_output_dir(path: str | os.PathLike, name: str = "--out") -> Path:
     """
     path = Path(path)
     if path.exists() and not path.is_dir():
-        raise InputError(name, str(path), "a folder",
-                         message=f"{name} {path}: exists and is not a folder")
+        raise InputError(
+            name, str(path), "a folder", message=f"{name} {path}: exists and is not a folder"
+        )
     try:
         path.mkdir(parents=True, exist_ok=True)
         with tempfile.TemporaryFile(dir=path):
             pass
     except OSError as exc:
-        raise InputError(name, str(path), "a writable folder",
-                         message=f"{name} {path}: cannot be written "
-                                 f"({exc.strerror or exc})") from None
+        raise InputError(
+            name,
+            str(path),
+            "a writable folder",
+            message=f"{name} {path}: cannot be written ({exc.strerror or exc})",
+        ) from None
     return path
 
 
@@ -84,9 +89,17 @@ def check_output_file(path: str | os.PathLike, name: str = "path") -> Path:
         raise InputError(name, str(path), "a file", message=f"{name} {path}: is a folder")
     parent = path.parent
     if not parent.is_dir():
-        raise InputError(name, str(path), "a file in an existing folder",
-                         message=f"{name} {path}: folder {parent} does not exist")
+        raise InputError(
+            name,
+            str(path),
+            "a file in an existing folder",
+            message=f"{name} {path}: folder {parent} does not exist",
+        )
     if not os.access(parent, os.W_OK):
-        raise InputError(name, str(path), "a writable location",
-                         message=f"{name} {path}: folder {parent} is not writable")
+        raise InputError(
+            name,
+            str(path),
+            "a writable location",
+            message=f"{name} {path}: folder {parent} is not writable",
+        )
     return path

@@ -6,8 +6,13 @@ so that the command-line interface can print it as is (exit status 2).
 
 from __future__ import annotations
 
-__all__ = ["BallCVTError", "InputError", "TractionLimitError", "ConvergenceError",
-           "NoEquilibriumError"]
+__all__ = [
+    "BallCVTError",
+    "InputError",
+    "TractionLimitError",
+    "ConvergenceError",
+    "NoEquilibriumError",
+]
 
 
 class BallCVTError(Exception):

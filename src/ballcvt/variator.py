@@ -7,17 +7,18 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ._display import html_summary, text_summary
 from .clamping.laws import ConstantClamp
 from .clamping.laws import clamp_law as _clamp_law
 from .contact.quadrature import Quadrature
 from .equilibrium.problem import build_problem
 from .errors import ConvergenceError, InputError, TractionLimitError
 from .geometry.kinematics import ratio_range
+from .modes import OperatingMode
 from .optimize.clamp import ClampOptimum, optimal_clamp_force
 from .params.feasibility import check_architecture
 from .params.io import load_builtin
 from .params.models import ARCHITECTURES, Design, Fluid
-from .modes import OperatingMode
 from .results.planetary import PlanetaryResult, make_planetary_result
 from .results.point import OperatingResult, make_result
 from .solver.clamped import capacity_basis, pressure_bound_force, solve_clamped
@@ -77,9 +78,38 @@ class Variator:
             object.__setattr__(self, "fluid", fluid)
         object.__setattr__(self, "traction_law", self.fluid.traction_law)
         if self.architecture not in ARCHITECTURES:
-            raise InputError("architecture", self.architecture,
-                             "one of: " + ", ".join(ARCHITECTURES))
+            raise InputError(
+                "architecture", self.architecture, "one of: " + ", ".join(ARCHITECTURES)
+            )
         check_architecture(self.design, self.architecture)
+
+    def _summary(self) -> tuple[str, list]:
+        lo, hi = self.ratio_range
+        d = self.design
+        rows = [
+            ("design", d.name, ""),
+            ("fluid", self.fluid.name, ""),
+            ("architecture", f"{self.architecture} idler", ""),
+            ("balls", f"{d.n_rollers} x r_S {d.roller_radius * 1e3:.4g}", "mm"),
+            ("aspect ratio k", d.aspect_ratio, "-"),
+            ("contact angles", f"{d.theta0_deg:g} / {d.theta2_deg:g}", "deg"),
+            ("ratio range", f"{lo:.3f} - {hi:.3f}", "-"),
+            ("traction law", self.fluid.traction_law, ""),
+            (
+                "quadrature",
+                str(self.options.quadrature.n_radial)
+                + " x "
+                + str(self.options.quadrature.n_angular),
+                "nodes",
+            ),
+        ]
+        return "Variator", rows
+
+    def __repr__(self) -> str:
+        return text_summary(*self._summary())
+
+    def _repr_html_(self) -> str:
+        return html_summary(*self._summary())
 
     @property
     def ratio_range(self) -> tuple[float, float]:
@@ -96,26 +126,37 @@ class Variator:
         speed = _speed(input_speed, input_speed_rpm)
         t2 = float(output_torque)
         force = law.clamp_force(self.design, t2 * float(ratio), t2)
-        return build_problem(self.design, self.fluid, self.architecture, float(ratio), t2,
-                             force, speed)
+        return build_problem(
+            self.design, self.fluid, self.architecture, float(ratio), t2, force, speed
+        )
 
-    def _resolve(self, ratio, output_torque, clamp_force, clamp_law, input_speed,
-                 input_speed_rpm):
+    def _resolve(self, ratio, output_torque, clamp_force, clamp_law, input_speed, input_speed_rpm):
         """(force law, law name): the optimal law becomes the constant law at its optimum."""
         law = self.clamp_law(clamp_law, clamp_force)
         if law.name != "optimal":
             return law, law.name
-        opt = self.optimal_clamp_force(ratio, output_torque, input_speed=input_speed,
-                                       input_speed_rpm=input_speed_rpm,
-                                       creep_limit=law.creep_limit,
-                                       max_pressure=law.max_pressure)
+        opt = self.optimal_clamp_force(
+            ratio,
+            output_torque,
+            input_speed=input_speed,
+            input_speed_rpm=input_speed_rpm,
+            creep_limit=law.creep_limit,
+            max_pressure=law.max_pressure,
+        )
         return ConstantClamp(opt.clamp_force), "optimal"
 
-    def solve(self, ratio: float, output_torque: float, *, clamp_force: float | None = None,
-              clamp_law=None, input_speed: float | None = None,
-              input_speed_rpm: float | None = None,
-              check_capacity: bool = True,
-              mode: OperatingMode | None = None) -> OperatingResult | PlanetaryResult:
+    def solve(
+        self,
+        ratio: float,
+        output_torque: float,
+        *,
+        clamp_force: float | None = None,
+        clamp_law=None,
+        input_speed: float | None = None,
+        input_speed_rpm: float | None = None,
+        check_capacity: bool = True,
+        mode: OperatingMode | None = None,
+    ) -> OperatingResult | PlanetaryResult:
         """Solve the steady operating point.
 
         Parameters
@@ -160,53 +201,92 @@ class Variator:
             If no equilibrium is found and ``check_capacity`` is False.
         """
         if mode is not None and not mode.is_default:
-            return self._solve_mode(mode, ratio, output_torque, clamp_force, clamp_law,
-                                    _speed(input_speed, input_speed_rpm), check_capacity)
-        law, name = self._resolve(ratio, output_torque, clamp_force, clamp_law, input_speed,
-                                  input_speed_rpm)
+            return self._solve_mode(
+                mode,
+                ratio,
+                output_torque,
+                clamp_force,
+                clamp_law,
+                _speed(input_speed, input_speed_rpm),
+                check_capacity,
+            )
+        law, name = self._resolve(
+            ratio, output_torque, clamp_force, clamp_law, input_speed, input_speed_rpm
+        )
         problem = self._problem(ratio, output_torque, law, input_speed, input_speed_rpm)
         follows = not isinstance(law, ConstantClamp)
         if follows:
-            problem, sol = solve_clamped(problem, law,
-                                         lambda p, x: solve_point(p, self.options, x))
+            problem, sol = solve_clamped(
+                problem, law, lambda p, x: solve_point(p, self.options, x)
+            )
         else:
             sol = solve_point(problem, self.options)
         over = sol.converged and max(abs(c) for c in sol.state.creep) > self.design.creep_limit
         if follows:
             over = over or float(problem.clamp_force) > float(
-                pressure_bound_force(problem, self.design.max_pressure)) * (1 + 1e-12)
+                pressure_bound_force(problem, self.design.max_pressure)
+            ) * (1 + 1e-12)
         if check_capacity and (over or not sol.converged):
             lim = limit_torque(problem, self.design.creep_limit, self.options, law=law)
             if output_torque > lim:
-                where = (f"clamp {float(problem.clamp_force):g} N" if not follows else
-                         f"{name} clamping law")
-                raise TractionLimitError(float(output_torque), lim,
-                                         f" at ratio {ratio:g}, {where}")
+                where = (
+                    f"clamp {float(problem.clamp_force):g} N"
+                    if not follows
+                    else f"{name} clamping law"
+                )
+                raise TractionLimitError(
+                    float(output_torque), lim, f" at ratio {ratio:g}, {where}"
+                )
         if not sol.converged:
             raise ConvergenceError(sol.message)
         return make_result(problem, sol, self.options.quadrature, clamp_law=name)
 
-    def _solve_mode(self, mode, ratio, load_torque, clamp_force, clamp_law, driver_speed,
-                    check_capacity) -> PlanetaryResult:
+    def _solve_mode(
+        self, mode, ratio, load_torque, clamp_force, clamp_law, driver_speed, check_capacity
+    ) -> PlanetaryResult:
         """`solve` in a planetary mode (docs/model.md §13)."""
         law = self.clamp_law(clamp_law, clamp_force)
         if law.name != "constant":
-            raise InputError("clamp_law", law.name, "constant in a planetary mode (the cam "
-                             "and optimal laws are not yet defined with the carrier turning)")
-        got = solve_mode(self.design, self.fluid, self.architecture, mode, float(ratio),
-                         float(load_torque), driver_speed, law.force, self.options)
+            raise InputError(
+                "clamp_law",
+                law.name,
+                "constant in a planetary mode (the cam "
+                "and optimal laws are not yet defined with the carrier turning)",
+            )
+        got = solve_mode(
+            self.design,
+            self.fluid,
+            self.architecture,
+            mode,
+            float(ratio),
+            float(load_torque),
+            driver_speed,
+            law.force,
+            self.options,
+        )
         creep = max(abs(c) for c in got.solution.state.creep)
         if check_capacity and creep > self.design.creep_limit:
-            raise InputError("output_torque", float(load_torque),
-                             f"within the traction capacity: the largest creep {creep:.3g} "
-                             f"exceeds creep_limit {self.design.creep_limit:g} ({mode.label})")
+            raise InputError(
+                "output_torque",
+                float(load_torque),
+                f"within the traction capacity: the largest creep {creep:.3g} "
+                f"exceeds creep_limit {self.design.creep_limit:g} ({mode.label})",
+            )
         rel = make_result(got.problem, got.solution, self.options.quadrature)
-        return make_planetary_result(mode, rel, got.sign, got.speeds, float(load_torque),
-                                     driver_speed, got.passes)
+        return make_planetary_result(
+            mode, rel, got.sign, got.speeds, float(load_torque), driver_speed, got.passes
+        )
 
-    def limit_torque(self, ratio: float, *, clamp_force: float | None = None, clamp_law=None,
-                     input_speed: float | None = None, input_speed_rpm: float | None = None,
-                     creep_limit: float | None = None) -> float:
+    def limit_torque(
+        self,
+        ratio: float,
+        *,
+        clamp_force: float | None = None,
+        clamp_law=None,
+        input_speed: float | None = None,
+        input_speed_rpm: float | None = None,
+        creep_limit: float | None = None,
+    ) -> float:
         """Largest admissible output torque (docs/model.md §8, §11) [N m].
 
         Parameters
@@ -225,14 +305,26 @@ class Variator:
         law = self.clamp_law(clamp_law, clamp_force)
         start = ConstantClamp(1.0) if law.name == "optimal" else law
         problem, law, c_lim = capacity_basis(
-            self._problem(ratio, 0.0, start, input_speed, input_speed_rpm), law, c_lim)
+            self._problem(ratio, 0.0, start, input_speed, input_speed_rpm), law, c_lim
+        )
         return limit_torque(problem, c_lim, self.options, law=law)
 
-    def sweep(self, *, ratio, output_torque, clamp_force=None, clamp_law=None,
-              input_speed=None, input_speed_rpm=None, architecture=None,
-              creep_limit: float | None = None,
-              limit_torque=None, workers: int = 1, progress: bool | None = None,
-              label: str | None = None):
+    def sweep(
+        self,
+        *,
+        ratio,
+        output_torque,
+        clamp_force=None,
+        clamp_law=None,
+        input_speed=None,
+        input_speed_rpm=None,
+        architecture=None,
+        creep_limit: float | None = None,
+        limit_torque=None,
+        workers: int = 1,
+        progress: bool | None = None,
+        label: str | None = None,
+    ):
         """Evaluate a grid of operating points (see `ballcvt.sweeps.sweep`).
 
         Parameters
@@ -266,38 +358,77 @@ class Variator:
         xarray.Dataset
         """
         if (input_speed is None) == (input_speed_rpm is None):
-            raise InputError("input_speed", input_speed, "exactly one of input_speed [rad/s] "
-                             "or input_speed_rpm [rpm]")
+            raise InputError(
+                "input_speed",
+                input_speed,
+                "exactly one of input_speed [rad/s] or input_speed_rpm [rpm]",
+            )
         from .sweeps.grid import sweep  # xarray and pandas load only when a sweep is asked for
-        rpm = None if input_speed_rpm is None else np.atleast_1d(
-            np.asarray(input_speed_rpm, float))
+
+        rpm = (
+            None if input_speed_rpm is None else np.atleast_1d(np.asarray(input_speed_rpm, float))
+        )
         speed = np.asarray(input_speed, float) if rpm is None else rpm * math.pi / 30.0
-        ds = sweep(self.design, self.fluid, ratio=ratio, output_torque=output_torque,
-                   clamp_force=clamp_force, clamp_law=clamp_law, input_speed=speed,
-                   architecture=architecture or self.architecture, options=self.options,
-                   creep_limit=creep_limit, limit_torque=limit_torque, workers=workers,
-                   progress=progress, label=label, input_speed_rpm=rpm)
+        ds = sweep(
+            self.design,
+            self.fluid,
+            ratio=ratio,
+            output_torque=output_torque,
+            clamp_force=clamp_force,
+            clamp_law=clamp_law,
+            input_speed=speed,
+            architecture=architecture or self.architecture,
+            options=self.options,
+            creep_limit=creep_limit,
+            limit_torque=limit_torque,
+            workers=workers,
+            progress=progress,
+            label=label,
+            input_speed_rpm=rpm,
+        )
         return ds
 
-    def optimal_clamp_force(self, ratio: float, output_torque: float, *,
-                            input_speed: float | None = None,
-                            input_speed_rpm: float | None = None,
-                            creep_limit: float | None = None,
-                            max_pressure: float | None = None) -> ClampOptimum:
+    def optimal_clamp_force(
+        self,
+        ratio: float,
+        output_torque: float,
+        *,
+        input_speed: float | None = None,
+        input_speed_rpm: float | None = None,
+        creep_limit: float | None = None,
+        max_pressure: float | None = None,
+    ) -> ClampOptimum:
         """Clamping force of maximum efficiency under the creep and pressure limits.
 
         See `ballcvt.optimize.optimal_clamp_force`; limits default to the design's
         ``creep_limit`` and ``max_pressure``.
         """
-        return optimal_clamp_force(self.design, self.fluid, self.architecture, float(ratio),
-                                   float(output_torque), _speed(input_speed, input_speed_rpm),
-                                   self.options, creep_limit, max_pressure)
+        return optimal_clamp_force(
+            self.design,
+            self.fluid,
+            self.architecture,
+            float(ratio),
+            float(output_torque),
+            _speed(input_speed, input_speed_rpm),
+            self.options,
+            creep_limit,
+            max_pressure,
+        )
 
-    def run_cycle(self, cycle, *, strategy: str = "target-input-speed",
-                  target_input_speed: float | None = None,
-                  target_input_speed_rpm: float | None = None,
-                  clamp_force: float | None = None, clamp_law=None, candidates: int = 9,
-                  ratio_range=None, progress: bool | None = None, workers: int = 1):
+    def run_cycle(
+        self,
+        cycle,
+        *,
+        strategy: str = "target-input-speed",
+        target_input_speed: float | None = None,
+        target_input_speed_rpm: float | None = None,
+        clamp_force: float | None = None,
+        clamp_law=None,
+        candidates: int = 9,
+        ratio_range=None,
+        progress: bool | None = None,
+        workers: int = 1,
+    ):
         """Run this drive over a duty cycle (see `ballcvt.cycles.run_cycle`).
 
         Parameters
@@ -324,25 +455,43 @@ class Variator:
         CycleResult
         """
         from .cycles import Cycle, read_cycle, run_cycle
+
         if not isinstance(cycle, Cycle):
             cycle = read_cycle(cycle)
         if target_input_speed is not None and target_input_speed_rpm is not None:
-            raise InputError("target_input_speed", target_input_speed,
-                             "at most one of target_input_speed [rad/s] or "
-                             "target_input_speed_rpm [rpm]")
-        target = (target_input_speed_rpm * math.pi / 30.0
-                  if target_input_speed_rpm is not None else target_input_speed)
-        return run_cycle(self, cycle, strategy=strategy, target_input_speed=target,
-                         clamp_force=clamp_force, clamp_law=clamp_law, candidates=candidates,
-                         ratio_range=ratio_range, progress=progress, workers=workers)
+            raise InputError(
+                "target_input_speed",
+                target_input_speed,
+                "at most one of target_input_speed [rad/s] or target_input_speed_rpm [rpm]",
+            )
+        target = (
+            target_input_speed_rpm * math.pi / 30.0
+            if target_input_speed_rpm is not None
+            else target_input_speed
+        )
+        return run_cycle(
+            self,
+            cycle,
+            strategy=strategy,
+            target_input_speed=target,
+            clamp_force=clamp_force,
+            clamp_law=clamp_law,
+            candidates=candidates,
+            ratio_range=ratio_range,
+            progress=progress,
+            workers=workers,
+        )
 
-    def with_quadrature(self, quadrature: Quadrature) -> "Variator":
+    def with_quadrature(self, quadrature: Quadrature) -> Variator:
         """A copy using another traction-integral rule."""
         return replace(self, options=replace(self.options, quadrature=quadrature))
 
 
 def _speed(input_speed, input_speed_rpm) -> float:
     if (input_speed is None) == (input_speed_rpm is None):
-        raise InputError("input_speed", input_speed, "exactly one of input_speed [rad/s] "
-                         "or input_speed_rpm [rpm]")
+        raise InputError(
+            "input_speed",
+            input_speed,
+            "exactly one of input_speed [rad/s] or input_speed_rpm [rpm]",
+        )
     return float(input_speed) if input_speed is not None else float(input_speed_rpm) * math.pi / 30

@@ -40,8 +40,7 @@ def speed_dependent_torque(speed, diameter, kinematic_viscosity, model: BearingM
     """
     nu_n = kinematic_viscosity * 1e6 * np.abs(np.asarray(speed, dtype=float)) * 30.0 / np.pi
     d3 = (diameter * 1e3) ** 3
-    return 1e-10 * model.f0 * d3 * np.maximum(model.low_speed_factor,
-                                              nu_n**model.speed_exponent)
+    return 1e-10 * model.f0 * d3 * np.maximum(model.low_speed_factor, nu_n**model.speed_exponent)
 
 
 def load_dependent_torque(load, diameter, model: BearingModel):

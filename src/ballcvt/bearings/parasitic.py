@@ -10,8 +10,14 @@ import numpy as np
 
 from ..params.models import Design, Fluid
 
-__all__ = ["moment_coefficient", "windage_torque", "seal_torque", "thrust_bearing_torque",
-           "parasitic_torques", "PARASITIC_KINDS"]
+__all__ = [
+    "moment_coefficient",
+    "windage_torque",
+    "seal_torque",
+    "thrust_bearing_torque",
+    "parasitic_torques",
+    "PARASITIC_KINDS",
+]
 
 #: Kinds of parasitic loss: the last axis of the shaft drag torques.
 PARASITIC_KINDS = ("churning", "seals", "disc_bearings")
@@ -120,8 +126,7 @@ def thrust_bearing_torque(thrust, diameter, friction):
     return friction * np.abs(np.asarray(thrust, dtype=float)) * diameter / 2.0
 
 
-def parasitic_torques(design: Design, fluid: Fluid, input_speed, output_speed, ball_speed,
-                      thrust):
+def parasitic_torques(design: Design, fluid: Fluid, input_speed, output_speed, ball_speed, thrust):
     """Drag torques of the parasitic losses at given speeds (docs/model.md §12).
 
     Parameters
@@ -145,28 +150,38 @@ def parasitic_torques(design: Design, fluid: Fluid, input_speed, output_speed, b
         thrust bearing's torque has opposite signs on the two shafts; its power is
         ``M |omega_0 - omega_2|``.
     """
-    shape = np.broadcast_shapes(*(np.shape(a) for a in (input_speed, output_speed,
-                                                          ball_speed, thrust)))
+    shape = np.broadcast_shapes(
+        *(np.shape(a) for a in (input_speed, output_speed, ball_speed, thrust))
+    )
     par = design.parasitic
     if par is None:
         return np.zeros(shape), np.zeros(shape + (3,)), np.zeros(shape + (3,))
     rho = par.oil_fraction * fluid.density
     nu = fluid.kinematic_viscosity
     ball = windage_torque(ball_speed, design.roller_radius, rho, nu, par.churning_factor)
-    seal = (seal_torque(par.seal_diameter, par.seal_k1, par.seal_beta, par.seal_k2)
-            if par.seal_diameter > 0 else 0.0)
+    seal = (
+        seal_torque(par.seal_diameter, par.seal_k1, par.seal_beta, par.seal_k2)
+        if par.seal_diameter > 0
+        else 0.0
+    )
 
     # the thrust bearing closing the clamping loop between the discs turns at their
     # relative speed: it brakes the faster disc and drives the slower one
     slip = np.sign(np.asarray(input_speed, float) - np.asarray(output_speed, float))
-    bearing = slip * thrust_bearing_torque(thrust, par.disc_bearing_diameter,
-                                           par.disc_bearing_friction)
+    bearing = slip * thrust_bearing_torque(
+        thrust, par.disc_bearing_diameter, par.disc_bearing_friction
+    )
 
     def shaft(speed, sign):
         parts = np.broadcast_arrays(
             windage_torque(speed, par.disc_radius, rho, nu, par.churning_factor),
-            np.asarray(seal, dtype=float), sign * bearing)
+            np.asarray(seal, dtype=float),
+            sign * bearing,
+        )
         return np.broadcast_to(np.stack(parts, axis=-1), shape + (3,)).copy()
 
-    return (np.broadcast_to(ball, shape).copy(), shaft(input_speed, 1.0),
-            shaft(output_speed, -1.0))
+    return (
+        np.broadcast_to(ball, shape).copy(),
+        shaft(input_speed, 1.0),
+        shaft(output_speed, -1.0),
+    )

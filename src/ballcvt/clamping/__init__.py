@@ -2,5 +2,4 @@
 
 from .laws import CLAMP_LAWS, CamClamp, ConstantClamp, OptimalClamp, axial_force, clamp_law
 
-__all__ = ["CLAMP_LAWS", "CamClamp", "ConstantClamp", "OptimalClamp", "axial_force",
-           "clamp_law"]
+__all__ = ["CLAMP_LAWS", "CamClamp", "ConstantClamp", "OptimalClamp", "axial_force", "clamp_law"]

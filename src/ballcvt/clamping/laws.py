@@ -25,8 +25,7 @@ import numpy as np
 from ..errors import InputError
 from ..params.models import Design
 
-__all__ = ["ConstantClamp", "CamClamp", "OptimalClamp", "CLAMP_LAWS", "axial_force",
-           "clamp_law"]
+__all__ = ["ConstantClamp", "CamClamp", "OptimalClamp", "CLAMP_LAWS", "axial_force", "clamp_law"]
 
 #: The law names accepted by `clamp_law`, the CLI and the cycle runner.
 CLAMP_LAWS = ("constant", "cam", "optimal")
@@ -113,14 +112,17 @@ class CamClamp:
             raise InputError("cam.disc", self.disc, "'input' or 'output'")
 
     @classmethod
-    def from_design(cls, design: Design) -> "CamClamp":
+    def from_design(cls, design: Design) -> CamClamp:
         """The cam of ``design.cam`` (`InputError` if the design has none)."""
         cam = design.cam
         if cam is None:
-            raise InputError("design.cam", None, "a [design.cam] table (preload, "
-                             "ramp_angle_deg, mean_radius, friction, disc)",
-                             message=f"clamping law 'cam' needs a loading cam: the design "
-                             f"'{design.name}' has no [design.cam] table (docs/model.md §11)")
+            raise InputError(
+                "design.cam",
+                None,
+                "a [design.cam] table (preload, ramp_angle_deg, mean_radius, friction, disc)",
+                message=f"clamping law 'cam' needs a loading cam: the design "
+                f"'{design.name}' has no [design.cam] table (docs/model.md §11)",
+            )
         return cls(cam.preload, cam.ramp_angle, cam.mean_radius, cam.friction, cam.disc)
 
     @property
@@ -191,12 +193,20 @@ def clamp_law(law, design: Design, clamp_force=None):
     """
     if law is None or law == "constant":
         if clamp_force is None:
-            raise InputError("clamp_force", None, "a value [N] for the constant clamping law "
-                             "(or choose another clamp_law: " + ", ".join(CLAMP_LAWS[1:]) + ")")
+            raise InputError(
+                "clamp_force",
+                None,
+                "a value [N] for the constant clamping law "
+                "(or choose another clamp_law: " + ", ".join(CLAMP_LAWS[1:]) + ")",
+            )
         return ConstantClamp(float(clamp_force))
     if clamp_force is not None:
-        raise InputError("clamp_force", clamp_force, f"not given with clamp_law "
-                         f"{getattr(law, 'name', law)!r} (the law sets the clamping force)")
+        raise InputError(
+            "clamp_force",
+            clamp_force,
+            f"not given with clamp_law "
+            f"{getattr(law, 'name', law)!r} (the law sets the clamping force)",
+        )
     if isinstance(law, str):
         if law == "cam":
             return CamClamp.from_design(design)

@@ -56,9 +56,11 @@ class TractionCurve:
 
     def as_dict(self) -> dict:
         """JSON-ready: ``creep``, ``mu``, ``chi``, ``temperature_rise``, ``law``, conditions."""
-        return {"law": self.law, **self.conditions,
-                **{k: getattr(self, k).tolist()
-                   for k in ("creep", "mu", "chi", "temperature_rise")}}
+        return {
+            "law": self.law,
+            **self.conditions,
+            **{k: getattr(self, k).tolist() for k in ("creep", "mu", "chi", "temperature_rise")},
+        }
 
 
 def load_for_pressure(p_max, rx, ry, reduced_modulus):
@@ -70,10 +72,19 @@ def load_for_pressure(p_max, rx, ry, reduced_modulus):
     return (np.asarray(p_max, dtype=float) / p_unit) ** 3
 
 
-def traction_curve(fluid: Fluid, *, rx: float, ry: float, speed: float, creep,
-                   load: float | None = None, p_max: float | None = None, spin: float = 0.0,
-                   reduced_modulus: float = 210e9 / (1.0 - 0.3**2),
-                   quadrature: Quadrature = Quadrature()) -> TractionCurve:
+def traction_curve(
+    fluid: Fluid,
+    *,
+    rx: float,
+    ry: float,
+    speed: float,
+    creep,
+    load: float | None = None,
+    p_max: float | None = None,
+    spin: float = 0.0,
+    reduced_modulus: float = 210e9 / (1.0 - 0.3**2),
+    quadrature: Quadrature = Quadrature(),
+) -> TractionCurve:
     """Traction curve of one elliptical contact under ``fluid``'s traction law.
 
     Parameters
@@ -105,6 +116,7 @@ def traction_curve(fluid: Fluid, *, rx: float, ry: float, speed: float, creep,
     if (load is None) == (p_max is None):
         raise InputError("load", load, "exactly one of load and p_max")
     if load is None:
+        assert p_max is not None
         if not np.isfinite(p_max) or p_max <= 0:
             raise InputError("p_max", p_max, "> 0 Pa and finite")
         load = float(load_for_pressure(p_max, rx, ry, reduced_modulus))
@@ -116,14 +128,37 @@ def traction_curve(fluid: Fluid, *, rx: float, ry: float, speed: float, creep,
     if s.size == 0 or not np.all(np.isfinite(s)) or np.any(np.abs(s) >= 2.0):
         raise InputError("creep", s.tolist() if s.size < 5 else "...", "|creep| < 2")
     ax, ay, pm, _ = (float(v) for v in hertz_contact(load, rx, ry, reduced_modulus))
-    film = float(central_film_thickness(fluid.viscosity, fluid.pressure_viscosity_coefficient,
-                                        reduced_modulus, rx, speed, load, ay / ax))
+    film = float(
+        central_film_thickness(
+            fluid.viscosity,
+            fluid.pressure_viscosity_coefficient,
+            reduced_modulus,
+            rx,
+            speed,
+            load,
+            ay / ax,
+        )
+    )
     args = (s, spin, ax, ay, pm, load, rx, speed, film)
     mu, chi = law_coefficients(*args, fluid, quadrature)
-    rise = (film_temperature_rise(*args, fluid) if fluid.traction_law == "thermal"
-            else np.zeros_like(s))
-    conditions = {"fluid": fluid.name, "rx": rx, "ry": ry, "load": load, "speed": speed,
-                  "spin": spin, "p_max": pm, "ax": ax, "ay": ay, "film": film,
-                  "reduced_modulus": reduced_modulus}
-    return TractionCurve(s, np.asarray(mu), np.asarray(chi), np.asarray(rise),
-                         fluid.traction_law, conditions)
+    rise = (
+        film_temperature_rise(*args, fluid)
+        if fluid.traction_law == "thermal"
+        else np.zeros_like(s)
+    )
+    conditions = {
+        "fluid": fluid.name,
+        "rx": rx,
+        "ry": ry,
+        "load": load,
+        "speed": speed,
+        "spin": spin,
+        "p_max": pm,
+        "ax": ax,
+        "ay": ay,
+        "film": film,
+        "reduced_modulus": reduced_modulus,
+    }
+    return TractionCurve(
+        s, np.asarray(mu), np.asarray(chi), np.asarray(rise), fluid.traction_law, conditions
+    )

@@ -7,8 +7,7 @@ import numpy as np
 __all__ = ["central_film_thickness", "minimum_film_thickness"]
 
 
-def central_film_thickness(eta0, zeta, reduced_modulus, rx, entrainment_speed, load,
-                           ellipticity):
+def central_film_thickness(eta0, zeta, reduced_modulus, rx, entrainment_speed, load, ellipticity):
     """Hamrock-Dowson central film thickness of an elliptical EHL contact.
 
     ``H = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 exp(-0.73 k_e))``, ``h = H R_x``, with
@@ -42,8 +41,7 @@ def central_film_thickness(eta0, zeta, reduced_modulus, rx, entrainment_speed, l
     return h_bar * rx
 
 
-def minimum_film_thickness(eta0, zeta, reduced_modulus, rx, entrainment_speed, load,
-                           ellipticity):
+def minimum_film_thickness(eta0, zeta, reduced_modulus, rx, entrainment_speed, load, ellipticity):
     """Hamrock-Dowson minimum film thickness of an elliptical EHL contact.
 
     ``H_min = 3.63 U^0.68 G^0.49 W^-0.073 (1 - exp(-0.68 k_e))``, ``h_min = H_min R_x``

@@ -86,10 +86,10 @@ def hertz_contact(load, rx, ry, reduced_modulus):
     r = 1.0 / (1.0 / rx + 1.0 / ry)
     xi = ry / rx
     major_y = xi >= 1.0
-    xi_m = np.where(major_y, xi, 1.0 / xi)             # >= 1: major over minor radius
-    ell = xi_m ** (2.0 / np.pi)                        # Eq. 45, ellipticity >= 1
-    e2 = 1.0 + _HALF_PI_M1 / xi_m                      # Eq. 47, second-kind integral
-    e1 = np.pi / 2.0 + _HALF_PI_M1 * np.log(xi_m)      # Eq. 46, first-kind integral
+    xi_m = np.where(major_y, xi, 1.0 / xi)  # >= 1: major over minor radius
+    ell = xi_m ** (2.0 / np.pi)  # Eq. 45, ellipticity >= 1
+    e2 = 1.0 + _HALF_PI_M1 / xi_m  # Eq. 47, second-kind integral
+    e1 = np.pi / 2.0 + _HALF_PI_M1 * np.log(xi_m)  # Eq. 46, first-kind integral
     base = 6.0 * load * r / (np.pi * reduced_modulus)  # Lambda^3 * rho~ of Eqs. 48-49
     a_major = np.cbrt(ell**2 * e2 * base)
     a_minor = np.cbrt(e2 * base / ell)

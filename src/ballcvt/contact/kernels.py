@@ -23,9 +23,11 @@ dchi/dc, dchi/dsigma, dchi/dlog u)`` (see `traction_coefficients`).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
+njit: Any
 try:
     from numba import njit
 except ImportError:  # pragma: no cover - numba is a declared dependency
@@ -37,7 +39,6 @@ AVAILABLE = njit is not None
 #: Fast-math flags that keep IEEE NaN and infinity semantics (a NaN must propagate).
 _FAST = {"nsz", "arcp", "contract", "afn", "reassoc"}
 N_OUT = 8
-
 
 
 def viscosity_table(fluid, p_max: float, intervals: int = 2048, log_step: float = 0.01):
@@ -73,16 +74,18 @@ def viscosity_table(fluid, p_max: float, intervals: int = 2048, log_step: float 
     z, cp = fluid.roelands_index, fluid.pole_pressure
     tl0, slope_tl = fluid.limiting_shear_stress, fluid.limiting_shear_slope
 
-    def log_slope(p):          # d log E / dp [1/Pa]
-        return (log_ratio * z * np.exp((z - 1.0) * np.log1p(p / cp)) / cp
-                - slope_tl / (tl0 + slope_tl * p))
+    def log_slope(p):  # d log E / dp [1/Pa]
+        return log_ratio * z * np.exp((z - 1.0) * np.log1p(p / cp)) / cp - slope_tl / (
+            tl0 + slope_tl * p
+        )
 
     probe = np.linspace(0.0, top, 4097)
     steep = float(np.max(np.abs(log_slope(probe)))) * top
-    n = int(min(max(intervals, np.ceil(steep / log_step)), 2 ** 20))
+    n = int(min(max(intervals, np.ceil(steep / log_step)), 2**20))
     p = np.linspace(0.0, top, n + 1)
     log_e = np.log(fluid.viscosity / (tl0 + slope_tl * p)) + log_ratio * np.expm1(
-        z * np.log1p(p / cp))
+        z * np.log1p(p / cp)
+    )
     e = np.exp(log_e)
     modulus = fluid.shear_modulus if fluid.traction_law == "viscoelastic" else 0.0
     fl = np.array([tl0, slope_tl, n / top, modulus])
@@ -90,6 +93,7 @@ def viscosity_table(fluid, p_max: float, intervals: int = 2048, log_step: float 
 
 
 if AVAILABLE:
+
     @njit(cache=True, fastmath=_FAST, inline="always")
     def _node(x, y, vx, vy, speed, w, k, fl, tab, deriv, acc):
         """Add one node's contribution to ``acc`` (8 sums, see module docstring).
@@ -105,10 +109,11 @@ if AVAILABLE:
         i = min(int(v), tab.shape[0] - 2)
         t = v - i
         r = 1.0 - t
-        e = (r * r * ((1.0 + 2.0 * t) * tab[i, 0] + t * tab[i, 1])
-             + t * t * ((3.0 - 2.0 * t) * tab[i + 1, 0] - r * tab[i + 1, 1]))
-        ek = e * k[6]                                     # eta / (h tau_L)
-        eh = ek * (fl[0] + fl[1] * p)                     # eta / h
+        e = r * r * ((1.0 + 2.0 * t) * tab[i, 0] + t * tab[i, 1]) + t * t * (
+            (3.0 - 2.0 * t) * tab[i + 1, 0] - r * tab[i + 1, 1]
+        )
+        ek = e * k[6]  # eta / (h tau_L)
+        eh = ek * (fl[0] + fl[1] * p)  # eta / h
         a = ek * speed
         # saturation (1 - exp(-a)) / a: series below 1e-3 (error a^5 / 720), else exp
         # (cheaper than expm1; cancellation costs at most 1e-13 relative there)
@@ -213,9 +218,19 @@ if AVAILABLE:
                 ray_speed = math.sqrt(dx * dx + dy * dy)
                 for j in range(r01.shape[0]):
                     rho = reach * r01[j]
-                    _node(rho * cos_phi[m], y0 + rho * sin_phi[m], rho * dx, rho * dy,
-                          rho * ray_speed, rho * reach * wr[j] * dphi, k, fl, tab, deriv,
-                          acc)
+                    _node(
+                        rho * cos_phi[m],
+                        y0 + rho * sin_phi[m],
+                        rho * dx,
+                        rho * dy,
+                        rho * ray_speed,
+                        rho * reach * wr[j] * dphi,
+                        k,
+                        fl,
+                        tab,
+                        deriv,
+                        acc,
+                    )
             _finish(acc, par, i, out[i])
 
     @njit(cache=True, fastmath=_FAST)
@@ -229,8 +244,9 @@ if AVAILABLE:
             for j in range(x.shape[0]):
                 vx = k[0] - k[1] * y[j]
                 vy = k[2] * x[j]
-                _node(x[j], y[j], vx, vy, math.sqrt(vx * vx + vy * vy), w[j], k, fl, tab,
-                      deriv, acc)
+                _node(
+                    x[j], y[j], vx, vy, math.sqrt(vx * vx + vy * vy), w[j], k, fl, tab, deriv, acc
+                )
             _finish(acc, par, i, out[i])
 else:  # pragma: no cover
-    pole_kernel = centred_kernel = None
+    pole_kernel = centred_kernel = None  # type: ignore[assignment]

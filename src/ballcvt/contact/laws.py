@@ -19,7 +19,7 @@ fields in `ballcvt.params.models.LAW_FIELDS`, and its tests.
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 from ..params.models import TRACTION_LAWS, Fluid
 from .quadrature import Quadrature
@@ -31,7 +31,7 @@ __all__ = ["LAWS", "MONOTONE", "law_coefficients", "traction_rises_with_creep"]
 #: Law name -> coefficient function (signature of `traction_coefficients`).
 LAWS: dict[str, Callable] = {
     "isothermal": traction_coefficients,
-    "viscoelastic": traction_coefficients,    # the elastic factor is node-local
+    "viscoelastic": traction_coefficients,  # the elastic factor is node-local
     "thermal": thermal_coefficients,
 }
 #: Whether a law's traction coefficient rises monotonically with the creep. Where it can
@@ -46,13 +46,36 @@ def traction_rises_with_creep(fluid: Fluid) -> bool:
     return MONOTONE[fluid.traction_law]
 
 
-def law_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, film,
-                     fluid: Fluid, quadrature: Quadrature = Quadrature(),
-                     derivatives: bool = False):
+def law_coefficients(
+    creep_term,
+    spin,
+    ax,
+    ay,
+    p_max,
+    load,
+    radius,
+    u_ref,
+    film,
+    fluid: Fluid,
+    quadrature: Quadrature = Quadrature(),
+    derivatives: bool = False,
+):
     """``mu, chi`` (and with ``derivatives`` their derivatives) under ``fluid``'s law.
 
     Parameters, units and returns as in
     `ballcvt.contact.traction.traction_coefficients`.
     """
-    return LAWS[fluid.traction_law](creep_term, spin, ax, ay, p_max, load, radius, u_ref,
-                                    film, fluid, quadrature, derivatives=derivatives)
+    return LAWS[fluid.traction_law](
+        creep_term,
+        spin,
+        ax,
+        ay,
+        p_max,
+        load,
+        radius,
+        u_ref,
+        film,
+        fluid,
+        quadrature,
+        derivatives=derivatives,
+    )

@@ -25,8 +25,15 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["Quadrature", "REFERENCE", "gauss_legendre", "radial_rule", "centred_rule", "inner_pole_rule",
-           "METHODS"]
+__all__ = [
+    "Quadrature",
+    "REFERENCE",
+    "gauss_legendre",
+    "radial_rule",
+    "centred_rule",
+    "inner_pole_rule",
+    "METHODS",
+]
 
 METHODS = ("pole", "centred")
 #: ``auto``: the compiled kernels of `ballcvt.contact.kernels` when numba is installed;
@@ -105,7 +112,7 @@ def radial_rule(n_radial: int) -> tuple[np.ndarray, np.ndarray]:
         t1, w1 = gauss_legendre(inner, 0.0, RADIAL_SPLIT)
         t2, w2 = gauss_legendre(n_radial - inner, RADIAL_SPLIT, 1.0)
         t, wt = np.concatenate([t1, t2]), np.concatenate([w1, w2])
-    return t * (2.0 - t), 2.0 * (1.0 - t) * wt          # r(t), dr/dt * w
+    return t * (2.0 - t), 2.0 * (1.0 - t) * wt  # r(t), dr/dt * w
 
 
 def centred_rule(n_radial: int, n_angular: int, shape=()) -> tuple[np.ndarray, ...]:
@@ -138,8 +145,8 @@ def inner_pole_rule(yp, n_radial, n_angular):
     sp, cp = np.sin(phi), np.cos(phi)
     yp = yp[:, None]
     b = yp * sp
-    reach = -b + np.sqrt(b * b + (1.0 - yp * yp))                   # (m, n_angular)
-    rho = reach[:, None, :] * r01[None, :, None]                     # (m, n_r, n_a)
+    reach = -b + np.sqrt(b * b + (1.0 - yp * yp))  # (m, n_angular)
+    rho = reach[:, None, :] * r01[None, :, None]  # (m, n_r, n_a)
     x = rho * cp
     y = yp[:, None] + rho * sp
     w = rho * reach[:, None, :] * wr[None, :, None] * (2.0 * np.pi / n_angular)

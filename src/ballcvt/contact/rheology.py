@@ -7,8 +7,13 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["roelands_viscosity", "roelands_pressure_limit", "limiting_shear_stress",
-           "saturation_factor", "saturation_slope"]
+__all__ = [
+    "roelands_viscosity",
+    "roelands_pressure_limit",
+    "limiting_shear_stress",
+    "saturation_factor",
+    "saturation_slope",
+]
 
 #: Largest ``log(eta / eta_0)`` kept: ``exp`` overflows double precision at 709.8.
 LOG_VISCOSITY_MAX = 700.0

@@ -38,8 +38,7 @@ from ..params.models import Fluid
 from .quadrature import Quadrature
 from .traction import traction_coefficients
 
-__all__ = ["thermal_coefficients", "film_temperature_rise", "TEMPERATURE_RULE",
-           "FLASH_FACTOR"]
+__all__ = ["thermal_coefficients", "film_temperature_rise", "TEMPERATURE_RULE", "FLASH_FACTOR"]
 
 #: Cheap rule on which Newton finds the film temperature before one step on the
 #: requested rule (`_rise_and_coefficients`).
@@ -59,32 +58,57 @@ class _Contacts:
     """Flat contact arrays and the temperature-independent parts of the heat balance."""
 
     def __init__(self, args, fluid: Fluid):
-        (self.c, self.s, self.ax, self.ay, self.pm, self.fn, self.rc, self.u,
-         self.h) = args
+        (self.c, self.s, self.ax, self.ay, self.pm, self.fn, self.rc, self.u, self.h) = args
         self.fluid = _isothermal(fluid)
-        self.beta_l = fluid.limiting_shear_temperature_coefficient
-        self.b = fluid.temperature_viscosity_coefficient - self.beta_l
-        self.load_flux = self.fn / (np.pi * self.ax * self.ay)       # F_N / contact area
-        self.r_flash = FLASH_FACTOR * np.sqrt(fluid.surface_diffusivity * self.ax
-                                              / self.u) / (2.0 * fluid.surface_conductivity)
-        self.r_film = self.h / (8.0 * fluid.thermal_conductivity)
+        beta, beta_l, k_f, k_s, kappa = (
+            float(v)  # the Fluid validator guarantees them under the thermal law
+            for v in (
+                fluid.temperature_viscosity_coefficient,
+                fluid.limiting_shear_temperature_coefficient,
+                fluid.thermal_conductivity,
+                fluid.surface_conductivity,
+                fluid.surface_diffusivity,
+            )
+            if v is not None
+        )
+        self.beta_l = beta_l
+        self.b = beta - beta_l
+        self.load_flux = self.fn / (np.pi * self.ax * self.ay)  # F_N / contact area
+        self.r_flash = FLASH_FACTOR * np.sqrt(kappa * self.ax / self.u) / (2.0 * k_s)
+        self.r_film = self.h / (8.0 * k_f)
 
-    def take(self, i) -> "_Contacts":
+    def take(self, i) -> _Contacts:
         out = object.__new__(_Contacts)
-        out.__dict__.update({k: (v[i] if isinstance(v, np.ndarray) else v)
-                             for k, v in self.__dict__.items()})
+        out.__dict__.update(
+            {k: (v[i] if isinstance(v, np.ndarray) else v) for k, v in self.__dict__.items()}
+        )
         return out
 
     def at(self, dt, quadrature: Quadrature):
         """``mu, chi`` and their partials ``(c, sigma, log u, dT)`` at the rises ``dt``."""
         f_t = np.exp(-self.beta_l * dt)
         mu, chi, dmu, dchi = traction_coefficients(
-            self.c, self.s, self.ax, self.ay, self.pm, self.fn, self.rc, self.u,
-            self.h * np.exp(self.b * dt), self.fluid, quadrature, derivatives=True)
+            self.c,
+            self.s,
+            self.ax,
+            self.ay,
+            self.pm,
+            self.fn,
+            self.rc,
+            self.u,
+            self.h * np.exp(self.b * dt),
+            self.fluid,
+            quadrature,
+            derivatives=True,
+        )
         mu, chi, dmu, dchi = f_t * mu, f_t * chi, f_t[:, None] * dmu, f_t[:, None] * dchi
         d_t = lambda v, dv: -self.beta_l * v - self.b * dv[:, 2]  # noqa: E731
-        return (mu, chi, np.column_stack([dmu, d_t(mu, dmu)]),
-                np.column_stack([dchi, d_t(chi, dchi)]))
+        return (
+            mu,
+            chi,
+            np.column_stack([dmu, d_t(mu, dmu)]),
+            np.column_stack([dchi, d_t(chi, dchi)]),
+        )
 
     def flux(self, mu, chi):
         """Mean shear-heat flux ``Q / (pi a_x a_y)`` [W/m^2]."""
@@ -109,8 +133,7 @@ def _solve_rise(con: _Contacts, quadrature: Quadrature, tol=1e-6, max_iter=60):
         new = dt[todo] - g / np.where(slope > 0.0, slope, np.inf)
         hi_t, lo_t = hi[todo], lo[todo]
         outside = (new <= lo_t) | (new >= hi_t) | (slope <= 0.0)
-        new = np.where(outside, np.where(np.isfinite(hi_t), 0.5 * (lo_t + hi_t),
-                                         r[todo] * q), new)
+        new = np.where(outside, np.where(np.isfinite(hi_t), 0.5 * (lo_t + hi_t), r[todo] * q), new)
         step = np.abs(new - dt[todo])
         dt[todo] = new
         todo = todo[step > tol * (1.0 + np.abs(new))]
@@ -131,12 +154,23 @@ def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature):
     r = con.r_flash + con.r_film
     q_t = con.load_flux * con.u * (con.c * dmu[:, 3] + con.s * dchi[:, 3])
     step = -(dt - r * con.flux(mu, chi)) / (1.0 - r * q_t)
-    step = np.maximum(step, -dt)                       # the rise stays >= 0
+    step = np.maximum(step, -dt)  # the rise stays >= 0
     return dt + step, mu + dmu[:, 3] * step, chi + dchi[:, 3] * step, dmu, dchi
 
 
-def film_temperature_rise(creep_term, spin, ax, ay, p_max, load, radius, u_ref, film,
-                          fluid: Fluid, quadrature: Quadrature = Quadrature()):
+def film_temperature_rise(
+    creep_term,
+    spin,
+    ax,
+    ay,
+    p_max,
+    load,
+    radius,
+    u_ref,
+    film,
+    fluid: Fluid,
+    quadrature: Quadrature = Quadrature(),
+):
     """Film temperature rise ``dT`` above the inlet of contacts under the thermal law [K].
 
     Parameters are those of `thermal_coefficients` (same units).
@@ -151,9 +185,20 @@ def _flat(*values):
     return np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
 
 
-def thermal_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, film,
-                         fluid: Fluid, quadrature: Quadrature = Quadrature(),
-                         derivatives: bool = False):
+def thermal_coefficients(
+    creep_term,
+    spin,
+    ax,
+    ay,
+    p_max,
+    load,
+    radius,
+    u_ref,
+    film,
+    fluid: Fluid,
+    quadrature: Quadrature = Quadrature(),
+    derivatives: bool = False,
+):
     """``mu`` and ``chi`` of contacts under the thermal law (module docstring).
 
     Parameters and returns are those of
@@ -174,13 +219,21 @@ def thermal_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, f
     q = con.flux(mu, chi)
     k = con.load_flux * con.u
     r = con.r_flash + con.r_film
-    dq = np.column_stack([k * (mu + con.c * dmu[:, 0] + con.s * dchi[:, 0]),
-                          k * (con.c * dmu[:, 1] + chi + con.s * dchi[:, 1]),
-                          q + k * (con.c * dmu[:, 2] + con.s * dchi[:, 2])])
+    dq = np.column_stack(
+        [
+            k * (mu + con.c * dmu[:, 0] + con.s * dchi[:, 0]),
+            k * (con.c * dmu[:, 1] + chi + con.s * dchi[:, 1]),
+            q + k * (con.c * dmu[:, 2] + con.s * dchi[:, 2]),
+        ]
+    )
     dr = np.column_stack([np.zeros_like(q), np.zeros_like(q), -0.5 * con.r_flash])
     q_t = k * (con.c * dmu[:, 3] + con.s * dchi[:, 3])
     d_dt = (r[:, None] * dq + q[:, None] * dr) / (1.0 - r * q_t)[:, None]
     dmu_total = dmu[:, :3] + dmu[:, 3:] * d_dt
     dchi_total = dchi[:, :3] + dchi[:, 3:] * d_dt
-    return (mu.reshape(shape), chi.reshape(shape), dmu_total.reshape(shape + (3,)),
-            dchi_total.reshape(shape + (3,)))
+    return (
+        mu.reshape(shape),
+        chi.reshape(shape),
+        dmu_total.reshape(shape + (3,)),
+        dchi_total.reshape(shape + (3,)),
+    )

@@ -25,8 +25,12 @@ import numpy as np
 from ..params.models import Fluid
 from . import kernels
 from .quadrature import Quadrature, centred_rule, inner_pole_rule, radial_rule
-from .rheology import (limiting_shear_stress, roelands_viscosity, saturation_factor,
-                       saturation_slope)
+from .rheology import (
+    limiting_shear_stress,
+    roelands_viscosity,
+    saturation_factor,
+    saturation_slope,
+)
 
 __all__ = ["pole_position", "traction_coefficients"]
 
@@ -43,9 +47,20 @@ def pole_position(creep_term, spin, ay, radius):
     return np.where(np.abs(sy) > 1e-300, yp, np.inf)
 
 
-def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, film,
-                          fluid: Fluid, quadrature: Quadrature = Quadrature(),
-                          derivatives: bool = False):
+def traction_coefficients(
+    creep_term,
+    spin,
+    ax,
+    ay,
+    p_max,
+    load,
+    radius,
+    u_ref,
+    film,
+    fluid: Fluid,
+    quadrature: Quadrature = Quadrature(),
+    derivatives: bool = False,
+):
     """Traction coefficient ``mu`` and spin-moment coefficient ``chi`` of contacts.
 
     The shear law is node-local: the isothermal law of Eq. 53 or, with a fluid whose
@@ -93,11 +108,17 @@ def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, 
         blend weight: these are Jacobians for Newton's method, not exact gradients.
     """
     if fluid.traction_law == "thermal":
-        raise ValueError("the thermal law's coefficients are "
-                         "ballcvt.contact.thermal.thermal_coefficients (or dispatch with "
-                         "ballcvt.contact.laws.law_coefficients)")
-    args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
-                                 (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)))
+        raise ValueError(
+            "the thermal law's coefficients are "
+            "ballcvt.contact.thermal.thermal_coefficients (or dispatch with "
+            "ballcvt.contact.laws.law_coefficients)"
+        )
+    args = np.broadcast_arrays(
+        *(
+            np.asarray(v, dtype=float)
+            for v in (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)
+        )
+    )
     shape = args[0].shape
     flat = [a.ravel() for a in args]
     yp = pole_position(flat[0], flat[1], flat[3], flat[6])
@@ -108,15 +129,25 @@ def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, 
         # Pole-centred rule while the pole is well inside, centred rule once it is
         # outside, blended in between so that mu and chi stay continuous (C1) in the creep.
         weight = _pole_weight(np.abs(yp))
-        parts = [(weight > 0.0, weight, "pole", q.n_angular),
-                 (weight < 1.0, 1.0 - weight, "centred", q.n_centred)]
+        parts = [
+            (weight > 0.0, weight, "pole", q.n_angular),
+            (weight < 1.0, 1.0 - weight, "centred", q.n_centred),
+        ]
     n_out = 8 if derivatives else 2
     out = np.zeros((n_out, yp.size))
     params = np.stack(flat)
     for part, rule_weight, kind, n_angular in parts:
         if part.any():
-            values = _rule(kind, yp[part], params[:, part], fluid, q.n_radial, n_angular,
-                           derivatives, q.engine)
+            values = _rule(
+                kind,
+                yp[part],
+                params[:, part],
+                fluid,
+                q.n_radial,
+                n_angular,
+                derivatives,
+                q.engine,
+            )
             out[:, part] += rule_weight[part] * values[:n_out]
     out = out.reshape((n_out,) + shape)
     if not derivatives:
@@ -127,8 +158,11 @@ def traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius, u_ref, 
 def _rule(kind, yp, params, fluid: Fluid, n_radial, n_angular, derivatives, engine):
     """Sums of one rule for flat contacts: rows mu, chi (and their derivatives)."""
     if engine == "numpy" or not kernels.AVAILABLE:
-        nodes = (inner_pole_rule(yp, n_radial, n_angular) if kind == "pole"
-                 else centred_rule(n_radial, n_angular, yp.shape))
+        nodes = (
+            inner_pole_rule(yp, n_radial, n_angular)
+            if kind == "pole"
+            else centred_rule(n_radial, n_angular, yp.shape)
+        )
         values = _integrate(nodes, list(params), fluid, derivatives)
         if not derivatives:
             return np.stack(values)
@@ -138,11 +172,13 @@ def _rule(kind, yp, params, fluid: Fluid, n_radial, n_angular, derivatives, engi
     fl, tab = _viscosity_table(fluid, float(np.max(par[4])))
     if kind == "pole":
         r01, wr, sin_phi, cos_phi = _pole_nodes(n_radial, n_angular)
-        kernels.pole_kernel(yp, par, r01, wr, sin_phi, cos_phi,
-                            2.0 * np.pi / n_angular, fl, tab, derivatives, out)
+        kernels.pole_kernel(
+            yp, par, r01, wr, sin_phi, cos_phi, 2.0 * np.pi / n_angular, fl, tab, derivatives, out
+        )
     else:
-        kernels.centred_kernel(par, *_centred_nodes(n_radial, n_angular), fl, tab,
-                               derivatives, out)
+        kernels.centred_kernel(
+            par, *_centred_nodes(n_radial, n_angular), fl, tab, derivatives, out
+        )
     return out.T
 
 
@@ -187,17 +223,18 @@ def _integrate(nodes, params, fluid: Fluid, derivatives: bool = False):
     c, sg, ax, ay, pm, fn, rc, u, h = params
     ex = lambda v: v[..., None]  # noqa: E731  (broadcast over the nodes)
     p = ex(pm) * np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
-    eta = roelands_viscosity(p, fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure,
-                             fluid.roelands_index)
+    eta = roelands_viscosity(
+        p, fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure, fluid.roelands_index
+    )
     tau_l = limiting_shear_stress(p, fluid.limiting_shear_stress, fluid.limiting_shear_slope)
     vx = ex(u) * (ex(c) - ex(sg * ay / rc) * y)
     vy = ex(u * sg * ax / rc) * x
     speed = np.hypot(vx, vy)
     arg = eta * speed / (ex(h) * tau_l)
     sat = saturation_factor(arg)
-    g = eta / ex(h) * sat                                 # tau = g V
+    g = eta / ex(h) * sat  # tau = g V
     corr, lin_extra = 1.0, 0.0
-    if fluid.traction_law == "viscoelastic":              # Maxwell elasticity (§14)
+    if fluid.traction_law == "viscoelastic":  # Maxwell elasticity (§14)
         t_in = ex(ax) * (x + np.sqrt(np.maximum(1.0 - y * y, 0.0))) / ex(u)
         theta = fluid.shear_modulus * t_in / (ex(h) * g)
         em = np.exp(-theta)
@@ -205,11 +242,13 @@ def _integrate(nodes, params, fluid: Fluid, derivatives: bool = False):
         corr, lin_extra = f - theta * em, -g * theta * em
         g = g * f
     area = ax * ay
-    wx, wy = w * ex(ax) * x, w * ex(ay) * y               # lever-arm weights of chi
+    wx, wy = w * ex(ax) * x, w * ex(ay) * y  # lever-arm weights of chi
 
     def moments(tx, ty):
-        return (area / fn * np.sum(w * tx, axis=-1),
-                area / (fn * rc) * np.sum(wx * ty - wy * tx, axis=-1))
+        return (
+            area / fn * np.sum(w * tx, axis=-1),
+            area / (fn * rc) * np.sum(wx * ty - wy * tx, axis=-1),
+        )
 
     mu, chi = moments(g * vx, g * vy)
     if not derivatives:
@@ -217,11 +256,15 @@ def _integrate(nodes, params, fluid: Fluid, derivatives: bool = False):
     # d tau = g dV + (dg/d|V|) (V.dV / |V|) V; k = (dg/d|V|) / |V| stays finite times V.V
     k = (eta / ex(h)) ** 2 / tau_l * saturation_slope(arg, sat)
     k = np.divide(k, speed, out=np.zeros_like(k), where=speed > 0.0) * corr
-    dvx_s, dvy_s = -ex(u * ay / rc) * y, ex(u * ax / rc) * x          # dV / d sigma
+    dvx_s, dvy_s = -ex(u * ay / rc) * y, ex(u * ax / rc) * x  # dV / d sigma
     d_c = moments(g * ex(u) + k * vx * ex(u) * vx, k * vx * ex(u) * vy)
     dot_s = vx * dvx_s + vy * dvy_s
     d_s = moments(g * dvx_s + k * dot_s * vx, g * dvy_s + k * dot_s * vy)
-    lin = g + k * speed * speed + lin_extra                           # dV / d log u = V
+    lin = g + k * speed * speed + lin_extra  # dV / d log u = V
     d_u = moments(lin * vx, lin * vy)
-    return (mu, chi, np.stack([d_c[0], d_s[0], d_u[0]], axis=-1),
-            np.stack([d_c[1], d_s[1], d_u[1]], axis=-1))
+    return (
+        mu,
+        chi,
+        np.stack([d_c[0], d_s[0], d_u[0]], axis=-1),
+        np.stack([d_c[1], d_s[1], d_u[1]], axis=-1),
+    )

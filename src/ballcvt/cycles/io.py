@@ -38,8 +38,10 @@ UNITS = {
     "ratio": {"1": 1.0, "-": 1.0},
 }
 #: The column sets of the two kinds of cycle (``ratio`` is optional on the input side).
-KINDS = {"output": ("time", "output_speed", "output_torque"),
-         "input": ("time", "input_speed", "input_power")}
+KINDS = {
+    "output": ("time", "output_speed", "output_torque"),
+    "input": ("time", "input_speed", "input_power"),
+}
 
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[([^\]]*)\])?\s*$")
 
@@ -89,18 +91,38 @@ class Cycle:
         return np.diff(edges)
 
 
-def cycle_from_arrays(*, time, output_speed=None, output_torque=None, input_speed=None,
-                      input_power=None, ratio=None, name: str = "cycle") -> Cycle:
+def cycle_from_arrays(
+    *,
+    time,
+    output_speed=None,
+    output_torque=None,
+    input_speed=None,
+    input_power=None,
+    ratio=None,
+    name: str = "cycle",
+) -> Cycle:
     """A validated `Cycle` from SI arrays (one of the two column sets of `KINDS`)."""
-    given = {k: v for k, v in dict(time=time, output_speed=output_speed,
-                                   output_torque=output_torque, input_speed=input_speed,
-                                   input_power=input_power, ratio=ratio).items()
-             if v is not None}
+    given = {
+        k: v
+        for k, v in dict(
+            time=time,
+            output_speed=output_speed,
+            output_torque=output_torque,
+            input_speed=input_speed,
+            input_power=input_power,
+            ratio=ratio,
+        ).items()
+        if v is not None
+    }
     kind = next((k for k, cols in KINDS.items() if all(c in given for c in cols)), None)
     if kind is None or (kind == "output" and {"input_speed", "input_power"} & set(given)):
-        raise InputError("cycle columns", ", ".join(given), "time with output_speed and "
-                         "output_torque, or time with input_speed and input_power "
-                         "(and optionally ratio)")
+        raise InputError(
+            "cycle columns",
+            ", ".join(given),
+            "time with output_speed and "
+            "output_torque, or time with input_speed and input_power "
+            "(and optionally ratio)",
+        )
     arrays = {}
     for key, value in given.items():
         arr = np.atleast_1d(np.asarray(value, dtype=float))
@@ -117,8 +139,9 @@ def cycle_from_arrays(*, time, output_speed=None, output_torque=None, input_spee
     for key in ("output_speed", "input_speed"):
         if key in arrays and np.any(arrays[key] < 0):
             i = int(np.flatnonzero(arrays[key] < 0)[0])
-            raise InputError(key, float(arrays[key][i]), f">= 0 (step {i}; the drive does "
-                             "not reverse)")
+            raise InputError(
+                key, float(arrays[key][i]), f">= 0 (step {i}; the drive does not reverse)"
+            )
     if "ratio" in arrays and np.any(arrays["ratio"] <= 0):
         i = int(np.flatnonzero(arrays["ratio"] <= 0)[0])
         raise InputError("ratio", float(arrays["ratio"][i]), f"> 0 (step {i})")
@@ -140,30 +163,48 @@ def read_cycle(path: str | Path) -> Cycle:
     try:
         frame = pd.read_csv(path, comment="#", skipinitialspace=True)
     except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
-        raise InputError("cycle file", str(path), "a readable CSV file",
-                         message=f"cycle file {path}: cannot be read as CSV "
-                                 f"({type(exc).__name__})") from None
+        raise InputError(
+            "cycle file",
+            str(path),
+            "a readable CSV file",
+            message=f"cycle file {path}: cannot be read as CSV ({type(exc).__name__})",
+        ) from None
     columns = {}
     for header in frame.columns:
         m = _HEADER.match(str(header))
         name, unit = (m.group(1), (m.group(2) or "").strip()) if m else (str(header), "")
         if name not in UNITS:
-            raise InputError("cycle column", str(header), "one of " + ", ".join(
-                f"{k} [{'|'.join(u)}]" for k, u in UNITS.items()),
+            raise InputError(
+                "cycle column",
+                str(header),
+                "one of " + ", ".join(f"{k} [{'|'.join(u)}]" for k, u in UNITS.items()),
                 message=f"cycle file {path}: unknown column '{header}' (known: "
-                        + ", ".join(UNITS) + ", each with its unit in brackets)")
+                + ", ".join(UNITS)
+                + ", each with its unit in brackets)",
+            )
         if unit not in UNITS[name]:
-            raise InputError(f"{name} unit", unit or "(none)", " or ".join(UNITS[name]),
-                             message=f"cycle file {path}: column '{header}' needs its unit "
-                                     f"in brackets, one of: " + ", ".join(UNITS[name]))
+            raise InputError(
+                f"{name} unit",
+                unit or "(none)",
+                " or ".join(UNITS[name]),
+                message=f"cycle file {path}: column '{header}' needs its unit "
+                f"in brackets, one of: " + ", ".join(UNITS[name]),
+            )
         if name in columns:
-            raise InputError("cycle column", name, "each column once",
-                             message=f"cycle file {path}: column '{name}' appears twice")
+            raise InputError(
+                "cycle column",
+                name,
+                "each column once",
+                message=f"cycle file {path}: column '{name}' appears twice",
+            )
         values = pd.to_numeric(frame[header], errors="coerce").to_numpy(dtype=float)
         bad = np.flatnonzero(np.isnan(values))
         if bad.size:
-            raise InputError(name, str(frame[header].iloc[bad[0]]), "a number",
-                             message=f"cycle file {path}: '{header}' at data row "
-                                     f"{bad[0] + 1} is not a number")
+            raise InputError(
+                name,
+                str(frame[header].iloc[bad[0]]),
+                "a number",
+                message=f"cycle file {path}: '{header}' at data row {bad[0] + 1} is not a number",
+            )
         columns[name] = values * UNITS[name][unit]
     return cycle_from_arrays(name=path.name, **columns)

@@ -34,9 +34,11 @@ from concurrent.futures import ProcessPoolExecutor
 from contextlib import nullcontext
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
+from .._display import html_summary, text_summary
 from .._fileio import atomic_write_text
 from .._version import __version__
 from ..clamping.laws import clamp_law as resolve_law
@@ -51,8 +53,15 @@ from .io import STRATEGIES, Cycle
 __all__ = ["CycleResult", "run_cycle", "STRATEGIES", "FLAGS"]
 
 #: Step flags (``flag`` column): ``ok`` and ``idle`` are not counted as flagged.
-FLAGS = ("ok", "idle", "ratio_limited", "negative_torque", "power_below_drag",
-         "beyond_capacity", "not_converged")
+FLAGS = (
+    "ok",
+    "idle",
+    "ratio_limited",
+    "negative_torque",
+    "power_below_drag",
+    "beyond_capacity",
+    "not_converged",
+)
 #: Secant passes for the output torque of an input-side cycle.
 POWER_PASSES = 12
 #: Relative tolerance of its input torque [-].
@@ -74,24 +83,65 @@ class CycleResult:
         per flag), the inputs (design, strategy, clamping law) and the run time.
     """
 
-    steps: object
+    steps: Any  # pandas.DataFrame
     summary: dict = field(default_factory=dict)
+
+    def _summary(self) -> tuple[str, list]:
+        s = self.summary
+        eff = s.get("efficiency")
+        rows = [
+            ("steps", s.get("steps", len(self.steps)), ""),
+            ("duration", s.get("duration_s", float("nan")), "s"),
+            ("energy in", s.get("energy_in_J", float("nan")) / 3.6e3, "Wh"),
+            ("energy out", s.get("energy_out_J", float("nan")) / 3.6e3, "Wh"),
+            ("efficiency", "n/a" if eff is None else eff, "-"),
+            ("steps flagged", s.get("steps_flagged", 0), ""),
+            ("strategy", s.get("strategy", ""), ""),
+        ]
+        return "CycleResult", rows
+
+    def __repr__(self) -> str:
+        return text_summary(*self._summary())
+
+    def _repr_html_(self) -> str:
+        return html_summary(*self._summary())
+
+    def to_dataframe(self):
+        """The steps, one row each (`steps`)."""
+        return self.steps
 
     def save(self, out) -> list[Path]:
         """Write ``steps.csv`` and ``summary.json`` into the folder ``out``."""
         out = Path(out)
-        units = {"time": "s", "duration": "s", "input_speed_rpm": "rpm",
-                 "output_speed_rpm": "rpm", "input_power": "W", "output_power": "W",
-                 **{f"loss_{k}": "W" for k in LOSS_KINDS}}
-        files = [write_table(self.steps, out / "steps.csv", units),
-                 atomic_write_text(out / "summary.json", json.dumps(self.summary, indent=2))]
+        units = {
+            "time": "s",
+            "duration": "s",
+            "input_speed_rpm": "rpm",
+            "output_speed_rpm": "rpm",
+            "input_power": "W",
+            "output_power": "W",
+            **{f"loss_{k}": "W" for k in LOSS_KINDS},
+        }
+        files = [
+            write_table(self.steps, out / "steps.csv", units),
+            atomic_write_text(out / "summary.json", json.dumps(self.summary, indent=2)),
+        ]
         return files
 
 
-def run_cycle(variator, cycle: Cycle, *, strategy: str = "target-input-speed",
-              target_input_speed: float | None = None, clamp_force: float | None = None,
-              clamp_law=None, candidates: int = 9, ratio_range=None,
-              progress: bool | None = None, workers: int = 1) -> CycleResult:
+def run_cycle(
+    variator,
+    cycle: Cycle,
+    *,
+    strategy: str = "target-input-speed",
+    target_input_speed: float | None = None,
+    clamp_force: float | None = None,
+    clamp_law=None,
+    candidates: int = 9,
+    ratio_range=None,
+    progress: bool | None = None,
+    workers: int = 1,
+) -> CycleResult:
     """Evaluate a drive over a duty cycle, all steps batched.
 
     Parameters
@@ -137,21 +187,32 @@ def run_cycle(variator, cycle: Cycle, *, strategy: str = "target-input-speed",
     lo, hi = usable_ratio_range(design)
     r_lo, r_hi = (lo, hi) if ratio_range is None else map(float, ratio_range)
     if not lo <= r_lo < r_hi <= hi:
-        raise InputError("ratio_range", f"{r_lo:g} {r_hi:g}",
-                         f"MIN < MAX within the usable range {lo:.4g}-{hi:.4g}")
+        raise InputError(
+            "ratio_range",
+            f"{r_lo:g} {r_hi:g}",
+            f"MIN < MAX within the usable range {lo:.4g}-{hi:.4g}",
+        )
     commanded = cycle.kind == "input" and cycle.ratio is not None
     if strategy == "target-input-speed" and not commanded:
         if cycle.kind == "input":
-            raise InputError("strategy", strategy, "max-efficiency (an input-side cycle "
-                             "without a ratio column fixes the input speed already)")
+            raise InputError(
+                "strategy",
+                strategy,
+                "max-efficiency (an input-side cycle "
+                "without a ratio column fixes the input speed already)",
+            )
         if target_input_speed is None or not target_input_speed > 0:
-            raise InputError("target_input_speed", target_input_speed,
-                             "> 0 rad/s for the target-input-speed strategy")
+            raise InputError(
+                "target_input_speed",
+                target_input_speed,
+                "> 0 rad/s for the target-input-speed strategy",
+            )
     n = cycle.size
-    speed_in = cycle.input_speed if cycle.kind == "input" else None
-    speed_out = cycle.output_speed if cycle.kind == "output" else None
-    torque = cycle.output_torque if cycle.kind == "output" else None
-    power = cycle.input_power if cycle.kind == "input" else None
+    # the columns of the cycle's kind (read_cycle guarantees them)
+    speed_in: Any = cycle.input_speed if cycle.kind == "input" else None
+    speed_out: Any = cycle.output_speed if cycle.kind == "output" else None
+    torque: Any = cycle.output_torque if cycle.kind == "output" else None
+    power: Any = cycle.input_power if cycle.kind == "input" else None
     flag = np.full(n, "ok", dtype=object)
     if cycle.kind == "output":
         idle = (speed_out <= 0) | (torque == 0)
@@ -166,8 +227,9 @@ def run_cycle(variator, cycle: Cycle, *, strategy: str = "target-input-speed",
     passes = {"target-input-speed": 2, "max-efficiency": candidates + 2}[strategy]
     if cycle.kind == "input":
         passes = POWER_PASSES * (1 if commanded else candidates + 1)
-    bar = tqdm(total=passes * run.size, desc=f"duty cycle, {n} steps", unit="point",
-               disable=not show)
+    bar = tqdm(
+        total=passes * run.size, desc=f"duty cycle, {n} steps", unit="point", disable=not show
+    )
 
     # the ratio search and the creep correction run on the solver's coarse rule (the
     # predictor); every reported value comes from a final solve on the full rule
@@ -175,31 +237,52 @@ def run_cycle(variator, cycle: Cycle, *, strategy: str = "target-input-speed",
     coarse = replace(fine, quadrature=fine.predictor or fine.quadrature, predictor=None)
 
     def solve(ratio, t2, w0, rough=False):
-        return evaluate_points(design, variator.fluid, variator.architecture, ratio, t2, w0,
-                               clamp_force=law.force if law.name == "constant" else None,
-                               law=None if law.name == "constant" else law,
-                               options=coarse if rough else fine, callback=bar.update,
-                               executor=pool)
+        return evaluate_points(
+            design,
+            variator.fluid,
+            variator.architecture,
+            ratio,
+            t2,
+            w0,
+            clamp_force=law.force if law.name == "constant" else None,
+            law=None if law.name == "constant" else law,
+            options=coarse if rough else fine,
+            callback=bar.update,
+            executor=pool,
+        )
 
     pool = ProcessPoolExecutor(max_workers=workers) if workers > 1 else None
-    with bar, (pool or nullcontext()):
+    with bar, pool or nullcontext():
         if cycle.kind == "output":
-            ratio, w0, res = _output_side(solve, strategy, speed_out[run], torque[run],
-                                          target_input_speed, lo, hi, r_lo, r_hi,
-                                          candidates, flag, run)
+            ratio, w0, res = _output_side(
+                solve,
+                strategy,
+                speed_out[run],
+                torque[run],
+                target_input_speed,
+                lo,
+                hi,
+                r_lo,
+                r_hi,
+                candidates,
+                flag,
+                run,
+            )
             t2 = torque[run]
         else:
-            fixed = cycle.ratio[run] if commanded else None
-            ratio, w0, t2, res = _input_side(solve, speed_in[run], power[run], fixed,
-                                             r_lo, r_hi, candidates, flag, run, lo, hi)
+            fixed = cycle.ratio[run] if commanded and cycle.ratio is not None else None
+            ratio, w0, t2, res = _input_side(
+                solve, speed_in[run], power[run], fixed, r_lo, r_hi, candidates, flag, run, lo, hi
+            )
     status = res["status"]
     flag[run[status == STATUS["beyond_limit"]]] = "beyond_capacity"
     flag[run[status == STATUS["not_converged"]]] = "not_converged"
     if "below_drag" in res:
         flag[run[res["below_drag"]]] = "power_below_drag"
     steps = _table(cycle, n, run, ratio, w0, t2, res, flag)
-    summary = _summary(variator, cycle, steps, strategy, law, target_input_speed,
-                       _time.perf_counter() - start)
+    summary = _summary(
+        variator, cycle, steps, strategy, law, target_input_speed, _time.perf_counter() - start
+    )
     summary["workers"] = int(workers)
     return CycleResult(steps=pd.DataFrame(steps), summary=summary)
 
@@ -216,11 +299,12 @@ def _output_side(solve, strategy, w2, t2, target, lo, hi, r_lo, r_hi, candidates
         ratio2 = np.where(limited, ratio, np.clip(want / speed_eff, lo, hi))
         w0 = np.where(limited, w2 / ratio, target)
         return ratio2, w0, solve(ratio2, t2, w0)
-    ratio = _best_ratio(lambda r: solve(r, t2, w2 / r, rough=True), t2.size, r_lo, r_hi,
-                        candidates)
+    ratio = _best_ratio(
+        lambda r: solve(r, t2, w2 / r, rough=True), t2.size, r_lo, r_hi, candidates
+    )
     first = solve(ratio, t2, w2 / ratio, rough=True)
     speed_eff = np.where(first["status"] == 0, first["eta_speed"], 1.0)
-    w0 = w2 / (ratio * speed_eff)                   # the output turns at the cycle's speed
+    w0 = w2 / (ratio * speed_eff)  # the output turns at the cycle's speed
     return ratio, w0, solve(ratio, t2, w0)
 
 
@@ -244,9 +328,11 @@ def _best_ratio(evaluate, n, r_lo, r_hi, candidates):
         h = x[1] - x[0]
         with np.errstate(invalid="ignore"):
             denom = np.where(ok, y0 - 2 * y1 + y2, 0.0)
-            shift = np.where(ok & (denom < 0),
-                             0.5 * h * np.where(ok, y0 - y2, 0.0) / np.where(denom < 0, denom,
-                                                                             -1.0), 0.0)
+            shift = np.where(
+                ok & (denom < 0),
+                0.5 * h * np.where(ok, y0 - y2, 0.0) / np.where(denom < 0, denom, -1.0),
+                0.0,
+            )
         ratio[i] = np.exp(x[b] + np.clip(shift, -h, h))
     return ratio
 
@@ -327,32 +413,45 @@ def _summary(variator, cycle, steps, strategy, law, target, run_time) -> dict:
     counted = ok | (steps["flag"] == "ratio_limited") & (steps["status"] == 0)
     e_in = float(np.sum(np.where(counted, steps["input_power"] * dt, 0.0)))
     e_out = float(np.sum(np.where(counted, steps["output_power"] * dt, 0.0)))
-    losses = {k: float(np.sum(np.where(counted, steps[f"loss_{k}"] * dt, 0.0)))
-              for k in LOSS_KINDS}
+    losses = {
+        k: float(np.sum(np.where(counted, steps[f"loss_{k}"] * dt, 0.0))) for k in LOSS_KINDS
+    }
     flags = {}
     for f in FLAGS:
         mask = steps["flag"] == f
         flags[f] = {"steps": int(mask.sum()), "time_s": float(np.sum(dt[mask]))}
     if cycle.kind == "output":
-        demand = np.where(steps["flag"] != "idle", cycle.output_speed * cycle.output_torque,
-                          0.0)
+        demand = np.where(steps["flag"] != "idle", cycle.output_speed * cycle.output_torque, 0.0)
         missing = float(np.sum(np.where(counted, 0.0, np.maximum(demand, 0.0)) * dt))
     else:
-        missing = float(np.sum(np.where(counted | (steps["flag"] == "idle"), 0.0,
-                                        np.maximum(cycle.input_power, 0.0)) * dt))
+        missing = float(
+            np.sum(
+                np.where(
+                    counted | (steps["flag"] == "idle"), 0.0, np.maximum(cycle.input_power, 0.0)
+                )
+                * dt
+            )
+        )
     return {
-        "cycle": cycle.name, "kind": cycle.kind, "duration_s": float(np.sum(dt)),
-        "energy_in_J": e_in, "energy_out_J": e_out,
+        "cycle": cycle.name,
+        "kind": cycle.kind,
+        "duration_s": float(np.sum(dt)),
+        "energy_in_J": e_in,
+        "energy_out_J": e_out,
         "efficiency": e_out / e_in if e_in > 0 else None,
-        "losses_J": losses, "energy_not_delivered_J": missing,
+        "losses_J": losses,
+        "energy_not_delivered_J": missing,
         "steps": int(len(dt)),
-        "steps_flagged": int(sum(v["steps"] for k, v in flags.items() if k not in
-                                 ("ok", "idle"))),
-        "flags": flags, "strategy": strategy if not (cycle.kind == "input"
-                                                     and cycle.ratio is not None)
+        "steps_flagged": int(sum(v["steps"] for k, v in flags.items() if k not in ("ok", "idle"))),
+        "flags": flags,
+        "strategy": strategy
+        if not (cycle.kind == "input" and cycle.ratio is not None)
         else "commanded ratio",
         "target_input_speed_rpm": None if target is None else target * 30 / math.pi,
-        "clamp_law": law.name, "clamp_force": getattr(law, "force", None),
-        "architecture": variator.architecture, "design": variator.design.name,
-        "version": __version__, "run_time_s": run_time,
+        "clamp_law": law.name,
+        "clamp_force": getattr(law, "force", None),
+        "architecture": variator.architecture,
+        "design": variator.design.name,
+        "version": __version__,
+        "run_time_s": run_time,
     }

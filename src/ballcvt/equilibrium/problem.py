@@ -13,14 +13,26 @@ import numpy as np
 from ..bearings.parasitic import parasitic_torques
 from ..contact.hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
 from ..contact.rheology import roelands_pressure_limit
-from ..geometry.kinematics import body_speeds, check_ratio, rolling_radius, \
-    spin_axis_projection, tilt_from_ratio
-from ..geometry.layout import ContactLayout, contact_layout
 from ..errors import InputError
+from ..geometry.kinematics import (
+    body_speeds,
+    check_ratio,
+    rolling_radius,
+    spin_axis_projection,
+    tilt_from_ratio,
+)
+from ..geometry.layout import ContactLayout, contact_layout
 from ..params.models import Design, Fluid
 
-__all__ = ["EquilibriumProblem", "build_problem", "ball_mass", "centrifugal_force",
-           "idler_share", "gyro_factor", "max_carrier_speed"]
+__all__ = [
+    "EquilibriumProblem",
+    "build_problem",
+    "ball_mass",
+    "centrifugal_force",
+    "idler_share",
+    "gyro_factor",
+    "max_carrier_speed",
+]
 
 #: Smallest clamping force [N] and input speed [rad/s] accepted: far below any physical
 #: use (one revolution in 72 days), and above the range where the film thickness and the
@@ -28,8 +40,16 @@ __all__ = ["EquilibriumProblem", "build_problem", "ball_mass", "centrifugal_forc
 MIN_POSITIVE = 1e-6
 
 #: Fields with the batch shape ``(...)`` and with ``(..., n_c)``.
-_BATCH = ("ratio", "tilt", "output_torque", "clamp_force", "input_speed", "ball_drag",
-          "carrier_speed", "gyro_factor")
+_BATCH = (
+    "ratio",
+    "tilt",
+    "output_torque",
+    "clamp_force",
+    "input_speed",
+    "ball_drag",
+    "carrier_speed",
+    "gyro_factor",
+)
 _PER_CONTACT = ("rho", "sz", "load", "ax", "ay", "p_max", "input_drag", "output_drag")
 
 
@@ -113,20 +133,20 @@ class EquilibriumProblem:
         """Number of operating points in the batch."""
         return int(np.prod(self.shape, dtype=int))
 
-    def _map(self, batch, per_contact) -> "EquilibriumProblem":
+    def _map(self, batch, per_contact) -> EquilibriumProblem:
         changes = {n: batch(getattr(self, n)) for n in _BATCH}
         changes.update({n: per_contact(getattr(self, n)) for n in _PER_CONTACT})
         return replace(self, **changes)
 
-    def flat(self) -> "EquilibriumProblem":
+    def flat(self) -> EquilibriumProblem:
         """The same points as a 1-D batch (C order)."""
         return self._map(lambda a: a.reshape(-1), lambda a: a.reshape(-1, a.shape[-1]))
 
-    def take(self, index) -> "EquilibriumProblem":
+    def take(self, index) -> EquilibriumProblem:
         """The points ``index`` (integer or boolean array) of a 1-D batch."""
         return self._map(lambda a: a[index], lambda a: a[index])
 
-    def expand(self) -> "EquilibriumProblem":
+    def expand(self) -> EquilibriumProblem:
         """Insert a trailing batch axis of length 1 (to broadcast over perturbations)."""
         return self._map(lambda a: a[..., None], lambda a: a[..., None, :])
 
@@ -141,10 +161,21 @@ class EquilibriumProblem:
         return self.design.n_rollers * self.clamp_force * self.design.roller_radius
 
 
-def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output_torque,
-                  clamp_force, input_speed, *, carrier_speed=0.0,
-                  torque_weights=(0.0, 1.0), centrifugal: bool = True,
-                  gyroscopic: bool = True, signed_torque: bool = False) -> EquilibriumProblem:
+def build_problem(
+    design: Design,
+    fluid: Fluid,
+    architecture: str,
+    ratio,
+    output_torque,
+    clamp_force,
+    input_speed,
+    *,
+    carrier_speed=0.0,
+    torque_weights=(0.0, 1.0),
+    centrifugal: bool = True,
+    gyroscopic: bool = True,
+    signed_torque: bool = False,
+) -> EquilibriumProblem:
     """Assemble an `EquilibriumProblem`; the four operating inputs broadcast together.
 
     Parameters
@@ -177,8 +208,12 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
     EquilibriumProblem
     """
     layout = contact_layout(design, architecture)
-    ratio, t2, fn0, w0, wc = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (
-        ratio, output_torque, clamp_force, input_speed, carrier_speed)))
+    ratio, t2, fn0, w0, wc = np.broadcast_arrays(
+        *(
+            np.asarray(v, dtype=float)
+            for v in (ratio, output_torque, clamp_force, input_speed, carrier_speed)
+        )
+    )
     weights = (float(torque_weights[0]), float(torque_weights[1]))
     if weights == (0.0, 1.0) and not signed_torque:
         _check("output_torque", t2, "N m", strict=False)
@@ -196,9 +231,13 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
     load = fn0[..., None] * layout.load_factor
     turning = np.any(wc != 0.0)
     if turning and design.parasitic is not None:
-        raise InputError("design.parasitic", "set", "absent with the carrier turning (the "
-                         "shaft drags need the absolute speeds; not modelled yet, "
-                         "docs/model.md §13)")
+        raise InputError(
+            "design.parasitic",
+            "set",
+            "absent with the carrier turning (the "
+            "shaft drags need the absolute speeds; not modelled yet, "
+            "docs/model.md §13)",
+        )
     if turning and centrifugal:
         _check_idler_loads(design, layout, fn0, wc)
         load = load - centrifugal_force(design, wc)[..., None] * idler_share(layout, design)
@@ -206,29 +245,47 @@ def build_problem(design: Design, fluid: Fluid, architecture: str, ratio, output
     _check_pressure(fluid, fn0, p_max)
     # parasitic drags at the creep-free speeds (docs/model.md §12)
     omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
-    ball, drag0, drag2 = parasitic_torques(design, fluid, w0, omega[..., -1], omega_s,
-                                           design.n_rollers * fn0 * np.sin(design.theta0))
+    ball, drag0, drag2 = parasitic_torques(
+        design, fluid, w0, omega[..., -1], omega_s, design.n_rollers * fn0 * np.sin(design.theta0)
+    )
     return EquilibriumProblem(
-        design=design, fluid=fluid, layout=layout, ratio=ratio, tilt=tilt, output_torque=t2,
-        clamp_force=fn0, input_speed=w0, rho=rolling_radius(layout, tilt),
+        design=design,
+        fluid=fluid,
+        layout=layout,
+        ratio=ratio,
+        tilt=tilt,
+        output_torque=t2,
+        clamp_force=fn0,
+        input_speed=w0,
+        rho=rolling_radius(layout, tilt),
         sz=spin_axis_projection(layout, tilt),
-        load=load, radius=layout.radius * rs, rx=rx, ax=ax, ay=ay, p_max=p_max,
-        ball_drag=ball, input_drag=drag0, output_drag=drag2, carrier_speed=wc,
-        gyro_factor=(gyro_factor(design, tilt, wc) if turning and gyroscopic
-                     else np.zeros(wc.shape)),
-        torque_weights=weights)
+        load=load,
+        radius=layout.radius * rs,
+        rx=rx,
+        ax=ax,
+        ay=ay,
+        p_max=p_max,
+        ball_drag=ball,
+        input_drag=drag0,
+        output_drag=drag2,
+        carrier_speed=wc,
+        gyro_factor=(
+            gyro_factor(design, tilt, wc) if turning and gyroscopic else np.zeros(wc.shape)
+        ),
+        torque_weights=weights,
+    )
 
 
 def ball_mass(design: Design) -> float:
     """Mass of one ball, a solid sphere of the design's material [kg]."""
-    return design.material.density * 4.0 / 3.0 * np.pi * design.roller_radius ** 3
+    return design.material.density * 4.0 / 3.0 * np.pi * design.roller_radius**3
 
 
 def centrifugal_force(design: Design, carrier_speed):
     """Centrifugal force on one ball, ``m omega_c^2 R_c``, ``R_c = r_S (1 + k)`` [N]
     (docs/model.md §13), along ``+k``."""
     wc = np.asarray(carrier_speed, dtype=float)
-    return ball_mass(design) * wc ** 2 * design.roller_radius * (1.0 + design.aspect_ratio)
+    return ball_mass(design) * wc**2 * design.roller_radius * (1.0 + design.aspect_ratio)
 
 
 def idler_share(layout: ContactLayout, design: Design) -> np.ndarray:
@@ -251,19 +308,23 @@ def gyro_factor(design: Design, tilt, carrier_speed):
     of Eqs. 19/34), so each carries ``I omega_c omega_S sin(gamma) / r_S`` (docs/model.md
     §13): this factor times ``omega_S`` [N].
     """
-    inertia = 0.4 * ball_mass(design) * design.roller_radius ** 2
-    return (inertia * np.asarray(carrier_speed, dtype=float) * np.sin(tilt)
-            / design.roller_radius)
+    inertia = 0.4 * ball_mass(design) * design.roller_radius**2
+    return inertia * np.asarray(carrier_speed, dtype=float) * np.sin(tilt) / design.roller_radius
 
 
 def max_carrier_speed(design: Design, layout: ContactLayout, clamp_force):
     """Carrier speed at which the balls' centrifugal force unloads the idler contacts
     [rad/s] (docs/model.md §13)."""
     share = idler_share(layout, design)[layout.is_idler]
-    f_max = np.min(np.asarray(clamp_force, dtype=float)[..., None]
-                   * layout.load_factor[layout.is_idler] / share, axis=-1)
-    return np.sqrt(f_max / (ball_mass(design) * design.roller_radius
-                            * (1.0 + design.aspect_ratio)))
+    f_max = np.min(
+        np.asarray(clamp_force, dtype=float)[..., None]
+        * layout.load_factor[layout.is_idler]
+        / share,
+        axis=-1,
+    )
+    return np.sqrt(
+        f_max / (ball_mass(design) * design.roller_radius * (1.0 + design.aspect_ratio))
+    )
 
 
 def _check_idler_loads(design, layout, clamp_force, carrier_speed) -> None:
@@ -272,32 +333,45 @@ def _check_idler_loads(design, layout, clamp_force, carrier_speed) -> None:
     bad = np.abs(carrier_speed) >= w_max
     if np.any(bad):
         i = np.argmax(bad)
-        raise InputError("carrier_speed", float(carrier_speed.flat[i]),
-                         f"|carrier_speed| < {float(w_max.flat[i]):.4g} rad/s at clamp_force "
-                         f"{float(clamp_force.flat[i]):g} N: faster, the balls' centrifugal "
-                         "force lifts them off the idler")
+        raise InputError(
+            "carrier_speed",
+            float(carrier_speed.flat[i]),
+            f"|carrier_speed| < {float(w_max.flat[i]):.4g} rad/s at clamp_force "
+            f"{float(clamp_force.flat[i]):g} N: faster, the balls' centrifugal "
+            "force lifts them off the idler",
+        )
 
 
 def _check_pressure(fluid: Fluid, clamp_force: np.ndarray, p_max: np.ndarray) -> None:
     """Refuse clamping forces whose peak pressure has no finite Roelands viscosity."""
-    p_lim = roelands_pressure_limit(fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure,
-                                    fluid.roelands_index)
+    p_lim = roelands_pressure_limit(
+        fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure, fluid.roelands_index
+    )
     worst = np.max(p_max, axis=-1) if p_max.size else p_max
     bad = worst > p_lim
     if np.any(bad):
         i = np.argmax(np.where(bad, worst, -np.inf))
         f, p = float(clamp_force.flat[i]), float(worst.flat[i])
-        raise InputError("clamp_force", f, f"<= {f * (p_lim / p) ** 3:.4g} N: its peak "
-                         f"pressure {p / 1e9:.4g} GPa exceeds the {p_lim / 1e9:.4g} GPa beyond "
-                         "which the Roelands viscosity (Eq. 51) overflows")
+        raise InputError(
+            "clamp_force",
+            f,
+            f"<= {f * (p_lim / p) ** 3:.4g} N: its peak "
+            f"pressure {p / 1e9:.4g} GPa exceeds the {p_lim / 1e9:.4g} GPa beyond "
+            "which the Roelands viscosity (Eq. 51) overflows",
+        )
 
 
-def _check(name: str, value: np.ndarray, unit: str, strict: bool = True,
-           floor: float = 0.0) -> None:
-    ok = np.isfinite(value) & ((value >= floor) if floor else
-                               (value > 0) if strict else (value >= 0))
+def _check(
+    name: str, value: np.ndarray, unit: str, strict: bool = True, floor: float = 0.0
+) -> None:
+    ok = np.isfinite(value) & (
+        (value >= floor) if floor else (value > 0) if strict else (value >= 0)
+    )
     if not np.all(ok):
         bad = float(value[~ok].flat[0]) if value.ndim else float(value)
-        allowed = (f">= {floor:g} {unit} and finite" if floor else
-                   f"{'>' if strict else '>='} 0 {unit} and finite")
+        allowed = (
+            f">= {floor:g} {unit} and finite"
+            if floor
+            else f"{'>' if strict else '>='} 0 {unit} and finite"
+        )
         raise InputError(name, bad, allowed)

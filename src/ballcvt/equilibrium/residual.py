@@ -28,13 +28,19 @@ import numpy as np
 
 from ..bearings.friction import load_dependent_torque, speed_dependent_torque
 from ..contact.film import central_film_thickness
-from ..contact.quadrature import Quadrature
 from ..contact.laws import law_coefficients
+from ..contact.quadrature import Quadrature
 from ..geometry.kinematics import body_speeds, creep_term, entrainment_factor, spin
 from .problem import EquilibriumProblem
 
-__all__ = ["EquilibriumState", "evaluate", "evaluate_with_jacobian", "residual",
-           "balancing_output_torque", "carrier_reaction_torque"]
+__all__ = [
+    "EquilibriumState",
+    "evaluate",
+    "evaluate_with_jacobian",
+    "residual",
+    "balancing_output_torque",
+    "carrier_reaction_torque",
+]
 
 
 @dataclass(frozen=True)
@@ -92,7 +98,7 @@ class EquilibriumState:
     residual: np.ndarray
     input_drag: np.ndarray
 
-    def take(self, index) -> "EquilibriumState":
+    def take(self, index) -> EquilibriumState:
         """The points ``index`` (integer or boolean array) of a 1-D batch."""
         return EquilibriumState(**{name: np.asarray(v)[index] for name, v in vars(self).items()})
 
@@ -103,8 +109,9 @@ class EquilibriumState:
         return -self.body_torque[..., 0] + self.input_drag
 
 
-def evaluate(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()
-             ) -> EquilibriumState:
+def evaluate(
+    problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()
+) -> EquilibriumState:
     """Evaluate every balance of ``problem`` at the creep vector ``creep``.
 
     Parameters
@@ -122,14 +129,25 @@ def evaluate(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadra
     """
     creep = np.asarray(creep, dtype=float)
     omega_s, omega, sigma, u_ref, film = _contact_inputs(problem, creep)
-    mu, chi = law_coefficients(creep_term(creep), sigma, problem.ax, problem.ay,
-                               problem.p_max, problem.load, problem.radius, u_ref, film,
-                               problem.fluid, quadrature)
+    mu, chi = law_coefficients(
+        creep_term(creep),
+        sigma,
+        problem.ax,
+        problem.ay,
+        problem.p_max,
+        problem.load,
+        problem.radius,
+        u_ref,
+        film,
+        problem.fluid,
+        quadrature,
+    )
     return _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi)
 
 
-def evaluate_with_jacobian(problem: EquilibriumProblem, creep,
-                           quadrature: Quadrature = Quadrature(), step: float = 1e-7):
+def evaluate_with_jacobian(
+    problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature(), step: float = 1e-7
+):
     """`evaluate` and the Jacobian of its residual with respect to the creeps.
 
     The traction integrals, the costly part, are evaluated once with their analytic
@@ -160,26 +178,41 @@ def evaluate_with_jacobian(problem: EquilibriumProblem, creep,
     h = step * np.maximum(np.abs(creep), 1e-4)
     # row 0: the creeps themselves; row j + 1: creep j perturbed by h_j (one pass for all)
     offsets = np.concatenate([np.zeros((1, nc)), np.eye(nc)])
-    pert = creep[..., None, :] + h[..., None, :] * offsets              # (..., 1 + n_c, n_c)
+    pert = creep[..., None, :] + h[..., None, :] * offsets  # (..., 1 + n_c, n_c)
     wide = problem.expand()
     ws, w, sg, u, hf = _contact_inputs(wide, pert)
     c = creep_term(pert)
-    at = (slice(None),) * len(problem.shape) + (0,)                     # row 0 of the wide axis
-    mu, chi, dmu, dchi = law_coefficients(c[at], sg[at], problem.ax, problem.ay,
-                                          problem.p_max, problem.load, problem.radius,
-                                          u[at], hf[at], problem.fluid, quadrature,
-                                          derivatives=True)
+    at = (slice(None),) * len(problem.shape) + (0,)  # row 0 of the wide axis
+    mu, chi, dmu, dchi = law_coefficients(
+        c[at],
+        sg[at],
+        problem.ax,
+        problem.ay,
+        problem.p_max,
+        problem.load,
+        problem.radius,
+        u[at],
+        hf[at],
+        problem.fluid,
+        quadrature,
+        derivatives=True,
+    )
     ex = lambda v: v[..., None, :]  # noqa: E731
-    delta = np.stack([c - ex(c[at]), sg - ex(sg[at]),
-                      np.log(u / ex(u[at])) - np.log(hf / ex(hf[at]))], axis=-1)
+    delta = np.stack(
+        [c - ex(c[at]), sg - ex(sg[at]), np.log(u / ex(u[at])) - np.log(hf / ex(hf[at]))], axis=-1
+    )
     mu_p = ex(mu) + np.sum(dmu[..., None, :, :] * delta, axis=-1)
     chi_p = ex(chi) + np.sum(dchi[..., None, :, :] * delta, axis=-1)
     mu_p[at], chi_p[at] = mu, chi
     wide_state = _balances(wide, pert, ws, w, sg, u, hf, mu_p, chi_p)
-    state = EquilibriumState(**{name: np.asarray(v)[at] if np.ndim(v) > len(at) - 1 else v
-                                for name, v in vars(wide_state).items()})
+    state = EquilibriumState(
+        **{
+            name: np.asarray(v)[at] if np.ndim(v) > len(at) - 1 else v
+            for name, v in vars(wide_state).items()
+        }
+    )
     res = wide_state.residual
-    jac = (res[..., 1:, :] - res[..., :1, :]) / h[..., :, None]        # (..., j, i)
+    jac = (res[..., 1:, :] - res[..., :1, :]) / h[..., :, None]  # (..., j, i)
     return state, np.swapaxes(jac, -1, -2)
 
 
@@ -189,10 +222,15 @@ def _contact_inputs(problem: EquilibriumProblem, creep):
     omega_s, omega = body_speeds(lay, problem.tilt, creep, problem.input_speed)
     sigma = spin(lay, problem.tilt, omega_s, omega)
     u_ref = np.abs(omega) * problem.radius
-    film = central_film_thickness(fl.viscosity, fl.pressure_viscosity_coefficient,
-                                  problem.reduced_modulus, problem.rx,
-                                  u_ref * entrainment_factor(creep), problem.load,
-                                  problem.ay / problem.ax)
+    film = central_film_thickness(
+        fl.viscosity,
+        fl.pressure_viscosity_coefficient,
+        problem.reduced_modulus,
+        problem.rx,
+        u_ref * entrainment_factor(creep),
+        problem.load,
+        problem.ay / problem.ax,
+    )
     return omega_s, omega, sigma, u_ref, film
 
 
@@ -208,15 +246,19 @@ def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> Eq
     axle = np.stack([0.5 * (f_sum + 2.0 * m_u / rs), 0.5 * (f_sum - 2.0 * m_u / rs)], axis=-1)
     bm, nu = des.bearings, fl.kinematic_viscosity
     # with the carrier turning, the axle ends also carry the gyroscopic moment (§13)
-    bearing_load = (np.hypot(axle, (pb.gyro_factor * omega_s)[..., None])
-                    if np.any(pb.gyro_factor) else axle)
-    t_bls = (2.0 * speed_dependent_torque(omega_s, des.roller_bearing_diameter, nu, bm)
-             + np.sum(load_dependent_torque(bearing_load, des.roller_bearing_diameter, bm),
-                      axis=-1))
+    bearing_load = (
+        np.hypot(axle, (pb.gyro_factor * omega_s)[..., None]) if np.any(pb.gyro_factor) else axle
+    )
+    t_bls = 2.0 * speed_dependent_torque(omega_s, des.roller_bearing_diameter, nu, bm) + np.sum(
+        load_dependent_torque(bearing_load, des.roller_bearing_diameter, bm), axis=-1
+    )
     idler_thrust = n * pb.load * np.abs(lay.z_j)
-    t_bl = np.where(lay.is_idler,
-                    speed_dependent_torque(omega, des.idler_bearing_diameter, nu, bm)
-                    + load_dependent_torque(idler_thrust, des.idler_bearing_diameter, bm), 0.0)
+    t_bl = np.where(
+        lay.is_idler,
+        speed_dependent_torque(omega, des.idler_bearing_diameter, nu, bm)
+        + load_dependent_torque(idler_thrust, des.idler_bearing_diameter, bm),
+        0.0,
+    )
     body = n * (-force * pb.radius - moment * lay.z_j)
     scale = pb.torque_scale[..., None]
     res = np.empty(body.shape)
@@ -226,18 +268,32 @@ def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> Eq
     res[..., 1:-1] = ((body - np.sign(omega) * t_bl) / scale)[..., 1:-1]
     input_drag = np.sum(pb.input_drag, axis=-1)
     if pb.torque_weights == (0.0, 1.0):
-        res[..., -1] = ((body[..., -1] - (pb.output_torque + np.sum(pb.output_drag, axis=-1)))
-                        / scale[..., 0])
-    else:    # the torque condition a T_0 + b T_2 = target of a planetary mode (§13)
+        res[..., -1] = (
+            body[..., -1] - (pb.output_torque + np.sum(pb.output_drag, axis=-1))
+        ) / scale[..., 0]
+    else:  # the torque condition a T_0 + b T_2 = target of a planetary mode (§13)
         a, b = pb.torque_weights
         t0 = -body[..., 0] + input_drag
         t2 = body[..., -1] - np.sum(pb.output_drag, axis=-1)
         res[..., -1] = (a * t0 + b * t2 - pb.output_torque) / scale[..., 0]
-    return EquilibriumState(creep=creep, omega_s=omega_s, omega=omega, spin=sigma, u_ref=u_ref,
-                            film=film, mu=mu, chi=chi, force=force, moment=moment,
-                            body_torque=body, axle_reactions=axle, roller_bearing_torque=t_bls,
-                            idler_bearing_torque=t_bl, residual=res,
-                            input_drag=input_drag)
+    return EquilibriumState(
+        creep=creep,
+        omega_s=omega_s,
+        omega=omega,
+        spin=sigma,
+        u_ref=u_ref,
+        film=film,
+        mu=mu,
+        chi=chi,
+        force=force,
+        moment=moment,
+        body_torque=body,
+        axle_reactions=axle,
+        roller_bearing_torque=t_bls,
+        idler_bearing_torque=t_bl,
+        residual=res,
+        input_drag=input_drag,
+    )
 
 
 def residual(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()):
@@ -269,7 +325,10 @@ def carrier_reaction_torque(problem: EquilibriumProblem, state: EquilibriumState
     rc = rs * (1.0 + des.aspect_ratio)
     fa, fb = state.axle_reactions[..., 0], state.axle_reactions[..., 1]
     g = problem.tilt
-    inner = n * (-rc * (fa + fb) + 0.5 * rs * np.sin(g) * (fa - fb)
-                 + np.sign(state.omega_s) * state.roller_bearing_torque * np.cos(g))
+    inner = n * (
+        -rc * (fa + fb)
+        + 0.5 * rs * np.sin(g) * (fa - fb)
+        + np.sign(state.omega_s) * state.roller_bearing_torque * np.cos(g)
+    )
     inner = inner + np.sum(np.sign(state.omega) * state.idler_bearing_torque, axis=-1)
     return -inner

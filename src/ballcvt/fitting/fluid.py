@@ -40,21 +40,47 @@ from ..contact.quadrature import Quadrature
 from ..errors import InputError
 from ..params.models import Fluid
 
-__all__ = ["COLUMNS", "DEFAULT_PARAMETERS", "FITTABLE", "Curves", "FluidFit", "read_curves",
-           "fit_fluid", "model_mu"]
+__all__ = [
+    "COLUMNS",
+    "DEFAULT_PARAMETERS",
+    "FITTABLE",
+    "Curves",
+    "FluidFit",
+    "read_curves",
+    "fit_fluid",
+    "model_mu",
+]
 
 #: Columns of a curves file, in order, and their units.
-COLUMNS = {"condition": "-", "rx": "m", "ry": "m", "load": "N", "speed": "m/s", "spin": "-",
-           "creep": "-", "mu": "-"}
+COLUMNS = {
+    "condition": "-",
+    "rx": "m",
+    "ry": "m",
+    "load": "N",
+    "speed": "m/s",
+    "spin": "-",
+    "creep": "-",
+    "mu": "-",
+}
 #: Fluid fields a fit may adjust.
-FITTABLE = ("viscosity", "roelands_index", "limiting_shear_stress", "limiting_shear_slope",
-            "temperature_viscosity_coefficient", "limiting_shear_temperature_coefficient",
-            "thermal_conductivity", "shear_modulus")
+FITTABLE = (
+    "viscosity",
+    "roelands_index",
+    "limiting_shear_stress",
+    "limiting_shear_slope",
+    "temperature_viscosity_coefficient",
+    "limiting_shear_temperature_coefficient",
+    "thermal_conductivity",
+    "shear_modulus",
+)
 #: Parameters fitted by default under each law.
 DEFAULT_PARAMETERS = {
     "isothermal": ("limiting_shear_stress", "limiting_shear_slope"),
-    "thermal": ("limiting_shear_stress", "limiting_shear_slope",
-                "temperature_viscosity_coefficient"),
+    "thermal": (
+        "limiting_shear_stress",
+        "limiting_shear_slope",
+        "temperature_viscosity_coefficient",
+    ),
     "viscoelastic": ("limiting_shear_stress", "limiting_shear_slope", "shear_modulus"),
 }
 #: Identifiability thresholds: relative standard error and |correlation|.
@@ -89,55 +115,111 @@ def read_curves(path) -> Curves:
         One line naming the file, the row or column and what is wrong.
     """
     import pandas as pd
+
     try:
         frame = pd.read_csv(path, skipinitialspace=True, comment="#")
     except FileNotFoundError:
-        raise InputError("curves file", str(path), "an existing CSV file",
-                         message=f"curves file {path}: not found") from None
+        raise InputError(
+            "curves file",
+            str(path),
+            "an existing CSV file",
+            message=f"curves file {path}: not found",
+        ) from None
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
-        raise InputError("curves file", str(path), "CSV", message=f"curves file {path}: "
-                         f"not a CSV table ({str(exc).splitlines()[0]})") from None
+        raise InputError(
+            "curves file",
+            str(path),
+            "CSV",
+            message=f"curves file {path}: not a CSV table ({str(exc).splitlines()[0]})",
+        ) from None
     frame.columns = [str(c).split("[")[0].strip() for c in frame.columns]
     missing = [c for c in COLUMNS if c not in frame.columns]
     if missing:
-        raise InputError(missing[0], None, "a column", message=(
-            f"curves file {path}: column '{missing[0]}' is missing (columns: "
-            + ", ".join(f"{c} [{u}]" for c, u in COLUMNS.items()) + ")"))
+        raise InputError(
+            missing[0],
+            None,
+            "a column",
+            message=(
+                f"curves file {path}: column '{missing[0]}' is missing (columns: "
+                + ", ".join(f"{c} [{u}]" for c, u in COLUMNS.items())
+                + ")"
+            ),
+        )
     if len(frame) == 0:
-        raise InputError("curves file", str(path), "at least one row",
-                         message=f"curves file {path}: no data rows")
+        raise InputError(
+            "curves file",
+            str(path),
+            "at least one row",
+            message=f"curves file {path}: no data rows",
+        )
     data = {"condition": frame["condition"].astype(str).to_numpy()}
     for name in list(COLUMNS)[1:]:
         values = pd.to_numeric(frame[name], errors="coerce").to_numpy(dtype=float)
         bad = np.flatnonzero(~np.isfinite(values))
         if bad.size:
-            raise InputError(name, frame[name].iloc[bad[0]], "a finite number", message=(
-                f"curves file {path}, row {bad[0] + 2}: {name} = {frame[name].iloc[bad[0]]!r} "
-                "is not a finite number"))
+            raise InputError(
+                name,
+                frame[name].iloc[bad[0]],
+                "a finite number",
+                message=(
+                    f"curves file {path}, row {bad[0] + 2}: {name} = {frame[name].iloc[bad[0]]!r} "
+                    "is not a finite number"
+                ),
+            )
         data[name] = values
     for name in ("rx", "ry", "load", "speed"):
         bad = np.flatnonzero(data[name] <= 0)
         if bad.size:
-            raise InputError(name, data[name][bad[0]], "> 0", message=(
-                f"curves file {path}, row {bad[0] + 2}: {name} = {data[name][bad[0]]:g} "
-                f"[{COLUMNS[name]}] is out of range: allowed > 0"))
+            raise InputError(
+                name,
+                data[name][bad[0]],
+                "> 0",
+                message=(
+                    f"curves file {path}, row {bad[0] + 2}: {name} = {data[name][bad[0]]:g} "
+                    f"[{COLUMNS[name]}] is out of range: allowed > 0"
+                ),
+            )
     bad = np.flatnonzero(np.abs(data["creep"]) >= 2)
     if bad.size:
-        raise InputError("creep", data["creep"][bad[0]], "|creep| < 2", message=(
-            f"curves file {path}, row {bad[0] + 2}: creep = {data['creep'][bad[0]]:g} is out "
-            "of range: allowed |creep| < 2"))
+        raise InputError(
+            "creep",
+            data["creep"][bad[0]],
+            "|creep| < 2",
+            message=(
+                f"curves file {path}, row {bad[0] + 2}: creep = {data['creep'][bad[0]]:g} is out "
+                "of range: allowed |creep| < 2"
+            ),
+        )
     return Curves(**data)
 
 
-def model_mu(fluid: Fluid, curves: Curves, reduced_modulus: float,
-             quadrature: Quadrature = Quadrature()) -> np.ndarray:
+def model_mu(
+    fluid: Fluid, curves: Curves, reduced_modulus: float, quadrature: Quadrature = Quadrature()
+) -> np.ndarray:
     """Modelled traction coefficient at every point of ``curves`` [-] (one batched call)."""
     ax, ay, pm, _ = hertz_contact(curves.load, curves.rx, curves.ry, reduced_modulus)
-    film = central_film_thickness(fluid.viscosity, fluid.pressure_viscosity_coefficient,
-                                  reduced_modulus, curves.rx, curves.speed, curves.load,
-                                  ay / ax)
-    mu, _ = law_coefficients(curves.creep, curves.spin, ax, ay, pm, curves.load, curves.rx,
-                             curves.speed, film, fluid, quadrature)
+    film = central_film_thickness(
+        fluid.viscosity,
+        fluid.pressure_viscosity_coefficient,
+        reduced_modulus,
+        curves.rx,
+        curves.speed,
+        curves.load,
+        ay / ax,
+    )
+    mu, _ = law_coefficients(
+        curves.creep,
+        curves.spin,
+        ax,
+        ay,
+        pm,
+        curves.load,
+        curves.rx,
+        curves.speed,
+        film,
+        fluid,
+        quadrature,
+    )
     return np.asarray(mu)
 
 
@@ -178,13 +260,19 @@ class FluidFit:
 
     def as_dict(self) -> dict:
         """JSON-ready summary (no arrays of points)."""
-        return {"fluid": self.fluid.name, "traction_law": self.fluid.traction_law,
-                "parameters": list(self.parameters),
-                "estimates": self.estimates, "standard_errors": self.standard_errors,
-                "units": {p: Fluid.unit(p) for p in self.parameters},
-                "correlation": np.round(self.correlation, 6).tolist(), "rms": self.rms,
-                "points": int(self.model.size), "converged": self.converged,
-                "warnings": list(self.warnings)}
+        return {
+            "fluid": self.fluid.name,
+            "traction_law": self.fluid.traction_law,
+            "parameters": list(self.parameters),
+            "estimates": self.estimates,
+            "standard_errors": self.standard_errors,
+            "units": {p: Fluid.unit(p) for p in self.parameters},
+            "correlation": np.round(self.correlation, 6).tolist(),
+            "rms": self.rms,
+            "points": int(self.model.size),
+            "converged": self.converged,
+            "warnings": list(self.warnings),
+        }
 
 
 def _bounds(name: str) -> tuple[float, float]:
@@ -200,8 +288,14 @@ def _bounds(name: str) -> tuple[float, float]:
     return math.log(max(lo, 1e-300)), (math.log(hi) - 1e-9 if math.isfinite(hi) else math.inf)
 
 
-def fit_fluid(curves: Curves, fluid: Fluid, parameters=None, *, reduced_modulus: float,
-              quadrature: Quadrature = Quadrature()) -> FluidFit:
+def fit_fluid(
+    curves: Curves,
+    fluid: Fluid,
+    parameters=None,
+    *,
+    reduced_modulus: float,
+    quadrature: Quadrature = Quadrature(),
+) -> FluidFit:
     """Least-squares fit of ``fluid``'s parameters to measured traction curves.
 
     Parameters
@@ -222,13 +316,18 @@ def fit_fluid(curves: Curves, fluid: Fluid, parameters=None, *, reduced_modulus:
     FluidFit
     """
     from scipy.optimize import least_squares
+
     names = tuple(parameters or DEFAULT_PARAMETERS[fluid.traction_law])
     for name in names:
         if name not in FITTABLE:
             raise InputError("parameters", name, "one of " + ", ".join(FITTABLE))
         if getattr(fluid, name) is None or getattr(fluid, name) <= 0:
-            raise InputError(name, getattr(fluid, name), "a start value > 0", message=(
-                f"{name} needs a start value > 0 in the fluid to be fitted"))
+            raise InputError(
+                name,
+                getattr(fluid, name),
+                "a start value > 0",
+                message=(f"{name} needs a start value > 0 in the fluid to be fitted"),
+            )
     if curves.size <= len(names):
         raise InputError("curves", curves.size, f"more points than parameters ({len(names)})")
     base = fluid.model_dump()
@@ -241,8 +340,16 @@ def fit_fluid(curves: Curves, fluid: Fluid, parameters=None, *, reduced_modulus:
     def residual(x):
         return model_mu(make(x), curves, reduced_modulus, quadrature) - curves.mu
 
-    sol = least_squares(residual, x0, bounds=(lo, hi), x_scale="jac", diff_step=1e-6,
-                        xtol=1e-10, ftol=1e-12, gtol=1e-12)
+    sol = least_squares(
+        residual,
+        x0,
+        bounds=(lo, hi),
+        x_scale="jac",
+        diff_step=1e-6,
+        xtol=1e-10,
+        ftol=1e-12,
+        gtol=1e-12,
+    )
     fitted = make(sol.x)
     res = sol.fun
     m, p = res.size, len(names)
@@ -262,17 +369,27 @@ def fit_fluid(curves: Curves, fluid: Fluid, parameters=None, *, reduced_modulus:
         others = [(abs(corr[i, j]), names[j]) for j in range(p) if j != i]
         worst = max(others) if others else (0.0, "")
         if rank < p and se_log[i] == 0:
-            notes.append(f"{name} is not identifiable from these data: the curves do not "
-                         "depend on it")
+            notes.append(
+                f"{name} is not identifiable from these data: the curves do not depend on it"
+            )
         elif rel > MAX_RELATIVE_ERROR:
-            notes.append(f"{name} is not identifiable from these data: relative standard "
-                         f"error {rel:.0%}")
+            notes.append(
+                f"{name} is not identifiable from these data: relative standard error {rel:.0%}"
+            )
         elif worst[0] > MAX_CORRELATION:
-            notes.append(f"{name} is not identifiable from these data: correlation "
-                         f"{worst[0]:.3f} with {worst[1]}")
-    return FluidFit(fluid=fitted, parameters=names,
-                    estimates={n: float(v) for n, v in zip(names, values)},
-                    standard_errors={n: float(v * s) for n, v, s in zip(names, values, se_log)},
-                    correlation=corr, rms=float(np.sqrt(np.mean(res**2))),
-                    model=res + curves.mu, residuals=res, warnings=tuple(notes),
-                    converged=bool(sol.success))
+            notes.append(
+                f"{name} is not identifiable from these data: correlation "
+                f"{worst[0]:.3f} with {worst[1]}"
+            )
+    return FluidFit(
+        fluid=fitted,
+        parameters=names,
+        estimates={n: float(v) for n, v in zip(names, values)},
+        standard_errors={n: float(v * s) for n, v, s in zip(names, values, se_log)},
+        correlation=corr,
+        rms=float(np.sqrt(np.mean(res**2))),
+        model=res + curves.mu,
+        residuals=res,
+        warnings=tuple(notes),
+        converged=bool(sol.success),
+    )

@@ -98,8 +98,12 @@ def check_ratio(design: Design, ratio) -> None:
     bad = ~((r >= lo * (1 - 1e-12)) & (r <= hi * (1 + 1e-12)))
     if np.any(bad):
         value = float(r[bad].flat[0]) if r.ndim else float(r)
-        raise InputError("ratio", value, f"{lo:.4g} <= ratio <= {hi:.4g} (tilt within "
-                         f"{design.tilt_safety_factor:g} x the Eq. 6 limits)")
+        raise InputError(
+            "ratio",
+            value,
+            f"{lo:.4g} <= ratio <= {hi:.4g} (tilt within "
+            f"{design.tilt_safety_factor:g} x the Eq. 6 limits)",
+        )
 
 
 def spin_axis_projection(layout: ContactLayout, tilt):
@@ -155,8 +159,9 @@ def body_speeds(layout: ContactLayout, tilt, creep, input_speed):
     w0 = np.asarray(input_speed, dtype=float)
     omega_s = w0 * layout.radius[0] * (1.0 - creep[..., 0]) / rho[..., 0]
     omega = omega_s[..., None] * rho * (1.0 - creep) / layout.radius
-    omega = np.concatenate([np.broadcast_to(w0, omega_s.shape)[..., None], omega[..., 1:]],
-                           axis=-1)
+    omega = np.concatenate(
+        [np.broadcast_to(w0, omega_s.shape)[..., None], omega[..., 1:]], axis=-1
+    )
     return omega_s, omega
 
 

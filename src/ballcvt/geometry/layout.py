@@ -96,27 +96,43 @@ def contact_layout(design: Design, architecture: str) -> ContactLayout:
     check_architecture(design, architecture)
     k = design.aspect_ratio
     t0, t2, al = design.theta0, design.theta2, design.alpha
-    f2 = np.sin(t0) / np.sin(t2)                                     # Eq. 29
+    f2 = np.sin(t0) / np.sin(t2)  # Eq. 29
     if architecture == "double":
-        fa = np.sin(t0 + t2) / (2.0 * np.cos(al) * np.sin(t2))       # Eq. 29
+        fa = np.sin(t0 + t2) / (2.0 * np.cos(al) * np.sin(t2))  # Eq. 29
         z_j = [-np.sin(t0), -np.sin(al), np.sin(al), np.sin(t2)]
         z_k = [np.cos(t0), -np.cos(al), -np.cos(al), np.cos(t2)]
         radius = [1 + k + np.cos(t0), 1 + k - np.cos(al), 1 + k - np.cos(al), 1 + k + np.cos(t2)]
         kappa = [1.0, 1.0, 1.0, -1.0]
         load = [1.0, fa, fa, f2]
-        groove = [design.disc_groove_ratio, design.idler_groove_ratio,
-                  design.idler_groove_ratio, design.disc_groove_ratio]
+        groove = [
+            design.disc_groove_ratio,
+            design.idler_groove_ratio,
+            design.idler_groove_ratio,
+            design.disc_groove_ratio,
+        ]
     else:
-        f1 = np.cos(t0) + f2 * np.cos(t2)                            # radial balance
+        f1 = np.cos(t0) + f2 * np.cos(t2)  # radial balance
         z_j = [-np.sin(t0), 0.0, np.sin(t2)]
         z_k = [np.cos(t0), -1.0, np.cos(t2)]
         radius = [1 + k + np.cos(t0), k, 1 + k + np.cos(t2)]
         kappa = [1.0, 1.0, -1.0]
         load = [1.0, f1, f2]
-        groove = [design.disc_groove_ratio, design.single_idler_groove_ratio,
-                  design.disc_groove_ratio]
+        groove = [
+            design.disc_groove_ratio,
+            design.single_idler_groove_ratio,
+            design.disc_groove_ratio,
+        ]
     names = CONTACT_NAMES[architecture]
     is_idler = np.array([n.startswith("idler") for n in names])
     arr = lambda v: np.asarray(v, dtype=float)  # noqa: E731
-    return ContactLayout(architecture, names, arr(z_j), arr(z_k), arr(radius), arr(kappa),
-                         arr(load), arr(groove), is_idler)
+    return ContactLayout(
+        architecture,
+        names,
+        arr(z_j),
+        arr(z_k),
+        arr(radius),
+        arr(kappa),
+        arr(load),
+        arr(groove),
+        is_idler,
+    )

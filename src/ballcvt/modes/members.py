@@ -84,8 +84,9 @@ class OperatingMode:
         if not np.isfinite(self.held_speed):
             raise InputError("held_speed", self.held_speed, "finite (rad/s)")
         if self.driver == self.held:
-            raise InputError("driver", self.driver,
-                             f"a member other than the held one ({self.held})")
+            raise InputError(
+                "driver", self.driver, f"a member other than the held one ({self.held})"
+            )
 
     @property
     def driven(self) -> str:
@@ -100,8 +101,11 @@ class OperatingMode:
     @property
     def label(self) -> str:
         """E.g. ``"disc2 held, carrier drives disc0"``."""
-        held = ("held" if self.held_speed == 0.0 else
-                f"at {self.held_speed:g} rad/s (free differential)")
+        held = (
+            "held"
+            if self.held_speed == 0.0
+            else f"at {self.held_speed:g} rad/s (free differential)"
+        )
         return f"{self.held} {held}, {self.driver} drives {self.driven}"
 
     def speeds(self, driver_speed, ratio, check: bool = True) -> dict:
@@ -132,18 +136,26 @@ class OperatingMode:
         c = relative_ratio_coefficients(ratio)
         w = np.asarray(driver_speed, dtype=float)
         den = c[self.driven]
-        if not check:                       # batches: infinite speeds become inf or NaN
+        if not check:  # batches: infinite speeds become inf or NaN
             den = np.where(np.abs(den) < 1e-9, 0.0, den)
         elif np.any(np.abs(den) < 1e-9):
-            bad = float(np.asarray(ratio, dtype=float)[np.abs(den) < 1e-9].flat[0]) \
-                if np.ndim(ratio) else float(ratio)
-            raise InputError("ratio", bad, f"!= 1: with {self.held} held and {self.driver} "
-                             f"driving, the {self.driven} would turn infinitely fast there")
+            bad = (
+                float(np.asarray(ratio, dtype=float)[np.abs(den) < 1e-9].flat[0])
+                if np.ndim(ratio)
+                else float(ratio)
+            )
+            raise InputError(
+                "ratio",
+                bad,
+                f"!= 1: with {self.held} held and {self.driver} "
+                f"driving, the {self.driven} would turn infinitely fast there",
+            )
         shape = np.broadcast(w, den).shape
-        out = {self.held: np.full(shape, self.held_speed),
-               self.driver: np.broadcast_to(w, shape).astype(float),
-               self.driven: _divide(-(c[self.driver] * w + c[self.held] * self.held_speed),
-                                    den)}
+        out = {
+            self.held: np.full(shape, self.held_speed),
+            self.driver: np.broadcast_to(w, shape).astype(float),
+            self.driven: _divide(-(c[self.driver] * w + c[self.held] * self.held_speed), den),
+        }
         return {m: out[m] for m in MEMBERS}
 
     def torque_condition(self, load_torque):
@@ -159,8 +171,11 @@ class OperatingMode:
         (a, b, target) : (float, float, ndarray)
         """
         load = np.asarray(load_torque, dtype=float)
-        return {"disc2": (0.0, 1.0, load), "disc0": (1.0, 0.0, -load),
-                "carrier": (-1.0, 1.0, -load)}[self.driven]
+        return {
+            "disc2": (0.0, 1.0, load),
+            "disc0": (1.0, 0.0, -load),
+            "carrier": (-1.0, 1.0, -load),
+        }[self.driven]
 
 
 def member_torques(input_torque, output_torque) -> dict:

@@ -56,12 +56,20 @@ class ClampOptimum:
     active: str
 
 
-def optimal_clamp_force(design: Design, fluid: Fluid, architecture: str, ratio: float,
-                        output_torque: float, input_speed: float,
-                        options: SolverOptions = SolverOptions(),
-                        creep_limit: float | None = None, max_pressure: float | None = None,
-                        min_force: float = 100.0, grid: int = 24,
-                        xtol: float = 1.0) -> ClampOptimum:
+def optimal_clamp_force(
+    design: Design,
+    fluid: Fluid,
+    architecture: str,
+    ratio: float,
+    output_torque: float,
+    input_speed: float,
+    options: SolverOptions = SolverOptions(),
+    creep_limit: float | None = None,
+    max_pressure: float | None = None,
+    min_force: float = 100.0,
+    grid: int = 24,
+    xtol: float = 1.0,
+) -> ClampOptimum:
     """Clamping force of maximum efficiency under the creep and pressure limits.
 
     Parameters
@@ -111,8 +119,7 @@ def optimal_clamp_force(design: Design, fluid: Fluid, architecture: str, ratio: 
 
     def evaluate(forces, x0=None):
         forces = np.atleast_1d(np.asarray(forces, dtype=float))
-        pb = build_problem(design, fluid, architecture, ratio, output_torque, forces,
-                           input_speed)
+        pb = build_problem(design, fluid, architecture, ratio, output_torque, forces, input_speed)
         sol = solve_batch(pb, options, x0)
         eta = efficiency(pb, sol.state).overall
         creep = np.max(np.abs(sol.state.creep), axis=-1)
@@ -123,19 +130,25 @@ def optimal_clamp_force(design: Design, fluid: Fluid, architecture: str, ratio: 
     ref = build_problem(design, fluid, architecture, ratio, 0.0, 1000.0, input_speed)
     f_p = 1000.0 * (p_lim / float(np.max(ref.p_max))) ** 3
     if f_p <= min_force:
-        raise InputError("max_pressure", p_lim, f"a value reached above min_force = "
-                         f"{min_force:g} N (p_max at {min_force:g} N is "
-                         f"{np.max(ref.p_max) * (min_force / 1000.0) ** (1 / 3):.3g} Pa)")
+        raise InputError(
+            "max_pressure",
+            p_lim,
+            f"a value reached above min_force = "
+            f"{min_force:g} N (p_max at {min_force:g} N is "
+            f"{np.max(ref.p_max) * (min_force / 1000.0) ** (1 / 3):.3g} Pa)",
+        )
     forces = np.geomspace(min_force, f_p, grid)
     eta, *_ = evaluate(forces)
     feasible = np.isfinite(eta)
     if not feasible.any():
-        raise TractionLimitError(float(output_torque), float("nan"),
-                                 f" at ratio {ratio:g} for any clamping force up to the "
-                                 f"pressure limit ({f_p:.0f} N)")
+        raise TractionLimitError(
+            float(output_torque),
+            float("nan"),
+            f" at ratio {ratio:g} for any clamping force up to the pressure limit ({f_p:.0f} N)",
+        )
     first = int(np.argmax(feasible))
     f_c = forces[first]
-    if first > 0:                                   # creep bound by bisection
+    if first > 0:  # creep bound by bisection
         lo, hi = forces[first - 1], forces[first]
         while hi - lo > xtol:
             mid = 0.5 * (lo + hi)
@@ -149,8 +162,10 @@ def optimal_clamp_force(design: Design, fluid: Fluid, architecture: str, ratio: 
     b = forces[min(best + 1, grid - 1)]
     if b - a > xtol:
         from scipy.optimize import minimize_scalar  # loaded when needed (0.4 s import)
-        res = minimize_scalar(lambda f: -evaluate(f)[0][0], bounds=(a, b), method="bounded",
-                              options={"xatol": xtol})
+
+        res = minimize_scalar(
+            lambda f: -evaluate(f)[0][0], bounds=(a, b), method="bounded", options={"xatol": xtol}
+        )
         f_opt = float(res.x)
     else:
         f_opt = float(a)
@@ -158,8 +173,18 @@ def optimal_clamp_force(design: Design, fluid: Fluid, architecture: str, ratio: 
     etas, creep, pmax, _ = evaluate(candidates)
     k = int(np.argmax(etas))
     f_opt = float(candidates[k])
-    active = ("creep" if abs(f_opt - f_c) <= 2 * xtol and first > 0 else
-              "pressure" if abs(f_opt - f_p) <= 2 * xtol else "none")
-    return ClampOptimum(clamp_force=f_opt, eta=float(etas[k]), max_creep=float(creep[k]),
-                        max_pressure=float(pmax[k]), bounds=(float(f_c), float(f_p)),
-                        active=active)
+    active = (
+        "creep"
+        if abs(f_opt - f_c) <= 2 * xtol and first > 0
+        else "pressure"
+        if abs(f_opt - f_p) <= 2 * xtol
+        else "none"
+    )
+    return ClampOptimum(
+        clamp_force=f_opt,
+        eta=float(etas[k]),
+        max_creep=float(creep[k]),
+        max_pressure=float(pmax[k]),
+        bounds=(float(f_c), float(f_p)),
+        active=active,
+    )

@@ -1,10 +1,34 @@
 """Layer 0: parameter sets (design, material, bearings, fluid, operating point)."""
 
 from .io import BUILTIN_DRIVES, builtin_text, drive_to_toml, load_builtin, load_drive, parse_drive
-from .models import (ARCHITECTURES, Architecture, BearingModel, CamModel, Design, Fluid,
-                     Material, OperatingPoint, ParameterModel, ParasiticModel)
+from .models import (
+    ARCHITECTURES,
+    Architecture,
+    BearingModel,
+    CamModel,
+    Design,
+    Fluid,
+    Material,
+    OperatingPoint,
+    ParameterModel,
+    ParasiticModel,
+)
 
-__all__ = ["ARCHITECTURES", "Architecture", "BearingModel", "CamModel", "Design", "Fluid",
-           "Material", "OperatingPoint", "ParameterModel", "ParasiticModel",
-           "BUILTIN_DRIVES", "builtin_text",
-           "drive_to_toml", "load_builtin", "load_drive", "parse_drive"]
+__all__ = [
+    "ARCHITECTURES",
+    "Architecture",
+    "BearingModel",
+    "CamModel",
+    "Design",
+    "Fluid",
+    "Material",
+    "OperatingPoint",
+    "ParameterModel",
+    "ParasiticModel",
+    "BUILTIN_DRIVES",
+    "builtin_text",
+    "drive_to_toml",
+    "load_builtin",
+    "load_drive",
+    "parse_drive",
+]

@@ -57,21 +57,33 @@ def check_design(d) -> None:
     """
     rs, g = d.roller_radius, d.min_ball_gap
     n_max = max_balls(d.aspect_ratio, rs, g)
-    if d.n_rollers > n_max:                                                 # Eq. F1
-        raise InputError("n_rollers", d.n_rollers,
-                         f"<= {n_max} (balls of radius {rs:g} m on a circle of radius "
-                         f"{rs * (1 + d.aspect_ratio):g} m with gaps >= min_ball_gap = {g:g} m)")
+    if d.n_rollers > n_max:  # Eq. F1
+        raise InputError(
+            "n_rollers",
+            d.n_rollers,
+            f"<= {n_max} (balls of radius {rs:g} m on a circle of radius "
+            f"{rs * (1 + d.aspect_ratio):g} m with gaps >= min_ball_gap = {g:g} m)",
+        )
     if d.n_rollers < 3:
-        raise InputError("n_rollers", d.n_rollers, ">= 3 (fewer balls cannot centre the discs "
-                         "and the idler radially)")
-    sep = rs * (math.sin(d.theta0) + math.sin(d.theta2))                     # Eq. F2
+        raise InputError(
+            "n_rollers",
+            d.n_rollers,
+            ">= 3 (fewer balls cannot centre the discs and the idler radially)",
+        )
+    sep = rs * (math.sin(d.theta0) + math.sin(d.theta2))  # Eq. F2
     if sep < g:
-        raise InputError("theta0_deg + theta2_deg", f"{d.theta0_deg:g} + {d.theta2_deg:g}",
-                         f"disc contacts at least min_ball_gap = {g:g} m apart along the axis "
-                         f"(r_S (sin theta0 + sin theta2) = {sep:.3g} m)")
-    if d.roller_bearing_diameter >= 2.0 * rs:                               # Eq. F3
-        raise InputError("roller_bearing_diameter", d.roller_bearing_diameter,
-                         f"< 2 r_S = {2 * rs:g} m (the axle bearing sits inside the ball)")
+        raise InputError(
+            "theta0_deg + theta2_deg",
+            f"{d.theta0_deg:g} + {d.theta2_deg:g}",
+            f"disc contacts at least min_ball_gap = {g:g} m apart along the axis "
+            f"(r_S (sin theta0 + sin theta2) = {sep:.3g} m)",
+        )
+    if d.roller_bearing_diameter >= 2.0 * rs:  # Eq. F3
+        raise InputError(
+            "roller_bearing_diameter",
+            d.roller_bearing_diameter,
+            f"< 2 r_S = {2 * rs:g} m (the axle bearing sits inside the ball)",
+        )
 
 
 def check_architecture(d, architecture: str) -> None:
@@ -91,26 +103,34 @@ def check_architecture(d, architecture: str) -> None:
     """
     rs, g = d.roller_radius, d.min_ball_gap
     if architecture == "double":
-        sep = 2.0 * rs * math.sin(d.alpha)                                  # Eq. F5
+        sep = 2.0 * rs * math.sin(d.alpha)  # Eq. F5
         if sep < g:
             need = math.degrees(math.asin(min(1.0, g / (2.0 * rs))))
-            raise InputError("alpha_deg", d.alpha_deg,
-                             f">= {need:.4g} deg for two idlers (their contacts 2 r_S sin(alpha) "
-                             f"apart must be at least min_ball_gap = {g:g} m)")
+            raise InputError(
+                "alpha_deg",
+                d.alpha_deg,
+                f">= {need:.4g} deg for two idlers (their contacts 2 r_S sin(alpha) "
+                f"apart must be at least min_ball_gap = {g:g} m)",
+            )
         lo, hi = usable_tilt_range(d)
         # Eq. F4: the idlers' rolling radii rho = -cos(gamma -/+ alpha) keep their sign over
         # the usable tilt range (the discs' vanish only at the Eq. 6 limits themselves)
         if lo <= d.alpha - math.pi / 2 or hi >= math.pi / 2 - d.alpha:
-            raise InputError("alpha_deg", d.alpha_deg,
-                             f"< {90 - math.degrees(max(-lo, hi)):.4g} deg (an idler's rolling "
-                             "radius would vanish within the usable tilt range)")
+            raise InputError(
+                "alpha_deg",
+                d.alpha_deg,
+                f"< {90 - math.degrees(max(-lo, hi)):.4g} deg (an idler's rolling "
+                "radius would vanish within the usable tilt range)",
+            )
         idler_radius = rs * (1.0 + d.aspect_ratio - math.cos(d.alpha))
     else:
         idler_radius = rs * d.aspect_ratio
-    if d.idler_bearing_diameter >= 2.0 * idler_radius:                      # Eq. F6
-        raise InputError("idler_bearing_diameter", d.idler_bearing_diameter,
-                         f"< {2 * idler_radius:.4g} m, the {architecture} idler's diameter at "
-                         "its contacts")
+    if d.idler_bearing_diameter >= 2.0 * idler_radius:  # Eq. F6
+        raise InputError(
+            "idler_bearing_diameter",
+            d.idler_bearing_diameter,
+            f"< {2 * idler_radius:.4g} m, the {architecture} idler's diameter at its contacts",
+        )
 
 
 def tilt_limits(theta0, theta2) -> tuple[float, float]:

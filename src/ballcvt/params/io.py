@@ -17,9 +17,19 @@ import tomlkit
 from ..errors import InputError
 from .models import Design, Fluid
 
-__all__ = ["BUILTIN_DRIVES", "BUILTIN_FLUIDS", "builtin_text", "load_builtin", "load_drive",
-           "parse_drive", "drive_to_toml", "load_fluid", "load_builtin_fluid", "parse_fluid",
-           "fluid_to_toml"]
+__all__ = [
+    "BUILTIN_DRIVES",
+    "BUILTIN_FLUIDS",
+    "builtin_text",
+    "load_builtin",
+    "load_drive",
+    "parse_drive",
+    "drive_to_toml",
+    "load_fluid",
+    "load_builtin_fluid",
+    "parse_fluid",
+    "fluid_to_toml",
+]
 
 #: Named, cited drive definitions shipped with the package.
 BUILTIN_DRIVES = {"table1": "table1.toml", "hub": "hub.toml"}
@@ -60,13 +70,15 @@ def parse_fluid(text: str, source: str = "fluid file") -> Fluid:
     """Parse and validate the ``[fluid]`` table of TOML text (other tables are ignored)."""
     data = _toml(text, source)
     if not isinstance(data.get("fluid"), dict):
-        raise InputError("fluid", None, "a table",
-                         message=f"{source} is incomplete: table [fluid] is missing")
+        raise InputError(
+            "fluid", None, "a table", message=f"{source} is incomplete: table [fluid] is missing"
+        )
     try:
         return Fluid(**data["fluid"])
     except InputError as exc:
-        raise InputError(exc.quantity, exc.value, exc.allowed,
-                         message=f"{source}: {exc}") from None
+        raise InputError(
+            exc.quantity, exc.value, exc.allowed, message=f"{source}: {exc}"
+        ) from None
 
 
 def fluid_to_toml(fluid: Fluid, header: str = "") -> str:
@@ -90,20 +102,31 @@ def _read(path: str | Path, what: str) -> str:
     try:
         return path.read_text(encoding="utf-8")
     except OSError as exc:
-        raise InputError(what, str(path), "a readable TOML file",
-                         message=f"{what} {path}: cannot be read ({exc.strerror})") from None
+        raise InputError(
+            what,
+            str(path),
+            "a readable TOML file",
+            message=f"{what} {path}: cannot be read ({exc.strerror})",
+        ) from None
     except UnicodeDecodeError:
-        raise InputError(what, str(path), "a UTF-8 TOML file",
-                         message=f"{what} {path}: not a text file (not UTF-8)") from None
+        raise InputError(
+            what,
+            str(path),
+            "a UTF-8 TOML file",
+            message=f"{what} {path}: not a text file (not UTF-8)",
+        ) from None
 
 
 def _toml(text: str, source: str) -> dict:
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise InputError(source, None, "valid TOML",
-                         message=f"{source} is not valid TOML: {str(exc).splitlines()[0]}"
-                         ) from None
+        raise InputError(
+            source,
+            None,
+            "valid TOML",
+            message=f"{source} is not valid TOML: {str(exc).splitlines()[0]}",
+        ) from None
 
 
 def load_drive(path: str | Path) -> tuple[Design, Fluid]:
@@ -122,17 +145,23 @@ def parse_drive(text: str, source: str = "design file") -> tuple[Design, Fluid]:
     data = _toml(text, source)
     for table in ("design", "fluid"):
         if not isinstance(data.get(table), dict):
-            raise InputError(table, None, "a table",
-                             message=f"{source} is incomplete: table [{table}] is missing")
+            raise InputError(
+                table,
+                None,
+                "a table",
+                message=f"{source} is incomplete: table [{table}] is missing",
+            )
     extra = sorted(set(data) - {"design", "fluid"})
     if extra:
-        raise InputError(extra[0], None, "[design] and [fluid]",
-                         message=f"{source}: unknown table [{extra[0]}]")
+        raise InputError(
+            extra[0], None, "[design] and [fluid]", message=f"{source}: unknown table [{extra[0]}]"
+        )
     try:
         return Design(**data["design"]), Fluid(**data["fluid"])
     except InputError as exc:
-        raise InputError(exc.quantity, exc.value, exc.allowed,
-                         message=f"{source}: {exc}") from None
+        raise InputError(
+            exc.quantity, exc.value, exc.allowed, message=f"{source}: {exc}"
+        ) from None
 
 
 def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> str:
@@ -158,8 +187,9 @@ def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> 
     try:
         doc = tomlkit.parse(template if template is not None else builtin_text())
     except tomlkit.exceptions.ParseError as exc:
-        raise InputError("template", None, "valid TOML",
-                         message=f"design template is not valid TOML: {exc}") from None
+        raise InputError(
+            "template", None, "valid TOML", message=f"design template is not valid TOML: {exc}"
+        ) from None
     _update(doc, "design", design.model_dump())
     _update(doc, "fluid", fluid.model_dump())
     return tomlkit.dumps(doc)
@@ -171,7 +201,7 @@ def _update(container, key, data) -> None:
         container[key] = tomlkit.table()
     table = container[key]
     for name, value in data.items():
-        if value is None:                 # an optional table the drive does not have
+        if value is None:  # an optional table the drive does not have
             table.pop(name, None)
             continue
         if isinstance(value, dict):

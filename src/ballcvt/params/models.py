@@ -41,23 +41,33 @@ ARCHITECTURES: tuple[str, ...] = ("double", "single")
 
 def _f(unit: str, description: str, **constraints: Any) -> Any:
     """A required field with its unit recorded in the schema."""
-    return Field(..., description=f"{description} [{unit}]", json_schema_extra={"unit": unit},
-                 **constraints)
+    return Field(
+        ..., description=f"{description} [{unit}]", json_schema_extra={"unit": unit}, **constraints
+    )
 
 
 def _opt(unit: str, description: str, **constraints: Any) -> Any:
     """An optional field (None: not given) with its unit recorded in the schema."""
-    return Field(None, description=f"{description} [{unit}]", json_schema_extra={"unit": unit},
-                 **constraints)
+    return Field(
+        None,
+        description=f"{description} [{unit}]",
+        json_schema_extra={"unit": unit},
+        **constraints,
+    )
 
 
 #: Shear laws of the film (`ballcvt.contact.laws`), and the `Fluid` fields each needs.
 TractionLaw = Literal["isothermal", "thermal", "viscoelastic"]
 LAW_FIELDS: dict[str, tuple[str, ...]] = {
     "isothermal": (),
-    "thermal": ("temperature_viscosity_coefficient", "limiting_shear_temperature_coefficient",
-                "thermal_conductivity", "inlet_temperature", "surface_conductivity",
-                "surface_diffusivity"),
+    "thermal": (
+        "temperature_viscosity_coefficient",
+        "limiting_shear_temperature_coefficient",
+        "thermal_conductivity",
+        "inlet_temperature",
+        "surface_conductivity",
+        "surface_diffusivity",
+    ),
     "viscoelastic": ("shear_modulus",),
 }
 TRACTION_LAWS: tuple[str, ...] = tuple(LAW_FIELDS)
@@ -77,11 +87,33 @@ class ParameterModel(BaseModel):
         except ValidationError as exc:
             raise _as_input_error(type(self), exc) from None
 
+    def _summary(self) -> tuple[str, list]:
+        rows = []
+        for key, value in self:
+            if key == "name" or value is None:
+                continue
+            if isinstance(value, BaseModel):
+                rows.append((key, type(value).__name__, ""))
+            else:
+                rows.append((key, value, self.unit(key)))
+        name = getattr(self, "name", None)
+        return f"{type(self).__name__}" + (f": {name}" if name else ""), rows
+
+    def __repr__(self) -> str:
+        from .._display import text_summary
+
+        return text_summary(*self._summary())
+
+    def _repr_html_(self) -> str:
+        from .._display import html_summary
+
+        return html_summary(*self._summary())
+
     @classmethod
     def unit(cls, name: str) -> str:
         """Unit of field ``name`` (``"-"`` for a dimensionless one)."""
-        extra = cls.model_fields[name].json_schema_extra or {}
-        return str(extra.get("unit", "-"))
+        extra = cls.model_fields[name].json_schema_extra
+        return str(extra.get("unit", "-")) if isinstance(extra, dict) else "-"
 
     def replace(self, **changes: Any):
         """Return a validated copy with some fields changed.
@@ -123,17 +155,29 @@ def _as_input_error(model: type[BaseModel], exc: ValidationError) -> InputError:
     inner = (err.get("ctx") or {}).get("error")
     if isinstance(inner, InputError):  # a nested parameter model already explained itself
         qualified = ".".join(loc + [inner.quantity])
-        return InputError(qualified, inner.value, inner.allowed,
-                          message=str(inner).replace(inner.quantity, qualified, 1))
+        return InputError(
+            qualified,
+            inner.value,
+            inner.allowed,
+            message=str(inner).replace(inner.quantity, qualified, 1),
+        )
     if kind == "missing":
-        return InputError(name, None, "a value", message=f"{model.__name__} is incomplete: "
-                          f"required key '{name}' is missing")
+        return InputError(
+            name,
+            None,
+            "a value",
+            message=f"{model.__name__} is incomplete: required key '{name}' is missing",
+        )
     if kind == "extra_forbidden":
         parent = _field(model, loc[:-1]).annotation if len(loc) > 1 else model
         close = difflib.get_close_matches(loc[-1], list(getattr(parent, "model_fields", {})), 1)
         hint = f" (did you mean '{close[0]}'?)" if close else ""
-        return InputError(name, err.get("input"), "known keys only",
-                          message=f"{model.__name__}: unknown key '{name}'{hint}")
+        return InputError(
+            name,
+            err.get("input"),
+            "known keys only",
+            message=f"{model.__name__}: unknown key '{name}'{hint}",
+        )
     field = _field(model, loc)
     bounds = []
     for meta in field.metadata if field is not None else ():
@@ -165,10 +209,15 @@ class Material(ParameterModel):
 
     youngs_modulus: float = _f("Pa", "Young's modulus E", gt=0, lt=math.inf)
     poisson_ratio: float = _f("-", "Poisson ratio nu", ge=0, lt=0.5)
-    density: float = Field(7810.0, description="density, for the balls' centrifugal force "
-                           "and gyroscopic moment with the carrier turning (docs/model.md "
-                           "§13); 7810 kg/m^3 is AISI 52100 bearing steel [kg/m^3]",
-                           json_schema_extra={"unit": "kg/m^3"}, gt=0, lt=math.inf)
+    density: float = Field(
+        7810.0,
+        description="density, for the balls' centrifugal force "
+        "and gyroscopic moment with the carrier turning (docs/model.md "
+        "§13); 7810 kg/m^3 is AISI 52100 bearing steel [kg/m^3]",
+        json_schema_extra={"unit": "kg/m^3"},
+        gt=0,
+        lt=math.inf,
+    )
 
     @property
     def reduced_modulus(self) -> float:
@@ -181,11 +230,19 @@ class BearingModel(ParameterModel):
 
     f0: float = _f("-", "load-independent coefficient f0 of Eq. 15", ge=0, lt=math.inf)
     f1: float = _f("-", "load-dependent coefficient f1 of Eq. 16", ge=0, lt=math.inf)
-    speed_exponent: float = _f("-", "exponent of (eta_c N) in Eq. 15 (printed 0.69; "
-                               "Palmgren's classical value is 2/3)", gt=0, lt=2)
-    low_speed_factor: float = _f("-", "floor of (eta_c N)^e in Eq. 15 (160 as printed; the "
-                                 "floor makes Eq. 15 continuous, docs/model.md)",
-                                 ge=0, lt=math.inf)
+    speed_exponent: float = _f(
+        "-",
+        "exponent of (eta_c N) in Eq. 15 (printed 0.69; Palmgren's classical value is 2/3)",
+        gt=0,
+        lt=2,
+    )
+    low_speed_factor: float = _f(
+        "-",
+        "floor of (eta_c N)^e in Eq. 15 (160 as printed; the "
+        "floor makes Eq. 15 continuous, docs/model.md)",
+        ge=0,
+        lt=math.inf,
+    )
     load_exponent: float = _f("-", "exponent a of the bearing load P in Eq. 16", gt=0, lt=3)
     diameter_exponent: float = _f("-", "exponent b of the mean diameter in Eq. 16", gt=0, lt=3)
 
@@ -200,13 +257,17 @@ class CamModel(ParameterModel):
     """
 
     disc: Literal["input", "output"] = Field(
-        ..., description="disc whose torque the cam senses ('input' or 'output')")
-    preload: float = _f("N", "axial preload of the spring F_pre (> 0: without it the "
-                        "cam never grips)", gt=0, lt=math.inf)
+        ..., description="disc whose torque the cam senses ('input' or 'output')"
+    )
+    preload: float = _f(
+        "N",
+        "axial preload of the spring F_pre (> 0: without it the cam never grips)",
+        gt=0,
+        lt=math.inf,
+    )
     ramp_angle_deg: float = _f("deg", "ramp angle phi at the mean radius", gt=0, lt=60)
     mean_radius: float = _f("m", "mean radius r_m of the ramp balls", gt=0, lt=10)
-    friction: float = _f("-", "ramp friction coefficient mu_r (rolling balls: ~0.005)",
-                         ge=0, lt=1)
+    friction: float = _f("-", "ramp friction coefficient mu_r (rolling balls: ~0.005)", ge=0, lt=1)
 
     @property
     def ramp_angle(self) -> float:
@@ -217,23 +278,39 @@ class CamModel(ParameterModel):
 class ParasiticModel(ParameterModel):
     """Losses beyond the paper's contacts and bearings (docs/model.md §12); optional."""
 
-    oil_fraction: float = _f("-", "volume fraction of oil in the oil-air mixture around the "
-                             "balls and discs (effective density = fraction x density)",
-                             ge=0, le=1)
-    churning_factor: float = _f("-", "multiplier on the moment coefficient of the churning "
-                                "model (1 = as published)", ge=0, lt=math.inf)
+    oil_fraction: float = _f(
+        "-",
+        "volume fraction of oil in the oil-air mixture around the "
+        "balls and discs (effective density = fraction x density)",
+        ge=0,
+        le=1,
+    )
+    churning_factor: float = _f(
+        "-",
+        "multiplier on the moment coefficient of the churning model (1 = as published)",
+        ge=0,
+        lt=math.inf,
+    )
     disc_radius: float = _f("m", "outer radius of the discs (churning)", gt=0, lt=10)
-    seal_diameter: float = _f("m", "counterface diameter of the shaft seals (one on each "
-                              "shaft)", ge=0, lt=10)
-    seal_k1: float = _f("N mm", "K_S1 of the seal torque K_S1 d_s^beta + K_S2 (d_s in mm)",
-                        ge=0, lt=math.inf)
+    seal_diameter: float = _f(
+        "m", "counterface diameter of the shaft seals (one on each shaft)", ge=0, lt=10
+    )
+    seal_k1: float = _f(
+        "N mm", "K_S1 of the seal torque K_S1 d_s^beta + K_S2 (d_s in mm)", ge=0, lt=math.inf
+    )
     seal_beta: float = _f("-", "beta of the seal torque", ge=0, lt=5)
     seal_k2: float = _f("N mm", "K_S2 of the seal torque", ge=0, lt=math.inf)
-    disc_bearing_diameter: float = _f("m", "bore diameter of the thrust bearing that "
-                                      "closes the clamping loop between the discs; 0 for "
-                                      "none", ge=0, lt=10)
-    disc_bearing_friction: float = _f("-", "its constant friction coefficient (SKF: 0.0013 "
-                                      "for thrust ball bearings)", ge=0, lt=1)
+    disc_bearing_diameter: float = _f(
+        "m",
+        "bore diameter of the thrust bearing that "
+        "closes the clamping loop between the discs; 0 for "
+        "none",
+        ge=0,
+        lt=10,
+    )
+    disc_bearing_friction: float = _f(
+        "-", "its constant friction coefficient (SKF: 0.0013 for thrust ball bearings)", ge=0, lt=1
+    )
 
 
 class Design(ParameterModel):
@@ -249,38 +326,62 @@ class Design(ParameterModel):
     theta2_deg: float = _f("deg", "output disc contact angle theta_2", gt=0, lt=90)
     alpha_deg: float = _f("deg", "double-idler contact angle alpha", ge=0, lt=90)
     n_rollers: int = _f("-", "number of balls n", ge=1, le=64)
-    roller_bearing_diameter: float = _f("m", "ball axle bearing mean diameter d_S",
-                                        gt=0, lt=10)
+    roller_bearing_diameter: float = _f("m", "ball axle bearing mean diameter d_S", gt=0, lt=10)
     idler_bearing_diameter: float = _f("m", "idler bearing mean diameter d_I", gt=0, lt=10)
-    disc_groove_ratio: float = _f("-", "r_02/r_S = r_22/r_S: transverse (meridian) radius "
-                                  "of the concave disc tracks over r_S, > 1; inf for straight",
-                                  gt=1)
-    idler_groove_ratio: float = _f("-", "r_a2/r_S = r_b2/r_S of the double-idler tracks, > 1; "
-                                   "inf for straight", gt=1)
-    single_idler_groove_ratio: float = _f("-", "transverse track radius of the single idler "
-                                          "over r_S; inf = straight cylinder "
-                                          "(docs/model.md §1)", gt=1)
-    tilt_safety_factor: float = _f("-", "fraction of the Eq. 6 tilt limits that is usable "
-                                   "(Fig. 3 uses 0.8)", gt=0, le=1)
-    creep_limit: float = _f("-", "largest |creep| counted as traction (docs/model.md §8)",
-                            gt=0, lt=1)
-    max_pressure: float = _f("Pa", "largest admissible Hertz peak pressure (clamping-force "
-                             "optimisation, validity warning)", gt=0)
-    min_ball_gap: float = _f("m", "smallest clearance between neighbouring balls, idler "
-                             "contacts and disc contacts (feasibility, docs/model.md §10)",
-                             ge=0, lt=10)
-    surface_roughness: float = _f("m", "composite RMS roughness sqrt(Rq1^2 + Rq2^2) of the "
-                                  "contacting surfaces (film thickness ratio, validity "
-                                  "warning)", gt=0, lt=1e-3)
+    disc_groove_ratio: float = _f(
+        "-",
+        "r_02/r_S = r_22/r_S: transverse (meridian) radius "
+        "of the concave disc tracks over r_S, > 1; inf for straight",
+        gt=1,
+    )
+    idler_groove_ratio: float = _f(
+        "-", "r_a2/r_S = r_b2/r_S of the double-idler tracks, > 1; inf for straight", gt=1
+    )
+    single_idler_groove_ratio: float = _f(
+        "-",
+        "transverse track radius of the single idler "
+        "over r_S; inf = straight cylinder "
+        "(docs/model.md §1)",
+        gt=1,
+    )
+    tilt_safety_factor: float = _f(
+        "-", "fraction of the Eq. 6 tilt limits that is usable (Fig. 3 uses 0.8)", gt=0, le=1
+    )
+    creep_limit: float = _f(
+        "-", "largest |creep| counted as traction (docs/model.md §8)", gt=0, lt=1
+    )
+    max_pressure: float = _f(
+        "Pa",
+        "largest admissible Hertz peak pressure (clamping-force optimisation, validity warning)",
+        gt=0,
+    )
+    min_ball_gap: float = _f(
+        "m",
+        "smallest clearance between neighbouring balls, idler "
+        "contacts and disc contacts (feasibility, docs/model.md §10)",
+        ge=0,
+        lt=10,
+    )
+    surface_roughness: float = _f(
+        "m",
+        "composite RMS roughness sqrt(Rq1^2 + Rq2^2) of the "
+        "contacting surfaces (film thickness ratio, validity "
+        "warning)",
+        gt=0,
+        lt=1e-3,
+    )
     material: Material
     bearings: BearingModel
-    cam: CamModel | None = Field(None, description="loading cam of the 'cam' clamping law "
-                                 "(optional: only that law needs it)")
-    parasitic: ParasiticModel | None = Field(None, description="churning, seal and disc "
-                                             "bearing losses (optional: none without it)")
+    cam: CamModel | None = Field(
+        None,
+        description="loading cam of the 'cam' clamping law (optional: only that law needs it)",
+    )
+    parasitic: ParasiticModel | None = Field(
+        None, description="churning, seal and disc bearing losses (optional: none without it)"
+    )
 
     @model_validator(mode="after")
-    def _buildable(self) -> "Design":
+    def _buildable(self) -> Design:
         check_design(self)
         return self
 
@@ -304,53 +405,89 @@ class Fluid(ParameterModel):
     """Traction fluid (Table I, Appendix A, docs/model.md §3, §4)."""
 
     name: str = Field(..., description="label of the fluid")
-    viscosity: float = _f("Pa s", "absolute viscosity eta_0 at atmospheric pressure",
-                          gt=0, lt=math.inf)
-    roelands_index: float = _f("-", "Roelands viscosity-pressure index Z_1 (Eq. 51)",
-                               gt=0, lt=5)
-    pressure_viscosity_coefficient: float = _f("1/Pa", "zeta, for the film thickness (Eq. 56; "
-                                               "> 0: no film forms without it)", gt=0, lt=1e-6)
-    limiting_shear_stress: float = _f("Pa", "tau_L0 at atmospheric pressure (Eq. 54)",
-                                      gt=0, lt=math.inf)
+    viscosity: float = _f(
+        "Pa s", "absolute viscosity eta_0 at atmospheric pressure", gt=0, lt=math.inf
+    )
+    roelands_index: float = _f("-", "Roelands viscosity-pressure index Z_1 (Eq. 51)", gt=0, lt=5)
+    pressure_viscosity_coefficient: float = _f(
+        "1/Pa",
+        "zeta, for the film thickness (Eq. 56; > 0: no film forms without it)",
+        gt=0,
+        lt=1e-6,
+    )
+    limiting_shear_stress: float = _f(
+        "Pa", "tau_L0 at atmospheric pressure (Eq. 54)", gt=0, lt=math.inf
+    )
     limiting_shear_slope: float = _f("-", "a in tau_L = tau_L0 + a p (Eq. 54)", ge=0, lt=1)
     pole_pressure: float = _f("Pa", "Roelands pole pressure c_p (Eq. 51)", gt=0, lt=math.inf)
-    pole_viscosity: float = _f("Pa s", "Roelands pole viscosity eta_inf (Eq. 51)",
-                               gt=0, lt=math.inf)
-    density: float = _f("kg/m^3", "density, for the kinematic viscosity of Eq. 15 "
-                        "(an assumption, docs/model.md §4)", gt=0, lt=math.inf)
-    max_rolling_speed: float = _f("m/s", "largest rolling (entrainment) speed covered by the "
-                                  "fluid's traction data (validity warning)", gt=0,
-                                  lt=math.inf)
+    pole_viscosity: float = _f(
+        "Pa s", "Roelands pole viscosity eta_inf (Eq. 51)", gt=0, lt=math.inf
+    )
+    density: float = _f(
+        "kg/m^3",
+        "density, for the kinematic viscosity of Eq. 15 (an assumption, docs/model.md §4)",
+        gt=0,
+        lt=math.inf,
+    )
+    max_rolling_speed: float = _f(
+        "m/s",
+        "largest rolling (entrainment) speed covered by the "
+        "fluid's traction data (validity warning)",
+        gt=0,
+        lt=math.inf,
+    )
     traction_law: TractionLaw = Field(
-        "isothermal", description="shear law of the film (docs/model.md §14): 'isothermal' "
+        "isothermal",
+        description="shear law of the film (docs/model.md §14): 'isothermal' "
         "(the paper's Eq. 53), 'thermal' (shear heating thins the film) or 'viscoelastic' "
-        "(Maxwell elasticity gives the initial slope) [-]", json_schema_extra={"unit": "-"})
+        "(Maxwell elasticity gives the initial slope) [-]",
+        json_schema_extra={"unit": "-"},
+    )
     temperature_viscosity_coefficient: float | None = _opt(
-        "1/K", "beta in eta ~ exp(-beta dT), thermal law", ge=0, lt=1)
+        "1/K", "beta in eta ~ exp(-beta dT), thermal law", ge=0, lt=1
+    )
     limiting_shear_temperature_coefficient: float | None = _opt(
-        "1/K", "beta_L in tau_L ~ exp(-beta_L dT), thermal law", ge=0, lt=1)
-    thermal_conductivity: float | None = _opt("W/(m K)", "of the fluid, thermal law",
-                                              gt=0, lt=math.inf)
+        "1/K", "beta_L in tau_L ~ exp(-beta_L dT), thermal law", ge=0, lt=1
+    )
+    thermal_conductivity: float | None = _opt(
+        "W/(m K)", "of the fluid, thermal law", gt=0, lt=math.inf
+    )
     inlet_temperature: float | None = _opt(
-        "K", "of the fluid entering the contacts, at which eta_0 and tau_L0 apply, thermal "
-        "law", gt=0, lt=math.inf)
+        "K",
+        "of the fluid entering the contacts, at which eta_0 and tau_L0 apply, thermal law",
+        gt=0,
+        lt=math.inf,
+    )
     surface_conductivity: float | None = _opt(
-        "W/(m K)", "of the solids bounding the film (steel: about 46), thermal law",
-        gt=0, lt=math.inf)
+        "W/(m K)",
+        "of the solids bounding the film (steel: about 46), thermal law",
+        gt=0,
+        lt=math.inf,
+    )
     surface_diffusivity: float | None = _opt(
-        "m^2/s", "of the solids bounding the film (steel: about 1.3e-5), thermal law",
-        gt=0, lt=math.inf)
-    shear_modulus: float | None = _opt("Pa", "elastic shear modulus G of the film, "
-                                       "viscoelastic law", gt=0, lt=math.inf)
+        "m^2/s",
+        "of the solids bounding the film (steel: about 1.3e-5), thermal law",
+        gt=0,
+        lt=math.inf,
+    )
+    shear_modulus: float | None = _opt(
+        "Pa", "elastic shear modulus G of the film, viscoelastic law", gt=0, lt=math.inf
+    )
 
     @model_validator(mode="after")
-    def _law_complete(self) -> "Fluid":
+    def _law_complete(self) -> Fluid:
         missing = [k for k in LAW_FIELDS[self.traction_law] if getattr(self, k) is None]
         if missing:
-            raise InputError(missing[0], None, "a value", message=(
-                f"fluid '{self.name}' has no {missing[0]} [{self.unit(missing[0])}], which "
-                f"the {self.traction_law} traction law needs: add it to [fluid] (the "
-                f"{self.traction_law} law needs {', '.join(LAW_FIELDS[self.traction_law])})"))
+            raise InputError(
+                missing[0],
+                None,
+                "a value",
+                message=(
+                    f"fluid '{self.name}' has no {missing[0]} [{self.unit(missing[0])}], which "
+                    f"the {self.traction_law} traction law needs: add it to [fluid] (the "
+                    f"{self.traction_law} law needs {', '.join(LAW_FIELDS[self.traction_law])})"
+                ),
+            )
         return self
 
     @property
@@ -362,11 +499,11 @@ class Fluid(ParameterModel):
 class OperatingPoint(ParameterModel):
     """A steady operating point: speed-ratio set-point, load torque, clamping, speed."""
 
-    ratio: float = _f("-", "ideal speed ratio tau_ID = omega_2 / omega_0 (Eq. 4)",
-                      gt=0, lt=math.inf)
+    ratio: float = _f(
+        "-", "ideal speed ratio tau_ID = omega_2 / omega_0 (Eq. 4)", gt=0, lt=math.inf
+    )
     output_torque: float = _f("N m", "output (load) torque T_2", ge=0, lt=math.inf)
-    clamp_force: float = _f("N", "normal load F_N0 at each input disc contact", gt=0,
-                            lt=math.inf)
+    clamp_force: float = _f("N", "normal load F_N0 at each input disc contact", gt=0, lt=math.inf)
     input_speed: float = _f("rad/s", "input disc speed omega_0", gt=0, lt=math.inf)
 
     @property

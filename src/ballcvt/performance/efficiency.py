@@ -14,13 +14,29 @@ from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState
 from ..geometry.kinematics import creep_term
 
-__all__ = ["PowerLosses", "Efficiency", "power_losses", "efficiency", "loss_breakdown",
-           "LOSS_KINDS"]
+__all__ = [
+    "PowerLosses",
+    "Efficiency",
+    "power_losses",
+    "efficiency",
+    "loss_breakdown",
+    "LOSS_KINDS",
+]
 
 #: Kinds of power loss, the keys of `loss_breakdown` (``bearing`` = roller + idler
 #: bearings, ``parasitic`` = churning + seals + disc bearings, ``total`` = all).
-LOSS_KINDS = ("creep", "spin", "roller_bearings", "idler_bearings", "bearing", "churning",
-              "seals", "disc_bearings", "parasitic", "total")
+LOSS_KINDS = (
+    "creep",
+    "spin",
+    "roller_bearings",
+    "idler_bearings",
+    "bearing",
+    "churning",
+    "seals",
+    "disc_bearings",
+    "parasitic",
+    "total",
+)
 
 
 @dataclass(frozen=True)
@@ -65,14 +81,20 @@ class PowerLosses:
         return np.sum(self.creep + self.spin, axis=-1) + self.bearing + self.parasitic
 
 
-def loss_breakdown(losses: "PowerLosses") -> dict:
+def loss_breakdown(losses: PowerLosses) -> dict:
     """Every kind of `LOSS_KINDS` summed over the contacts [W], shape ``(...)`` each."""
-    return {"creep": np.sum(losses.creep, axis=-1), "spin": np.sum(losses.spin, axis=-1),
-            "roller_bearings": losses.roller_bearings,
-            "idler_bearings": np.sum(losses.idler_bearings, axis=-1),
-            "bearing": losses.bearing, "churning": losses.churning, "seals": losses.seals,
-            "disc_bearings": losses.disc_bearings, "parasitic": losses.parasitic,
-            "total": losses.total}
+    return {
+        "creep": np.sum(losses.creep, axis=-1),
+        "spin": np.sum(losses.spin, axis=-1),
+        "roller_bearings": losses.roller_bearings,
+        "idler_bearings": np.sum(losses.idler_bearings, axis=-1),
+        "bearing": losses.bearing,
+        "churning": losses.churning,
+        "seals": losses.seals,
+        "disc_bearings": losses.disc_bearings,
+        "parasitic": losses.parasitic,
+        "total": losses.total,
+    }
 
 
 @dataclass(frozen=True)
@@ -107,15 +129,24 @@ def power_losses(problem: EquilibriumProblem, state: EquilibriumState) -> PowerL
     roller = n * state.roller_bearing_torque * np.abs(state.omega_s)
     idler = state.idler_bearing_torque * np.abs(state.omega)
     # parasitic drags times the actual speeds (docs/model.md §12)
-    shafts = (problem.input_drag * state.omega[..., :1]
-              + problem.output_drag * state.omega[..., -1:])
+    shafts = (
+        problem.input_drag * state.omega[..., :1] + problem.output_drag * state.omega[..., -1:]
+    )
     churning = shafts[..., 0] + n * problem.ball_drag * np.abs(state.omega_s)
-    return PowerLosses(creep=creep, spin=spin, roller_bearings=roller, idler_bearings=idler,
-                       churning=churning, seals=shafts[..., 1], disc_bearings=shafts[..., 2])
+    return PowerLosses(
+        creep=creep,
+        spin=spin,
+        roller_bearings=roller,
+        idler_bearings=idler,
+        churning=churning,
+        seals=shafts[..., 1],
+        disc_bearings=shafts[..., 2],
+    )
 
 
-def efficiency(problem: EquilibriumProblem, state: EquilibriumState,
-               losses: PowerLosses | None = None) -> Efficiency:
+def efficiency(
+    problem: EquilibriumProblem, state: EquilibriumState, losses: PowerLosses | None = None
+) -> Efficiency:
     """Speed, torque and overall efficiency, the last by Eq. 38 and by Eq. 39.
 
     Parameters
@@ -131,9 +162,13 @@ def efficiency(problem: EquilibriumProblem, state: EquilibriumState,
     """
     losses = power_losses(problem, state) if losses is None else losses
     c = state.creep
-    speed = (1.0 - c[..., 0]) * (1.0 - c[..., -1])                      # Eq. 9
+    speed = (1.0 - c[..., 0]) * (1.0 - c[..., -1])  # Eq. 9
     t0 = state.input_torque
-    torque = problem.ratio * problem.output_torque / t0                 # Eq. 37
+    torque = problem.ratio * problem.output_torque / t0  # Eq. 37
     p0 = t0 * problem.input_speed
-    return Efficiency(speed=speed, torque=torque, overall=speed * torque,  # Eq. 38
-                      from_losses=1.0 - losses.total / p0)                # Eq. 39
+    return Efficiency(
+        speed=speed,
+        torque=torque,
+        overall=speed * torque,  # Eq. 38
+        from_losses=1.0 - losses.total / p0,
+    )  # Eq. 39

@@ -16,12 +16,23 @@ from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState
 from ..geometry.kinematics import entrainment_factor
 
-__all__ = ["WARNINGS", "LAMBDA_MIXED", "HERTZ_SIZE_LIMIT", "Validity", "validity",
-           "warning_messages", "flag_names"]
+__all__ = [
+    "WARNINGS",
+    "LAMBDA_MIXED",
+    "HERTZ_SIZE_LIMIT",
+    "Validity",
+    "validity",
+    "warning_messages",
+    "flag_names",
+]
 
 #: Warning kinds and their bits.
-WARNINGS = {"mixed_lubrication": 1, "pressure_above_limit": 2, "large_contact": 4,
-            "speed_beyond_fluid_data": 8}
+WARNINGS = {
+    "mixed_lubrication": 1,
+    "pressure_above_limit": 2,
+    "large_contact": 4,
+    "speed_beyond_fluid_data": 8,
+}
 
 #: Film thickness ratio below which the contact runs in mixed lubrication: the asperities
 #: touch and the full-film traction law no longer holds (Tallian 1967; Hamrock, Schmid and
@@ -68,27 +79,36 @@ def validity(problem: EquilibriumProblem, state: EquilibriumState) -> Validity:
     """
     des, fl = problem.design, problem.fluid
     speed = state.u_ref * entrainment_factor(state.creep)
-    h_min = minimum_film_thickness(fl.viscosity, fl.pressure_viscosity_coefficient,
-                                   problem.reduced_modulus, problem.rx, speed, problem.load,
-                                   problem.ay / problem.ax)
+    h_min = minimum_film_thickness(
+        fl.viscosity,
+        fl.pressure_viscosity_coefficient,
+        problem.reduced_modulus,
+        problem.rx,
+        speed,
+        problem.load,
+        problem.ay / problem.ax,
+    )
     lam = h_min / des.surface_roughness
     size = np.maximum(problem.ax, problem.ay) / des.roller_radius
     flags = np.zeros(problem.shape, dtype=np.int64)
-    for name, hit in (("mixed_lubrication", lam < LAMBDA_MIXED),
-                      ("pressure_above_limit", problem.p_max > des.max_pressure),
-                      ("large_contact", size > HERTZ_SIZE_LIMIT),
-                      ("speed_beyond_fluid_data", speed > fl.max_rolling_speed)):
+    for name, hit in (
+        ("mixed_lubrication", lam < LAMBDA_MIXED),
+        ("pressure_above_limit", problem.p_max > des.max_pressure),
+        ("large_contact", size > HERTZ_SIZE_LIMIT),
+        ("speed_beyond_fluid_data", speed > fl.max_rolling_speed),
+    ):
         flags |= np.where(np.any(hit, axis=-1), WARNINGS[name], 0)
     return Validity(lambda_ratio=lam, entrainment_speed=speed, flags=flags)
 
 
-def flag_names(flags: int) -> list[str]:
-    """Names of the warnings set in ``flags``."""
+def flag_names(flags) -> list[str]:
+    """Names of the warnings set in ``flags`` (an int or a 0-d integer array)."""
     return [name for name, bit in WARNINGS.items() if int(flags) & bit]
 
 
-def warning_messages(problem: EquilibriumProblem, valid: Validity,
-                     names: tuple[str, ...]) -> list[str]:
+def warning_messages(
+    problem: EquilibriumProblem, valid: Validity, names: tuple[str, ...]
+) -> list[str]:
     """One line per warning of a single point, naming the contact and the figure.
 
     Parameters
@@ -112,23 +132,31 @@ def warning_messages(problem: EquilibriumProblem, valid: Validity,
     for name in flag_names(valid.flags):
         if name == "mixed_lubrication":
             i = int(np.argmin(lam))
-            out.append(f"mixed_lubrication: film thickness ratio h_min/sigma = {lam[i]:.3g} < "
-                       f"{LAMBDA_MIXED:g} at the {names[i]} contact (surface_roughness "
-                       f"{des.surface_roughness:.3g} m): asperities touch, outside the "
-                       "full-film traction law")
+            out.append(
+                f"mixed_lubrication: film thickness ratio h_min/sigma = {lam[i]:.3g} < "
+                f"{LAMBDA_MIXED:g} at the {names[i]} contact (surface_roughness "
+                f"{des.surface_roughness:.3g} m): asperities touch, outside the "
+                "full-film traction law"
+            )
         elif name == "pressure_above_limit":
             i = int(np.argmax(problem.p_max))
-            out.append(f"pressure_above_limit: Hertz peak pressure {problem.p_max[i] / 1e9:.3g} "
-                       f"GPa at the {names[i]} contact exceeds max_pressure "
-                       f"{des.max_pressure / 1e9:.3g} GPa")
+            out.append(
+                f"pressure_above_limit: Hertz peak pressure {problem.p_max[i] / 1e9:.3g} "
+                f"GPa at the {names[i]} contact exceeds max_pressure "
+                f"{des.max_pressure / 1e9:.3g} GPa"
+            )
         elif name == "large_contact":
             i = int(np.argmax(size))
-            out.append(f"large_contact: contact semi-axis {size[i]:.3g} x the ball radius at "
-                       f"the {names[i]} contact (> {HERTZ_SIZE_LIMIT:g}): beyond the "
-                       "small-contact assumption of Hertz theory")
+            out.append(
+                f"large_contact: contact semi-axis {size[i]:.3g} x the ball radius at "
+                f"the {names[i]} contact (> {HERTZ_SIZE_LIMIT:g}): beyond the "
+                "small-contact assumption of Hertz theory"
+            )
         else:
             i = int(np.argmax(speed))
-            out.append(f"speed_beyond_fluid_data: rolling speed {speed[i]:.3g} m/s at the "
-                       f"{names[i]} contact exceeds the fluid data's max_rolling_speed "
-                       f"{fl.max_rolling_speed:g} m/s")
+            out.append(
+                f"speed_beyond_fluid_data: rolling speed {speed[i]:.3g} m/s at the "
+                f"{names[i]} contact exceeds the fluid data's max_rolling_speed "
+                f"{fl.max_rolling_speed:g} m/s"
+            )
     return out

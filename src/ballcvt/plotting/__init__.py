@@ -4,11 +4,33 @@ Importing this package does not change matplotlib's backend.
 """
 
 from .cycles import cycle_figure
+from .figures import (
+    LABELS,
+    draw_efficiency_map,
+    efficiency_map,
+    line_panels,
+    plot_curves,
+    plot_efficiency_map,
+    ratio_vs_tilt,
+    save,
+)
 from .studies import maps_figure, parameters_figure, pareto_figure
 from .traction import fit_figure, plot_traction_curve, traction_curve_figure
-from .figures import (LABELS, draw_efficiency_map, efficiency_map, line_panels,
-                      plot_curves, plot_efficiency_map, ratio_vs_tilt, save)
 
-__all__ = ["cycle_figure", "save", "line_panels", "efficiency_map", "draw_efficiency_map",
-           "plot_efficiency_map", "plot_curves", "ratio_vs_tilt", "LABELS",
-           "fit_figure", "maps_figure", "parameters_figure", "pareto_figure", "plot_traction_curve", "traction_curve_figure"]
+__all__ = [
+    "cycle_figure",
+    "save",
+    "line_panels",
+    "efficiency_map",
+    "draw_efficiency_map",
+    "plot_efficiency_map",
+    "plot_curves",
+    "ratio_vs_tilt",
+    "LABELS",
+    "fit_figure",
+    "maps_figure",
+    "parameters_figure",
+    "pareto_figure",
+    "plot_traction_curve",
+    "traction_curve_figure",
+]

@@ -7,11 +7,13 @@ from matplotlib.figure import Figure
 
 __all__ = ["cycle_figure"]
 
-_FLAG_STYLE = {"ratio_limited": ("tab:orange", "ratio limited"),
-               "negative_torque": ("tab:gray", "braking (not modelled)"),
-               "power_below_drag": ("tab:brown", "power below the drag"),
-               "beyond_capacity": ("tab:red", "beyond capacity"),
-               "not_converged": ("black", "not converged")}
+_FLAG_STYLE = {
+    "ratio_limited": ("tab:orange", "ratio limited"),
+    "negative_torque": ("tab:gray", "braking (not modelled)"),
+    "power_below_drag": ("tab:brown", "power below the drag"),
+    "beyond_capacity": ("tab:red", "beyond capacity"),
+    "not_converged": ("black", "not converged"),
+}
 
 
 def cycle_figure(steps, title: str = "Duty cycle") -> Figure:
@@ -48,8 +50,12 @@ def cycle_figure(steps, title: str = "Duty cycle") -> Figure:
             ax2.plot(t[mask], np.full(mask.sum(), lo), "|", color=color, ms=10, label=label)
     ax2.set_ylabel(r"overall efficiency $\eta$ [-]")
     ax2.legend(loc="lower right", fontsize=8)
-    kinds = [("creep", "creep"), ("spin", "spin"), ("bearing", "bearings"),
-             ("parasitic", "parasitic")]
+    kinds = [
+        ("creep", "creep"),
+        ("spin", "spin"),
+        ("bearing", "bearings"),
+        ("parasitic", "parasitic"),
+    ]
     stack = [np.nan_to_num(steps[f"loss_{k}"].to_numpy()) for k, _ in kinds]
     ax3.stackplot(t, *stack, labels=[label for _, label in kinds], alpha=0.85)
     ax3.set_ylabel("power loss [W]")

@@ -16,8 +16,16 @@ from matplotlib.figure import Figure
 
 from .._fileio import atomic_path
 
-__all__ = ["save", "line_panels", "efficiency_map", "ratio_vs_tilt", "draw_efficiency_map",
-           "plot_efficiency_map", "plot_curves", "LABELS"]
+__all__ = [
+    "save",
+    "line_panels",
+    "efficiency_map",
+    "ratio_vs_tilt",
+    "draw_efficiency_map",
+    "plot_efficiency_map",
+    "plot_curves",
+    "LABELS",
+]
 
 #: Axis labels of the common quantities (mathtext).
 LABELS = {
@@ -43,9 +51,9 @@ def save(fig: Figure, directory, name) -> list[Path]:
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     paths = [directory / f"{name}.png", directory / f"{name}.svg"]
-    for path, kw in zip(paths, ({"dpi": 130}, {})):
+    for path, dpi in zip(paths, (130, "figure")):
         with atomic_path(path) as tmp:
-            fig.savefig(tmp, bbox_inches="tight", **kw)
+            fig.savefig(tmp, bbox_inches="tight", dpi=dpi)
     return paths
 
 
@@ -133,8 +141,7 @@ def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True, limit_eta=
     line_levels = [v for v in levels if v >= 0.5][::2]
     if limit_eta is None:
         filled = ax.contourf(ratio, torque, eta, levels=levels, cmap="viridis")
-        lines = ax.contour(ratio, torque, eta, levels=line_levels, colors="k",
-                           linewidths=0.5)
+        lines = ax.contour(ratio, torque, eta, levels=line_levels, colors="k", linewidths=0.5)
     else:
         r, t = np.meshgrid(ratio, torque)
         x = np.concatenate([r.ravel(), ratio])
@@ -145,30 +152,37 @@ def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True, limit_eta=
         filled = ax.tricontourf(tri, z[keep], levels=levels, cmap="viridis")
         lines = ax.tricontour(tri, z[keep], levels=line_levels, colors="k", linewidths=0.5)
     labels = ax.clabel(lines, fmt="%.2f", fontsize=7, inline=True)
-    limit_line, = ax.plot(ratio, limit, "r-", lw=2, label="limiting torque")
+    (limit_line,) = ax.plot(ratio, limit, "r-", lw=2, label="limiting torque")
     bar = ax.figure.colorbar(filled, ax=ax, label=LABELS["eta"]) if colorbar else None
     ax.set_xlabel(LABELS["ratio"])
     ax.set_ylabel(LABELS["output_torque"])
     top = np.nanmax(np.concatenate([torque, limit]))
     ax.set_ylim(float(np.min(torque)), 1.05 * top)
     ax.legend(loc="upper right", fontsize=8)
-    return {"filled": filled, "lines": lines, "labels": labels, "limit": limit_line,
-            "colorbar": bar}
+    return {
+        "filled": filled,
+        "lines": lines,
+        "labels": labels,
+        "limit": limit_line,
+        "colorbar": bar,
+    }
 
 
 def _triangulation(x, y, ratio, limit):
     """Delaunay triangles of the points, without those above the limit curve."""
     from matplotlib.tri import Triangulation
+
     scale = np.ptp(y) / np.ptp(x) if np.ptp(x) > 0 else 1.0
-    tri = Triangulation(x * scale, y)        # triangulate in comparable units
+    tri = Triangulation(x * scale, y)  # triangulate in comparable units
     cx, cy = (x[tri.triangles].mean(axis=1), y[tri.triangles].mean(axis=1))
     ok = np.isfinite(limit)
     above = cy > np.interp(cx, ratio[ok], limit[ok]) * (1 + 1e-9) if ok.any() else False
     return Triangulation(x, y, tri.triangles, mask=above)
 
 
-def efficiency_map(ratio, torque, eta, limit, title="Overall efficiency",
-                   limit_eta=None) -> Figure:
+def efficiency_map(
+    ratio, torque, eta, limit, title="Overall efficiency", limit_eta=None
+) -> Figure:
     """A figure of `draw_efficiency_map` with a title (for files)."""
     fig = Figure(figsize=(6.6, 4.8), layout="constrained")
     ax = fig.add_subplot()
@@ -180,6 +194,7 @@ def efficiency_map(ratio, torque, eta, limit, title="Overall efficiency",
 def _axes(ax):
     if ax is None:
         import matplotlib.pyplot as plt  # interactive use: the user's own backend
+
         ax = plt.gca()
     return ax
 
@@ -203,10 +218,15 @@ def plot_efficiency_map(ds, ax=None, colorbar=True):
         The artists (see `draw_efficiency_map`).
     """
     one = ds.squeeze(drop=True)
-    return draw_efficiency_map(_axes(ax), one.ratio.values, one.output_torque.values,
-                               one.eta.transpose("ratio", "output_torque").values,
-                               one.limit_torque.values, colorbar=colorbar,
-                               limit_eta=one.eta_at_limit.values)
+    return draw_efficiency_map(
+        _axes(ax),
+        one.ratio.values,
+        one.output_torque.values,
+        one.eta.transpose("ratio", "output_torque").values,
+        one.limit_torque.values,
+        colorbar=colorbar,
+        limit_eta=one.eta_at_limit.values,
+    )
 
 
 def plot_curves(ds, y="eta", x="output_torque", ax=None, **style):
@@ -234,9 +254,12 @@ def plot_curves(ds, y="eta", x="output_torque", ax=None, **style):
     lines = []
     for i in range(stacked.sizes["curve"]):
         curve = stacked.isel(curve=i)
-        label = ", ".join(f"{d} = {curve[d].item():g}" if np.ndim(curve[d]) == 0 and
-                          np.issubdtype(curve[d].dtype, np.number) else
-                          f"{curve[d].item()}" for d in others)
+        label = ", ".join(
+            f"{d} = {curve[d].item():g}"
+            if np.ndim(curve[d]) == 0 and np.issubdtype(curve[d].dtype, np.number)
+            else f"{curve[d].item()}"
+            for d in others
+        )
         lines += ax.plot(curve[x].values, curve.values, label=label or None, **style)
     ax.set_xlabel(LABELS.get(x, x))
     ax.set_ylabel(LABELS.get(y, y))
@@ -256,7 +279,7 @@ def ratio_vs_tilt(curves, title=r"Fig. 3: ideal speed ratio vs tilt ($k$ = 1)") 
     fig = Figure(figsize=(6.0, 4.2), layout="constrained")
     ax = fig.add_subplot()
     for tilt, ratio, label, usable in curves:
-        line, = ax.plot(tilt, ratio, ":", lw=1)
+        (line,) = ax.plot(tilt, ratio, ":", lw=1)
         ax.plot(tilt[usable], ratio[usable], "-", color=line.get_color(), label=label)
     ax.set_yscale("log")
     ax.set_xlabel(LABELS["tilt_deg"])

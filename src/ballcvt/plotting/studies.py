@@ -31,11 +31,12 @@ def pareto_figure(ds, objectives, units) -> Figure:
         ax.set_ylabel(_label(objectives[0], units))
     ax.plot(x[ok & ~front], y[ok & ~front], "o", color="0.7", ms=4, label="feasible")
     order = np.argsort(x[front])
-    ax.plot(x[front][order], y[front][order], "o-", color="tab:blue", ms=5,
-            label="Pareto front")
+    ax.plot(x[front][order], y[front][order], "o-", color="tab:blue", ms=5, label="Pareto front")
     ax.plot(x[pick], y[pick], "*", color="tab:red", ms=14, label="chosen")
-    ax.set_title(f"{int(ok.sum())} feasible of {ok.size} designs, {int(front.sum())} on the "
-                 "front", fontsize=10)
+    ax.set_title(
+        f"{int(ok.sum())} feasible of {ok.size} designs, {int(front.sum())} on the front",
+        fontsize=10,
+    )
     ax.legend(fontsize="small")
     return fig
 

@@ -46,8 +46,7 @@ def fit_figure(curves, fit, title: str = "Fluid fit") -> Figure:
         sel = curves.condition == label
         order = np.argsort(curves.creep[sel])
         pts = ax1.plot(curves.creep[sel], curves.mu[sel], "o", ms=3, label=str(label))
-        ax1.plot(curves.creep[sel][order], fit.model[sel][order], "-",
-                 color=pts[0].get_color())
+        ax1.plot(curves.creep[sel][order], fit.model[sel][order], "-", color=pts[0].get_color())
         ax2.plot(curves.creep[sel], fit.residuals[sel], "o", ms=3, color=pts[0].get_color())
     ax2.axhline(0.0, color="black", lw=0.8)
     for ax in (ax1, ax2):

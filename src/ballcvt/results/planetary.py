@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any, Mapping
+from typing import Any
 
+from .._display import html_summary, text_summary
 from .._version import __version__
 from ..errors import InputError
 from ..modes import MEMBERS, OperatingMode, member_torques
@@ -55,6 +57,36 @@ class PlanetaryResult:
     driver_speed: float
     passes: int
     version: str = __version__
+
+    def _summary(self) -> tuple[str, list]:
+        rows = [
+            ("overall ratio", self.overall_ratio, "-"),
+            ("torque ratio", self.torque_ratio, "-"),
+            ("efficiency", self.eta, "-"),
+            ("power flow", self.power_flow, ""),
+            ("geared neutral", self.geared_neutral, ""),
+        ]
+        for m in ("disc0", "disc2", "carrier"):
+            rows.append(
+                (
+                    m,
+                    f"{self.speeds[m] * 30 / 3.141592653589793:.5g} rpm, "
+                    f"{self.torques[m]:.4g} N m",
+                    "",
+                )
+            )
+        rows.append(("losses", self.loss, "W"))
+        return f"PlanetaryResult: {self.mode.label}", rows
+
+    def __repr__(self) -> str:
+        return text_summary(*self._summary())
+
+    def _repr_html_(self) -> str:
+        return html_summary(*self._summary())
+
+    def to_dataframe(self):
+        """Per-contact quantities in the carrier frame (`OperatingResult.to_dataframe`)."""
+        return self.relative.to_dataframe()
 
     @property
     def powers(self) -> dict[str, float]:
@@ -118,7 +150,7 @@ class PlanetaryResult:
         """How the power crosses the variator in the carrier frame: ``disc0 -> disc2``
         (as on the rig) or ``disc2 -> disc0`` (reversed), and whether it circulates
         (more power through the contacts than through the driver)."""
-        forward = self.relative.input_power > 0      # mirroring negates both factors
+        forward = self.relative.input_power > 0  # mirroring negates both factors
         way = "disc0 -> disc2" if forward else "disc2 -> disc0"
         circ = self.circulating_power > abs(self.input_power) * (1 + 1e-9)
         return way + (" (circulating)" if circ else "")
@@ -128,64 +160,109 @@ class PlanetaryResult:
         planetary ones."""
         out = self.relative.to_dict()
         out.update(
-            mode={"held": self.mode.held, "driver": self.mode.driver,
-                  "driven": self.mode.driven, "centrifugal": self.mode.centrifugal,
-                  "gyroscopic": self.mode.gyroscopic, "held_speed": self.mode.held_speed},
-            mirrored=self.sign < 0, load_torque=self.load_torque,
-            driver_speed=self.driver_speed, passes=self.passes,
-            speeds=dict(self.speeds), torques=dict(self.torques), powers=self.powers,
-            overall_ratio=self.overall_ratio, torque_ratio=self.torque_ratio,
+            mode={
+                "held": self.mode.held,
+                "driver": self.mode.driver,
+                "driven": self.mode.driven,
+                "centrifugal": self.mode.centrifugal,
+                "gyroscopic": self.mode.gyroscopic,
+                "held_speed": self.mode.held_speed,
+            },
+            mirrored=self.sign < 0,
+            load_torque=self.load_torque,
+            driver_speed=self.driver_speed,
+            passes=self.passes,
+            speeds=dict(self.speeds),
+            torques=dict(self.torques),
+            powers=self.powers,
+            overall_ratio=self.overall_ratio,
+            torque_ratio=self.torque_ratio,
             geared_neutral=self.geared_neutral,
-            carrier_speed=self.speeds["carrier"], carrier_torque=self.torques["carrier"],
-            overall_eta=self.eta, overall_eta_loss=self.eta_loss,
-            circulating_power=self.circulating_power, power_flow=self.power_flow,
-            planetary_version=self.version)
+            carrier_speed=self.speeds["carrier"],
+            carrier_torque=self.torques["carrier"],
+            overall_eta=self.eta,
+            overall_eta_loss=self.eta_loss,
+            circulating_power=self.circulating_power,
+            power_flow=self.power_flow,
+            planetary_version=self.version,
+        )
         return out
 
     to_json = _JsonFile.to_json
     save = _JsonFile.save
 
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: str = "result") -> "PlanetaryResult":
+    def from_dict(cls, data: Mapping[str, Any], source: str = "result") -> PlanetaryResult:
         """Inverse of `to_dict`, validated: the carrier-frame part as an
         `OperatingResult`, and the member torques and speeds against it."""
-        keys = ("mode", "mirrored", "load_torque", "driver_speed", "passes", "speeds",
-                "torques")
+        keys = ("mode", "mirrored", "load_torque", "driver_speed", "passes", "speeds", "torques")
         missing = [k for k in keys if k not in data]
         if missing:
-            raise InputError(missing[0], None, "a value",
-                             message=f"{source}: required key '{missing[0]}' is missing")
-        rel = OperatingResult.from_dict({k: v for k, v in data.items() if k not in keys},
-                                        source)
+            raise InputError(
+                missing[0],
+                None,
+                "a value",
+                message=f"{source}: required key '{missing[0]}' is missing",
+            )
+        rel = OperatingResult.from_dict({k: v for k, v in data.items() if k not in keys}, source)
         m = data["mode"]
-        mode = OperatingMode(m["held"], m["driver"], bool(m["centrifugal"]),
-                             bool(m["gyroscopic"]), float(m.get("held_speed", 0.0)))
-        out = make_planetary_result(mode, rel, -1.0 if data["mirrored"] else 1.0,
-                                    data["speeds"], float(data["load_torque"]),
-                                    float(data["driver_speed"]), int(data["passes"]))
+        mode = OperatingMode(
+            m["held"],
+            m["driver"],
+            bool(m["centrifugal"]),
+            bool(m["gyroscopic"]),
+            float(m.get("held_speed", 0.0)),
+        )
+        out = make_planetary_result(
+            mode,
+            rel,
+            -1.0 if data["mirrored"] else 1.0,
+            data["speeds"],
+            float(data["load_torque"]),
+            float(data["driver_speed"]),
+            int(data["passes"]),
+        )
         for m_ in MEMBERS:
-            if not math.isclose(float(data["torques"][m_]), out.torques[m_], rel_tol=1e-12,
-                                abs_tol=1e-12):
-                raise InputError(f"torques.{m_}", data["torques"][m_],
-                                 f"{out.torques[m_]:.12g}",
-                                 message=f"{source}: torques.{m_} is inconsistent with the "
-                                         "carrier-frame result: the file was edited or is "
-                                         "corrupt")
+            if not math.isclose(
+                float(data["torques"][m_]), out.torques[m_], rel_tol=1e-12, abs_tol=1e-12
+            ):
+                raise InputError(
+                    f"torques.{m_}",
+                    data["torques"][m_],
+                    f"{out.torques[m_]:.12g}",
+                    message=f"{source}: torques.{m_} is inconsistent with the "
+                    "carrier-frame result: the file was edited or is "
+                    "corrupt",
+                )
         return out
 
     @classmethod
-    def load(cls, path: str | Path) -> "PlanetaryResult":
+    def load(cls, path: str | Path) -> PlanetaryResult:
         """Read and validate a result written by `save`."""
         return cls.from_dict(*read_result(path))
 
 
-def make_planetary_result(mode: OperatingMode, relative: OperatingResult, sign: float,
-                          speeds: Mapping[str, float], load_torque: float,
-                          driver_speed: float, passes: int) -> PlanetaryResult:
+def make_planetary_result(
+    mode: OperatingMode,
+    relative: OperatingResult,
+    sign: float,
+    speeds: Mapping[str, float],
+    load_torque: float,
+    driver_speed: float,
+    passes: int,
+) -> PlanetaryResult:
     """Assemble a `PlanetaryResult`; the member torques follow from the carrier frame."""
-    torques = {m: sign * float(t) for m, t in
-               member_torques(relative.input_torque, relative.output_torque).items()}
-    return PlanetaryResult(mode, relative, float(sign),
-                           MappingProxyType({m: float(speeds[m]) for m in MEMBERS}),
-                           MappingProxyType(torques), float(load_torque), float(driver_speed),
-                           int(passes))
+    torques = {
+        m: sign * float(t)
+        for m, t in member_torques(relative.input_torque, relative.output_torque).items()
+    }
+    return PlanetaryResult(
+        mode,
+        relative,
+        float(sign),
+        MappingProxyType({m: float(speeds[m]) for m in MEMBERS}),
+        MappingProxyType(torques),
+        float(load_torque),
+        float(driver_speed),
+        int(passes),
+    )

@@ -8,14 +8,16 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 from pydantic import TypeAdapter, ValidationError
 
+from .._display import html_summary, text_summary
 from .._fileio import atomic_write_text
 from .._version import __version__
 from ..clamping.laws import axial_force
@@ -75,14 +77,23 @@ class ContactResult:
     lambda_ratio: float
 
 
+#: Units of the `ContactResult` fields (`OperatingResult.to_dataframe`).
+CONTACT_UNITS = {
+    "creep": "-", "spin": "-", "mu": "-", "chi": "-", "normal_load": "N", "p_max": "Pa",
+    "semi_axis_x": "m", "semi_axis_y": "m", "film_thickness": "m", "tangential_force": "N",
+    "spin_moment": "N m", "body_speed": "rad/s", "creep_loss": "W", "spin_loss": "W",
+    "lambda_ratio": "-",
+}  # fmt: skip
+
+
 class _JsonFile:
     """JSON output shared by the result classes (each has ``to_dict``)."""
 
-    def to_json(self, **kwargs: Any) -> str:
+    def to_json(self: Any, **kwargs: Any) -> str:
         """JSON text of `to_dict` (non-finite numbers are written as ``null``)."""
         return json.dumps(_finite(self.to_dict()), **kwargs)  # type: ignore[attr-defined]
 
-    def save(self, path: str | Path) -> None:
+    def save(self: Any, path: str | Path) -> None:
         """Write the result as JSON (atomically: never a truncated file)."""
         atomic_write_text(path, self.to_json(indent=2))
 
@@ -95,8 +106,12 @@ def read_result(path: str | Path, keep=("design", "fluid", "mode")):
     try:
         data = json.loads(Path(path).read_text(), parse_constant=float)
     except (OSError, UnicodeDecodeError, ValueError) as exc:
-        raise InputError("result file", str(path), "a readable JSON result",
-                         message=f"{source}: cannot be read ({exc})") from None
+        raise InputError(
+            "result file",
+            str(path),
+            "a readable JSON result",
+            message=f"{source}: cannot be read ({exc})",
+        ) from None
     if isinstance(data, dict):
         data = {k: v if k in keep else _unfinite(v) for k, v in data.items()}
     return data, source
@@ -203,6 +218,49 @@ class OperatingResult:
         """``T_2 omega_2`` [W]."""
         return self.output_torque * self.output_speed
 
+    def _summary(self) -> tuple[str, list]:
+        c = self.contacts
+        rows = [
+            ("ideal ratio tau_ID", self.ratio, "-"),
+            ("actual ratio", self.actual_ratio, "-"),
+            ("tilt", self.tilt_deg, "deg"),
+            ("input speed", self.input_speed_rpm, "rpm"),
+            ("input torque T_0", self.input_torque, "N m"),
+            ("output torque T_2", self.output_torque, "N m"),
+            ("input power", self.input_power, "W"),
+            ("efficiency (Eq. 38)", self.eta, "-"),
+            ("losses", self.losses["total"], "W"),
+            ("  creep / spin", f"{self.losses['creep']:.4g} / {self.losses['spin']:.4g}", "W"),
+            ("  bearings", self.losses["bearing"], "W"),
+            ("max |creep|", max(abs(v.creep) for v in c.values()), "-"),
+            ("max p_max", max(v.p_max for v in c.values()) / 1e9, "GPa"),
+            ("min film", min(v.film_thickness for v in c.values()) * 1e6, "um"),
+            ("clamp F_N0", self.clamp_force, f"N ({self.clamp_law} law)"),
+            ("traction law", self.traction_law, ""),
+            ("converged", f"{self.converged} (residual {self.residual_norm:.1e})", ""),
+            ("warnings", len(self.warnings), ""),
+        ]
+        return f"OperatingResult: {self.architecture} idler, {self.design.name}", rows
+
+    def __repr__(self) -> str:
+        return text_summary(*self._summary())
+
+    def _repr_html_(self) -> str:
+        return html_summary(*self._summary())
+
+    def to_dataframe(self):
+        """Per-contact quantities as a `pandas.DataFrame` (one row per contact, units in
+        ``df.attrs["units"]``; the point's figures in ``df.attrs["point"]``)."""
+        import pandas as pd
+
+        frame = pd.DataFrame({k: asdict(v) for k, v in self.contacts.items()}).T
+        frame.index.name = "contact"
+        frame.attrs["units"] = dict(CONTACT_UNITS)
+        frame.attrs["point"] = {
+            k: v for k, v in self.to_dict().items() if isinstance(v, (int, float, str))
+        }
+        return frame
+
     @property
     def traction_law(self) -> str:
         """Shear law of the film the point was solved with (``fluid.traction_law``)."""
@@ -232,7 +290,7 @@ class OperatingResult:
         return out
 
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: str = "result") -> "OperatingResult":
+    def from_dict(cls, data: Mapping[str, Any], source: str = "result") -> OperatingResult:
         """Inverse of `to_dict`, validated.
 
         Every field is checked for its type (pydantic), the design and fluid are validated
@@ -246,28 +304,40 @@ class OperatingResult:
             Naming the first missing, wrong-typed or inconsistent field.
         """
         if not isinstance(data, Mapping):
-            raise InputError(source, type(data).__name__, "a JSON object",
-                             message=f"{source}: not a result (a JSON object is expected)")
+            raise InputError(
+                source,
+                type(data).__name__,
+                "a JSON object",
+                message=f"{source}: not a result (a JSON object is expected)",
+            )
         # files written before the clamping laws (0.1.0) have no clamp_law: constant
         missing = [f.name for f in fields(cls) if f.name not in data and f.name != "clamp_law"]
         if missing:
-            raise InputError(missing[0], None, "a value",
-                             message=f"{source}: required key '{missing[0]}' is missing")
+            raise InputError(
+                missing[0],
+                None,
+                "a value",
+                message=f"{source}: required key '{missing[0]}' is missing",
+            )
         kw = {f.name: data[f.name] for f in fields(cls) if f.name in data}
         try:
             kw["design"] = Design(**kw["design"])
             kw["fluid"] = Fluid(**kw["fluid"])
         except (InputError, TypeError) as exc:
-            raise InputError("design", None, "a valid design",
-                             message=f"{source}: {exc}") from None
+            raise InputError(
+                "design", None, "a valid design", message=f"{source}: {exc}"
+            ) from None
         try:
             result = _ADAPTER.validate_python(kw)
         except ValidationError as exc:
             err = exc.errors()[0]
             name = ".".join(str(p) for p in err["loc"])
-            raise InputError(name, err.get("input"), err["msg"],
-                             message=f"{source}: {name} = {err.get('input')!r}: "
-                                     f"{err['msg']}") from None
+            raise InputError(
+                name,
+                err.get("input"),
+                err["msg"],
+                message=f"{source}: {name} = {err.get('input')!r}: {err['msg']}",
+            ) from None
         object.__setattr__(result, "contacts", MappingProxyType(dict(result.contacts)))
         object.__setattr__(result, "losses", MappingProxyType(dict(result.losses)))
         _check_consistent(result, source)
@@ -277,7 +347,7 @@ class OperatingResult:
     save = _JsonFile.save
 
     @classmethod
-    def load(cls, path: str | Path) -> "OperatingResult":
+    def load(cls, path: str | Path) -> OperatingResult:
         """Read and validate a result written by `save` (see `from_dict`)."""
         return cls.from_dict(*read_result(path))
 
@@ -287,28 +357,49 @@ _ADAPTER = TypeAdapter(OperatingResult)
 
 def _check_consistent(r: OperatingResult, source: str) -> None:
     """Refuse figures that contradict each other (an edited or corrupted file)."""
+
     def close(a, b, tol):
         return (math.isnan(a) and math.isnan(b)) or abs(a - b) <= tol * max(1.0, abs(b))
 
     ls = r.losses
     checks = [
         ("eta", r.eta, r.eta_speed * r.eta_torque, 1e-12, "eta_speed * eta_torque (Eq. 38)"),
-        ("eta_torque", r.eta_torque,
-         r.ratio * r.output_torque / r.input_torque if r.input_torque else r.eta_torque,
-         1e-12, "ratio * output_torque / input_torque (Eq. 37)"),
-        ("eta_loss", r.eta_loss, 1.0 - ls.get("total", math.nan) / r.input_power
-         if r.input_power else r.eta_loss, 1e-12, "1 - losses.total / input power (Eq. 39)"),
-        ("losses.total", ls.get("total", math.nan),
-         ls.get("creep", math.nan) + ls.get("spin", math.nan) + ls.get("bearing", math.nan)
-         + ls.get("parasitic", 0.0), 1e-9, "creep + spin + bearing + parasitic"),
+        (
+            "eta_torque",
+            r.eta_torque,
+            r.ratio * r.output_torque / r.input_torque if r.input_torque else r.eta_torque,
+            1e-12,
+            "ratio * output_torque / input_torque (Eq. 37)",
+        ),
+        (
+            "eta_loss",
+            r.eta_loss,
+            1.0 - ls.get("total", math.nan) / r.input_power if r.input_power else r.eta_loss,
+            1e-12,
+            "1 - losses.total / input power (Eq. 39)",
+        ),
+        (
+            "losses.total",
+            ls.get("total", math.nan),
+            ls.get("creep", math.nan)
+            + ls.get("spin", math.nan)
+            + ls.get("bearing", math.nan)
+            + ls.get("parasitic", 0.0),
+            1e-9,
+            "creep + spin + bearing + parasitic",
+        ),
         ("eta_loss", r.eta_loss, r.eta, 1e-6, "eta (Eq. 38 = Eq. 39)"),
     ]
     for name, value, expected, tol, what in checks:
         if not close(float(value), float(expected), tol):
-            raise InputError(name, value, f"{expected:.12g} = {what}",
-                             message=f"{source}: {name} = {value!r} is inconsistent with "
-                                     f"{what} = {expected:.12g}: the file was edited or is "
-                                     "corrupt")
+            raise InputError(
+                name,
+                value,
+                f"{expected:.12g} = {what}",
+                message=f"{source}: {name} = {value!r} is inconsistent with "
+                f"{what} = {expected:.12g}: the file was edited or is "
+                "corrupt",
+            )
 
 
 def _unfinite(obj: Any) -> Any:
@@ -334,8 +425,12 @@ def _finite(obj: Any) -> Any:
     return obj
 
 
-def make_result(problem: EquilibriumProblem, solution: PointSolution,
-                quadrature: Quadrature, clamp_law: str = "constant") -> OperatingResult:
+def make_result(
+    problem: EquilibriumProblem,
+    solution: PointSolution,
+    quadrature: Quadrature,
+    clamp_law: str = "constant",
+) -> OperatingResult:
     """Collect a solved single point into an `OperatingResult`."""
     st, lay = solution.state, problem.layout
     loss = power_losses(problem, st)
@@ -344,28 +439,52 @@ def make_result(problem: EquilibriumProblem, solution: PointSolution,
     f = lambda a: float(np.asarray(a))  # noqa: E731
     contacts = {
         name: ContactResult(
-            creep=f(st.creep[i]), spin=f(st.spin[i]), mu=f(st.mu[i]), chi=f(st.chi[i]),
-            normal_load=f(problem.load[i]), p_max=f(problem.p_max[i]),
-            semi_axis_x=f(problem.ax[i]), semi_axis_y=f(problem.ay[i]),
-            film_thickness=f(st.film[i]), tangential_force=f(st.force[i]),
-            spin_moment=f(st.moment[i]), body_speed=f(st.omega[i]),
-            creep_loss=f(loss.creep[i]), spin_loss=f(loss.spin[i]),
-            lambda_ratio=f(valid.lambda_ratio[i]))
-        for i, name in enumerate(lay.names)}
+            creep=f(st.creep[i]),
+            spin=f(st.spin[i]),
+            mu=f(st.mu[i]),
+            chi=f(st.chi[i]),
+            normal_load=f(problem.load[i]),
+            p_max=f(problem.p_max[i]),
+            semi_axis_x=f(problem.ax[i]),
+            semi_axis_y=f(problem.ay[i]),
+            film_thickness=f(st.film[i]),
+            tangential_force=f(st.force[i]),
+            spin_moment=f(st.moment[i]),
+            body_speed=f(st.omega[i]),
+            creep_loss=f(loss.creep[i]),
+            spin_loss=f(loss.spin[i]),
+            lambda_ratio=f(valid.lambda_ratio[i]),
+        )
+        for i, name in enumerate(lay.names)
+    }
     losses = {kind: f(value) for kind, value in loss_breakdown(loss).items()}
     return OperatingResult(
-        architecture=lay.architecture, design=problem.design, fluid=problem.fluid,
-        ratio=f(problem.ratio), output_torque=f(problem.output_torque),
-        clamp_force=f(problem.clamp_force), input_speed=f(problem.input_speed),
-        tilt=f(problem.tilt), actual_ratio=f(st.omega[-1] / st.omega[0]),
-        input_torque=f(st.input_torque), output_speed=f(st.omega[-1]),
-        roller_speed=f(st.omega_s), contacts=MappingProxyType(contacts),
+        architecture=lay.architecture,
+        design=problem.design,
+        fluid=problem.fluid,
+        ratio=f(problem.ratio),
+        output_torque=f(problem.output_torque),
+        clamp_force=f(problem.clamp_force),
+        input_speed=f(problem.input_speed),
+        tilt=f(problem.tilt),
+        actual_ratio=f(st.omega[-1] / st.omega[0]),
+        input_torque=f(st.input_torque),
+        output_speed=f(st.omega[-1]),
+        roller_speed=f(st.omega_s),
+        contacts=MappingProxyType(contacts),
         axle_reactions=(f(st.axle_reactions[0]), f(st.axle_reactions[1])),
-        losses=MappingProxyType(losses), eta=f(eff.overall), eta_loss=f(eff.from_losses),
-        eta_speed=f(eff.speed), eta_torque=f(eff.torque), converged=solution.converged,
-        residual_norm=solution.residual_norm, iterations=solution.evaluations,
+        losses=MappingProxyType(losses),
+        eta=f(eff.overall),
+        eta_loss=f(eff.from_losses),
+        eta_speed=f(eff.speed),
+        eta_torque=f(eff.torque),
+        converged=solution.converged,
+        residual_norm=solution.residual_norm,
+        iterations=solution.evaluations,
         quadrature=_label(quadrature),
-        warnings=tuple(warning_messages(problem, valid, lay.names)), clamp_law=clamp_law)
+        warnings=tuple(warning_messages(problem, valid, lay.names)),
+        clamp_law=clamp_law,
+    )
 
 
 def _label(q: Quadrature) -> str:

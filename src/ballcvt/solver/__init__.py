@@ -4,6 +4,14 @@ from .batch import BatchSolution, solve_batch
 from .limit import limit_torque, limit_torque_batch, traction_ceiling_torque
 from .point import PointSolution, SolverOptions, initial_creep, solve_point
 
-__all__ = ["BatchSolution", "solve_batch", "limit_torque",
-           "limit_torque_batch", "traction_ceiling_torque", "PointSolution", "SolverOptions",
-           "initial_creep", "solve_point"]
+__all__ = [
+    "BatchSolution",
+    "solve_batch",
+    "limit_torque",
+    "limit_torque_batch",
+    "traction_ceiling_torque",
+    "PointSolution",
+    "SolverOptions",
+    "initial_creep",
+    "solve_point",
+]

@@ -1,15 +1,16 @@
 """Batched Newton solver: many operating points at once (the fast default path).
 
 All points of a batch iterate together, first with a coarse quadrature (the predictor,
-``SolverOptions.predictor``) to a loose tolerance, then with the requested one. Each iteration evaluates the traction integrals
-once, with their analytic derivatives (`evaluate_with_jacobian`), and solves the small
-``n_c x n_c`` Newton systems of every point in one `numpy.linalg.solve` call. Steps are
-capped so that no creep leaves its physical range, and a point whose residual grew is sent
-back along half its previous step (a deferred backtracking line search that costs nothing
-while Newton converges). Points still unconverged after ``max_iterations`` go, one by one,
-to the robust point solver (hybrid method, then bracketing). A point is reported converged
-only if its residual, evaluated afresh on the final creeps, meets the tolerance; the others
-are flagged in ``converged``, never hidden.
+``SolverOptions.predictor``) to a loose tolerance, then with the requested one. Each
+iteration evaluates the traction integrals once, with their analytic derivatives
+(`evaluate_with_jacobian`), and solves the small ``n_c x n_c`` Newton systems of every
+point in one `numpy.linalg.solve` call. Steps are capped so that no creep leaves its
+physical range, and a point whose residual grew is sent back along half its previous step
+(a deferred backtracking line search that costs nothing while Newton converges). Points
+still unconverged after ``max_iterations`` go, one by one, to the robust point solver
+(hybrid method, then bracketing). A point is reported converged only if its residual,
+evaluated afresh on the final creeps, meets the tolerance; the others are flagged in
+``converged``, never hidden.
 """
 
 from __future__ import annotations
@@ -19,8 +20,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
-from ..equilibrium.residual import (EquilibriumState, balancing_output_torque, evaluate,
-                                    evaluate_with_jacobian)
+from ..equilibrium.residual import (
+    EquilibriumState,
+    balancing_output_torque,
+    evaluate,
+    evaluate_with_jacobian,
+)
 
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "CREEP_BOUNDS"]
 
@@ -60,8 +65,9 @@ def initial_creep(problem: EquilibriumProblem) -> np.ndarray:
     return np.broadcast_to(x0, problem.shape + x0.shape).copy()
 
 
-def solve_batch(problem: EquilibriumProblem, options=None, x0=None,
-                fallback: bool = True, predict: bool = True) -> BatchSolution:
+def solve_batch(
+    problem: EquilibriumProblem, options=None, x0=None, fallback: bool = True, predict: bool = True
+) -> BatchSolution:
     """Solve every operating point of ``problem`` for its creeps.
 
     Parameters
@@ -85,11 +91,15 @@ def solve_batch(problem: EquilibriumProblem, options=None, x0=None,
     BatchSolution
     """
     from .point import SolverOptions, solve_point  # the point solver builds on this module
+
     options = SolverOptions() if options is None else options
     shape, nc = problem.shape, problem.layout.n_contacts
     flat = problem.flat()
-    x = initial_creep(flat) if x0 is None else \
-        np.broadcast_to(np.asarray(x0, dtype=float), shape + (nc,)).reshape(-1, nc).copy()
+    x = (
+        initial_creep(flat)
+        if x0 is None
+        else np.broadcast_to(np.asarray(x0, dtype=float), shape + (nc,)).reshape(-1, nc).copy()
+    )
     iterations = np.zeros(flat.size, dtype=int)
     x, state = _staged_newton(flat, x, iterations, options, predict=predict)
     norm = _norm(state.residual)
@@ -104,8 +114,12 @@ def solve_batch(problem: EquilibriumProblem, options=None, x0=None,
         state = evaluate(flat, x, options.quadrature)
         norm = _norm(state.residual)
     converged = norm <= options.tol
-    return BatchSolution(state=_reshape(state, shape), converged=converged.reshape(shape),
-                         residual_norm=norm.reshape(shape), iterations=iterations.reshape(shape))
+    return BatchSolution(
+        state=_reshape(state, shape),
+        converged=converged.reshape(shape),
+        residual_norm=norm.reshape(shape),
+        iterations=iterations.reshape(shape),
+    )
 
 
 def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
@@ -137,6 +151,7 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
         Creeps and state; ``converged`` refers to the balances other than the output's.
     """
     from .point import SolverOptions
+
     options = SolverOptions() if options is None else options
     flat = problem.flat()
     x = np.array(x0, dtype=float).reshape(flat.size, -1)
@@ -144,7 +159,8 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     _, state = _staged_newton(flat, x, iterations, options, pinned=contact)
     norm = _norm(state.residual[:, :-1])
     return balancing_output_torque(flat, state), BatchSolution(
-        state=state, converged=norm <= options.tol, residual_norm=norm, iterations=iterations)
+        state=state, converged=norm <= options.tol, residual_norm=norm, iterations=iterations
+    )
 
 
 def _staged_newton(flat, x, iterations, options, pinned=None, predict=True):
@@ -161,8 +177,11 @@ def _staged_newton(flat, x, iterations, options, pinned=None, predict=True):
 
 def _predicts(options, n_points: int) -> bool:
     """Whether a batch of ``n_points`` runs the predictor stage first."""
-    return (options.predictor is not None and options.predictor != options.quadrature
-            and n_points >= options.predictor_min_points)
+    return (
+        options.predictor is not None
+        and options.predictor != options.quadrature
+        and n_points >= options.predictor_min_points
+    )
 
 
 def _newton(flat, x, iterations, options, pinned=None):
@@ -180,8 +199,8 @@ def _newton(flat, x, iterations, options, pinned=None):
     rows = slice(None) if pinned is None else slice(0, nc - 1)
     active = np.arange(flat.size)
     final = None
-    fresh = np.zeros(flat.size, dtype=bool)       # last evaluation was at the current x
-    best = np.full(flat.size, np.inf)          # residual norm at the last accepted creeps
+    fresh = np.zeros(flat.size, dtype=bool)  # last evaluation was at the current x
+    best = np.full(flat.size, np.inf)  # residual norm at the last accepted creeps
     prev_x = x.copy()
     prev_dx = np.zeros((flat.size, free.size))
     for _ in range(options.max_iterations):
@@ -195,7 +214,7 @@ def _newton(flat, x, iterations, options, pinned=None):
         res = state.residual[:, rows]
         norm = _norm(res)
         done = norm <= options.tol
-        worse = ~done & ~(norm < best[active])        # includes NaN residuals
+        worse = ~done & ~(norm < best[active])  # includes NaN residuals
         # Points that got worse go back along half their last step; the others step.
         ok = ~done & ~worse
         dx = np.zeros_like(res)
@@ -224,8 +243,9 @@ def _newton(flat, x, iterations, options, pinned=None):
 
 def _scatter(full: EquilibriumState, part: EquilibriumState, index) -> EquilibriumState:
     """``full`` with the points ``index`` replaced by ``part`` (copies, 1-D batches)."""
-    if part.creep.shape[0] == full.creep.shape[0] and np.array_equal(index, np.arange(
-            full.creep.shape[0])):
+    if part.creep.shape[0] == full.creep.shape[0] and np.array_equal(
+        index, np.arange(full.creep.shape[0])
+    ):
         return part
     fields = {}
     for name, value in vars(full).items():
@@ -247,8 +267,11 @@ def _newton_step(jac, res, x):
     lo, hi = CREEP_BOUNDS
     # Never step more than half-way to a bound.
     room = np.where(dx > 0, 0.5 * (hi - x), 0.5 * (x - lo))
-    scale = np.min(np.where(np.abs(dx) > room, room / np.maximum(np.abs(dx), 1e-300), 1.0),
-                   axis=-1, keepdims=True)
+    scale = np.min(
+        np.where(np.abs(dx) > room, room / np.maximum(np.abs(dx), 1e-300), 1.0),
+        axis=-1,
+        keepdims=True,
+    )
     return dx * scale
 
 

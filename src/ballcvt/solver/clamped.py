@@ -18,8 +18,14 @@ import numpy as np
 from ..contact.rheology import roelands_pressure_limit
 from ..equilibrium.problem import EquilibriumProblem, build_problem
 
-__all__ = ["with_clamp", "solve_clamped", "pressure_bound_force", "capacity_basis",
-           "CLAMP_RTOL", "MAX_CLAMP_ITERATIONS"]
+__all__ = [
+    "with_clamp",
+    "solve_clamped",
+    "pressure_bound_force",
+    "capacity_basis",
+    "CLAMP_RTOL",
+    "MAX_CLAMP_ITERATIONS",
+]
 
 #: Relative tolerance of the clamping equation ``F_N0 = law(T_0, T_2)`` [-].
 CLAMP_RTOL = 1e-11
@@ -29,9 +35,15 @@ MAX_CLAMP_ITERATIONS = 30
 
 def with_clamp(problem: EquilibriumProblem, clamp_force) -> EquilibriumProblem:
     """The same operating points at other clamping forces ``F_N0`` [N]."""
-    return build_problem(problem.design, problem.fluid, problem.layout.architecture,
-                         problem.ratio, problem.output_torque, clamp_force,
-                         problem.input_speed)
+    return build_problem(
+        problem.design,
+        problem.fluid,
+        problem.layout.architecture,
+        problem.ratio,
+        problem.output_torque,
+        clamp_force,
+        problem.input_speed,
+    )
 
 
 def pressure_bound_force(problem: EquilibriumProblem, max_pressure: float) -> np.ndarray:
@@ -42,8 +54,12 @@ def pressure_bound_force(problem: EquilibriumProblem, max_pressure: float) -> np
     pressure at which the Roelands viscosity overflows (docs/model.md §10).
     """
     fl = problem.fluid
-    p_lim = min(float(max_pressure), roelands_pressure_limit(
-        fl.viscosity, fl.pole_viscosity, fl.pole_pressure, fl.roelands_index))
+    p_lim = min(
+        float(max_pressure),
+        roelands_pressure_limit(
+            fl.viscosity, fl.pole_viscosity, fl.pole_pressure, fl.roelands_index
+        ),
+    )
     return problem.clamp_force * (p_lim / np.max(problem.p_max, axis=-1)) ** 3
 
 
@@ -107,6 +123,11 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):
     if np.ndim(sol.converged) == 0:
         converged = bool(converged)
         if sol.converged and not converged:
-            return pb, replace(sol, converged=False, message=sol.message.replace(
-                "converged", "equilibrium converged, clamping force did not", 1))
+            return pb, replace(
+                sol,
+                converged=False,
+                message=sol.message.replace(
+                    "converged", "equilibrium converged, clamping force did not", 1
+                ),
+            )
     return pb, replace(sol, converged=converged)

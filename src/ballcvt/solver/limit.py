@@ -22,9 +22,19 @@ from .batch import initial_creep, solve_batch, solve_pinned
 from .clamped import pressure_bound_force, solve_clamped, with_clamp
 from .point import SolverOptions, solve_point
 
-__all__ = ["limit_torque", "limit_torque_batch", "limit_search", "LimitSearch",
-           "limit_torque_bisection", "solve_admissible", "Admissibility",
-           "traction_ceiling_torque", "saturated_traction", "bisection_steps", "LIMIT_RTOL"]
+__all__ = [
+    "limit_torque",
+    "limit_torque_batch",
+    "limit_search",
+    "LimitSearch",
+    "limit_torque_bisection",
+    "solve_admissible",
+    "Admissibility",
+    "traction_ceiling_torque",
+    "saturated_traction",
+    "bisection_steps",
+    "LIMIT_RTOL",
+]
 
 
 #: Default relative width of the final torque bracket of the limit bisections.
@@ -57,14 +67,23 @@ def traction_ceiling_torque(problem: EquilibriumProblem) -> np.ndarray:
     that of the input contact over ``tau_ID`` (power cannot grow: ``T_2 <= T_0 / tau_ID``).
     Shape ``(...)``, the batch shape of ``problem``.
     """
-    cap = (problem.design.n_rollers * problem.load * problem.radius
-           * saturated_traction(problem) * (1 + np.abs(problem.layout.z_j)))
+    cap = (
+        problem.design.n_rollers
+        * problem.load
+        * problem.radius
+        * saturated_traction(problem)
+        * (1 + np.abs(problem.layout.z_j))
+    )
     return np.minimum(cap[..., -1], cap[..., 0] / problem.ratio)
 
 
-def limit_torque(problem: EquilibriumProblem, creep_limit: float,
-                 options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL,
-                 law=None) -> float:
+def limit_torque(
+    problem: EquilibriumProblem,
+    creep_limit: float,
+    options: SolverOptions = SolverOptions(),
+    rtol: float = LIMIT_RTOL,
+    law=None,
+) -> float:
     """Largest admissible output torque of a single operating point [N m].
 
     `limit_torque_batch` on one point, so that a point, a sweep and a map give the same
@@ -103,20 +122,28 @@ def limit_torque(problem: EquilibriumProblem, creep_limit: float,
             raise NoEquilibriumError(
                 f"no admissible equilibrium even at zero output torque: the {law.name} law's "
                 f"clamping force {float(zero.clamp_force):.4g} N already exceeds the pressure "
-                f"limit max_pressure = {zero.design.max_pressure:g} Pa")
+                f"limit max_pressure = {zero.design.max_pressure:g} Pa"
+            )
     else:
         best = solve_point(zero, options)
-    where = (f"ratio {float(problem.ratio):g}, clamp_force {float(problem.clamp_force):g} N, "
-             f"input speed {float(problem.input_speed):g} rad/s")
+    where = (
+        f"ratio {float(problem.ratio):g}, clamp_force {float(problem.clamp_force):g} N, "
+        f"input speed {float(problem.input_speed):g} rad/s"
+    )
     if best.converged:
-        why = (f"its creep {float(np.max(np.abs(best.state.creep))):.3g} already exceeds "
-               f"creep_limit {creep_limit:g}: the drive's own spin and bearing drag use up "
-               "its traction")
+        why = (
+            f"its creep {float(np.max(np.abs(best.state.creep))):.3g} already exceeds "
+            f"creep_limit {creep_limit:g}: the drive's own spin and bearing drag use up "
+            "its traction"
+        )
     else:
-        why = ("the traction this clamping force can transmit at this speed does not carry "
-               f"the drive's own drag; raise clamp_force ({best.message})")
-    raise NoEquilibriumError(f"no admissible equilibrium even at zero output torque "
-                             f"({where}): {why}")
+        why = (
+            "the traction this clamping force can transmit at this speed does not carry "
+            f"the drive's own drag; raise clamp_force ({best.message})"
+        )
+    raise NoEquilibriumError(
+        f"no admissible equilibrium even at zero output torque ({where}): {why}"
+    )
 
 
 @dataclass(frozen=True)
@@ -142,9 +169,13 @@ class Admissibility:
     creep: np.ndarray
 
 
-def solve_admissible(problem: EquilibriumProblem, creep_limit: float,
-                     options: SolverOptions = SolverOptions(), law=None,
-                     x0=None) -> Admissibility:
+def solve_admissible(
+    problem: EquilibriumProblem,
+    creep_limit: float,
+    options: SolverOptions = SolverOptions(),
+    law=None,
+    x0=None,
+) -> Admissibility:
     """Solve a 1-D batch and say which points lie within the traction capacity.
 
     Newton alone first; the point solver only for the points whose Newton run failed
@@ -173,11 +204,14 @@ def solve_admissible(problem: EquilibriumProblem, creep_limit: float,
     """
     law = law if _follows_torque(law) else None
     if law is not None:
+
         def solve(pb, x, fallback):
             return solve_clamped(pb, law, lambda p, y: solve_batch(p, options, y, fallback), x)
     else:
+
         def solve(pb, x, fallback):
             return pb, solve_batch(pb, options, x, fallback=fallback)
+
     pb, sol = solve(problem, x0, False)
     big = np.max(np.abs(sol.state.creep), axis=-1)
     conv, creep = sol.converged.copy(), sol.state.creep.copy()
@@ -216,20 +250,26 @@ class LimitSearch:
     creep: np.ndarray
     creep_zero: np.ndarray
 
-    def flat(self) -> "LimitSearch":
+    def flat(self) -> LimitSearch:
         """The same points as a 1-D batch (C order)."""
         nc = self.creep.shape[-1]
-        return LimitSearch(self.torque.reshape(-1), self.creep.reshape(-1, nc),
-                           self.creep_zero.reshape(-1, nc))
+        return LimitSearch(
+            self.torque.reshape(-1), self.creep.reshape(-1, nc), self.creep_zero.reshape(-1, nc)
+        )
 
-    def take(self, index) -> "LimitSearch":
+    def take(self, index) -> LimitSearch:
         """The points ``index`` of a 1-D batch."""
         return LimitSearch(self.torque[index], self.creep[index], self.creep_zero[index])
 
 
-def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
-                       options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL,
-                       callback=None, law=None) -> np.ndarray:
+def limit_torque_batch(
+    problem: EquilibriumProblem,
+    creep_limit: float,
+    options: SolverOptions = SolverOptions(),
+    rtol: float = LIMIT_RTOL,
+    callback=None,
+    law=None,
+) -> np.ndarray:
     """Limiting output torque of every point of a batch (its ``output_torque`` is ignored).
 
     `limit_search` returning the torques only: shape ``(...)`` [N m], NaN where even
@@ -238,9 +278,14 @@ def limit_torque_batch(problem: EquilibriumProblem, creep_limit: float,
     return limit_search(problem, creep_limit, options, rtol, callback, law).torque
 
 
-def limit_search(problem: EquilibriumProblem, creep_limit: float,
-                 options: SolverOptions = SolverOptions(), rtol: float = LIMIT_RTOL,
-                 callback=None, law=None) -> LimitSearch:
+def limit_search(
+    problem: EquilibriumProblem,
+    creep_limit: float,
+    options: SolverOptions = SolverOptions(),
+    rtol: float = LIMIT_RTOL,
+    callback=None,
+    law=None,
+) -> LimitSearch:
     """Limiting output torque of every point of a batch, and the creeps there.
 
     Under a constant clamping force the limit is found directly: the creep of a disc
@@ -301,22 +346,26 @@ def limit_search(problem: EquilibriumProblem, creep_limit: float,
         tick()
     rest = np.flatnonzero(np.isnan(torque))
     if rest.size:
-        zero = solve_admissible(replace(flat.take(rest), output_torque=np.zeros(rest.size)),
-                                creep_limit, options, law)
+        zero = solve_admissible(
+            replace(flat.take(rest), output_torque=np.zeros(rest.size)), creep_limit, options, law
+        )
         tick()
         x_zero[rest] = np.where(zero.converged[:, None], zero.creep, np.nan)
         todo = rest[zero.ok]
-        if law is None and todo.size:                   # once more, from the T_2 = 0 creeps
-            torque[todo], creep[todo] = _pinned_limits(flat.take(todo), creep_limit, options,
-                                                       x_zero[todo])
+        if law is None and todo.size:  # once more, from the T_2 = 0 creeps
+            torque[todo], creep[todo] = _pinned_limits(
+                flat.take(todo), creep_limit, options, x_zero[todo]
+            )
         todo = todo[np.isnan(torque[todo])]
         if todo.size:
             torque[todo], creep[todo] = limit_torque_bisection(
-                flat.take(todo), creep_limit, options, rtol, tick, law, x_zero[todo])
+                flat.take(todo), creep_limit, options, rtol, tick, law, x_zero[todo]
+            )
     tick(bisection_steps(rtol))
     shape = problem.shape
-    return LimitSearch(torque.reshape(shape), creep.reshape(shape + (nc,)),
-                       x_zero.reshape(shape + (nc,)))
+    return LimitSearch(
+        torque.reshape(shape), creep.reshape(shape + (nc,)), x_zero.reshape(shape + (nc,))
+    )
 
 
 def _pinned_limits(flat, creep_limit, options, x_zero):
@@ -340,8 +389,12 @@ def _pinned_limits(flat, creep_limit, options, x_zero):
             x0[:, [0, -1]] = creep_limit
             t, sol = solve_pinned(flat.take(idx), k, x0, options)
             x = sol.state.creep
-            good = (sol.converged & np.isfinite(t) & (t >= 0.0)
-                    & (np.max(np.abs(x), axis=-1) <= creep_limit * (1.0 + 1e-9)))
+            good = (
+                sol.converged
+                & np.isfinite(t)
+                & (t >= 0.0)
+                & (np.max(np.abs(x), axis=-1) <= creep_limit * (1.0 + 1e-9))
+            )
             torque[idx[good]], creep[idx[good]] = t[good], x[good]
     return torque, creep
 
@@ -371,8 +424,11 @@ def _peak_limits(flat, creep_limit, options, x_zero):
         x0[:, k] = c
         t, sol = solve_pinned(flat.take(rows), k, x0, options)
         x = sol.state.creep
-        ok = (sol.converged & np.isfinite(t)
-              & (np.max(np.abs(x), axis=-1) <= creep_limit * (1.0 + 1e-9)))
+        ok = (
+            sol.converged
+            & np.isfinite(t)
+            & (np.max(np.abs(x), axis=-1) <= creep_limit * (1.0 + 1e-9))
+        )
         return np.where(ok, t, -np.inf), x
 
     grid = creep_limit * np.arange(1, PEAK_SCAN + 1) / PEAK_SCAN
@@ -402,21 +458,32 @@ def _peak_limits(flat, creep_limit, options, x_zero):
             for t, x in ((t1, x1), (t2, x2)):
                 better = t > bt
                 bt, bx = np.where(better, t, bt), np.where(better[:, None], x, bx)
-            left = t1 >= t2                      # the peak lies in [a, c2]
+            left = t1 >= t2  # the peak lies in [a, c2]
             a, b = np.where(left, a, c1), np.where(left, c2, b)
             c1, c2 = b - g * (b - a), a + g * (b - a)
             c_new = np.where(left, c1, c2)
             t_new, x_new = pinned(live, k, c_new, bx)
-            t1, x1, t2, x2 = (np.where(left, t_new, t2), np.where(left[:, None], x_new, x2),
-                              np.where(left, t1, t_new), np.where(left[:, None], x1, x_new))
+            t1, x1, t2, x2 = (
+                np.where(left, t_new, t2),
+                np.where(left[:, None], x_new, x2),
+                np.where(left, t1, t_new),
+                np.where(left[:, None], x1, x_new),
+            )
         better = bt > torque[live]
         torque[live[better]], creep[live[better]] = bt[better], bx[better]
     keep = np.isfinite(torque) & (torque >= 0.0)
     return np.where(keep, torque, np.nan), np.where(keep[:, None], creep, np.nan)
 
 
-def limit_torque_bisection(flat: EquilibriumProblem, creep_limit: float, options: SolverOptions,
-                           rtol: float, callback, law, x_zero):
+def limit_torque_bisection(
+    flat: EquilibriumProblem,
+    creep_limit: float,
+    options: SolverOptions,
+    rtol: float,
+    callback,
+    law,
+    x_zero,
+):
     """Bisection on ``T_2`` for the limits of a 1-D batch admissible at ``T_2 = 0``.
 
     Each trial is started from the point's last admissible creeps (continuation) and
@@ -432,8 +499,10 @@ def limit_torque_bisection(flat: EquilibriumProblem, creep_limit: float, options
     """
     if law is not None:
         f_cap = pressure_bound_force(flat, flat.design.max_pressure)
-        hi = np.minimum(law.output_torque_bound(flat.design, f_cap, flat.ratio),
-                        traction_ceiling_torque(with_clamp(flat, f_cap)))
+        hi = np.minimum(
+            law.output_torque_bound(flat.design, f_cap, flat.ratio),
+            traction_ceiling_torque(with_clamp(flat, f_cap)),
+        )
     else:
         hi = traction_ceiling_torque(flat)
     best = np.array(x_zero, dtype=float)
@@ -446,8 +515,9 @@ def limit_torque_bisection(flat: EquilibriumProblem, creep_limit: float, options
         if active.size == 0:
             break
         mid = 0.5 * (lo[active] + hi[active])
-        got = solve_admissible(replace(flat.take(active), output_torque=mid), creep_limit,
-                               options, law, best[active])
+        got = solve_admissible(
+            replace(flat.take(active), output_torque=mid), creep_limit, options, law, best[active]
+        )
         lo[active] = np.where(got.ok, mid, lo[active])
         hi[active] = np.where(got.ok, hi[active], mid)
         best[active] = np.where(got.ok[:, None], got.creep, best[active])

@@ -85,6 +85,7 @@ def solve_nested(problem: EquilibriumProblem, quadrature: Quadrature, xtol: floa
     if np.sign(fa) == np.sign(fb):
         raise NoBracketError("the ball moment balance has no root in the input-creep bracket")
     from scipy.optimize import brentq  # loaded when needed: scipy.optimize takes 0.4 s to import
+
     c0 = brentq(outer, a, b, xtol=1e-16, rtol=4 * np.finfo(float).eps, maxiter=200)
     x = cache.get(c0)
     if x is None:

@@ -60,9 +60,18 @@ class ModeSolution:
     passes: int
 
 
-def solve_mode(design, fluid, architecture: str, mode: OperatingMode, ratio: float,
-               load_torque: float, driver_speed: float, clamp_force: float,
-               options: SolverOptions = SolverOptions(), max_passes: int = 30) -> ModeSolution:
+def solve_mode(
+    design,
+    fluid,
+    architecture: str,
+    mode: OperatingMode,
+    ratio: float,
+    load_torque: float,
+    driver_speed: float,
+    clamp_force: float,
+    options: SolverOptions = SolverOptions(),
+    max_passes: int = 30,
+) -> ModeSolution:
     """Solve one operating point of the variator in a planetary mode.
 
     Parameters
@@ -99,14 +108,19 @@ def solve_mode(design, fluid, architecture: str, mode: OperatingMode, ratio: flo
         If an equilibrium or the fixed point does not converge.
     """
     tau, x, sol, pb = float(ratio), None, None, None
-    for passes in range(1, max_passes + 1):
+    for passes in range(1, max_passes + 1):  # noqa: B007 (the count is returned)
         speeds = mode.speeds(float(driver_speed), tau)
         if not abs(float(speeds["disc0"] - speeds["carrier"])) > 0.0:
-            raise InputError("driver_speed", driver_speed, f"!= 0: with {mode.label} at "
-                             f"ratio {ratio:g} the discs would not turn relative to the "
-                             "carrier")
-        pb, sign = carrier_frame_problem(design, fluid, architecture, mode, ratio,
-                                         float(load_torque), speeds, clamp_force)
+            raise InputError(
+                "driver_speed",
+                driver_speed,
+                f"!= 0: with {mode.label} at "
+                f"ratio {ratio:g} the discs would not turn relative to the "
+                "carrier",
+            )
+        pb, sign = carrier_frame_problem(
+            design, fluid, architecture, mode, ratio, float(load_torque), speeds, clamp_force
+        )
         sign = float(sign)
         sol = solve_point(pb, options, x)
         if not sol.converged:
@@ -117,16 +131,19 @@ def solve_mode(design, fluid, architecture: str, mode: OperatingMode, ratio: flo
             break
         tau = new
     else:
-        raise ConvergenceError(f"{mode.label}: the speeds did not settle in {max_passes} "
-                               f"passes (actual ratio {tau:.15g})")
+        raise ConvergenceError(
+            f"{mode.label}: the speeds did not settle in {max_passes} "
+            f"passes (actual ratio {tau:.15g})"
+        )
     speeds = {m: float(v) for m, v in mode.speeds(float(driver_speed), new).items()}
     t2 = balancing_output_torque(pb, sol.state)
     standard = replace(pb, output_torque=np.asarray(t2), torque_weights=(0.0, 1.0))
     return ModeSolution(standard, sol, sign, speeds, passes)
 
 
-def carrier_frame_problem(design, fluid, architecture: str, mode: OperatingMode, ratio,
-                          load_torque, speeds, clamp_force):
+def carrier_frame_problem(
+    design, fluid, architecture: str, mode: OperatingMode, ratio, load_torque, speeds, clamp_force
+):
     """The point(s) in the carrier frame, mirrored where the relative input speed is
     negative (module docstring).
 
@@ -146,8 +163,18 @@ def carrier_frame_problem(design, fluid, architecture: str, mode: OperatingMode,
     a, b, target = mode.torque_condition(load_torque)
     relative = np.asarray(speeds["disc0"] - speeds["carrier"], dtype=float)
     sign = np.where(relative > 0, 1.0, -1.0)
-    pb = build_problem(design, fluid, architecture, ratio, sign * target, clamp_force,
-                       np.abs(relative), carrier_speed=sign * speeds["carrier"],
-                       torque_weights=(a, b), centrifugal=mode.centrifugal,
-                       gyroscopic=mode.gyroscopic, signed_torque=True)
+    pb = build_problem(
+        design,
+        fluid,
+        architecture,
+        ratio,
+        sign * target,
+        clamp_force,
+        np.abs(relative),
+        carrier_speed=sign * speeds["carrier"],
+        torque_weights=(a, b),
+        centrifugal=mode.centrifugal,
+        gyroscopic=mode.gyroscopic,
+        signed_torque=True,
+    )
     return pb, sign

@@ -103,13 +103,16 @@ def _attempt(problem, x0, options):
         return np.column_stack(cols)
 
     from scipy.optimize import root  # loaded when needed: scipy.optimize takes 0.4 s to import
-    sol = root(fun, x0, jac=jac, method="hybr",
-               options={"xtol": 1e-14, "maxfev": options.max_evaluations})
+
+    sol = root(
+        fun, x0, jac=jac, method="hybr", options={"xtol": 1e-14, "maxfev": options.max_evaluations}
+    )
     return sol, count[0]
 
 
-def solve_point(problem: EquilibriumProblem, options: SolverOptions = SolverOptions(),
-                x0=None) -> PointSolution:
+def solve_point(
+    problem: EquilibriumProblem, options: SolverOptions = SolverOptions(), x0=None
+) -> PointSolution:
     """Solve one operating point (``problem.shape == ()``).
 
     Parameters
@@ -149,7 +152,9 @@ def solve_point(problem: EquilibriumProblem, options: SolverOptions = SolverOpti
         except NoBracketError as exc:
             detail = str(exc)
     converged = bool(norm <= options.tol and np.all(np.isfinite(state.residual)))
-    message = f"converged ({detail})" if converged else (
-        f"no equilibrium found: max|residual| = {norm:.3g} > tol {options.tol:g} ({detail})")
+    message = (
+        f"converged ({detail})"
+        if converged
+        else (f"no equilibrium found: max|residual| = {norm:.3g} > tol {options.tol:g} ({detail})")
+    )
     return PointSolution(state, converged, norm, evals, message)
-

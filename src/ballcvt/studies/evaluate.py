@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -23,8 +24,7 @@ from ..solver.limit import limit_search
 from ..sweeps.points import evaluate_points
 from .spec import OBJECTIVES, StudySpec
 
-__all__ = ["Context", "make_context", "evaluate_chunk", "STATUS", "METRICS",
-           "envelope_diameter"]
+__all__ = ["Context", "make_context", "evaluate_chunk", "STATUS", "METRICS", "envelope_diameter"]
 
 #: Design status codes.
 STATUS = {0: "evaluated", 1: "cannot be built", 2: "constraint violated", 3: "not solved"}
@@ -53,30 +53,46 @@ class Context:
 def make_context(spec: StudySpec) -> Context:
     """Resolve the study's drive, fluid and operating points."""
     drive = spec.study.drive
-    design, fluid = (load_builtin(drive) if drive in ("table1", "hub") and
-                     not _exists(drive) else load_drive(drive))
+    design, fluid = (
+        load_builtin(drive)
+        if drive in ("table1", "hub") and not _exists(drive)
+        else load_drive(drive)
+    )
     if spec.study.traction_law is not None:
         fluid = Fluid(**{**fluid.model_dump(), "traction_law": spec.study.traction_law})
     op = spec.operating
     if op.cycle is None:
-        r, t, w = np.meshgrid(op.ratio, op.output_torque,
-                              np.asarray(op.input_speed_rpm) * math.pi / 30, indexing="ij")
+        r, t, w = np.meshgrid(
+            np.asarray(op.ratio),
+            np.asarray(op.output_torque),
+            np.asarray(op.input_speed_rpm) * math.pi / 30,
+            indexing="ij",
+        )
         ratio, torque, speed = r.ravel(), t.ravel(), w.ravel()
-        weights = (np.ones(ratio.size) if op.weights is None
-                   else np.asarray(op.weights, dtype=float))
+        weights = (
+            np.ones(ratio.size) if op.weights is None else np.asarray(op.weights, dtype=float)
+        )
     else:
         ratio = torque = speed = weights = np.zeros(0)
     cap = spec.study.capacity_ratios
     if cap is None:
         cap = sorted(set(op.ratio)) if op.ratio else [1.0]
     cap = sorted(set(cap) | {c.ratio for c in spec.constraints.min_capacity})
-    return Context(spec, design.model_dump(), fluid, ratio, torque, speed,
-                   weights / weights.sum() if weights.size else weights,
-                   np.asarray(cap, dtype=float))
+    return Context(
+        spec,
+        design.model_dump(),
+        fluid,
+        ratio,
+        torque,
+        speed,
+        weights / weights.sum() if weights.size else weights,
+        np.asarray(cap, dtype=float),
+    )
 
 
 def _exists(path: str) -> bool:
     from pathlib import Path
+
     return Path(path).exists()
 
 
@@ -94,16 +110,18 @@ def evaluate_chunk(ctx: Context, index: np.ndarray, x: np.ndarray) -> dict:
     and ``point_status`` ``(n, n_points)``.
     """
     n = len(index)
-    out = {"design": np.asarray(index, dtype=np.int64), "status": np.zeros(n, np.int8),
-           "reason": np.full(n, "", dtype="<U200")}
+    out: dict[str, Any] = {
+        "design": np.asarray(index, dtype=np.int64),
+        "status": np.zeros(n, np.int8),
+        "reason": np.full(n, "", dtype="<U200"),
+    }
     out.update({m: np.full(n, np.nan) for m in METRICS})
     out["eta"] = np.full((n, ctx.n_points), np.nan)
     out["point_status"] = np.full((n, ctx.n_points), -1, np.int8)
     for row in range(n):
         try:
-            status, reason, metrics, eta, pst = _evaluate(ctx, dict(zip(ctx.spec.names,
-                                                                        x[row])))
-        except BallCVTError as exc:                # a solve that failed: said, not raised
+            status, reason, metrics, eta, pst = _evaluate(ctx, dict(zip(ctx.spec.names, x[row])))
+        except BallCVTError as exc:  # a solve that failed: said, not raised
             status, reason, metrics, eta, pst = 3, str(exc), {}, None, None
         out["status"][row], out["reason"][row] = status, reason[:200]
         for m, v in metrics.items():
@@ -115,12 +133,13 @@ def evaluate_chunk(ctx: Context, index: np.ndarray, x: np.ndarray) -> dict:
 
 def _design(ctx: Context, values: dict):
     fields = {k: v for k, v in values.items() if k != "clamp_force"}
-    for key, value in fields.items():                # whole numbers for integer fields
+    for key, value in fields.items():  # whole numbers for integer fields
         if Design.model_fields[key].annotation is int:
             fields[key] = int(round(value))
     data = {**ctx.base, **ctx.spec.fixed, **fields}
     data["name"] = f"{ctx.spec.study.name}: " + ", ".join(
-        f"{k} = {v:.6g}" for k, v in values.items())
+        f"{k} = {v:.6g}" for k, v in values.items()
+    )
     return Design(**data)
 
 
@@ -136,28 +155,54 @@ def _evaluate(ctx: Context, values: dict):
     lo, hi = ratio_range(design)
     needed = [*ctx.ratio, *ctx.capacity_ratios] + (con.ratio_range or [])
     if needed and (min(needed) < lo or max(needed) > hi):
-        return 2, (f"ratio range {lo:.3f}-{hi:.3f} does not cover "
-                   f"{min(needed):g}-{max(needed):g}"), metrics, None, None
+        return (
+            2,
+            (f"ratio range {lo:.3f}-{hi:.3f} does not cover {min(needed):g}-{max(needed):g}"),
+            metrics,
+            None,
+            None,
+        )
     if con.outer_diameter_max is not None and metrics["outer_diameter"] > con.outer_diameter_max:
-        return 2, (f"outer_diameter {metrics['outer_diameter']:.4g} m > "
-                   f"{con.outer_diameter_max:g} m"), metrics, None, None
+        return (
+            2,
+            (f"outer_diameter {metrics['outer_diameter']:.4g} m > {con.outer_diameter_max:g} m"),
+            metrics,
+            None,
+            None,
+        )
     force = values.get("clamp_force", spec.operating.clamp_force)
     law = None if spec.operating.clamp_law == "constant" else spec.operating.clamp_law
     eta = pst = None
     if spec.operating.cycle is None:
         from ..clamping.laws import clamp_law
-        res = evaluate_points(design, ctx.fluid, spec.study.architecture, ctx.ratio,
-                              ctx.torque, ctx.speed,
-                              clamp_force=None if law else force,
-                              law=clamp_law(law, design) if law else None)
+
+        res = evaluate_points(
+            design,
+            ctx.fluid,
+            spec.study.architecture,
+            ctx.ratio,
+            ctx.torque,
+            ctx.speed,
+            clamp_force=None if law else force,
+            law=clamp_law(law, design) if law else None,
+        )
         pst, eta = res["status"].astype(np.int8), res["eta"]
         beyond = int(np.sum(pst != 0))
         metrics["max_pressure"] = float(np.nanmax(res["p_max"])) if beyond < pst.size else np.nan
-        metrics["min_lambda"] = (float(np.nanmin(res["lambda_ratio"])) if beyond < pst.size
-                                 else np.nan)
+        metrics["min_lambda"] = (
+            float(np.nanmin(res["lambda_ratio"])) if beyond < pst.size else np.nan
+        )
         if beyond:
-            return 2, (f"{beyond} of {pst.size} operating points beyond the traction capacity "
-                       "or not solved"), metrics, eta, pst
+            return (
+                2,
+                (
+                    f"{beyond} of {pst.size} operating points beyond the traction capacity "
+                    "or not solved"
+                ),
+                metrics,
+                eta,
+                pst,
+            )
         metrics["eta_mean"] = float(np.sum(ctx.weights * eta))
         metrics["eta_min"] = float(np.min(eta))
     else:
@@ -167,21 +212,26 @@ def _evaluate(ctx: Context, values: dict):
         if beyond:
             return 2, f"{beyond} cycle steps beyond the traction capacity", metrics, None, None
     # capacity at the capacity ratios (constant force: the study's; laws: their own)
-    base = build_problem(design, ctx.fluid, spec.study.architecture, ctx.capacity_ratios, 0.0,
-                         force if force is not None else 1.0,
-                         float(np.median(ctx.speed)) if ctx.speed.size else
-                         _cycle_speed(ctx))
+    base = build_problem(
+        design,
+        ctx.fluid,
+        spec.study.architecture,
+        ctx.capacity_ratios,
+        0.0,
+        force if force is not None else 1.0,
+        float(np.median(ctx.speed)) if ctx.speed.size else _cycle_speed(ctx),
+    )
     if law is None:
         limits = limit_search(base, design.creep_limit).torque
     else:
         from ..clamping.laws import clamp_law
         from ..solver.clamped import capacity_basis
+
         basis, follows, c_lim = capacity_basis(base, clamp_law(law, design), design.creep_limit)
         limits = limit_search(basis, c_lim, law=follows).torque
     metrics["capacity"] = float(np.min(limits))
     volume = math.pi * (metrics["outer_diameter"] / 2) ** 2 * 2 * design.roller_radius
-    mass = (design.n_rollers * design.material.density * 4 / 3 * math.pi
-            * design.roller_radius ** 3)
+    mass = design.n_rollers * design.material.density * 4 / 3 * math.pi * design.roller_radius**3
     metrics["torque_per_volume"] = metrics["capacity"] / volume
     metrics["torque_per_mass"] = metrics["capacity"] / mass
     return _constraints(ctx, metrics, limits) + (metrics, eta, pst)
@@ -189,8 +239,11 @@ def _evaluate(ctx: Context, values: dict):
 
 def _constraints(ctx: Context, metrics: dict, limits) -> tuple[int, str]:
     con = ctx.spec.constraints
-    checks = [("max_pressure", con.max_pressure_max, "<="),
-              ("min_lambda", con.min_lambda_min, ">="), ("eta_min", con.eta_min_min, ">=")]
+    checks = [
+        ("max_pressure", con.max_pressure_max, "<="),
+        ("min_lambda", con.min_lambda_min, ">="),
+        ("eta_min", con.eta_min_min, ">="),
+    ]
     for name, bound, sense in checks:
         value = metrics.get(name, np.nan)
         if bound is not None and not (value <= bound if sense == "<=" else value >= bound):
@@ -213,13 +266,22 @@ def _cycle(ctx: Context, design, force, law) -> dict:
     from ..cycles.io import read_cycle
     from ..cycles.run import run_cycle
     from ..variator import Variator
+
     op = ctx.spec.operating
     v = Variator(design, ctx.fluid, ctx.spec.study.architecture)
-    target = None if op.target_input_speed_rpm is None else \
-        op.target_input_speed_rpm * math.pi / 30
-    res = run_cycle(v, read_cycle(op.cycle), strategy=op.strategy,
-                    target_input_speed=target, clamp_force=None if law else force,
-                    clamp_law=law, progress=False)
+    target = (
+        None if op.target_input_speed_rpm is None else op.target_input_speed_rpm * math.pi / 30
+    )
+    assert op.cycle is not None
+    res = run_cycle(
+        v,
+        read_cycle(op.cycle),
+        strategy=op.strategy,
+        target_input_speed=target,
+        clamp_force=None if law else force,
+        clamp_law=law,
+        progress=False,
+    )
     s = res.summary
     beyond = int(s.get("flags", {}).get("beyond_capacity", {}).get("steps", 0))
     eff = s["efficiency"]

@@ -26,7 +26,7 @@ def pareto_mask(values, senses, feasible) -> np.ndarray:
     """
     v = np.asarray(values, dtype=float).reshape(len(feasible), -1)
     sign = np.array([-1.0 if s == "max" else 1.0 for s in senses])
-    cost = v * sign                                            # all minimised
+    cost = v * sign  # all minimised
     ok = np.asarray(feasible, bool) & np.all(np.isfinite(cost), axis=1)
     idx = np.flatnonzero(ok)
     front = np.zeros(len(feasible), bool)

@@ -21,10 +21,12 @@ import time
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
 
+from .._display import html_summary, text_summary
 from .._fileio import atomic_write_text, check_output_dir
 from .._version import __version__
 from ..errors import InputError
@@ -67,6 +69,36 @@ class StudyResult:
     files: list = field(default_factory=list)
     run_time: float = 0.0
 
+    def _summary(self) -> tuple[str, list]:
+        c = self.counts()
+        ds = self.dataset
+        rows = [
+            ("designs", int(ds.sizes["design"]), ""),
+            ("evaluated now", self.evaluated_now, ""),
+            ("feasible", c["evaluated"], ""),
+            ("cannot be built", c["cannot be built"], ""),
+            ("violate a constraint", c["constraint violated"], ""),
+            ("on the Pareto front", int(ds["pareto"].sum()), ""),
+            (
+                "chosen design",
+                int(ds["design"].values[self.chosen]) if self.chosen >= 0 else "none",
+                "",
+            ),
+            ("run time", self.run_time, "s"),
+        ]
+        return f"StudyResult: {ds.attrs.get('study', '')}", rows
+
+    def __repr__(self) -> str:
+        return text_summary(*self._summary())
+
+    def _repr_html_(self) -> str:
+        return html_summary(*self._summary())
+
+    def to_dataframe(self):
+        """Every design as a row: parameters, status, reason, objectives, front, chosen."""
+        names = [v for v in self.dataset.data_vars if self.dataset[v].dims == ("design",)]
+        return self.dataset[names].to_dataframe()
+
     @property
     def front(self) -> np.ndarray:
         """Indices of the designs on the Pareto front."""
@@ -75,10 +107,10 @@ class StudyResult:
     def counts(self) -> dict:
         """Designs by status, and the infeasible ones by reason (first words)."""
         st = self.dataset["status"].values
-        out = {STATUS[k]: int(np.sum(st == k)) for k in STATUS}
+        out: dict[str, Any] = {STATUS[k]: int(np.sum(st == k)) for k in STATUS}
         reasons: dict[str, int] = {}
         for s, r in zip(st, self.dataset["reason"].values):
-            if s != 0:                       # the reason with its numbers left out
+            if s != 0:  # the reason with its numbers left out
                 key = re.sub(r"[-+]?\d[\d.]*(e[-+]?\d+)?", "#", str(r).split(": allowed")[0])[:90]
                 reasons[key] = reasons.get(key, 0) + 1
         out["reasons"] = dict(sorted(reasons.items(), key=lambda kv: -kv[1]))
@@ -90,24 +122,32 @@ def design_vectors(spec: StudySpec, n: int | None = None) -> np.ndarray:
     scrambled Sobol or Latin hypercube points (`scipy.stats.qmc`, seeded) scaled to the
     parameters' ranges, integers rounded, lists indexed."""
     from scipy.stats import qmc
+
     n = spec.study.samples if n is None else n
     d = len(spec.names)
     if spec.study.method == "lhs":
         u = qmc.LatinHypercube(d, seed=spec.study.seed).random(n)
     else:
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore")          # balance warning off powers of two
+            warnings.simplefilter("ignore")  # balance warning off powers of two
             u = qmc.Sobol(d, scramble=True, seed=spec.study.seed).random(n)
-    return np.column_stack([spec.parameters[name].scale(u[:, j])
-                            for j, name in enumerate(spec.names)])
+    return np.column_stack(
+        [spec.parameters[name].scale(u[:, j]) for j, name in enumerate(spec.names)]
+    )
 
 
 def local_client(workers: int):
     """A Dask client on a new ``LocalCluster`` of ``workers`` single-threaded processes,
     bound to 127.0.0.1."""
     from distributed import Client, LocalCluster
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                           host="127.0.0.1", dashboard_address="127.0.0.1:0")
+
+    cluster = LocalCluster(
+        n_workers=workers,
+        threads_per_worker=1,
+        processes=True,
+        host="127.0.0.1",
+        dashboard_address="127.0.0.1:0",
+    )
     return Client(cluster)
 
 
@@ -122,6 +162,7 @@ class _Evaluator:
 
     def run(self, index: np.ndarray, x: np.ndarray, desc: str) -> None:
         from tqdm.auto import tqdm
+
         if index.size == 0:
             return
         size = self.ctx.spec.study.chunk
@@ -133,8 +174,13 @@ class _Evaluator:
                     self._save(index[p], x[p], evaluate_chunk(self.ctx, index[p], x[p]), bar)
             else:
                 from distributed import as_completed
-                futures = {self.client.submit(evaluate_chunk, self.remote_ctx, index[p], x[p],
-                                              pure=False): p for p in parts}
+
+                futures = {
+                    self.client.submit(
+                        evaluate_chunk, self.remote_ctx, index[p], x[p], pure=False
+                    ): p
+                    for p in parts
+                }
                 for fut in as_completed(futures):
                     p = futures[fut]
                     self._save(index[p], x[p], fut.result(), bar)
@@ -145,9 +191,17 @@ class _Evaluator:
         bar.update(index.size)
 
 
-def run_study(spec: StudySpec, out, *, workers: int = 2, scheduler: str | None = None,
-              client=None, in_process: bool = False, resume: bool = False,
-              progress: bool | None = None) -> StudyResult:
+def run_study(
+    spec: StudySpec,
+    out,
+    *,
+    workers: int = 2,
+    scheduler: str | None = None,
+    client=None,
+    in_process: bool = False,
+    resume: bool = False,
+    progress: bool | None = None,
+) -> StudyResult:
     """Run ``spec`` and write its store and files into ``out``.
 
     Parameters
@@ -179,18 +233,27 @@ def run_study(spec: StudySpec, out, *, workers: int = 2, scheduler: str | None =
     store = out / STORE
     done = evaluated(store)
     if done and not resume:
-        raise InputError("out", str(out), "a folder without a study, or --resume",
-                         message=f"{out} already holds a study ({len(done)} designs): "
-                         "resume it with --resume, or choose another --out")
+        raise InputError(
+            "out",
+            str(out),
+            "a folder without a study, or --resume",
+            message=f"{out} already holds a study ({len(done)} designs): "
+            "resume it with --resume, or choose another --out",
+        )
     ctx = make_context(spec)
-    attrs = {"study": spec.study.name, "ballcvt_version": __version__,
-             "spec": json.dumps(spec.model_dump(mode="json")), "Conventions": "CF-1.10",
-             "title": f"ballcvt design study: {spec.study.name}"}
+    attrs = {
+        "study": spec.study.name,
+        "ballcvt_version": __version__,
+        "spec": json.dumps(spec.model_dump(mode="json")),
+        "Conventions": "CF-1.10",
+        "title": f"ballcvt design study: {spec.study.name}",
+    }
     own = None
     execution = "in process (no Dask)"
     if client is None and not in_process:
         if scheduler is not None:
             from distributed import Client
+
             client = own = Client(scheduler)
             execution = f"Dask scheduler {scheduler}"
         else:
@@ -238,8 +301,12 @@ def _optimise(spec: StudySpec, ev: _Evaluator, done: set) -> None:
             super().__init__(n_var=len(names), n_obj=len(senses), n_ieq_constr=1, xl=lo, xu=hi)
 
         def _evaluate(self, u, out, *args, **kwargs):
-            x = np.column_stack([spec.parameters[n].scale(np.minimum(u[:, j], 1 - 1e-12))
-                                 for j, n in enumerate(names)])
+            x = np.column_stack(
+                [
+                    spec.parameters[n].scale(np.minimum(u[:, j], 1 - 1e-12))
+                    for j, n in enumerate(names)
+                ]
+            )
             idx = np.empty(len(x), dtype=np.int64)
             new = []
             for r, row in enumerate(x):
@@ -254,18 +321,28 @@ def _optimise(spec: StudySpec, ev: _Evaluator, done: set) -> None:
             ev.run(new_idx, x[first], f"study {spec.study.name}, NSGA-II")
             ds = load(ev.store).set_index(design="design")
             sel = ds.sel(design=idx)
-            f = np.column_stack([sel[o].values * (-1.0 if s == "max" else 1.0)
-                                 for o, s in zip(spec.objectives, senses)])
+            f = np.column_stack(
+                [
+                    sel[o].values * (-1.0 if s == "max" else 1.0)
+                    for o, s in zip(spec.objectives, senses)
+                ]
+            )
             ok = (sel["status"].values == 0) & np.all(np.isfinite(f), axis=1)
             out["F"] = np.where(np.isfinite(f), f, 1e30)
             out["G"] = np.where(ok, -1.0, 1.0)[:, None]
 
-    minimize(_Study(), NSGA2(pop_size=spec.study.population),
-             ("n_gen", spec.study.generations), seed=spec.study.seed, verbose=False)
+    minimize(
+        _Study(),
+        NSGA2(pop_size=spec.study.population),
+        ("n_gen", spec.study.generations),
+        seed=spec.study.seed,
+        verbose=False,
+    )
 
 
-def _finish(spec, ctx, out: Path, store: Path, count: int, run_time: float,
-            execution: str) -> StudyResult:
+def _finish(
+    spec, ctx, out: Path, store: Path, count: int, run_time: float, execution: str
+) -> StudyResult:
     ds = load(store)
     objectives = list(spec.objectives)
     senses = [spec.objectives[o] for o in objectives]
@@ -273,8 +350,11 @@ def _finish(spec, ctx, out: Path, store: Path, count: int, run_time: float,
     front = pareto_mask(values, senses, ds["status"].values == 0)
     pick = choose(values, senses, front, objectives, spec.study.choose)
     ds["pareto"] = ("design", front, {"long_name": "on the Pareto front"})
-    ds["chosen"] = ("design", np.arange(ds.sizes["design"]) == pick,
-                    {"long_name": "the chosen design"})
+    ds["chosen"] = (
+        "design",
+        np.arange(ds.sizes["design"]) == pick,
+        {"long_name": "the chosen design"},
+    )
     for o in OBJECTIVES:
         ds[o].attrs.update(units=OBJECTIVES[o][0], long_name=OBJECTIVES[o][1])
     files = []
@@ -288,22 +368,36 @@ def _finish(spec, ctx, out: Path, store: Path, count: int, run_time: float,
         row = {n: float(ds[n].values[pick]) for n in spec.names}
         chosen_design = _design(ctx, row)
         text = drive_to_toml(chosen_design, ctx.fluid)
-        head = (f"# chosen by ballcvt explore, study '{spec.study.name}', design "
-                f"{int(ds['design'].values[pick])}"
-                + (f" (operating clamp_force {row['clamp_force']:g} N)"
-                   if "clamp_force" in row else "") + "\n")
+        head = (
+            f"# chosen by ballcvt explore, study '{spec.study.name}', design "
+            f"{int(ds['design'].values[pick])}"
+            + (
+                f" (operating clamp_force {row['clamp_force']:g} N)"
+                if "clamp_force" in row
+                else ""
+            )
+            + "\n"
+        )
         atomic_write_text(out / "chosen_design.toml", head + text)
         files.append(out / "chosen_design.toml")
     result = StudyResult(ds, pick, chosen_design, count, files, run_time)
-    summary = {"study": spec.study.name, "method": spec.study.method,
-               "designs": int(ds.sizes["design"]), "evaluated_now": count,
-               "counts": result.counts(), "pareto": int(front.sum()),
-               "chosen": int(ds["design"].values[pick]) if pick >= 0 else None,
-               "objectives": {o: s for o, s in zip(objectives, senses)},
-               "chosen_objectives": ({o: float(ds[o].values[pick]) for o in objectives}
-                                     if pick >= 0 else None),
-               "out": str(out), "execution": execution, "run_time_s": run_time,
-               "ballcvt_version": __version__}
+    summary = {
+        "study": spec.study.name,
+        "method": spec.study.method,
+        "designs": int(ds.sizes["design"]),
+        "evaluated_now": count,
+        "counts": result.counts(),
+        "pareto": int(front.sum()),
+        "chosen": int(ds["design"].values[pick]) if pick >= 0 else None,
+        "objectives": {o: s for o, s in zip(objectives, senses)},
+        "chosen_objectives": (
+            {o: float(ds[o].values[pick]) for o in objectives} if pick >= 0 else None
+        ),
+        "out": str(out),
+        "execution": execution,
+        "run_time_s": run_time,
+        "ballcvt_version": __version__,
+    }
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
     files.append(out / "summary.json")
     return result

@@ -40,8 +40,17 @@ from pydantic import Field, model_validator
 from ..errors import InputError
 from ..params.models import ARCHITECTURES, Design, ParameterModel
 
-__all__ = ["StudySpec", "Parameter", "Operating", "Constraints", "read_study", "parse_study",
-           "OBJECTIVES", "CONSTRAINTS", "METHODS"]
+__all__ = [
+    "StudySpec",
+    "Parameter",
+    "Operating",
+    "Constraints",
+    "read_study",
+    "parse_study",
+    "OBJECTIVES",
+    "CONSTRAINTS",
+    "METHODS",
+]
 
 METHODS = ("sobol", "lhs", "nsga2")
 #: Objectives a study can ask for, with their units and meaning.
@@ -86,16 +95,20 @@ class Parameter(ParameterModel):
                 raise InputError("values", self.values, "finite numbers")
         else:
             if self.min is None or self.max is None:
-                raise InputError("min", self.min, "min and max (or values)",
-                                 message="a parameter needs min and max, or values")
-            if not (math.isfinite(self.min) and math.isfinite(self.max)
-                    and self.min < self.max):
+                raise InputError(
+                    "min",
+                    self.min,
+                    "min and max (or values)",
+                    message="a parameter needs min and max, or values",
+                )
+            if not (math.isfinite(self.min) and math.isfinite(self.max) and self.min < self.max):
                 raise InputError("max", self.max, f"finite and > min = {self.min:g}")
         return self
 
     def scale(self, u):
         """Map unit-cube coordinates ``u`` in [0, 1) to values of this parameter."""
         import numpy as np
+
         u = np.asarray(u, dtype=float)
         if self.values is not None:
             idx = np.minimum((u * len(self.values)).astype(int), len(self.values) - 1)
@@ -124,28 +137,45 @@ class Operating(ParameterModel):
         grid = (self.ratio, self.output_torque, self.input_speed_rpm)
         if self.cycle is None:
             if any(g is None or not g for g in grid):
-                raise InputError("operating", None, "ratio, output_torque, input_speed_rpm",
-                                 message="[operating] needs ratio, output_torque and "
-                                 "input_speed_rpm (lists), or a cycle")
-            for name, g, ok in (("ratio", self.ratio, lambda v: v > 0),
-                                ("output_torque", self.output_torque, lambda v: v >= 0),
-                                ("input_speed_rpm", self.input_speed_rpm, lambda v: v > 0)):
-                bad = [v for v in g if not (math.isfinite(v) and ok(v))]
+                raise InputError(
+                    "operating",
+                    None,
+                    "ratio, output_torque, input_speed_rpm",
+                    message="[operating] needs ratio, output_torque and "
+                    "input_speed_rpm (lists), or a cycle",
+                )
+            for name, g, ok in (
+                ("ratio", self.ratio, lambda v: v > 0),
+                ("output_torque", self.output_torque, lambda v: v >= 0),
+                ("input_speed_rpm", self.input_speed_rpm, lambda v: v > 0),
+            ):
+                bad = [v for v in g or () if not (math.isfinite(v) and ok(v))]
                 if bad:
-                    raise InputError(f"operating.{name}", bad[0],
-                                     ">= 0" if name == "output_torque" else "> 0")
-            n = len(self.ratio) * len(self.output_torque) * len(self.input_speed_rpm)
-            if self.weights is not None and (len(self.weights) != n
-                                             or min(self.weights) < 0
-                                             or sum(self.weights) <= 0):
-                raise InputError("operating.weights", len(self.weights),
-                                 f"{n} non-negative weights (one per grid point), not all 0")
+                    raise InputError(
+                        f"operating.{name}", bad[0], ">= 0" if name == "output_torque" else "> 0"
+                    )
+            n = (
+                len(self.ratio or ())
+                * len(self.output_torque or ())
+                * len(self.input_speed_rpm or ())
+            )
+            if self.weights is not None and (
+                len(self.weights) != n or min(self.weights) < 0 or sum(self.weights) <= 0
+            ):
+                raise InputError(
+                    "operating.weights",
+                    len(self.weights),
+                    f"{n} non-negative weights (one per grid point), not all 0",
+                )
         elif any(g is not None for g in grid):
             raise InputError("operating.cycle", self.cycle, "a cycle or a grid, not both")
         elif self.strategy == "target-input-speed" and self.target_input_speed_rpm is None:
-            raise InputError("operating.target_input_speed_rpm", None, "a speed [rpm]",
-                             message="[operating] cycle with target-input-speed needs "
-                             "target_input_speed_rpm")
+            raise InputError(
+                "operating.target_input_speed_rpm",
+                None,
+                "a speed [rpm]",
+                message="[operating] cycle with target-input-speed needs target_input_speed_rpm",
+            )
         return self
 
 
@@ -208,13 +238,22 @@ class StudySpec(ParameterModel):
             raise InputError("parameters", None, "at least one parameter to vary")
         for name in self.parameters:
             if name not in fields and name not in EXTRA_PARAMETERS:
-                raise InputError(f"parameters.{name}", name, "a design field or clamp_force",
-                                 message=f"[parameters] {name}: not a design field (known: "
-                                 + ", ".join(sorted(fields | set(EXTRA_PARAMETERS))) + ")")
+                raise InputError(
+                    f"parameters.{name}",
+                    name,
+                    "a design field or clamp_force",
+                    message=f"[parameters] {name}: not a design field (known: "
+                    + ", ".join(sorted(fields | set(EXTRA_PARAMETERS)))
+                    + ")",
+                )
         for name in self.fixed:
             if name not in fields:
-                raise InputError(f"fixed.{name}", name, "a design field",
-                                 message=f"[fixed] {name}: not a design field")
+                raise InputError(
+                    f"fixed.{name}",
+                    name,
+                    "a design field",
+                    message=f"[fixed] {name}: not a design field",
+                )
             if name in self.parameters:
                 raise InputError(f"fixed.{name}", name, "not also varied")
         if not self.objectives:
@@ -224,20 +263,36 @@ class StudySpec(ParameterModel):
                 raise InputError(f"objectives.{name}", name, "one of " + ", ".join(OBJECTIVES))
         cycle = self.operating.cycle is not None
         for name in self.objectives:
-            if (name == "cycle_efficiency") != cycle and name in ("cycle_efficiency",
-                                                                "eta_mean", "eta_min"):
-                raise InputError(f"objectives.{name}", name,
-                                 "cycle_efficiency with a cycle, eta_mean/eta_min with a grid")
+            if (name == "cycle_efficiency") != cycle and name in (
+                "cycle_efficiency",
+                "eta_mean",
+                "eta_min",
+            ):
+                raise InputError(
+                    f"objectives.{name}",
+                    name,
+                    "cycle_efficiency with a cycle, eta_mean/eta_min with a grid",
+                )
         if self.study.choose is not None and self.study.choose not in self.objectives:
-            raise InputError("study.choose", self.study.choose,
-                             "one of the objectives: " + ", ".join(self.objectives))
+            raise InputError(
+                "study.choose",
+                self.study.choose,
+                "one of the objectives: " + ", ".join(self.objectives),
+            )
         if self.study.architecture not in ARCHITECTURES:  # pragma: no cover - Literal
             raise InputError("study.architecture", self.study.architecture, str(ARCHITECTURES))
-        if (self.operating.clamp_law == "constant" and self.operating.clamp_force is None
-                and "clamp_force" not in self.parameters):
-            raise InputError("operating.clamp_force", None, "a force [N]",
-                             message="[operating] needs clamp_force [N] (or clamp_law cam or "
-                             "optimal, or clamp_force in [parameters])")
+        if (
+            self.operating.clamp_law == "constant"
+            and self.operating.clamp_force is None
+            and "clamp_force" not in self.parameters
+        ):
+            raise InputError(
+                "operating.clamp_force",
+                None,
+                "a force [N]",
+                message="[operating] needs clamp_force [N] (or clamp_law cam or "
+                "optimal, or clamp_force in [parameters])",
+            )
         if ("clamp_force" in self.parameters) and self.operating.clamp_law != "constant":
             raise InputError("parameters.clamp_force", None, "clamp_law constant")
         return self
@@ -253,21 +308,27 @@ def parse_study(text: str, source: str = "study file", base: Path | None = None)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise InputError(source, None, "valid TOML", message=f"{source} is not valid TOML: "
-                         f"{str(exc).splitlines()[0]}") from None
+        raise InputError(
+            source,
+            None,
+            "valid TOML",
+            message=f"{source} is not valid TOML: {str(exc).splitlines()[0]}",
+        ) from None
     try:
         spec = StudySpec(**data)
     except InputError as exc:
-        raise InputError(exc.quantity, exc.value, exc.allowed,
-                         message=f"{source}: {exc}") from None
+        raise InputError(
+            exc.quantity, exc.value, exc.allowed, message=f"{source}: {exc}"
+        ) from None
     if base is not None:
-        updates = {}
+        updates: dict[str, Any] = {}
         drive = spec.study.drive
         if (base / drive).exists():
             updates["study"] = spec.study.model_copy(update={"drive": str(base / drive)})
         if spec.operating.cycle is not None and not Path(spec.operating.cycle).is_absolute():
             updates["operating"] = spec.operating.model_copy(
-                update={"cycle": str(base / spec.operating.cycle)})
+                update={"cycle": str(base / spec.operating.cycle)}
+            )
         spec = spec.model_copy(update=updates)
     return spec
 
@@ -278,9 +339,17 @@ def read_study(path) -> StudySpec:
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
-        raise InputError("study file", str(path), "a readable TOML file",
-                         message=f"study file {path}: cannot be read ({exc.strerror})") from None
+        raise InputError(
+            "study file",
+            str(path),
+            "a readable TOML file",
+            message=f"study file {path}: cannot be read ({exc.strerror})",
+        ) from None
     except UnicodeDecodeError:
-        raise InputError("study file", str(path), "a UTF-8 TOML file",
-                         message=f"study file {path}: not a text file (not UTF-8)") from None
+        raise InputError(
+            "study file",
+            str(path),
+            "a UTF-8 TOML file",
+            message=f"study file {path}: not a text file (not UTF-8)",
+        ) from None
     return parse_study(text, f"study file {path}", path.parent)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import shutil
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -22,11 +23,18 @@ STORE = "designs.zarr"
 def chunk_dataset(spec, ctx, x, result: dict) -> xr.Dataset:
     """A Dataset of one evaluated chunk: dimension ``design`` (and ``point``)."""
     design = result["design"]
-    data = {name: ("design", x[:, j], {"long_name": f"varied parameter {name}"})
-            for j, name in enumerate(spec.names)}
-    data["status"] = ("design", result["status"],
-                      {"flag_values": list(STATUS), "flag_meanings": " ".join(
-                          s.replace(" ", "_") for s in STATUS.values())})
+    data: dict[str, Any] = {
+        name: ("design", x[:, j], {"long_name": f"varied parameter {name}"})
+        for j, name in enumerate(spec.names)
+    }
+    data["status"] = (
+        "design",
+        result["status"],
+        {
+            "flag_values": list(STATUS),
+            "flag_meanings": " ".join(s.replace(" ", "_") for s in STATUS.values()),
+        },
+    )
     data["reason"] = ("design", result["reason"])
     for m in METRICS:
         data[m] = ("design", result[m])

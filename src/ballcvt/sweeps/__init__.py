@@ -5,5 +5,16 @@ from .export import load_dataset, parameters, to_csv, to_frame, to_netcdf
 from .grid import STATUS, sweep
 from .variables import LOSS_KINDS, VARIABLES
 
-__all__ = ["sweep", "solve_curves", "limit_torques", "STATUS", "VARIABLES", "LOSS_KINDS",
-           "to_netcdf", "to_csv", "to_frame", "load_dataset", "parameters"]
+__all__ = [
+    "sweep",
+    "solve_curves",
+    "limit_torques",
+    "STATUS",
+    "VARIABLES",
+    "LOSS_KINDS",
+    "to_netcdf",
+    "to_csv",
+    "to_frame",
+    "load_dataset",
+    "parameters",
+]

@@ -24,8 +24,20 @@ from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
 __all__ = ["solve_curves", "limit_torques", "derived", "solve_column", "at_optimal_forces"]
 
 
-def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, torque,
-                 options, creep_limit, limit=None, law=None, callback=None):
+def solve_curves(
+    design,
+    fluid,
+    architecture,
+    clamp_force,
+    input_speed,
+    ratio,
+    torque,
+    options,
+    creep_limit,
+    limit=None,
+    law=None,
+    callback=None,
+):
     """Solve the curves ``(clamp_force[i], input_speed[i], ratio[i])`` over ``torque``.
 
     ``limit``: the curves' limiting torques if already known, or their
@@ -44,32 +56,56 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
     """
     m, nt = ratio.size, torque.size
     optimal = law is not None and law.name == "optimal"
-    base, search = limit_search_curves(design, fluid, architecture, ratio, input_speed,
-                                       clamp_force, law, options, creep_limit, callback,
-                                       limit)
+    base, search = limit_search_curves(
+        design,
+        fluid,
+        architecture,
+        ratio,
+        input_speed,
+        clamp_force,
+        law,
+        options,
+        creep_limit,
+        callback,
+        limit,
+    )
     limit = search.torque if search is not None else limit
     nc = base.layout.n_contacts
-    state = {"creep": np.full((m, nt, nc), np.nan),
-             "force": np.broadcast_to(base.clamp_force[:, None], (m, nt)).copy(),
-             # points within the limit start as "not converged" (2) until solved
-             "status": np.where(torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None],
-                                2, 1),
-             "iterations": np.zeros((m, nt), dtype=int),
-             "residual": np.full((m, nt), np.nan)}
+    state = {
+        "creep": np.full((m, nt, nc), np.nan),
+        "force": np.broadcast_to(base.clamp_force[:, None], (m, nt)).copy(),
+        # points within the limit start as "not converged" (2) until solved
+        "status": np.where(torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None], 2, 1),
+        "iterations": np.zeros((m, nt), dtype=int),
+        "residual": np.full((m, nt), np.nan),
+    }
     if search is not None and not optimal:
         i, k = np.nonzero(state["status"] == 2)
         lim = search.torque[i]
         share = np.divide(torque[k], lim, out=np.zeros(lim.size), where=lim > 0)[:, None]
         zero = np.where(np.isnan(search.creep_zero), initial_creep(base), search.creep_zero)
         x0 = zero[i] + share * (search.creep[i] - zero[i])
-        pb, sol = _solve_points(state, design, fluid, architecture, ratio, torque,
-                                input_speed, law, options, i, k, x0)
+        pb, sol = _solve_points(
+            state, design, fluid, architecture, ratio, torque, input_speed, law, options, i, k, x0
+        )
         stray = _off_branch(state, i, k, sol, creep_limit)
-        if stray.size:        # another equilibrium than the one reached from T_2 = 0
-            _continue_from_below(state, design, fluid, architecture, ratio, torque,
-                                 input_speed, law, options, i[stray], k[stray], zero,
-                                 creep_limit)
-            solved = None                                  # evaluated again in `derived`
+        if stray.size:  # another equilibrium than the one reached from T_2 = 0
+            _continue_from_below(
+                state,
+                design,
+                fluid,
+                architecture,
+                ratio,
+                torque,
+                input_speed,
+                law,
+                options,
+                i[stray],
+                k[stray],
+                zero,
+                creep_limit,
+            )
+            solved = None  # evaluated again in `derived`
         else:
             solved = (pb.take(sol.converged), sol.state.take(sol.converged))
         for _ in range(nt) if callback is not None else ():
@@ -79,9 +115,20 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
         for k in range(nt):
             i = np.flatnonzero(state["status"][:, k] == 2)
             if i.size:
-                _, sol = _solve_points(state, design, fluid, architecture, ratio, torque,
-                                       input_speed, law, options, i, np.full(i.size, k),
-                                       None if x is None else x[i])
+                _, sol = _solve_points(
+                    state,
+                    design,
+                    fluid,
+                    architecture,
+                    ratio,
+                    torque,
+                    input_speed,
+                    law,
+                    options,
+                    i,
+                    np.full(i.size, k),
+                    None if x is None else x[i],
+                )
                 if x is None:
                     x = np.broadcast_to(sol.state.creep[:1], (m, nc)).copy()
                 good = sol.converged
@@ -89,15 +136,39 @@ def solve_curves(design, fluid, architecture, clamp_force, input_speed, ratio, t
             if callback is not None:
                 callback()
     creep, force, status = state["creep"], state["force"], state["status"]
-    out = {"limit_torque": limit,
-           "eta_at_limit": _eta_at(design, fluid, architecture, base.clamp_force,
-                                   input_speed, ratio, limit, options,
-                                   None if optimal else law,
-                                   None if search is None else search.creep),
-           "status": status.astype(np.int8), "iterations": state["iterations"],
-           "residual_norm": state["residual"]}
-    out.update(derived(design, fluid, architecture, force, input_speed, ratio, torque,
-                        creep, status, options, solved))
+    out = {
+        "limit_torque": limit,
+        "eta_at_limit": _eta_at(
+            design,
+            fluid,
+            architecture,
+            base.clamp_force,
+            input_speed,
+            ratio,
+            limit,
+            options,
+            None if optimal else law,
+            None if search is None else search.creep,
+        ),
+        "status": status.astype(np.int8),
+        "iterations": state["iterations"],
+        "residual_norm": state["residual"],
+    }
+    out.update(
+        derived(
+            design,
+            fluid,
+            architecture,
+            force,
+            input_speed,
+            ratio,
+            torque,
+            creep,
+            status,
+            options,
+            solved,
+        )
+    )
     if law is not None:
         out["clamp_force"] = np.where(status == 0, force, np.nan)
     return out
@@ -116,8 +187,21 @@ def _off_branch(state, i, k, sol, creep_limit):
     return stray
 
 
-def _continue_from_below(state, design, fluid, architecture, ratio, torque, input_speed,
-                         law, options, i, k, zero, creep_limit):
+def _continue_from_below(
+    state,
+    design,
+    fluid,
+    architecture,
+    ratio,
+    torque,
+    input_speed,
+    law,
+    options,
+    i,
+    k,
+    zero,
+    creep_limit,
+):
     """Solve the points ``(i, k)`` torque by torque up their curves, each from the last
     admissible solution below it (from ``zero``, the creeps at ``T_2 = 0``, at first):
     the equilibrium reached continuously from no load. Points that still end past the
@@ -126,20 +210,37 @@ def _continue_from_below(state, design, fluid, architecture, ratio, torque, inpu
         sel = k == kk
         ii = i[sel]
         below = state["status"][ii, :kk] == 0
-        last = (np.where(below.any(axis=1), kk - 1 - np.argmax(below[:, ::-1], axis=1), -1)
-                if kk > 0 else np.full(ii.size, -1))
+        last = (
+            np.where(below.any(axis=1), kk - 1 - np.argmax(below[:, ::-1], axis=1), -1)
+            if kk > 0
+            else np.full(ii.size, -1)
+        )
         x0 = np.where((last >= 0)[:, None], state["creep"][ii, np.maximum(last, 0)], zero[ii])
-        _, sol = _solve_points(state, design, fluid, architecture, ratio, torque,
-                               input_speed, law, options, ii, np.full(ii.size, kk), x0)
+        _, sol = _solve_points(
+            state,
+            design,
+            fluid,
+            architecture,
+            ratio,
+            torque,
+            input_speed,
+            law,
+            options,
+            ii,
+            np.full(ii.size, kk),
+            x0,
+        )
         _off_branch(state, ii, np.full(ii.size, kk), sol, creep_limit)
 
 
-def _solve_points(state, design, fluid, architecture, ratio, torque, input_speed, law,
-                  options, i, k, x0):
+def _solve_points(
+    state, design, fluid, architecture, ratio, torque, input_speed, law, options, i, k, x0
+):
     """Solve the points ``(curve i[j], torque k[j])`` in one batch; record them in
     ``state`` and return the problem (at the forces used) and the batch solution."""
-    pb = build_problem(design, fluid, architecture, ratio[i], torque[k],
-                       state["force"][i, k], input_speed[i])
+    pb = build_problem(
+        design, fluid, architecture, ratio[i], torque[k], state["force"][i, k], input_speed[i]
+    )
     pb, sol = solve_column(pb, law, options, x0)
     good = sol.converged
     state["force"][i, k] = pb.clamp_force
@@ -150,8 +251,19 @@ def _solve_points(state, design, fluid, architecture, ratio, torque, input_speed
     return pb, sol
 
 
-def limit_search_curves(design, fluid, architecture, ratio, input_speed, clamp_force, law,
-                        options, creep_limit, callback=None, limit=None):
+def limit_search_curves(
+    design,
+    fluid,
+    architecture,
+    ratio,
+    input_speed,
+    clamp_force,
+    law,
+    options,
+    creep_limit,
+    callback=None,
+    limit=None,
+):
     """Limit search of the curves ``(ratio[i], input_speed[i])`` under a clamping law.
 
     As `limit_torques`, but returns the `ballcvt.solver.limit.LimitSearch` (limits and
@@ -168,8 +280,19 @@ def limit_search_curves(design, fluid, architecture, ratio, input_speed, clamp_f
     return base, limit_search(base, creep_limit, options, callback=callback, law=follows)
 
 
-def limit_torques(design, fluid, architecture, ratio, input_speed, clamp_force, law, options,
-                  creep_limit, callback=None, limit=None):
+def limit_torques(
+    design,
+    fluid,
+    architecture,
+    ratio,
+    input_speed,
+    clamp_force,
+    law,
+    options,
+    creep_limit,
+    callback=None,
+    limit=None,
+):
     """Limiting torques of the curves ``(ratio[i], input_speed[i])`` under a clamping law.
 
     Parameters
@@ -198,9 +321,19 @@ def limit_torques(design, fluid, architecture, ratio, input_speed, clamp_force, 
         The curves at zero torque (at the constant force, or the optimal law's bound)
         and their limiting torques [N m] (NaN where none).
     """
-    base, search = limit_search_curves(design, fluid, architecture, ratio, input_speed,
-                                       clamp_force, law, options, creep_limit, callback,
-                                       limit)
+    base, search = limit_search_curves(
+        design,
+        fluid,
+        architecture,
+        ratio,
+        input_speed,
+        clamp_force,
+        law,
+        options,
+        creep_limit,
+        callback,
+        limit,
+    )
     return base, (limit if search is None else search.torque)
 
 
@@ -222,24 +355,33 @@ def at_optimal_forces(pb, law, options):
     for j in range(pb.size):
         try:
             forces[j] = optimal_clamp_force(
-                pb.design, pb.fluid, pb.layout.architecture, float(pb.ratio[j]),
-                float(pb.output_torque[j]), float(pb.input_speed[j]), options,
-                law.creep_limit, law.max_pressure).clamp_force
+                pb.design,
+                pb.fluid,
+                pb.layout.architecture,
+                float(pb.ratio[j]),
+                float(pb.output_torque[j]),
+                float(pb.input_speed[j]),
+                options,
+                law.creep_limit,
+                law.max_pressure,
+            ).clamp_force
         except TractionLimitError:
             pass
     return with_clamp(pb, forces)
 
 
-def _eta_at(design, fluid, arch, clamp_force, input_speed, ratio, torque, options, law=None,
-            x0=None):
+def _eta_at(
+    design, fluid, arch, clamp_force, input_speed, ratio, torque, options, law=None, x0=None
+):
     """Overall efficiency (Eq. 38) at one torque per curve (NaN where there is none);
     ``x0``: starting creeps per curve (the limit search's, at these torques)."""
     eta = np.full(ratio.size, np.nan)
     ok = np.flatnonzero(np.isfinite(torque))
     if ok.size:
-        pb = build_problem(design, fluid, arch, ratio[ok], torque[ok], clamp_force[ok],
-                           input_speed[ok])
-        if x0 is not None and law is None:        # the limit search's own solutions
+        pb = build_problem(
+            design, fluid, arch, ratio[ok], torque[ok], clamp_force[ok], input_speed[ok]
+        )
+        if x0 is not None and law is None:  # the limit search's own solutions
             sol = solve_batch(pb, options, x0[ok], predict=False)
         else:
             pb, sol = solve_column(pb, law, options, None if x0 is None else x0[ok])
@@ -247,8 +389,19 @@ def _eta_at(design, fluid, arch, clamp_force, input_speed, ratio, torque, option
     return eta
 
 
-def derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep, status,
-             options, solved=None):
+def derived(
+    design,
+    fluid,
+    arch,
+    clamp_force,
+    input_speed,
+    ratio,
+    torque,
+    creep,
+    status,
+    options,
+    solved=None,
+):
     """Every reported quantity at the converged points (NaN elsewhere); ``clamp_force``
     has the shape ``(m, n_T)`` of the points, ``torque`` is ``(n_T,)`` or ``(m, n_T)``.
 
@@ -264,23 +417,38 @@ def derived(design, fluid, arch, clamp_force, input_speed, ratio, torque, creep,
     if i.size == 0:
         return values
     if solved is None:
-        torque = np.broadcast_to(torque, (m, nt))    # one axis for all, or per point
-        pb = build_problem(design, fluid, arch, ratio[i], torque[i, k], clamp_force[i, k],
-                           input_speed[i])
+        torque = np.broadcast_to(torque, (m, nt))  # one axis for all, or per point
+        pb = build_problem(
+            design, fluid, arch, ratio[i], torque[i, k], clamp_force[i, k], input_speed[i]
+        )
         st = evaluate(pb, creep[i, k], options.quadrature)
     else:
         pb, st = solved
     loss = power_losses(pb, st)
     eff = efficiency(pb, st, loss)
     valid = validity(pb, st)
-    point = {"eta": eff.overall, "eta_loss": eff.from_losses, "eta_speed": eff.speed,
-             "eta_torque": eff.torque, "input_torque": st.input_torque,
-             "actual_ratio": st.omega[:, -1] / st.omega[:, 0], "tilt_deg": np.degrees(pb.tilt),
-             "axial_force": axial_force(design, pb.clamp_force)}
-    contact = {"creep": st.creep, "spin": st.spin, "mu": st.mu, "chi": st.chi,
-               "p_max": pb.p_max, "film_thickness": st.film, "normal_load": pb.load,
-               "creep_loss": loss.creep, "spin_loss": loss.spin,
-               "lambda_ratio": valid.lambda_ratio}
+    point = {
+        "eta": eff.overall,
+        "eta_loss": eff.from_losses,
+        "eta_speed": eff.speed,
+        "eta_torque": eff.torque,
+        "input_torque": st.input_torque,
+        "actual_ratio": st.omega[:, -1] / st.omega[:, 0],
+        "tilt_deg": np.degrees(pb.tilt),
+        "axial_force": axial_force(design, pb.clamp_force),
+    }
+    contact = {
+        "creep": st.creep,
+        "spin": st.spin,
+        "mu": st.mu,
+        "chi": st.chi,
+        "p_max": pb.p_max,
+        "film_thickness": st.film,
+        "normal_load": pb.load,
+        "creep_loss": loss.creep,
+        "spin_loss": loss.spin,
+        "lambda_ratio": valid.lambda_ratio,
+    }
     for name, v in point.items():
         values[name][i, k] = v
     for name, v in contact.items():

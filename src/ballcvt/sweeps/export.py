@@ -8,6 +8,7 @@ as they are; dimensionless quantities have unit ``1`` (CF/UDUNITS), as in the Ne
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import xarray as xr
 
@@ -35,9 +36,9 @@ def to_netcdf(ds: xr.Dataset, path) -> Path:
     pathlib.Path
     """
     path = Path(path)
-    encoding = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
+    encoding: dict[Any, Any] = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
     with atomic_path(path) as tmp:
-        ds.to_netcdf(tmp, engine=ENGINE, format="NETCDF4", encoding=encoding)
+        ds.to_netcdf(tmp, engine=ENGINE, format="NETCDF4", encoding=encoding)  # type: ignore[call-overload]
     return path
 
 
@@ -58,11 +59,11 @@ def parameters(ds: xr.Dataset, prefix: str) -> dict:
     for key, value in ds.attrs.items():
         if not key.startswith(prefix + "_"):
             continue
-        name = key[len(prefix) + 1:]
+        name = key[len(prefix) + 1 :]
         value = value.item() if hasattr(value, "item") else value
         group = next((g for g in nested if name.startswith(g + "_")), None)
         if group:
-            out.setdefault(group, {})[name[len(group) + 1:]] = value
+            out.setdefault(group, {})[name[len(group) + 1 :]] = value
         else:
             out[name] = value
     return out
@@ -72,15 +73,15 @@ def to_frame(ds: xr.Dataset):
     """One row per operating point; per-contact and per-loss variables become
     ``<name>_<contact>`` and ``loss_<kind>`` columns."""
     flat = ds.copy()
-    for dim, name_of in (("contact", lambda n, c: f"{n}_{c}"),
-                         ("loss", lambda n, c: f"loss_{c}")):
+    for dim, name_of in (("contact", lambda n, c: f"{n}_{c}"), ("loss", lambda n, c: f"loss_{c}")):
         if dim not in ds.dims:
             continue
         for name in [n for n in flat.data_vars if dim in flat[n].dims]:
             for c in ds[dim].values:
-                flat[name_of(name, c)] = flat[name].sel({dim: c}, drop=True).assign_attrs(
-                    flat[name].attrs)
-            flat = flat.drop_vars(name)
+                flat[name_of(name, c)] = (
+                    flat[name].sel({dim: c}, drop=True).assign_attrs(flat[name].attrs)
+                )
+            flat = flat.drop_vars([name])
         flat = flat.drop_dims(dim, errors="ignore")
     frame = flat.to_dataframe().reset_index()
     units = {c: flat[c].attrs.get("units") for c in frame.columns if c in flat.variables}
@@ -94,8 +95,14 @@ def write_table(frame, path, units: dict | None = None) -> Path:
     adds or overrides units of other columns; columns without a unit keep their name.
     """
     path = Path(path)
-    units = {**{c: VARIABLES[c][0] for c in frame.columns
-                if c in VARIABLES and c not in ("status", "warnings")}, **(units or {})}
+    units = {
+        **{
+            c: VARIABLES[c][0]
+            for c in frame.columns
+            if c in VARIABLES and c not in ("status", "warnings")
+        },
+        **(units or {}),
+    }
     frame = frame.rename(columns={c: f"{c} [{units[c]}]" for c in frame.columns if units.get(c)})
     with atomic_path(path) as tmp:
         frame.to_csv(tmp, index=False)

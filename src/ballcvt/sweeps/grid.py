@@ -15,6 +15,7 @@ from __future__ import annotations
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -33,12 +34,24 @@ from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, STATUS, a
 __all__ = ["sweep", "STATUS"]
 
 
-def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force=None,
-          input_speed, clamp_law=None, architecture="double",
-          options: SolverOptions = SolverOptions(),
-          creep_limit: float | None = None, limit_torque=None, workers: int = 1,
-          progress: bool | None = None, label: str | None = None,
-          input_speed_rpm=None) -> xr.Dataset:
+def sweep(
+    design: Design,
+    fluid: Fluid,
+    *,
+    ratio,
+    output_torque,
+    clamp_force=None,
+    input_speed,
+    clamp_law=None,
+    architecture="double",
+    options: SolverOptions = SolverOptions(),
+    creep_limit: float | None = None,
+    limit_torque=None,
+    workers: int = 1,
+    progress: bool | None = None,
+    label: str | None = None,
+    input_speed_rpm=None,
+) -> xr.Dataset:
     """Evaluate the model over a grid of operating conditions.
 
     Parameters
@@ -101,38 +114,59 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force=Non
     c_lim = design.creep_limit if creep_limit is None else float(creep_limit)
     if not 0.0 < c_lim < 1.0:
         raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
-    law = None
-    if clamp_law is None or clamp_law == "constant":      # the forces are a dimension
+    law: Any = None
+    if clamp_law is None or clamp_law == "constant":  # the forces are a dimension
         if clamp_force is None:
-            clamp_law_of(None, design, None)                # raises: says what is missing
+            clamp_law_of(None, design, None)  # raises: says what is missing
     else:
         law = clamp_law_of(clamp_law, design, clamp_force)
         if law.name == "constant":
             law, clamp_force = None, law.force
-    axes = {name: _axis(name, value) for name, value in
-            (("clamp_force", np.nan if law else clamp_force), ("input_speed", input_speed),
-             ("ratio", ratio), ("output_torque", output_torque))}
+    axes = {
+        name: _axis(name, value)
+        for name, value in (
+            ("clamp_force", np.nan if law else clamp_force),
+            ("input_speed", input_speed),
+            ("ratio", ratio),
+            ("output_torque", output_torque),
+        )
+    }
     torque = axes["output_torque"]
     if np.any(np.diff(torque) < 0):
-        raise InputError("output_torque", float(torque[np.argmax(np.diff(torque) < 0) + 1]),
-                         "an increasing sequence (torque is the continuation axis)")
+        raise InputError(
+            "output_torque",
+            float(torque[np.argmax(np.diff(torque) < 0) + 1]),
+            "an increasing sequence (torque is the continuation axis)",
+        )
     # validate every input once (raises InputError on the first bad value)
-    build_problem(design, fluid, archs[0], axes["ratio"][:, None], torque,
-                  1.0 if law else axes["clamp_force"][:, None, None],
-                  axes["input_speed"][:, None, None, None])
+    build_problem(
+        design,
+        fluid,
+        archs[0],
+        axes["ratio"][:, None],
+        torque,
+        1.0 if law else axes["clamp_force"][:, None, None],
+        axes["input_speed"][:, None, None, None],
+    )
     shape = tuple(len(axes[n]) for n in ("clamp_force", "input_speed", "ratio"))
     grid = np.meshgrid(axes["clamp_force"], axes["input_speed"], axes["ratio"], indexing="ij")
     flat = [g.ravel() for g in grid]
     if limit_torque is not None:
         if len(archs) != 1:
-            raise InputError("architecture", ", ".join(archs),
-                             "a single architecture when limit_torque is given")
+            raise InputError(
+                "architecture",
+                ", ".join(archs),
+                "a single architecture when limit_torque is given",
+            )
+        limits: Any
         if isinstance(limit_torque, LimitSearch):
             limits = limit_torque.flat()
             if limits.torque.size != int(np.prod(shape)):
-                raise InputError("limit_torque", f"a search of {limits.torque.size} curves",
-                                 f"one per (clamp_force, input_speed, ratio): "
-                                 f"{int(np.prod(shape))}")
+                raise InputError(
+                    "limit_torque",
+                    f"a search of {limits.torque.size} curves",
+                    f"one per (clamp_force, input_speed, ratio): {int(np.prod(shape))}",
+                )
         else:
             limits = np.broadcast_to(np.asarray(limit_torque, dtype=float), shape).ravel()
     contacts = _contact_axis(archs)
@@ -140,27 +174,50 @@ def sweep(design: Design, fluid: Fluid, *, ratio, output_torque, clamp_force=Non
     chunks = np.array_split(np.arange(flat[0].size), max(1, min(workers, flat[0].size)))
     blocks = {}
     for arch in archs:
-        jobs = [(design, fluid, arch, flat[0][c], flat[1][c], flat[2][c], torque, options,
-                 c_lim, None if limit_torque is None else _part(limits, c), law)
-                for c in chunks]
+        jobs = [
+            (
+                design,
+                fluid,
+                arch,
+                flat[0][c],
+                flat[1][c],
+                flat[2][c],
+                torque,
+                options,
+                c_lim,
+                None if limit_torque is None else _part(limits, c),
+                law,
+            )
+            for c in chunks
+        ]
         text = f"{label}, {arch} idler" if label and len(archs) > 1 else label
         blocks[arch] = _run(jobs, workers, show, text or f"sweep, {arch} idler")
     speed_dim = "input_speed" if input_speed_rpm is None else "input_speed_rpm"
     ds = _assemble(blocks, archs, axes, shape, contacts, input_speed_rpm)
     if law is not None:
-        used = np.stack([blocks[a]["clamp_force"].reshape(shape + (torque.size,))
-                         for a in archs])[:, 0]
+        used = np.stack([blocks[a]["clamp_force"].reshape(shape + (torque.size,)) for a in archs])[
+            :, 0
+        ]
         ds = ds.isel(clamp_force=0, drop=True)
-        ds["clamp_force"] = xr.Variable(("architecture", speed_dim, "ratio",
-                                         "output_torque"), used, attrs_for("clamp_force"))
+        ds["clamp_force"] = xr.Variable(
+            ("architecture", speed_dim, "ratio", "output_torque"), used, attrs_for("clamp_force")
+        )
     ds.attrs.update(
-        clamp_law=law.name if law else "constant", traction_law=fluid.traction_law,
-        title="ballcvt sweep", Conventions="CF-1.10", institution="ballcvt",
-        source=f"ballcvt {__version__}", ballcvt_version=__version__,
+        clamp_law=law.name if law else "constant",
+        traction_law=fluid.traction_law,
+        title="ballcvt sweep",
+        Conventions="CF-1.10",
+        institution="ballcvt",
+        source=f"ballcvt {__version__}",
+        ballcvt_version=__version__,
         references="Tomaselli, Bottiglione, Lino, Carbone, Mech. Mach. Theory 150 (2020) "
-                   "103877, doi:10.1016/j.mechmachtheory.2020.103877",
-        creep_limit=c_lim, quadrature=repr(options.quadrature), solver=options.method,
-        tolerance=options.tol, run_time_s=time.perf_counter() - start)
+        "103877, doi:10.1016/j.mechmachtheory.2020.103877",
+        creep_limit=c_lim,
+        quadrature=repr(options.quadrature),
+        solver=options.method,
+        tolerance=options.tol,
+        run_time_s=time.perf_counter() - start,
+    )
     ds.attrs.update(flat_attrs("design", design.model_dump()))
     ds.attrs.update(flat_attrs("fluid", fluid.model_dump()))
     return ds
@@ -170,7 +227,7 @@ def flat_attrs(prefix: str, data: dict) -> dict:
     """Nested parameters as flat NetCDF attributes ``<prefix>_<key>[_<subkey>]``."""
     out = {}
     for key, value in data.items():
-        if value is None:                       # an optional table the design lacks
+        if value is None:  # an optional table the design lacks
             continue
         if isinstance(value, dict):
             out.update(flat_attrs(f"{prefix}_{key}", value))
@@ -196,6 +253,7 @@ def _contact_axis(archs):
 
 def _run(jobs, workers, show, label):
     from tqdm.auto import tqdm  # only the orchestration needs a progress bar
+
     if workers > 1 and len(jobs) > 1:
         with ProcessPoolExecutor(max_workers=workers) as pool:
             futures = [pool.submit(solve_curves, *job) for job in jobs]
@@ -223,9 +281,17 @@ def _assemble(blocks, archs, axes, shape, contacts, rpm=None):
     speed_dim = "input_speed" if rpm is None else "input_speed_rpm"
     dims = ("clamp_force", speed_dim, "ratio")
     data = {}
-    for name in ("limit_torque", "eta_at_limit", "status", "warnings", "iterations",
-                 "residual_norm",
-                 *POINT_VARIABLES, "losses", *CONTACT_VARIABLES):
+    for name in (
+        "limit_torque",
+        "eta_at_limit",
+        "status",
+        "warnings",
+        "iterations",
+        "residual_norm",
+        *POINT_VARIABLES,
+        "losses",
+        *CONTACT_VARIABLES,
+    ):
         per_arch = []
         for arch in archs:
             v = blocks[arch][name]
@@ -245,14 +311,18 @@ def _assemble(blocks, archs, axes, shape, contacts, rpm=None):
         elif name == "losses":
             d += ("loss",)
         data[name] = xr.Variable(d, arr, attrs_for(name))
-    coords = {"architecture": ("architecture", np.array(archs),
-                               {"long_name": "idler architecture"}),
-              "contact": ("contact", np.array(contacts), {"long_name": "contact"}),
-              "loss": ("loss", np.array(LOSS_KINDS), {"long_name": "kind of power loss"})}
+    coords = {
+        "architecture": ("architecture", np.array(archs), {"long_name": "idler architecture"}),
+        "contact": ("contact", np.array(contacts), {"long_name": "contact"}),
+        "loss": ("loss", np.array(LOSS_KINDS), {"long_name": "kind of power loss"}),
+    }
     for n, v in axes.items():
         coords[n] = (n, v, attrs_for(n))
     if rpm is not None:
         coords["input_speed"] = (speed_dim, axes["input_speed"], attrs_for("input_speed"))
-        coords[speed_dim] = (speed_dim, np.atleast_1d(np.asarray(rpm, dtype=float)),
-                             attrs_for(speed_dim))
+        coords[speed_dim] = (
+            speed_dim,
+            np.atleast_1d(np.asarray(rpm, dtype=float)),
+            attrs_for(speed_dim),
+        )
     return xr.Dataset(data, coords=coords)

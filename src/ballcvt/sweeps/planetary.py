@@ -25,9 +25,13 @@ __all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch", "MODE_STATUS"]
 
 
 #: Status codes of `solve_mode_batch` (as in a sweep, plus 3).
-MODE_STATUS = {0: "converged within the traction capacity", 1: "beyond the traction capacity",
-               2: "not converged", 3: "speeds out of range (infinite, none relative to the "
-               "carrier, or a carrier fast enough to unload the idler)"}
+MODE_STATUS = {
+    0: "converged within the traction capacity",
+    1: "beyond the traction capacity",
+    2: "not converged",
+    3: "speeds out of range (infinite, none relative to the "
+    "carrier, or a carrier fast enough to unload the idler)",
+}
 
 
 @dataclass(frozen=True)
@@ -58,8 +62,7 @@ class ModeBatch:
         """Power out over power in [-] (as `PlanetaryResult.eta`)."""
         p_in = self.input_power
         with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(p_in > 0, np.sum(np.maximum(-self.powers, 0.0), axis=0) / p_in,
-                            np.nan)
+            return np.where(p_in > 0, np.sum(np.maximum(-self.powers, 0.0), axis=0) / p_in, np.nan)
 
     def braking_direction(self, mode: OperatingMode) -> np.ndarray:
         """Sign of a load that brakes the driven member: that of its speed in this batch
@@ -67,10 +70,18 @@ class ModeBatch:
         return np.where(np.nan_to_num(self.speeds[MEMBERS.index(mode.driven)]) < 0, -1.0, 1.0)
 
 
-def solve_mode_batch(design, fluid, architecture: str, mode: OperatingMode, ratio,
-                     load_torque, driver_speed, clamp_force: float,
-                     options: SolverOptions = SolverOptions(), max_passes: int = 30
-                     ) -> ModeBatch:
+def solve_mode_batch(
+    design,
+    fluid,
+    architecture: str,
+    mode: OperatingMode,
+    ratio,
+    load_torque,
+    driver_speed,
+    clamp_force: float,
+    options: SolverOptions = SolverOptions(),
+    max_passes: int = 30,
+) -> ModeBatch:
     """`solve_mode` on a batch of points, batched through the fast solver.
 
     ``ratio``, ``load_torque`` and ``driver_speed`` broadcast to ``(n,)``. Every pass of the
@@ -79,12 +90,15 @@ def solve_mode_batch(design, fluid, architecture: str, mode: OperatingMode, rati
     out of range are flagged (status 3), not raised; points whose creeps exceed
     ``design.creep_limit`` are flagged 1.
     """
-    ratio, load, w = (np.ravel(v) for v in np.broadcast_arrays(
-        *(np.asarray(v, dtype=float) for v in (ratio, load_torque, driver_speed))))
+    ratio, load, w = (
+        np.ravel(v)
+        for v in np.broadcast_arrays(
+            *(np.asarray(v, dtype=float) for v in (ratio, load_torque, driver_speed))
+        )
+    )
     n = ratio.size
     layout = contact_layout(design, architecture)
-    w_max = float(max_carrier_speed(design, layout, clamp_force)) if mode.centrifugal \
-        else np.inf
+    w_max = float(max_carrier_speed(design, layout, clamp_force)) if mode.centrifugal else np.inf
     status = np.full(n, 2)
     tau = ratio.copy()
     x = np.full((n, layout.n_contacts), np.nan)
@@ -94,15 +108,26 @@ def solve_mode_batch(design, fluid, architecture: str, mode: OperatingMode, rati
     for _ in range(max_passes):
         sp = mode.speeds(w, tau, check=False)
         rel = sp["disc0"] - sp["carrier"]
-        ok = (np.isfinite(rel) & (np.abs(rel) > 0) & np.isfinite(sp["carrier"])
-              & (np.abs(sp["carrier"]) < w_max))
+        ok = (
+            np.isfinite(rel)
+            & (np.abs(rel) > 0)
+            & np.isfinite(sp["carrier"])
+            & (np.abs(sp["carrier"]) < w_max)
+        )
         status[~ok & ~settled] = 3
         todo = np.flatnonzero(ok & ~settled)
         if todo.size == 0:
             break
-        pb, sign = carrier_frame_problem(design, fluid, architecture, mode, ratio[todo],
-                                         load[todo], {m: v[todo] for m, v in sp.items()},
-                                         clamp_force)
+        pb, sign = carrier_frame_problem(
+            design,
+            fluid,
+            architecture,
+            mode,
+            ratio[todo],
+            load[todo],
+            {m: v[todo] for m, v in sp.items()},
+            clamp_force,
+        )
         sol = solve_batch(pb, options, np.where(np.isnan(x[todo]), initial_creep(pb), x[todo]))
         st = sol.state
         x[todo] = st.creep
@@ -122,14 +147,29 @@ def solve_mode_batch(design, fluid, architecture: str, mode: OperatingMode, rati
         tau[todo] = np.where(sol.converged, new, tau[todo])
     status[(status == 0) & (big > design.creep_limit)] = 1
     keep = status == 0
-    return ModeBatch(status, np.where(keep, speeds, np.nan), np.where(keep, torques, np.nan),
-                     np.where(keep, loss, np.nan), np.where(keep, tau, np.nan),
-                     np.where(keep, big, np.nan), np.where(keep, circ, np.nan))
+    return ModeBatch(
+        status,
+        np.where(keep, speeds, np.nan),
+        np.where(keep, torques, np.nan),
+        np.where(keep, loss, np.nan),
+        np.where(keep, tau, np.nan),
+        np.where(keep, big, np.nan),
+        np.where(keep, circ, np.nan),
+    )
 
 
-def limit_load_batch(design, fluid, architecture: str, mode: OperatingMode, ratio,
-                     driver_speed, clamp_force: float, options: SolverOptions = SolverOptions(),
-                     rtol: float = 1e-3, max_steps: int = 40) -> np.ndarray:
+def limit_load_batch(
+    design,
+    fluid,
+    architecture: str,
+    mode: OperatingMode,
+    ratio,
+    driver_speed,
+    clamp_force: float,
+    options: SolverOptions = SolverOptions(),
+    rtol: float = 1e-3,
+    max_steps: int = 40,
+) -> np.ndarray:
     """Largest load torque of the driven member with every ``|C| <= creep_limit``.
 
     The load brakes the driven member: its sign is that of the driven speed at zero load
@@ -146,17 +186,23 @@ def limit_load_batch(design, fluid, architecture: str, mode: OperatingMode, rati
     n = ratio.size
 
     def admissible(load):
-        return solve_mode_batch(design, fluid, architecture, mode, ratio, load, driver_speed,
-                                clamp_force, options).status == 0
+        return (
+            solve_mode_batch(
+                design, fluid, architecture, mode, ratio, load, driver_speed, clamp_force, options
+            ).status
+            == 0
+        )
 
-    zero = solve_mode_batch(design, fluid, architecture, mode, ratio, 0.0, driver_speed,
-                            clamp_force, options)
+    zero = solve_mode_batch(
+        design, fluid, architecture, mode, ratio, 0.0, driver_speed, clamp_force, options
+    )
     direction = zero.braking_direction(mode)
     ok0 = zero.status == 0
-    hi = traction_ceiling_torque(build_problem(design, fluid, architecture, ratio, 0.0,
-                                               clamp_force, 1.0))
+    hi = traction_ceiling_torque(
+        build_problem(design, fluid, architecture, ratio, 0.0, clamp_force, 1.0)
+    )
     lo = np.zeros(n)
-    for _ in range(12):                         # double until beyond the capacity
+    for _ in range(12):  # double until beyond the capacity
         up = admissible(direction * hi) & ok0
         if not up.any():
             break
@@ -169,4 +215,3 @@ def limit_load_batch(design, fluid, architecture: str, mode: OperatingMode, rati
         up = admissible(direction * mid)
         lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
     return np.where(ok0, lo, np.nan)
-

@@ -24,10 +24,21 @@ __all__ = ["evaluate_points", "CHUNK"]
 CHUNK = 1024
 
 
-def evaluate_points(design, fluid, architecture, ratio, output_torque, input_speed, *,
-                    clamp_force=None, law=None, options: SolverOptions = SolverOptions(),
-                    creep_limit: float | None = None, callback=None,
-                    executor=None) -> dict:
+def evaluate_points(
+    design,
+    fluid,
+    architecture,
+    ratio,
+    output_torque,
+    input_speed,
+    *,
+    clamp_force=None,
+    law=None,
+    options: SolverOptions = SolverOptions(),
+    creep_limit: float | None = None,
+    callback=None,
+    executor=None,
+) -> dict:
     """Solve scattered operating points and report every quantity of a sweep at each.
 
     Parameters
@@ -60,23 +71,38 @@ def evaluate_points(design, fluid, architecture, ratio, output_torque, input_spe
         (`ballcvt.sweeps.variables`) with a leading axis of length ``n`` (NaN where
         ``status`` is not 0).
     """
-    ratio, torque, speed = (np.atleast_1d(np.asarray(a, dtype=float)) for a in
-                            (ratio, output_torque, input_speed))
+    ratio, torque, speed = (
+        np.atleast_1d(np.asarray(a, dtype=float)) for a in (ratio, output_torque, input_speed)
+    )
     n = ratio.size
     c_lim = design.creep_limit if creep_limit is None else float(creep_limit)
     optimal = law is not None and law.name == "optimal"
     follows = law if law is not None and not optimal else None
-    force = np.ones(n) if law is not None else np.broadcast_to(
-        np.asarray(clamp_force, dtype=float), (n,)).astype(float)
-    build_problem(design, fluid, architecture, ratio, torque, force, speed)   # validate all
+    force = (
+        np.ones(n)
+        if law is not None
+        else np.broadcast_to(np.asarray(clamp_force, dtype=float), (n,)).astype(float)
+    )
+    build_problem(design, fluid, architecture, ratio, torque, force, speed)  # validate all
     # the same chunks with or without worker processes: the same results to round-off
     parts = np.array_split(np.arange(n), -(-n // CHUNK))
     if executor is not None and len(parts) > 1:
-        futures = [executor.submit(evaluate_points, design, fluid, architecture, ratio[i],
-                                   torque[i], speed[i],
-                                   clamp_force=None if law is not None else force[i],
-                                   law=law, options=options, creep_limit=c_lim)
-                   for i in parts]
+        futures = [
+            executor.submit(
+                evaluate_points,
+                design,
+                fluid,
+                architecture,
+                ratio[i],
+                torque[i],
+                speed[i],
+                clamp_force=None if law is not None else force[i],
+                law=law,
+                options=options,
+                creep_limit=c_lim,
+            )
+            for i in parts
+        ]
         done = []
         for i, f in zip(parts, futures):
             done.append(f.result())
@@ -87,22 +113,35 @@ def evaluate_points(design, fluid, architecture, ratio, output_torque, input_spe
     creep = np.full((n, 1, len(CONTACT_NAMES[architecture])), np.nan)
     used = force.copy()
     for idx in parts:
-        pb = build_problem(design, fluid, architecture, ratio[idx], torque[idx], force[idx],
-                           speed[idx])
-        if optimal:                     # the optimiser's force, then the constant law
+        pb = build_problem(
+            design, fluid, architecture, ratio[idx], torque[idx], force[idx], speed[idx]
+        )
+        if optimal:  # the optimiser's force, then the constant law
             pb = at_optimal_forces(pb, law, options)
         got = solve_admissible(pb, c_lim, options, follows)
         used[idx] = got.problem.clamp_force
         # converged but inadmissible (creep or, under a cam, pressure), or running away
         beyond = got.converged | (np.max(np.abs(got.creep), axis=-1) > c_lim)
-        status[idx] = np.where(got.ok, STATUS["converged"],
-                               np.where(beyond, STATUS["beyond_limit"],
-                                        STATUS["not_converged"]))
+        status[idx] = np.where(
+            got.ok,
+            STATUS["converged"],
+            np.where(beyond, STATUS["beyond_limit"], STATUS["not_converged"]),
+        )
         creep[idx, 0] = np.where(got.ok[:, None], got.creep, np.nan)
         if callback is not None:
             callback(idx.size)
-    out = derived(design, fluid, architecture, used[:, None], speed, ratio, torque[:, None],
-                  creep, status[:, None], options)
+    out = derived(
+        design,
+        fluid,
+        architecture,
+        used[:, None],
+        speed,
+        ratio,
+        torque[:, None],
+        creep,
+        status[:, None],
+        options,
+    )
     out = {k: v[:, 0] for k, v in out.items()}
     out["status"] = status
     out["clamp_force"] = np.where(status == 0, used, np.nan)

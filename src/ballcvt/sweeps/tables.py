@@ -54,10 +54,13 @@ def table_arrays(ds) -> dict:
     """
     one = ds.squeeze([d for d in ("architecture", "clamp_force") if d in ds.dims], drop=False)
     one = one.transpose("ratio", "input_speed_rpm", "output_torque", ...)
-    out = {"ratio": one.ratio.values, "input_speed_rpm": one.input_speed_rpm.values,
-           "output_torque": one.output_torque.values,
-           "status": one.status.values.astype(np.int8),
-           "limit_torque": one.limit_torque.transpose("ratio", "input_speed_rpm").values}
+    out = {
+        "ratio": one.ratio.values,
+        "input_speed_rpm": one.input_speed_rpm.values,
+        "output_torque": one.output_torque.values,
+        "status": one.status.values.astype(np.int8),
+        "limit_torque": one.limit_torque.transpose("ratio", "input_speed_rpm").values,
+    }
     for name in TABLE_VARIABLES:
         if name in one:
             out[name] = np.broadcast_to(one[name].values, out["status"].shape).copy()
@@ -76,12 +79,12 @@ def _filled(table: np.ndarray, status: np.ndarray) -> np.ndarray:
             out[i, j] = 0.0
             continue
         last = good[-1]
-        out[i, j, last + 1:] = out[i, j, last]
-        out[i, j, :good[0]] = out[i, j, good[0]]
+        out[i, j, last + 1 :] = out[i, j, last]
+        out[i, j, : good[0]] = out[i, j, good[0]]
         bad = ~ok[i, j]
-        bad[last + 1:] = False
-        bad[:good[0]] = False
-        if bad.any():                      # isolated unconverged points: interpolate
+        bad[last + 1 :] = False
+        bad[: good[0]] = False
+        if bad.any():  # isolated unconverged points: interpolate
             out[i, j, bad] = np.interp(np.flatnonzero(bad), good, out[i, j, good])
     return out
 
@@ -108,52 +111,76 @@ def write_tables(ds, out, formats=("csv", "mat", "modelica")) -> list[Path]:
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     arr = table_arrays(ds)
-    names = [n for n in arr if n not in ("ratio", "input_speed_rpm", "output_torque",
-                                         "status", "limit_torque")]
+    names = [
+        n
+        for n in arr
+        if n not in ("ratio", "input_speed_rpm", "output_torque", "status", "limit_torque")
+    ]
     files = []
     if "csv" in formats:
-        r, w, t = np.meshgrid(arr["ratio"], arr["input_speed_rpm"], arr["output_torque"],
-                              indexing="ij")
+        r, w, t = np.meshgrid(
+            arr["ratio"], arr["input_speed_rpm"], arr["output_torque"], indexing="ij"
+        )
         import pandas as pd
-        frame = pd.DataFrame({"ratio": r.ravel(), "input_speed_rpm": w.ravel(),
-                              "output_torque": t.ravel(),
-                              **{n: arr[n].ravel() for n in names},
-                              "status": arr["status"].ravel()})
-        files.append(write_table(frame, out / "table.csv",
-                                 {f"loss_{k}": "W" for k in LOSS_KINDS}))
+
+        frame = pd.DataFrame(
+            {
+                "ratio": r.ravel(),
+                "input_speed_rpm": w.ravel(),
+                "output_torque": t.ravel(),
+                **{n: arr[n].ravel() for n in names},
+                "status": arr["status"].ravel(),
+            }
+        )
+        files.append(write_table(frame, out / "table.csv", {f"loss_{k}": "W" for k in LOSS_KINDS}))
     filled = {n: _filled(arr[n], arr["status"]) for n in names}
     if "mat" in formats:
-        data = {"ratio": arr["ratio"], "input_speed_rpm": arr["input_speed_rpm"],
-                "output_torque": arr["output_torque"], "status": arr["status"],
-                "limit_torque": np.nan_to_num(arr["limit_torque"], nan=0.0), **filled,
-                "description": "ballcvt lookup table: tables (ratio, input_speed_rpm, "
-                               "output_torque); beyond the capacity (status 1) the value at "
-                               "the last admissible torque; see docs/cycles.md"}
+        data = {
+            "ratio": arr["ratio"],
+            "input_speed_rpm": arr["input_speed_rpm"],
+            "output_torque": arr["output_torque"],
+            "status": arr["status"],
+            "limit_torque": np.nan_to_num(arr["limit_torque"], nan=0.0),
+            **filled,
+            "description": "ballcvt lookup table: tables (ratio, input_speed_rpm, "
+            "output_torque); beyond the capacity (status 1) the value at "
+            "the last admissible torque; see docs/cycles.md",
+        }
         path = out / "table.mat"
         with atomic_path(path) as tmp:
             with open(tmp, "wb") as f:
                 savemat(f, data, do_compression=True, oned_as="column")
         files.append(path)
     if "modelica" in formats:
-        text = ["#1", "// ballcvt lookup tables for Modelica.Blocks.Tables.CombiTable2Ds",
-                "// eta_w<k>, loss_total_w<k>: u1 = ratio [1], u2 = output torque [N m], at "
-                "input speed k:"]
+        text = [
+            "#1",
+            "// ballcvt lookup tables for Modelica.Blocks.Tables.CombiTable2Ds",
+            "// eta_w<k>, loss_total_w<k>: u1 = ratio [1], u2 = output torque [N m], at "
+            "input speed k:",
+        ]
         for k, w in enumerate(arr["input_speed_rpm"], start=1):
             text.append(f"//   w{k} = {w:.10g} rpm")
         text.append("// limit_torque [N m]: u1 = ratio [1], u2 = input speed [rpm]")
         for k in range(arr["input_speed_rpm"].size):
             for name in ("eta", "loss_total"):
-                text += _modelica(f"{name}_w{k + 1}", arr["ratio"], arr["output_torque"],
-                                  filled[name][:, k, :])
-        text += _modelica("limit_torque", arr["ratio"], arr["input_speed_rpm"],
-                          np.nan_to_num(arr["limit_torque"], nan=0.0))
+                text += _modelica(
+                    f"{name}_w{k + 1}", arr["ratio"], arr["output_torque"], filled[name][:, k, :]
+                )
+        text += _modelica(
+            "limit_torque",
+            arr["ratio"],
+            arr["input_speed_rpm"],
+            np.nan_to_num(arr["limit_torque"], nan=0.0),
+        )
         files.append(atomic_write_text(out / "table_modelica.txt", "\n".join(text) + "\n"))
     return files
 
 
 def _modelica(name, u1, u2, table) -> list[str]:
-    rows = [f"double {name}({u1.size + 1},{u2.size + 1})",
-            " ".join(["0"] + [f"{x:.17g}" for x in u2])]
+    rows = [
+        f"double {name}({u1.size + 1},{u2.size + 1})",
+        " ".join(["0"] + [f"{x:.17g}" for x in u2]),
+    ]
     for x, row in zip(u1, table):
         rows.append(" ".join([f"{x:.17g}"] + [f"{v:.17g}" for v in row]))
     return rows
@@ -176,4 +203,3 @@ def read_modelica_tables(path) -> dict:
         else:
             i += 1
     return out
-

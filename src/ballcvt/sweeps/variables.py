@@ -2,13 +2,21 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ..performance.efficiency import LOSS_KINDS  # the ``loss`` axis of a sweep
 from ..performance.validity import WARNINGS
 
-__all__ = ["VARIABLES", "POINT_VARIABLES", "CONTACT_VARIABLES", "LOSS_KINDS", "STATUS",
-           "attrs_for"]
+__all__ = [
+    "VARIABLES",
+    "POINT_VARIABLES",
+    "CONTACT_VARIABLES",
+    "LOSS_KINDS",
+    "STATUS",
+    "attrs_for",
+]
 
 #: ``status`` values.
 STATUS = {"converged": 0, "beyond_limit": 1, "not_converged": 2}
@@ -34,8 +42,7 @@ VARIABLES = {
     "input_torque": ("N m", "input torque T_0"),
     "actual_ratio": ("1", "actual speed ratio omega_2 / omega_0"),
     "tilt_deg": ("degree", "ball tilt angle gamma"),
-    "losses": ("W", "power loss by kind (Eq. 40; total = creep + spin + bearing + "
-                    "parasitic)"),
+    "losses": ("W", "power loss by kind (Eq. 40; total = creep + spin + bearing + parasitic)"),
     "warnings": ("1", "validity warnings (bit flags, docs/model.md section 10)"),
     "creep": ("1", "creep coefficient C (Eq. 7)"),
     "spin": ("1", "spin coefficient sigma (Eqs. 11-14)"),
@@ -50,23 +57,45 @@ VARIABLES = {
     "loss": ("1", "kind of power loss"),
 }
 
-POINT_VARIABLES = ("eta", "eta_loss", "eta_speed", "eta_torque", "input_torque",
-                   "actual_ratio", "tilt_deg", "axial_force")
-CONTACT_VARIABLES = ("creep", "spin", "mu", "chi", "p_max", "film_thickness", "normal_load",
-                     "creep_loss", "spin_loss", "lambda_ratio")
+POINT_VARIABLES = (
+    "eta",
+    "eta_loss",
+    "eta_speed",
+    "eta_torque",
+    "input_torque",
+    "actual_ratio",
+    "tilt_deg",
+    "axial_force",
+)
+CONTACT_VARIABLES = (
+    "creep",
+    "spin",
+    "mu",
+    "chi",
+    "p_max",
+    "film_thickness",
+    "normal_load",
+    "creep_loss",
+    "spin_loss",
+    "lambda_ratio",
+)
 
 
 def attrs_for(name: str) -> dict:
     """CF attributes of a variable: ``units``, ``long_name`` and the flags of ``status`` and
     ``warnings`` (``flag_values`` / ``flag_masks`` with ``flag_meanings``)."""
     units, long_name = VARIABLES[name]
-    attrs = {"long_name": long_name}
-    if name not in ("status", "warnings"):        # CF: flag variables carry no units
+    attrs: dict[str, Any] = {"long_name": long_name}
+    if name not in ("status", "warnings"):  # CF: flag variables carry no units
         attrs["units"] = units
     if name == "status":
-        attrs.update(flag_values=np.array(list(STATUS.values()), dtype=np.int8),
-                     flag_meanings=" ".join(STATUS))
+        attrs.update(
+            flag_values=np.array(list(STATUS.values()), dtype=np.int8),
+            flag_meanings=" ".join(STATUS),
+        )
     elif name == "warnings":
-        attrs.update(flag_masks=np.array(list(WARNINGS.values()), dtype=np.int8),
-                     flag_meanings=" ".join(WARNINGS))
+        attrs.update(
+            flag_masks=np.array(list(WARNINGS.values()), dtype=np.int8),
+            flag_meanings=" ".join(WARNINGS),
+        )
     return attrs

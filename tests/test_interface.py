@@ -155,8 +155,9 @@ def test_every_flag_changes_the_output(capsys, tmp_path, small_design):
     covered = {}
     for name, (_, changes) in variants.items():
         covered.setdefault(name.split(":")[0], set()).update(changes)
-    # every subcommand but reproduce, design and explore (tested below) is covered here
-    assert set(covered) == set(subs) - {"reproduce", "design", "explore"}
+    # every subcommand but reproduce, design, explore and explore-ui (tested below) is
+    # covered here
+    assert set(covered) == set(subs) - {"reproduce", "design", "explore", "explore-ui"}
     for command, flags in covered.items():
         # every flag covered (the cam options act alike everywhere: one suffices for the
         # commands that only pass them on)
@@ -230,6 +231,23 @@ def test_explore_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
         outputs.append((json.dumps(calls[-1], sort_keys=True), out))
     for other in outputs[1:]:
         assert other != outputs[0]
+
+
+def test_explore_ui_flags_reach_the_server(capsys, small_design, monkeypatch):
+    calls = []
+    import ballcvt.ui
+
+    monkeypatch.setattr(ballcvt.ui, "serve", lambda design, fluid, **kw: calls.append(
+        json.dumps({"design": design.model_dump_json(), "fluid": fluid.name,
+                    "law": fluid.traction_law, **kw}, sort_keys=True)))
+    assert _options(_subcommands()["explore-ui"]) == {
+        "--arch", "--design", "--fluid", "--traction-law", "--port", "--address", "--show"}
+    variants = [[], ["--arch", "single"], ["--design", small_design],
+                ["--fluid", "mineral-oil"], ["--traction-law", "thermal"], ["--port", "0"],
+                ["--address", "0.0.0.0"], ["--show"]]
+    for extra in variants:
+        assert run(capsys, ["explore-ui", *extra])[0] == 0
+    assert len(set(calls)) == len(variants)
 
 
 def test_design_flag_and_path(capsys, tmp_path, small_design):

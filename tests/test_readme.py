@@ -68,6 +68,22 @@ DOC_LINES = [(doc.name, line) for doc in DOCS
              for line in _cli_lines(re.findall(r"```(\w*)\n(.*?)```", doc.read_text(), re.S))]
 
 
+#: Documentation pages whose python blocks must run (each page in its own namespace).
+PAGES = sorted((ROOT / "docs" / "capabilities").glob("*.md")) + [
+    ROOT / "docs" / "getting-started.md"]
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_docs_python_blocks_run(page, tmp_path, monkeypatch):
+    import matplotlib
+    matplotlib.use("Agg")
+    monkeypatch.chdir(tmp_path)
+    namespace: dict = {}
+    for i, (kind, code) in enumerate(re.findall(r"```(\w*)\n(.*?)```", page.read_text(), re.S)):
+        if kind == "python":
+            exec(compile(code, f"{page.name} python block {i}", "exec"), namespace)  # noqa: S102
+
+
 @pytest.mark.parametrize("doc, line", DOC_LINES)
 def test_doc_cli_examples_run(doc, line, workdir, monkeypatch, capsys):
     monkeypatch.chdir(workdir)

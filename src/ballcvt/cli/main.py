@@ -148,7 +148,7 @@ OPTIONS = {
     "creep-limit": {
         "type": _number,
         "default": None,
-        "help": "largest admissible |creep| (default: the design's, 0.10)",
+        "help": "largest admissible abs(creep) (default: the design's, 0.10)",
     },
     "design": {
         "metavar": "FILE.toml",
@@ -300,7 +300,7 @@ def build_parser() -> argparse.ArgumentParser:
         sub,
         "limit",
         "limiting output torque at a ratio, clamp and speed",
-        "The largest output torque with a converged equilibrium and every |creep| <= "
+        "The largest output torque with a converged equilibrium and every abs(creep) <= "
         "the creep limit (docs/model.md section 8); under the cam law also every peak "
         "pressure <= the design's max_pressure (section 11).",
         "ballcvt limit --arch single --ratio 2 --clamp 2000 --speed 2000",
@@ -312,7 +312,7 @@ def build_parser() -> argparse.ArgumentParser:
         "clamp",
         "clamping force of maximum efficiency under the creep and pressure limits",
         "The input-contact normal load F_N0 that maximises the overall efficiency at "
-        "this ratio, torque and speed, keeping every |creep| <= the creep limit and "
+        "this ratio, torque and speed, keeping every abs(creep) <= the creep limit and "
         "every Hertz peak pressure <= the pressure limit.",
         "ballcvt clamp --ratio 1 --torque 60 --speed 2000 --max-pressure 3e9",
     )
@@ -428,7 +428,7 @@ def build_parser() -> argparse.ArgumentParser:
         "reproduce",
         "recompute every result of the paper: figures, data and report",
         "Recompute every result figure and stated number of the paper on the Table I "
-        "drive: figNN.png/.svg/.csv, data/*.nc, claims.csv, report.md and report.html "
+        "drive: figNN.png/.svg/.csv, data/NAME.nc, claims.csv, report.md and report.html "
         "in --out.",
         "ballcvt reproduce --out reproduction --quick --workers 2",
     )

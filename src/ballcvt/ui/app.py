@@ -88,7 +88,7 @@ class _State:
         if self.variator is None:
             return out
         try:
-            r = self.variator.solve(
+            r: Any = self.variator.solve(
                 ratio=float(v["ratio"]),
                 output_torque=float(v["output_torque"]),
                 clamp_force=float(v["clamp_force"]),
@@ -120,7 +120,10 @@ class _State:
         v = self.values
         lo, hi = self.variator.ratio_range
         ratio = np.linspace(max(lo, 0.5), min(hi, 2.0), MAP_GRID[0])
-        kw = {"clamp_force": float(v["clamp_force"]), "input_speed_rpm": v["input_speed_rpm"]}
+        kw: dict[str, Any] = {
+            "clamp_force": float(v["clamp_force"]),
+            "input_speed_rpm": v["input_speed_rpm"],
+        }
         try:
             top = max(self.variator.limit_torque(ratio=float(r), **kw) for r in ratio[[0, -1]])
             top = max(top, self.variator.limit_torque(ratio=float(ratio[len(ratio) // 2]), **kw))

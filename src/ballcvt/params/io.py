@@ -29,6 +29,8 @@ __all__ = [
     "load_builtin_fluid",
     "parse_fluid",
     "fluid_to_toml",
+    "read_text",
+    "parse_toml",
 ]
 
 #: Named, cited drive definitions shipped with the package.
@@ -63,12 +65,12 @@ def load_builtin_fluid(name: str = "table1") -> Fluid:
 def load_fluid(path: str | Path) -> Fluid:
     """The ``[fluid]`` table of a TOML file (a drive file, or a fluid-only file such as
     ``fit-fluid`` writes), validated."""
-    return parse_fluid(_read(path, "fluid file"), source=f"fluid file {path}")
+    return parse_fluid(read_text(path, "fluid file"), source=f"fluid file {path}")
 
 
 def parse_fluid(text: str, source: str = "fluid file") -> Fluid:
     """Parse and validate the ``[fluid]`` table of TOML text (other tables are ignored)."""
-    data = _toml(text, source)
+    data = parse_toml(text, source)
     if not isinstance(data.get("fluid"), dict):
         raise InputError(
             "fluid", None, "a table", message=f"{source} is incomplete: table [fluid] is missing"
@@ -97,7 +99,7 @@ def fluid_to_toml(fluid: Fluid, header: str = "") -> str:
     return tomlkit.dumps(doc)
 
 
-def _read(path: str | Path, what: str) -> str:
+def read_text(path: str | Path, what: str) -> str:
     path = Path(path)
     try:
         return path.read_text(encoding="utf-8")
@@ -117,7 +119,7 @@ def _read(path: str | Path, what: str) -> str:
         ) from None
 
 
-def _toml(text: str, source: str) -> dict:
+def parse_toml(text: str, source: str) -> dict:
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -137,12 +139,12 @@ def load_drive(path: str | Path) -> tuple[Design, Fluid]:
     InputError
         If the file is missing, is not TOML, or has a missing, unknown or out-of-range key.
     """
-    return parse_drive(_read(path, "design file"), source=f"design file {path}")
+    return parse_drive(read_text(path, "design file"), source=f"design file {path}")
 
 
 def parse_drive(text: str, source: str = "design file") -> tuple[Design, Fluid]:
     """Parse and validate the TOML text of a drive definition."""
-    data = _toml(text, source)
+    data = parse_toml(text, source)
     for table in ("design", "fluid"):
         if not isinstance(data.get(table), dict):
             raise InputError(

@@ -31,13 +31,13 @@ line naming it (`read_study`).
 from __future__ import annotations
 
 import math
-import tomllib
 from pathlib import Path
 from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
 from ..errors import InputError
+from ..params.io import parse_toml, read_text
 from ..params.models import ARCHITECTURES, Design, ParameterModel
 
 __all__ = [
@@ -305,15 +305,7 @@ class StudySpec(ParameterModel):
 
 def parse_study(text: str, source: str = "study file", base: Path | None = None) -> StudySpec:
     """Parse and validate the TOML text of a study; ``base`` resolves relative paths."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(
-            source,
-            None,
-            "valid TOML",
-            message=f"{source} is not valid TOML: {str(exc).splitlines()[0]}",
-        ) from None
+    data = parse_toml(text, source)
     try:
         spec = StudySpec(**data)
     except InputError as exc:
@@ -336,20 +328,5 @@ def parse_study(text: str, source: str = "study file", base: Path | None = None)
 def read_study(path) -> StudySpec:
     """Read and validate a study file (relative paths in it are relative to the file)."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise InputError(
-            "study file",
-            str(path),
-            "a readable TOML file",
-            message=f"study file {path}: cannot be read ({exc.strerror})",
-        ) from None
-    except UnicodeDecodeError:
-        raise InputError(
-            "study file",
-            str(path),
-            "a UTF-8 TOML file",
-            message=f"study file {path}: not a text file (not UTF-8)",
-        ) from None
+    text = read_text(path, "study file")
     return parse_study(text, f"study file {path}", path.parent)

@@ -58,4 +58,3 @@ sphinx_gallery_conf = {
 
 html_theme = "furo"
 html_title = f"ballcvt {release}"
-html_static_path = ["_static"]

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from ballcvt import InputError
 from ballcvt.cli.main import main
 from ballcvt.reports import reproduce
 from ballcvt.reports.figures import FIGURES
@@ -170,3 +171,9 @@ def test_two_workers_give_the_same_sweep(double, small):
                        architecture=("double", "single"), progress=False, workers=2, **OP)
     assert np.array_equal(two.status.values, small.status.values)
     assert np.allclose(two.eta.values, small.eta.values, rtol=0, atol=1e-12, equal_nan=True)
+
+
+def test_limit_torque_flag_is_refused_not_read_as_zero(double):
+    with pytest.raises(InputError, match="limit_torque = False"):
+        double.sweep(ratio=[1.0], output_torque=[30.0], clamp_force=2000.0,
+                     input_speed_rpm=2000, limit_torque=False)

@@ -151,6 +151,12 @@ def sweep(
     shape = tuple(len(axes[n]) for n in ("clamp_force", "input_speed", "ratio"))
     grid = np.meshgrid(axes["clamp_force"], axes["input_speed"], axes["ratio"], indexing="ij")
     flat = [g.ravel() for g in grid]
+    if isinstance(limit_torque, (bool, np.bool_)):
+        raise InputError(
+            "limit_torque",
+            limit_torque,
+            "torques [N m] or a LimitSearch (None: computed)",
+        )
     if limit_torque is not None:
         if len(archs) != 1:
             raise InputError(

@@ -211,7 +211,7 @@ def test_explore_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
     calls = []
 
     def fake(spec, out, **kw):
-        calls.append({"out": str(out), **kw})
+        calls.append({"out": str(out), "law": spec.study.traction_law, **kw})
         return done
 
     import ballcvt.reports.study
@@ -220,11 +220,11 @@ def test_explore_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
     monkeypatch.setattr(ballcvt.reports.study, "study_report", lambda *a, **k: [])
     assert _options(_subcommands()["explore"]) == {"--out", "--workers", "--scheduler",
                                                    "--in-process", "--resume", "--quiet",
-                                                   "--json"}
+                                                   "--json", "--traction-law"}
     base = ["explore", str(tiny), "--out", str(tmp_path / "done")]
     variants = [[], ["--out", str(tmp_path / "b")], ["--workers", "3"],
                 ["--scheduler", "tcp://127.0.0.1:8786"], ["--in-process"], ["--resume"],
-                ["--quiet"], ["--json"]]
+                ["--quiet"], ["--json"], ["--traction-law", "thermal"]]
     outputs = []
     for extra in variants:
         code, out, _ = run(capsys, base + extra)

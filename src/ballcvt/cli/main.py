@@ -449,6 +449,8 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--law",
+        "--traction-law",
+        dest="law",
         choices=TRACTION_LAWS,
         default=None,
         help="traction law (default: the fluid's own)",
@@ -515,6 +517,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("curves_file", type=Path, metavar="CURVES.csv", help="measured traction curves")
     p.add_argument(
         "--law",
+        "--traction-law",
+        dest="law",
         choices=TRACTION_LAWS,
         default=None,
         help="traction law to fit (default: the start fluid's own)",
@@ -559,6 +563,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--in-process", action="store_true", help="evaluate in this process, without Dask"
+    )
+    p.add_argument(
+        "--traction-law",
+        choices=TRACTION_LAWS,
+        default=None,
+        help="traction law of every design (default: the study's traction_law, else the "
+        "fluid's own)",
     )
     p.add_argument(
         "--resume",
@@ -1128,6 +1139,10 @@ def _cmd_explore(args) -> int:
     from ..studies import read_study, run_study
 
     spec = read_study(args.study_file)
+    if args.traction_law is not None:
+        spec = spec.model_copy(
+            update={"study": spec.study.model_copy(update={"traction_law": args.traction_law})}
+        )
     if args.scheduler is not None and args.in_process:
         raise InputError("scheduler", args.scheduler, "not with --in-process")
     result = run_study(

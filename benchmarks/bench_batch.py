@@ -34,7 +34,6 @@ import numpy as np
 from scipy.optimize import root
 
 from ballcvt import Quadrature, SolverOptions, __version__, load_builtin
-from ballcvt.params.models import Fluid
 from ballcvt.contact.reference import traction_coefficients_adaptive
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.equilibrium.residual import _balances, _contact_inputs
@@ -55,7 +54,7 @@ FIRST_CALL = ("import time; t = time.perf_counter(); from ballcvt import Variato
 
 def the_map(arch, n=30, law="isothermal"):
     design, fluid = load_builtin()
-    fluid = Fluid(**{**fluid.model_dump(), "traction_law": law})
+    fluid = fluid.with_traction_law(law)
     ratio = np.linspace(0.5, 2.0, n)
     base = build_problem(design, fluid, arch, ratio, 0.0, 2000.0, SPEED)
     t = time.perf_counter()

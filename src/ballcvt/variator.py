@@ -72,10 +72,7 @@ class Variator:
             d, f = _default_drive()
             object.__setattr__(self, "design", self.design or d)
             object.__setattr__(self, "fluid", self.fluid or f)
-        if self.traction_law is not None and self.traction_law != self.fluid.traction_law:
-            # validated (the law's parameters must be there), the fluid's name unchanged
-            fluid = Fluid(**{**self.fluid.model_dump(), "traction_law": self.traction_law})
-            object.__setattr__(self, "fluid", fluid)
+        object.__setattr__(self, "fluid", self.fluid.with_traction_law(self.traction_law))
         object.__setattr__(self, "traction_law", self.fluid.traction_law)
         if self.architecture not in ARCHITECTURES:
             raise InputError(

@@ -30,10 +30,8 @@ from ..params.io import (
     BUILTIN_FLUIDS,
     builtin_text,
     drive_to_toml,
-    load_builtin,
-    load_builtin_fluid,
-    load_drive,
-    load_fluid,
+    resolve_drive,
+    resolve_fluid,
 )
 from ..params.models import ARCHITECTURES, TRACTION_LAWS, Fluid
 from ..variator import Variator
@@ -450,7 +448,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--law",
         "--traction-law",
-        dest="law",
+        dest="traction_law",
         choices=TRACTION_LAWS,
         default=None,
         help="traction law (default: the fluid's own)",
@@ -518,7 +516,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--law",
         "--traction-law",
-        dest="law",
+        dest="traction_law",
         choices=TRACTION_LAWS,
         default=None,
         help="traction law to fit (default: the start fluid's own)",
@@ -622,25 +620,14 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _drive(design):
     """A ``--design`` value: a built-in drive's name or a TOML file."""
-    if design is None:
-        return load_builtin()
-    if design in BUILTIN_DRIVES and not Path(design).exists():
-        return load_builtin(design)
-    return load_drive(design)
+    return resolve_drive(design)
 
 
 def _fluid(args, fluid):
     """The drive's fluid, or the ``--fluid`` one, under ``--traction-law`` if given."""
     if getattr(args, "fluid", None) is not None:
-        fluid = (
-            load_builtin_fluid(args.fluid)
-            if args.fluid in BUILTIN_FLUIDS and not Path(args.fluid).exists()
-            else load_fluid(args.fluid)
-        )
-    law = getattr(args, "traction_law", None)
-    if law is not None and law != fluid.traction_law:
-        fluid = Fluid(**{**fluid.model_dump(), "traction_law": law})
-    return fluid
+        fluid = resolve_fluid(args.fluid)
+    return fluid.with_traction_law(getattr(args, "traction_law", None))
 
 
 def _variator(args) -> Variator:
@@ -1000,10 +987,7 @@ def _cmd_reproduce(args) -> int:
 def _contact_fluid(args):
     """(fluid, E') of a single-contact command: --fluid (default the drive's) under --law."""
     design, fluid = _drive(args.design)
-    fluid = _fluid(args, fluid)
-    if args.law is not None and args.law != fluid.traction_law:
-        fluid = Fluid(**{**fluid.model_dump(), "traction_law": args.law})
-    return fluid, design.material.reduced_modulus
+    return _fluid(args, fluid), design.material.reduced_modulus
 
 
 def _cmd_traction_curve(args) -> int:

@@ -12,6 +12,7 @@ drive (Hertz, Eqs. 45-50; film, Eq. 56) with ``u_ref = U``: the sliding speed is
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -21,9 +22,9 @@ from .film import central_film_thickness
 from .hertz import hertz_contact
 from .laws import law_coefficients
 from .quadrature import Quadrature
-from .thermal import film_temperature_rise
+from .thermal import thermal_coefficients_and_rise
 
-__all__ = ["TractionCurve", "traction_curve", "load_for_pressure"]
+__all__ = ["TractionCurve", "traction_curve", "load_for_pressure", "contact_arguments"]
 
 
 @dataclass(frozen=True)
@@ -70,6 +71,31 @@ def load_for_pressure(p_max, rx, ry, reduced_modulus):
     """
     _, _, p_unit, _ = hertz_contact(1.0, rx, ry, reduced_modulus)
     return (np.asarray(p_max, dtype=float) / p_unit) ** 3
+
+
+#: ``(creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)`` of a traction law.
+ContactArguments = tuple[Any, Any, Any, Any, Any, Any, Any, Any, Any]
+
+
+def contact_arguments(
+    fluid: Fluid, rx, ry, load, speed, spin, creep, reduced_modulus
+) -> ContactArguments:
+    """The arguments of a traction law (`ballcvt.contact.laws.law_coefficients`, up to the
+    fluid) for contacts given as on a traction machine: radii ``rx, ry`` [m], ``load``
+    [N], rolling speed [m/s], spin-to-roll ratio [-], slide-to-roll ratio [-] and ``E'``
+    [Pa] (arrays broadcast). Hertz semi-axes and pressure (Eqs. 45-50), the film at the
+    rolling speed (Eq. 56), ``u_ref`` the rolling speed and ``r_c = R_x``."""
+    ax, ay, p_max, _ = hertz_contact(load, rx, ry, reduced_modulus)
+    film = central_film_thickness(
+        fluid.viscosity,
+        fluid.pressure_viscosity_coefficient,
+        reduced_modulus,
+        rx,
+        speed,
+        load,
+        ay / ax,
+    )
+    return (creep, spin, ax, ay, p_max, load, rx, speed, film)
 
 
 def traction_curve(
@@ -127,25 +153,12 @@ def traction_curve(
     s = np.asarray(creep, dtype=float)
     if s.size == 0 or not np.all(np.isfinite(s)) or np.any(np.abs(s) >= 2.0):
         raise InputError("creep", s.tolist() if s.size < 5 else "...", "|creep| < 2")
-    ax, ay, pm, _ = (float(v) for v in hertz_contact(load, rx, ry, reduced_modulus))
-    film = float(
-        central_film_thickness(
-            fluid.viscosity,
-            fluid.pressure_viscosity_coefficient,
-            reduced_modulus,
-            rx,
-            speed,
-            load,
-            ay / ax,
-        )
-    )
-    args = (s, spin, ax, ay, pm, load, rx, speed, film)
-    mu, chi = law_coefficients(*args, fluid, quadrature)
-    rise = (
-        film_temperature_rise(*args, fluid)
-        if fluid.traction_law == "thermal"
-        else np.zeros_like(s)
-    )
+    args = contact_arguments(fluid, rx, ry, load, speed, spin, s, reduced_modulus)
+    ax, ay, pm, film = (float(v) for v in (args[2], args[3], args[4], args[8]))
+    if fluid.traction_law == "thermal":  # one solve of the film temperature for both
+        mu, chi, rise = thermal_coefficients_and_rise(*args, fluid, quadrature)
+    else:
+        (mu, chi), rise = law_coefficients(*args, fluid, quadrature), np.zeros_like(s)
     conditions = {
         "fluid": fluid.name,
         "rx": rx,

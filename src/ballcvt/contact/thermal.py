@@ -38,7 +38,13 @@ from ..params.models import Fluid
 from .quadrature import Quadrature
 from .traction import traction_coefficients
 
-__all__ = ["thermal_coefficients", "film_temperature_rise", "TEMPERATURE_RULE", "FLASH_FACTOR"]
+__all__ = [
+    "thermal_coefficients",
+    "thermal_coefficients_and_rise",
+    "film_temperature_rise",
+    "TEMPERATURE_RULE",
+    "FLASH_FACTOR",
+]
 
 #: Cheap rule on which Newton finds the film temperature before one step on the
 #: requested rule (`_rise_and_coefficients`).
@@ -60,22 +66,28 @@ class _Contacts:
     def __init__(self, args, fluid: Fluid):
         (self.c, self.s, self.ax, self.ay, self.pm, self.fn, self.rc, self.u, self.h) = args
         self.fluid = _isothermal(fluid)
-        beta, beta_l, k_f, k_s, kappa = (
-            float(v)  # the Fluid validator guarantees them under the thermal law
-            for v in (
-                fluid.temperature_viscosity_coefficient,
-                fluid.limiting_shear_temperature_coefficient,
-                fluid.thermal_conductivity,
-                fluid.surface_conductivity,
-                fluid.surface_diffusivity,
-            )
-            if v is not None
+        values = (
+            fluid.temperature_viscosity_coefficient,
+            fluid.limiting_shear_temperature_coefficient,
+            fluid.thermal_conductivity,
+            fluid.surface_conductivity,
+            fluid.surface_diffusivity,
         )
+        if any(v is None for v in values):
+            raise ValueError(f"fluid '{fluid.name}' lacks the thermal law's parameters")
+        beta, beta_l, k_f, k_s, kappa = (float(v) for v in values if v is not None)
         self.beta_l = beta_l
         self.b = beta - beta_l
         self.load_flux = self.fn / (np.pi * self.ax * self.ay)  # F_N / contact area
         self.r_flash = FLASH_FACTOR * np.sqrt(kappa * self.ax / self.u) / (2.0 * k_s)
-        self.r_film = self.h / (8.0 * k_f)
+        # thermal resistance of the contact, flash and film in series [K m^2/W]
+        self.resistance = self.r_flash + self.h / (8.0 * k_f)
+
+    @classmethod
+    def from_args(cls, values, fluid: Fluid) -> tuple[_Contacts, tuple[int, ...]]:
+        """Contacts from the broadcast arguments of `thermal_coefficients`, and their shape."""
+        args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
+        return cls([a.ravel() for a in args], fluid), args[0].shape
 
     def take(self, i) -> _Contacts:
         out = object.__new__(_Contacts)
@@ -111,13 +123,17 @@ class _Contacts:
         )
 
     def flux(self, mu, chi):
-        """Mean shear-heat flux ``Q / (pi a_x a_y)`` [W/m^2]."""
-        return self.load_flux * self.u * (self.c * mu + self.s * chi)
+        """Mean shear-heat flux ``Q / (pi a_x a_y)`` [W/m^2]; linear in ``mu, chi``, so of
+        their derivatives it gives the flux's (columns of ``(n, k)`` arrays: one each)."""
+        k, c, s = self.load_flux * self.u, self.c, self.s
+        if np.ndim(mu) == 2:
+            k, c, s = k[:, None], c[:, None], s[:, None]
+        return k * (c * mu + s * chi)
 
 
 def _solve_rise(con: _Contacts, quadrature: Quadrature, tol=1e-6, max_iter=60):
     """``dT = R q(dT)`` per contact: Newton, kept inside the bracket ``[0, R q(0)]``."""
-    r = con.r_flash + con.r_film
+    r = con.resistance
     dt = np.zeros(con.c.shape)
     lo, hi = np.zeros_like(dt), np.full_like(dt, np.inf)
     todo = np.arange(dt.size)
@@ -125,7 +141,7 @@ def _solve_rise(con: _Contacts, quadrature: Quadrature, tol=1e-6, max_iter=60):
         sub = con.take(todo)
         mu, chi, dmu, dchi = sub.at(dt[todo], quadrature)
         q = sub.flux(mu, chi)
-        q_t = sub.load_flux * sub.u * (sub.c * dmu[:, 3] + sub.s * dchi[:, 3])
+        q_t = sub.flux(dmu[:, 3], dchi[:, 3])
         g = dt[todo] - r[todo] * q
         lo[todo] = np.where(g <= 0.0, dt[todo], lo[todo])
         hi[todo] = np.where(g >= 0.0, dt[todo], hi[todo])
@@ -151,9 +167,8 @@ def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature):
     """
     dt = _solve_rise(con, TEMPERATURE_RULE)
     mu, chi, dmu, dchi = con.at(dt, quadrature)
-    r = con.r_flash + con.r_film
-    q_t = con.load_flux * con.u * (con.c * dmu[:, 3] + con.s * dchi[:, 3])
-    step = -(dt - r * con.flux(mu, chi)) / (1.0 - r * q_t)
+    r = con.resistance
+    step = -(dt - r * con.flux(mu, chi)) / (1.0 - r * con.flux(dmu[:, 3], dchi[:, 3]))
     step = np.maximum(step, -dt)  # the rise stays >= 0
     return dt + step, mu + dmu[:, 3] * step, chi + dchi[:, 3] * step, dmu, dchi
 
@@ -175,14 +190,31 @@ def film_temperature_rise(
 
     Parameters are those of `thermal_coefficients` (same units).
     """
-    args = _flat(creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)
-    shape = args[0].shape
-    con = _Contacts([a.ravel() for a in args], fluid)
-    return _rise_and_coefficients(con, quadrature)[0].reshape(shape)
+    return thermal_coefficients_and_rise(
+        creep_term, spin, ax, ay, p_max, load, radius, u_ref, film, fluid, quadrature
+    )[2]
 
 
-def _flat(*values):
-    return np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
+def thermal_coefficients_and_rise(
+    creep_term,
+    spin,
+    ax,
+    ay,
+    p_max,
+    load,
+    radius,
+    u_ref,
+    film,
+    fluid: Fluid,
+    quadrature: Quadrature = Quadrature(),
+):
+    """``mu``, ``chi`` [-] and the film temperature rise ``dT`` [K] from one solve of the
+    film temperature (parameters as in `thermal_coefficients`)."""
+    con, shape = _Contacts.from_args(
+        (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film), fluid
+    )
+    dt, mu, chi, _, _ = _rise_and_coefficients(con, quadrature)
+    return mu.reshape(shape), chi.reshape(shape), dt.reshape(shape)
 
 
 def thermal_coefficients(
@@ -210,25 +242,20 @@ def thermal_coefficients(
     ``-d/dlog h`` of the isothermal law does not hold with heating; Newton's Jacobians
     only use it).
     """
-    args = _flat(creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)
-    shape = args[0].shape
-    con = _Contacts([a.ravel() for a in args], fluid)
+    con, shape = _Contacts.from_args(
+        (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film), fluid
+    )
     _, mu, chi, dmu, dchi = _rise_and_coefficients(con, quadrature)
     if not derivatives:
         return mu.reshape(shape), chi.reshape(shape)
     q = con.flux(mu, chi)
     k = con.load_flux * con.u
-    r = con.r_flash + con.r_film
-    dq = np.column_stack(
-        [
-            k * (mu + con.c * dmu[:, 0] + con.s * dchi[:, 0]),
-            k * (con.c * dmu[:, 1] + chi + con.s * dchi[:, 1]),
-            q + k * (con.c * dmu[:, 2] + con.s * dchi[:, 2]),
-        ]
-    )
+    r = con.resistance
+    slopes = con.flux(dmu, dchi)  # the flux's partials (c, sigma, log u, dT) at fixed c, sigma
+    # d q / d(c, sigma, log u): q is also linear in c, sigma and proportional to u
+    dq = slopes[:, :3] + np.column_stack([k * mu, k * chi, q])
     dr = np.column_stack([np.zeros_like(q), np.zeros_like(q), -0.5 * con.r_flash])
-    q_t = k * (con.c * dmu[:, 3] + con.s * dchi[:, 3])
-    d_dt = (r[:, None] * dq + q[:, None] * dr) / (1.0 - r * q_t)[:, None]
+    d_dt = (r[:, None] * dq + q[:, None] * dr) / (1.0 - r * slopes[:, 3])[:, None]
     dmu_total = dmu[:, :3] + dmu[:, 3:] * d_dt
     dchi_total = dchi[:, :3] + dchi[:, 3:] * d_dt
     return (

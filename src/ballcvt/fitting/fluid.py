@@ -33,8 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact.film import central_film_thickness
-from ..contact.hertz import hertz_contact
+from ..contact.curve import contact_arguments
 from ..contact.laws import law_coefficients
 from ..contact.quadrature import Quadrature
 from ..errors import InputError
@@ -197,29 +196,17 @@ def model_mu(
     fluid: Fluid, curves: Curves, reduced_modulus: float, quadrature: Quadrature = Quadrature()
 ) -> np.ndarray:
     """Modelled traction coefficient at every point of ``curves`` [-] (one batched call)."""
-    ax, ay, pm, _ = hertz_contact(curves.load, curves.rx, curves.ry, reduced_modulus)
-    film = central_film_thickness(
-        fluid.viscosity,
-        fluid.pressure_viscosity_coefficient,
-        reduced_modulus,
-        curves.rx,
-        curves.speed,
-        curves.load,
-        ay / ax,
-    )
-    mu, _ = law_coefficients(
-        curves.creep,
-        curves.spin,
-        ax,
-        ay,
-        pm,
-        curves.load,
-        curves.rx,
-        curves.speed,
-        film,
+    args = contact_arguments(
         fluid,
-        quadrature,
+        curves.rx,
+        curves.ry,
+        curves.load,
+        curves.speed,
+        curves.spin,
+        curves.creep,
+        reduced_modulus,
     )
+    mu, _ = law_coefficients(*args, fluid, quadrature)
     return np.asarray(mu)
 
 

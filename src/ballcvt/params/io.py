@@ -31,6 +31,8 @@ __all__ = [
     "fluid_to_toml",
     "read_text",
     "parse_toml",
+    "resolve_drive",
+    "resolve_fluid",
 ]
 
 #: Named, cited drive definitions shipped with the package.
@@ -49,6 +51,22 @@ def builtin_text(name: str = "table1") -> str:
 def load_builtin(name: str = "table1") -> tuple[Design, Fluid]:
     """The built-in ``(design, fluid)`` pair ``name`` (default: the paper's Table I)."""
     return parse_drive(builtin_text(name), source=f"built-in drive '{name}'")
+
+
+def resolve_drive(name: str | Path | None = None) -> tuple[Design, Fluid]:
+    """A built-in drive by name (`BUILTIN_DRIVES`; Table I when None), else a drive file."""
+    if name is None:
+        return load_builtin()
+    if str(name) in BUILTIN_DRIVES and not Path(name).exists():
+        return load_builtin(str(name))
+    return load_drive(name)
+
+
+def resolve_fluid(name: str | Path) -> Fluid:
+    """A built-in fluid by name (`BUILTIN_FLUIDS`), else the ``[fluid]`` table of a file."""
+    if str(name) in BUILTIN_FLUIDS and not Path(name).exists():
+        return load_builtin_fluid(str(name))
+    return load_fluid(name)
 
 
 def _data_text(filename: str) -> str:

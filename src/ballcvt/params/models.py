@@ -490,6 +490,14 @@ class Fluid(ParameterModel):
             )
         return self
 
+    def with_traction_law(self, law: str | None) -> Fluid:
+        """This fluid under the traction law ``law`` (itself when ``law`` is None or its own),
+        validated (the law's parameters must be there) and with its name unchanged: the law
+        is a choice of model, not a change of the fluid's data."""
+        if law is None or law == self.traction_law:
+            return self
+        return Fluid(**{**self.model_dump(), "traction_law": law})
+
     @property
     def kinematic_viscosity(self) -> float:
         """``eta_0 / rho`` [m^2/s]."""

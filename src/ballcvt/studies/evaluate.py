@@ -18,7 +18,7 @@ from ..equilibrium.problem import build_problem
 from ..errors import BallCVTError
 from ..geometry.kinematics import ratio_range
 from ..geometry.layout import contact_layout
-from ..params.io import load_builtin, load_drive
+from ..params.io import resolve_drive
 from ..params.models import Design, Fluid
 from ..solver.limit import limit_search
 from ..sweeps.points import evaluate_points
@@ -52,14 +52,8 @@ class Context:
 
 def make_context(spec: StudySpec) -> Context:
     """Resolve the study's drive, fluid and operating points."""
-    drive = spec.study.drive
-    design, fluid = (
-        load_builtin(drive)
-        if drive in ("table1", "hub") and not _exists(drive)
-        else load_drive(drive)
-    )
-    if spec.study.traction_law is not None:
-        fluid = Fluid(**{**fluid.model_dump(), "traction_law": spec.study.traction_law})
+    design, fluid = resolve_drive(spec.study.drive)
+    fluid = fluid.with_traction_law(spec.study.traction_law)
     op = spec.operating
     if op.cycle is None:
         r, t, w = np.meshgrid(
@@ -88,12 +82,6 @@ def make_context(spec: StudySpec) -> Context:
         weights / weights.sum() if weights.size else weights,
         np.asarray(cap, dtype=float),
     )
-
-
-def _exists(path: str) -> bool:
-    from pathlib import Path
-
-    return Path(path).exists()
 
 
 def envelope_diameter(design: Design) -> float:

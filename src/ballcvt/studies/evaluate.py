@@ -14,13 +14,14 @@ from typing import Any
 
 import numpy as np
 
-from ..equilibrium.problem import build_problem
+from ..clamping.laws import clamp_law
 from ..errors import BallCVTError
 from ..geometry.kinematics import ratio_range
 from ..geometry.layout import contact_layout
 from ..params.io import resolve_drive
 from ..params.models import Design, Fluid
-from ..solver.limit import limit_search
+from ..solver.point import SolverOptions
+from ..sweeps.curves import limit_search_curves
 from ..sweeps.points import evaluate_points
 from .spec import OBJECTIVES, StudySpec
 
@@ -160,10 +161,9 @@ def _evaluate(ctx: Context, values: dict):
         )
     force = values.get("clamp_force", spec.operating.clamp_force)
     law = None if spec.operating.clamp_law == "constant" else spec.operating.clamp_law
+    law_obj = None if law is None else clamp_law(law, design)
     eta = pst = None
     if spec.operating.cycle is None:
-        from ..clamping.laws import clamp_law
-
         res = evaluate_points(
             design,
             ctx.fluid,
@@ -172,7 +172,7 @@ def _evaluate(ctx: Context, values: dict):
             ctx.torque,
             ctx.speed,
             clamp_force=None if law else force,
-            law=clamp_law(law, design) if law else None,
+            law=law_obj,
         )
         pst, eta = res["status"].astype(np.int8), res["eta"]
         beyond = int(np.sum(pst != 0))
@@ -199,24 +199,21 @@ def _evaluate(ctx: Context, values: dict):
         beyond = cyc["beyond"]
         if beyond:
             return 2, f"{beyond} cycle steps beyond the traction capacity", metrics, None, None
-    # capacity at the capacity ratios (constant force: the study's; laws: their own)
-    base = build_problem(
+    # capacity at the capacity ratios (constant force: the study's; laws: their own),
+    # searched as a sweep searches its limits
+    speed = float(np.median(ctx.speed)) if ctx.speed.size else _cycle_speed(ctx)
+    _, search = limit_search_curves(
         design,
         ctx.fluid,
         spec.study.architecture,
         ctx.capacity_ratios,
-        0.0,
-        force if force is not None else 1.0,
-        float(np.median(ctx.speed)) if ctx.speed.size else _cycle_speed(ctx),
+        np.full(ctx.capacity_ratios.size, speed),
+        None if law_obj is not None else np.full(ctx.capacity_ratios.size, force),
+        law_obj,
+        SolverOptions(),
+        design.creep_limit,
     )
-    if law is None:
-        limits = limit_search(base, design.creep_limit).torque
-    else:
-        from ..clamping.laws import clamp_law
-        from ..solver.clamped import capacity_basis
-
-        basis, follows, c_lim = capacity_basis(base, clamp_law(law, design), design.creep_limit)
-        limits = limit_search(basis, c_lim, law=follows).torque
+    limits = search.torque
     metrics["capacity"] = float(np.min(limits))
     volume = math.pi * (metrics["outer_diameter"] / 2) ** 2 * 2 * design.roller_radius
     mass = design.n_rollers * design.material.density * 4 / 3 * math.pi * design.roller_radius**3

@@ -159,6 +159,14 @@ class _Evaluator:
         self.progress = progress
         self.count = 0
         self.remote_ctx = client.scatter(ctx, broadcast=True) if client is not None else None
+        #: design index -> (status, objective values in `StudySpec.objectives` order)
+        self.scores: dict[int, tuple[int, np.ndarray]] = {}
+
+    def remember(self, design, status, values: dict) -> None:
+        """Keep the status and objectives of evaluated designs (arrays over ``design``)."""
+        objectives = list(self.ctx.spec.objectives)
+        for j, i in enumerate(np.asarray(design)):
+            self.scores[int(i)] = (int(status[j]), np.array([values[o][j] for o in objectives]))
 
     def run(self, index: np.ndarray, x: np.ndarray, desc: str) -> None:
         from tqdm.auto import tqdm
@@ -187,6 +195,7 @@ class _Evaluator:
 
     def _save(self, index, x, result, bar) -> None:
         append(self.store, chunk_dataset(self.ctx.spec, self.ctx, x, result), self.attrs)
+        self.remember(result["design"], result["status"], result)
         self.count += index.size
         bar.update(index.size)
 
@@ -290,10 +299,13 @@ def _optimise(spec: StudySpec, ev: _Evaluator, done: set) -> None:
     hi = np.ones(len(names))
     senses = [spec.objectives[o] for o in spec.objectives]
     known: dict[bytes, int] = {}
-    if done:
+    if done:  # the designs of the interrupted run: looked up, never evaluated again
         ds = load(ev.store)
         for i, row in zip(ds["design"].values, np.column_stack([ds[n].values for n in names])):
             known[np.round(row, 12).tobytes()] = int(i)
+        ev.remember(
+            ds["design"].values, ds["status"].values, {o: ds[o].values for o in spec.objectives}
+        )
     next_index = [max(done) + 1 if done else 0]
 
     class _Study(Problem):
@@ -308,7 +320,7 @@ def _optimise(spec: StudySpec, ev: _Evaluator, done: set) -> None:
                 ]
             )
             idx = np.empty(len(x), dtype=np.int64)
-            new = []
+            new = []  # rows of designs not seen before (each a first occurrence)
             for r, row in enumerate(x):
                 key = np.round(row, 12).tobytes()
                 if key not in known:
@@ -316,18 +328,12 @@ def _optimise(spec: StudySpec, ev: _Evaluator, done: set) -> None:
                     next_index[0] += 1
                     new.append(r)
                 idx[r] = known[key]
-            new_idx = np.unique(idx[new]) if new else np.zeros(0, np.int64)
-            first = [int(np.flatnonzero(idx == i)[0]) for i in new_idx]
-            ev.run(new_idx, x[first], f"study {spec.study.name}, NSGA-II")
-            ds = load(ev.store).set_index(design="design")
-            sel = ds.sel(design=idx)
-            f = np.column_stack(
-                [
-                    sel[o].values * (-1.0 if s == "max" else 1.0)
-                    for o, s in zip(spec.objectives, senses)
-                ]
+            ev.run(idx[new], x[new], f"study {spec.study.name}, NSGA-II")
+            status = np.array([ev.scores[int(i)][0] for i in idx])
+            f = np.array([ev.scores[int(i)][1] for i in idx]) * np.array(
+                [-1.0 if s == "max" else 1.0 for s in senses]
             )
-            ok = (sel["status"].values == 0) & np.all(np.isfinite(f), axis=1)
+            ok = (status == 0) & np.all(np.isfinite(f), axis=1)
             out["F"] = np.where(np.isfinite(f), f, 1e30)
             out["G"] = np.where(ok, -1.0, 1.0)[:, None]
 

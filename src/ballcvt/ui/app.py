@@ -14,12 +14,14 @@ from __future__ import annotations
 
 import html
 import json
+import math
 from typing import Any
 
 import numpy as np
 
 from ..errors import BallCVTError
 from ..params.models import Design, Fluid
+from ..sweeps.curves import limit_search_curves
 from ..variator import Variator
 
 __all__ = ["make_document", "serve", "SLIDERS", "MAP_GRID"]
@@ -124,11 +126,30 @@ class _State:
             "clamp_force": float(v["clamp_force"]),
             "input_speed_rpm": v["input_speed_rpm"],
         }
+        var, n = self.variator, ratio.size
         try:
-            top = max(self.variator.limit_torque(ratio=float(r), **kw) for r in ratio[[0, -1]])
-            top = max(top, self.variator.limit_torque(ratio=float(ratio[len(ratio) // 2]), **kw))
+            # one limit search for the whole map, handed to the sweep; the torque axis
+            # reaches past the limits at both ends and in the middle of the ratio range
+            _, search = limit_search_curves(
+                var.design,
+                var.fluid,
+                var.architecture,
+                ratio,
+                np.full(n, float(v["input_speed_rpm"]) * math.pi / 30.0),
+                np.full(n, kw["clamp_force"]),
+                None,
+                var.options,
+                var.design.creep_limit,
+            )
+            ends = [0, n - 1, n // 2]
+            for i in ends:
+                if np.isnan(search.torque[i]):  # no limit: the point's own search says why
+                    var.limit_torque(ratio=float(ratio[i]), **kw)
+            top = float(max(search.torque[ends]))
             torque = np.linspace(0.02 * top, 1.05 * top, MAP_GRID[1])
-            ds = self.variator.sweep(ratio=ratio, output_torque=torque, **kw).squeeze(drop=True)
+            ds = var.sweep(ratio=ratio, output_torque=torque, limit_torque=search, **kw).squeeze(
+                drop=True
+            )
         except BallCVTError as exc:
             self.message = str(exc)
             return None

@@ -184,3 +184,44 @@ def test_small_batches_skip_the_predictor_to_the_same_answer(drive):
     assert direct.converged.all() and staged.converged.all()
     assert direct.iterations.max() < staged.iterations.min()
     assert np.allclose(direct.state.creep, staged.state.creep, rtol=1e-7, atol=1e-13)
+
+
+def test_kernel_exponential_matches_numpy():
+    """The kernels' vectorisable exp(-a) (range reduction + Taylor) is exact to round-off,
+    and clamps instead of indexing out of its table (NaN, inf, negative, huge)."""
+    from ballcvt.contact import kernels
+
+    a = np.concatenate([np.linspace(0.0, 60.0, 200_001), np.geomspace(1e-14, 700.0, 5000)])
+    rel = np.abs(kernels.exp_neg(a) / np.exp(-a) - 1.0)
+    assert np.all(rel <= 4.5e-16 + 4e-17 * a)  # the documented bound
+    edge = kernels.exp_neg(np.array([745.0, 1e300, np.inf, np.nan, -1.0]))
+    assert np.all(np.isfinite(edge)) and np.all(edge[:4] < 1e-300) and edge[4] == 1.0
+
+
+def test_kernels_propagate_nan_and_match_without_derivatives(drive):
+    """A NaN input gives NaN coefficients (never a silent number), and the kernels' cheaper
+    value-only specialisation computes the same mu, chi as the NumPy path."""
+    _, fluid = drive
+    rng = np.random.default_rng(5)
+    n = 40
+    creep = rng.uniform(-0.05, 0.05, n)
+    creep[3] = np.nan
+    args = (
+        creep,
+        rng.uniform(-0.2, 0.2, n),
+        1.2e-3,
+        0.45e-3,
+        rng.uniform(0.8e9, 2.5e9, n),
+        2000.0,
+        0.03,
+        15.0,
+        1.5e-7,
+        fluid,
+    )
+    for method in ("pole", "centred"):
+        fast = traction_coefficients(*args, Quadrature(method))
+        slow = traction_coefficients(*args, Quadrature(method, engine="numpy"))
+        for a, b in zip(fast, slow):
+            assert np.isnan(a[3]) and np.isnan(b[3])
+            ok = np.isfinite(b)
+            assert np.allclose(a[ok], b[ok], rtol=1e-9, atol=1e-12 * np.max(np.abs(b[ok])))

@@ -16,6 +16,17 @@ costs no exponential and no division for it. On the rays of the pole-centred rul
 sliding velocity is the ray's direction times the distance from the pole (the pole is
 where it vanishes), so its magnitude is computed once per ray.
 
+Both rules are fans of rays: the pole-centred rule from the pole ``(0, Y_p)`` to the
+boundary, the centred rule from the centre with unit reach. One ray loop (`_ray`) serves
+both; its nodes' sums are kept in scalar registers, so that LLVM vectorises the loop over a
+ray's nodes (8 nodes per instruction with AVX-512). The exponential of the saturation is
+`_exp_neg`, a range-reduced polynomial that vectorises (a call to ``exp`` would not:
+numba has no vector math library); its relative error is below ``4e-16 + 4e-17 a``. Whether the
+derivatives and the visco-elastic factor are computed is fixed at compile time: four
+specialised kernels, chosen by `pole_kernel` and `centred_kernel`. Measured on the
+30 x 30 benchmark map (double idler, 32 x 24 nodes, with derivatives): 26 -> 5.6 ns per
+node.
+
 Each kernel writes, per contact, ``out[i] = (mu, chi, dmu/dc, dmu/dsigma, dmu/dlog u,
 dchi/dc, dchi/dsigma, dchi/dlog u)`` (see `traction_coefficients`).
 """
@@ -33,7 +44,7 @@ try:
 except ImportError:  # pragma: no cover - numba is a declared dependency
     njit = None
 
-__all__ = ["AVAILABLE", "pole_kernel", "centred_kernel", "N_OUT", "viscosity_table"]
+__all__ = ["AVAILABLE", "pole_kernel", "centred_kernel", "N_OUT", "viscosity_table", "exp_neg"]
 
 AVAILABLE = njit is not None
 #: Fast-math flags that keep IEEE NaN and infinity semantics (a NaN must propagate).
@@ -92,161 +103,239 @@ def viscosity_table(fluid, p_max: float, intervals: int = 2048, log_step: float 
     return fl, np.column_stack([e, e * log_slope(p) * (top / n)])
 
 
+#: ``2^-k`` for the exponent of `_exp_neg` (``k`` up to 1099: ``exp(-740)`` is 0 within
+#: the subnormals).
+_POW2 = np.ldexp(1.0, -np.arange(1100))
+
+
+def _kernel_flags(deriv, fl):
+    """(derivatives, visco-elastic) of the specialised kernel to call."""
+    return bool(deriv), bool(fl[3] > 0.0)
+
+
 if AVAILABLE:
 
     @njit(cache=True, fastmath=_FAST, inline="always")
-    def _node(x, y, vx, vy, speed, w, k, fl, tab, deriv, acc):
-        """Add one node's contribution to ``acc`` (8 sums, see module docstring).
+    def _exp_neg(a, pow2):
+        """``exp(-a)`` for ``0 <= a <= 740`` (clamped outside, NaN to 740).
 
-        ``(vx, vy)`` is the sliding velocity at the node and ``speed`` its magnitude;
-        ``k`` holds the contact's constants: ``c u, u sigma a_y / r_c, u sigma a_x / r_c,
-        u a_y / r_c, u a_x / r_c, u, 1 / h, p_max, a_x, a_y``.
+        ``a = k ln 2 + r`` with ``|r| <= ln 2 / 2`` (Cody and Waite's two-part ``ln 2``, exact
+        products ``k ln2_hi``); then ``2^-k`` from a table times the
+        degree-12 Taylor polynomial of ``exp(-r)`` (coefficients ``(-1)^n / n!``,
+        truncation below 2e-16 relative). Measured relative error below
+        ``4e-16 + 4e-17 a`` (the fast-math reassociation costs the second term; it is
+        immaterial in ``1 - exp(-a)``). Branch-free, so that it vectorises.
         """
-        q = 1.0 - x * x - y * y
-        p = k[7] * math.sqrt(q) if q > 0.0 else 0.0
-        # E = eta / tau_L from its cubic Hermite table (Roelands, Eq. 51; Eq. 54)
-        v = p * fl[2]
-        i = min(int(v), tab.shape[0] - 2)
-        t = v - i
-        r = 1.0 - t
-        e = r * r * ((1.0 + 2.0 * t) * tab[i, 0] + t * tab[i, 1]) + t * t * (
-            (3.0 - 2.0 * t) * tab[i + 1, 0] - r * tab[i + 1, 1]
-        )
-        ek = e * k[6]  # eta / (h tau_L)
-        eh = ek * (fl[0] + fl[1] * p)  # eta / h
-        a = ek * speed
-        # saturation (1 - exp(-a)) / a: series below 1e-3 (error a^5 / 720), else exp
-        # (cheaper than expm1; cancellation costs at most 1e-13 relative there)
-        if a < 1e-3:
-            sat = 1.0 - a * (0.5 - a * (1.0 / 6.0 - a * (1.0 / 24.0 - a * (1.0 / 120.0))))
-            inv_a = 0.0
-        else:
-            inv_a = 1.0 / a
-            sat = (1.0 - math.exp(-a)) * inv_a
-        g = eh * sat
-        corr = 1.0
-        lin_extra = 0.0
-        if fl[3] > 0.0:
-            # Maxwell elasticity (docs/model.md §14): tau = tau_steady (1 - exp(-theta)),
-            # theta = G t / (eta sat), t = a_x (X + sqrt(1 - Y^2)) / u since entry
-            q_in = 1.0 - y * y
-            t_in = k[8] * (x + (math.sqrt(q_in) if q_in > 0.0 else 0.0))
-            theta = fl[3] * t_in * k[6] / (k[5] * g) if k[5] * g > 0.0 else 1e300
-            em = math.exp(-theta)
-            f = theta * (1.0 - 0.5 * theta) if theta < 1e-5 else 1.0 - em
-            corr = f - theta * em
-            lin_extra = -g * theta * em
-            g = g * f
-        wx = w * k[8] * x
-        wy = w * k[9] * y
-        tx = g * vx
-        ty = g * vy
-        acc[0] += w * tx
-        acc[1] += wx * ty - wy * tx
-        if deriv:
-            if a < 1e-3:
-                slope = -0.5 + a / 3.0 - a * a / 8.0
-            else:
-                slope = ((1.0 - sat) - a * sat) * inv_a
-            kk = eh * ek * slope / speed if speed > 0.0 else 0.0
-            if fl[3] > 0.0:
-                kk *= corr
-            # d/dc: dV = (u, 0)
-            u = k[5]
-            dtx = g * u + kk * vx * u * vx
-            dty = kk * vx * u * vy
-            acc[2] += w * dtx
-            acc[5] += wx * dty - wy * dtx
-            # d/dsigma: dV = (-u a_y y / r_c, u a_x x / r_c)
-            dvx = -k[3] * y
-            dvy = k[4] * x
-            dot = vx * dvx + vy * dvy
-            dtx = g * dvx + kk * dot * vx
-            dty = g * dvy + kk * dot * vy
-            acc[3] += w * dtx
-            acc[6] += wx * dty - wy * dtx
-            # d/dlog u: dV = V
-            lin = g + kk * speed * speed
-            if fl[3] > 0.0:
-                lin += lin_extra
-            acc[4] += w * lin * vx
-            acc[7] += lin * (wx * vy - wy * vx)
-
-    @njit(cache=True, fastmath=_FAST, inline="always")
-    def _constants(par, i, k):
-        c, sg, ax, ay, pm = par[0, i], par[1, i], par[2, i], par[3, i], par[4, i]
-        rc, u, h = par[6, i], par[7, i], par[8, i]
-        k[0] = c * u
-        k[1] = u * sg * ay / rc
-        k[2] = u * sg * ax / rc
-        k[3] = u * ay / rc
-        k[4] = u * ax / rc
-        k[5] = u
-        k[6] = 1.0 / h
-        k[7] = pm
-        k[8] = ax
-        k[9] = ay
-
-    @njit(cache=True, fastmath=_FAST, inline="always")
-    def _finish(acc, par, i, out):
-        ax, ay, fn, rc = par[2, i], par[3, i], par[5, i], par[6, i]
-        area = ax * ay
-        for j in range(N_OUT):
-            out[j] = acc[j] * area / fn
-        out[1] /= rc
-        for j in range(5, N_OUT):
-            out[j] /= rc
+        a = a if a < 740.0 else 740.0  # NaN too: a safe index (callers keep the NaN)
+        a = a if a > 0.0 else 0.0
+        k = int(a * 1.4426950408889634 + 0.5)
+        r = (a - k * 0.693145751953125) - k * 1.4286068203094173e-06  # ln 2, two parts
+        e = 2.08767569878681e-09
+        e = e * r - 2.505210838544172e-08
+        e = e * r + 2.755731922398589e-07
+        e = e * r - 2.7557319223985893e-06
+        e = e * r + 2.48015873015873e-05
+        e = e * r - 0.0001984126984126984
+        e = e * r + 0.001388888888888889
+        e = e * r - 0.008333333333333333
+        e = e * r + 0.041666666666666664
+        e = e * r - 0.16666666666666666
+        e = e * r + 0.5
+        e = e * r - 1.0
+        e = e * r + 1.0
+        return e * pow2[k]
 
     @njit(cache=True, fastmath=_FAST)
+    def exp_neg(a):
+        """``exp(-a)`` as the kernels compute it (`_exp_neg`), for the tests [-]."""
+        out = np.empty_like(a)
+        for i in range(a.shape[0]):
+            out[i] = _exp_neg(a[i], _POW2)
+        return out
+
+    @njit(cache=True, fastmath=_FAST, inline="always")
+    def _ray(y0, v0, reach, sm, cm, r01, wr, dphi, c, fl, tab, pow2, deriv, ve):
+        """Sums of the nodes on one ray from ``(0, y0)`` in the direction ``(cm, sm)``.
+
+        The nodes are ``(rho cm, y0 + rho sm)``, ``rho = reach r01[j]``, with weights
+        ``rho reach wr[j] dphi``; the sliding velocity there is ``(v0 + rho d_x, rho d_y)``,
+        ``d = (-c_1 sm, c_2 cm)`` (``v0 = 0`` on the rays from the pole). ``c`` holds the
+        contact's ``(c_1, c_2, c_3, c_4, u, 1/h, p_max, a_x, a_y)``: ``c_1 = u sigma a_y /
+        r_c``, ``c_2 = u sigma a_x / r_c``, ``c_3 = u a_y / r_c``, ``c_4 = u a_x / r_c``.
+        Returns the 8 sums of the module docstring, before scaling.
+        """
+        c3, c4, u, ih, pm, ax, ay = c[2], c[3], c[4], c[5], c[6], c[7], c[8]
+        tl0, tl1, scale, modulus = fl[0], fl[1], fl[2], fl[3]
+        last = tab.shape[0] - 2
+        dx = -c[0] * sm
+        dy = c[1] * cm
+        s0 = s1 = s2 = s3 = s4 = s5 = s6 = s7 = 0.0
+        for j in range(r01.shape[0]):
+            rho = reach * r01[j]
+            x = rho * cm
+            y = y0 + rho * sm
+            vx = v0 + rho * dx
+            vy = rho * dy
+            speed = math.sqrt(vx * vx + vy * vy)
+            w = rho * reach * wr[j] * dphi
+            p = pm * math.sqrt(max(1.0 - x * x - y * y, 0.0))
+            # E = eta / tau_L from its cubic Hermite table (Roelands, Eq. 51; Eq. 54)
+            v = p * scale
+            i = min(int(v), last)
+            t = v - i
+            r = 1.0 - t
+            e = r * r * ((1.0 + 2.0 * t) * tab[i, 0] + t * tab[i, 1]) + t * t * (
+                (3.0 - 2.0 * t) * tab[i + 1, 0] - r * tab[i + 1, 1]
+            )
+            ek = e * ih  # eta / (h tau_L)
+            eh = ek * (tl0 + tl1 * p)  # eta / h
+            a = ek * speed
+            # saturation (1 - exp(-a)) / a (Eq. 53): series below 1e-3 (error a^5 / 720)
+            small = a < 1e-3
+            inv_a = 0.0 if small else 1.0 / a
+            em = _exp_neg(a, pow2)
+            if small:
+                sat = 1.0 - a * (0.5 - a * (1.0 / 6.0 - a * (1.0 / 24.0 - a * (1.0 / 120.0))))
+            else:
+                sat = (1.0 - em) * inv_a
+            g = eh * sat
+            corr = 1.0
+            lin_extra = 0.0
+            if ve:
+                # Maxwell elasticity (docs/model.md §14): tau = tau_steady (1 - exp(-theta)),
+                # theta = G t / (eta sat), t = a_x (X + sqrt(1 - Y^2)) / u since entry
+                t_in = ax * (x + math.sqrt(max(1.0 - y * y, 0.0)))
+                theta = modulus * t_in * ih / (u * g) if u * g > 0.0 else 1e300
+                e_theta = _exp_neg(theta, pow2)
+                f = theta * (1.0 - 0.5 * theta) if theta < 1e-5 else 1.0 - e_theta
+                corr = f - theta * e_theta
+                lin_extra = -g * theta * e_theta
+                g = g * f
+            wx = w * ax * x
+            wy = w * ay * y
+            tx = g * vx
+            ty = g * vy
+            s0 += w * tx
+            s1 += wx * ty - wy * tx
+            if deriv:
+                if small:
+                    slope = -0.5 + a / 3.0 - a * a / 8.0
+                else:
+                    slope = ((1.0 - sat) - a * sat) * inv_a
+                kk = eh * ek * slope / speed if speed > 0.0 else 0.0
+                if ve:
+                    kk *= corr
+                # d/dc: dV = (u, 0)
+                dtx = g * u + kk * vx * u * vx
+                dty = kk * vx * u * vy
+                s2 += w * dtx
+                s5 += wx * dty - wy * dtx
+                # d/dsigma: dV = (-u a_y y / r_c, u a_x x / r_c)
+                dvx = -c3 * y
+                dvy = c4 * x
+                dot = vx * dvx + vy * dvy
+                dtx = g * dvx + kk * dot * vx
+                dty = g * dvy + kk * dot * vy
+                s3 += w * dtx
+                s6 += wx * dty - wy * dtx
+                # d/dlog u: dV = V
+                lin = g + kk * speed * speed
+                if ve:
+                    lin += lin_extra
+                s4 += w * lin * vx
+                s7 += lin * (wx * vy - wy * vx)
+        return s0, s1, s2, s3, s4, s5, s6, s7
+
+    @njit(cache=True, fastmath=_FAST, inline="always")
+    def _sums(pole, yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, deriv, ve, out):
+        """Every contact's scaled sums (rows of ``out``), on rays from the pole
+        (``pole``) or from the centre."""
+        pow2 = _POW2
+        for i in range(par.shape[1]):
+            cr, sg, ax, ay, pm = par[0, i], par[1, i], par[2, i], par[3, i], par[4, i]
+            fn, rc, u, h = par[5, i], par[6, i], par[7, i], par[8, i]
+            c = (
+                u * sg * ay / rc,
+                u * sg * ax / rc,
+                u * ay / rc,
+                u * ax / rc,
+                u,
+                1.0 / h,
+                pm,
+                ax,
+                ay,
+            )
+            y0 = yp[i] if pole else 0.0
+            v0 = 0.0 if pole else cr * u
+            a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = 0.0
+            for m in range(sin_phi.shape[0]):
+                sm, cm = sin_phi[m], cos_phi[m]
+                if pole:
+                    b = y0 * sm
+                    reach = -b + math.sqrt(b * b + (1.0 - y0 * y0))
+                else:
+                    reach = 1.0
+                s = _ray(y0, v0, reach, sm, cm, r01, wr, dphi, c, fl, tab, pow2, deriv, ve)
+                a0 += s[0]
+                a1 += s[1]
+                a2 += s[2]
+                a3 += s[3]
+                a4 += s[4]
+                a5 += s[5]
+                a6 += s[6]
+                a7 += s[7]
+            f = ax * ay / fn
+            fc = f / rc
+            out[i, 0] = a0 * f
+            out[i, 1] = a1 * fc
+            out[i, 2] = a2 * f
+            out[i, 3] = a3 * f
+            out[i, 4] = a4 * f
+            out[i, 5] = a5 * fc
+            out[i, 6] = a6 * fc
+            out[i, 7] = a7 * fc
+
+    # the four specialisations (derivatives, visco-elastic): flags fixed at compile time
+    @njit(cache=True, fastmath=_FAST)
+    def _sums_plain(pole, yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, out):
+        _sums(pole, yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, False, False, out)
+
+    @njit(cache=True, fastmath=_FAST)
+    def _sums_deriv(pole, yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, out):
+        _sums(pole, yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, True, False, out)
+
+    @njit(cache=True, fastmath=_FAST)
+    def _sums_ve(pole, yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, out):
+        _sums(pole, yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, False, True, out)
+
+    @njit(cache=True, fastmath=_FAST)
+    def _sums_ve_deriv(pole, yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, out):
+        _sums(pole, yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, True, True, out)
+
+    _SPECIALISED = {
+        (False, False): _sums_plain,
+        (True, False): _sums_deriv,
+        (False, True): _sums_ve,
+        (True, True): _sums_ve_deriv,
+    }
+
     def pole_kernel(yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, deriv, out):
         """Pole-centred rule: rays from ``(0, yp[i])`` to the boundary (see quadrature).
 
         At ``(rho cos phi, yp + rho sin phi)`` the sliding velocity is
-        ``rho (-k_1 sin phi, k_2 cos phi)``: it vanishes at the pole ``yp = k_0 / k_1``.
+        ``rho (-c_1 sin phi, c_2 cos phi)``: it vanishes at the pole ``yp = c / s_y``.
+        ``r01, wr``: radial nodes on [0, 1] and weights (`radial_rule`); ``sin_phi,
+        cos_phi``: the ray directions, ``dphi`` their spacing; ``par``: the contacts'
+        ``(c, sigma, a_x, a_y, p_max, F_N, r_c, u, h)`` as rows; ``fl, tab``: from
+        `viscosity_table`. Writes ``out`` ``(n, 8)``.
         """
-        acc = np.empty(N_OUT)
-        k = np.empty(10)
-        for i in range(yp.shape[0]):
-            _constants(par, i, k)
-            acc[:] = 0.0
-            y0 = yp[i]
-            for m in range(sin_phi.shape[0]):
-                b = y0 * sin_phi[m]
-                reach = -b + math.sqrt(b * b + (1.0 - y0 * y0))
-                dx = -k[1] * sin_phi[m]
-                dy = k[2] * cos_phi[m]
-                ray_speed = math.sqrt(dx * dx + dy * dy)
-                for j in range(r01.shape[0]):
-                    rho = reach * r01[j]
-                    _node(
-                        rho * cos_phi[m],
-                        y0 + rho * sin_phi[m],
-                        rho * dx,
-                        rho * dy,
-                        rho * ray_speed,
-                        rho * reach * wr[j] * dphi,
-                        k,
-                        fl,
-                        tab,
-                        deriv,
-                        acc,
-                    )
-            _finish(acc, par, i, out[i])
+        kernel = _SPECIALISED[_kernel_flags(deriv, fl)]
+        kernel(True, yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, out)
 
-    @njit(cache=True, fastmath=_FAST)
-    def centred_kernel(par, x, y, w, fl, tab, deriv, out):
-        """Fixed nodes ``x, y, w`` (1-D) shared by every contact."""
-        acc = np.empty(N_OUT)
-        k = np.empty(10)
-        for i in range(par.shape[1]):
-            _constants(par, i, k)
-            acc[:] = 0.0
-            for j in range(x.shape[0]):
-                vx = k[0] - k[1] * y[j]
-                vy = k[2] * x[j]
-                _node(
-                    x[j], y[j], vx, vy, math.sqrt(vx * vx + vy * vy), w[j], k, fl, tab, deriv, acc
-                )
-            _finish(acc, par, i, out[i])
+    def centred_kernel(par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, deriv, out):
+        """Centred polar rule (`ballcvt.contact.quadrature.centred_rule`): rays from the
+        centre with unit reach; arguments as `pole_kernel`."""
+        kernel = _SPECIALISED[_kernel_flags(deriv, fl)]
+        kernel(False, par[0], par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, out)
 else:  # pragma: no cover
-    pole_kernel = centred_kernel = None  # type: ignore[assignment]
+    pole_kernel = centred_kernel = exp_neg = None  # type: ignore[assignment]

@@ -131,7 +131,7 @@ def traction_coefficients(
         weight = _pole_weight(np.abs(yp))
         parts = [
             (weight > 0.0, weight, "pole", q.n_angular),
-            (weight < 1.0, 1.0 - weight, "centred", q.n_centred),
+            (~(weight >= 1.0), 1.0 - weight, "centred", q.n_centred),  # NaN: NaN out
         ]
     n_out = 8 if derivatives else 2
     out = np.zeros((n_out, yp.size))
@@ -170,15 +170,12 @@ def _rule(kind, yp, params, fluid: Fluid, n_radial, n_angular, derivatives, engi
     out = np.empty((yp.size, kernels.N_OUT))
     par = np.ascontiguousarray(params)
     fl, tab = _viscosity_table(fluid, float(np.max(par[4])))
+    r01, wr, sin_phi, cos_phi = _ray_nodes(n_radial, n_angular)
+    dphi = 2.0 * np.pi / n_angular
     if kind == "pole":
-        r01, wr, sin_phi, cos_phi = _pole_nodes(n_radial, n_angular)
-        kernels.pole_kernel(
-            yp, par, r01, wr, sin_phi, cos_phi, 2.0 * np.pi / n_angular, fl, tab, derivatives, out
-        )
+        kernels.pole_kernel(yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, derivatives, out)
     else:
-        kernels.centred_kernel(
-            par, *_centred_nodes(n_radial, n_angular), fl, tab, derivatives, out
-        )
+        kernels.centred_kernel(par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, derivatives, out)
     return out.T
 
 
@@ -190,17 +187,12 @@ def _viscosity_table(fluid: Fluid, p_max: float):
 
 
 @lru_cache(maxsize=16)
-def _pole_nodes(n_radial, n_angular):
-    """Radial nodes and weights, sines and cosines of the ray angles (read-only)."""
+def _ray_nodes(n_radial, n_angular):
+    """Radial nodes and weights, sines and cosines of the ray angles (read-only): the
+    rays of both rules (`ballcvt.contact.quadrature`)."""
     r01, wr = radial_rule(n_radial)
     phi = 2.0 * np.pi * np.arange(n_angular) / n_angular
     return r01, wr, np.sin(phi), np.cos(phi)
-
-
-@lru_cache(maxsize=16)
-def _centred_nodes(n_radial, n_angular):
-    """Nodes and weights of the centred rule as contiguous 1-D arrays."""
-    return tuple(np.ascontiguousarray(v) for v in centred_rule(n_radial, n_angular))
 
 
 #: Range of |Y_p| over which the pole-centred rule hands over to the centred rule.

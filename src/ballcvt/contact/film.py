@@ -4,7 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["central_film_thickness", "minimum_film_thickness"]
+__all__ = ["central_film_thickness", "minimum_film_thickness", "SPEED_EXPONENT"]
+
+#: Exponent of the entrainment speed in the central film thickness (``h ~ u_e^0.67``):
+#: ``h(u_e) = h(1 m/s) |u_e|^0.67``, which the solvers use to keep the speed-independent
+#: factor between iterations.
+SPEED_EXPONENT = 0.67
 
 
 def central_film_thickness(eta0, zeta, reduced_modulus, rx, entrainment_speed, load, ellipticity):
@@ -37,7 +42,9 @@ def central_film_thickness(eta0, zeta, reduced_modulus, rx, entrainment_speed, l
         Central film thickness ``h`` [m].
     """
     rx, u, g, w = _groups(eta0, zeta, reduced_modulus, rx, entrainment_speed, load)
-    h_bar = 2.69 * u**0.67 * g**0.53 * w**-0.067 * (1.0 - 0.61 * np.exp(-0.73 * ellipticity))
+    h_bar = (
+        2.69 * u**SPEED_EXPONENT * g**0.53 * w**-0.067 * (1.0 - 0.61 * np.exp(-0.73 * ellipticity))
+    )
     return h_bar * rx
 
 

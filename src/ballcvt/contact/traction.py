@@ -42,9 +42,9 @@ def pole_position(creep_term, spin, ay, radius):
     """
     c = np.asarray(creep_term, dtype=float)
     sy = np.asarray(spin, dtype=float) * np.asarray(ay) / np.asarray(radius)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        yp = c / sy
-    return np.where(np.abs(sy) > 1e-300, yp, np.inf)
+    if c.shape != sy.shape:
+        c, sy = np.broadcast_arrays(c, sy)
+    return np.divide(c, sy, out=np.full(c.shape, np.inf), where=np.abs(sy) > 1e-300)
 
 
 def traction_coefficients(
@@ -113,15 +113,13 @@ def traction_coefficients(
             "ballcvt.contact.thermal.thermal_coefficients (or dispatch with "
             "ballcvt.contact.laws.law_coefficients)"
         )
-    args = np.broadcast_arrays(
-        *(
-            np.asarray(v, dtype=float)
-            for v in (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)
-        )
-    )
-    shape = args[0].shape
-    flat = [a.ravel() for a in args]
-    yp = pole_position(flat[0], flat[1], flat[3], flat[6])
+    values = (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)
+    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
+    params = np.empty((9,) + shape)
+    for i, value in enumerate(values):
+        params[i, ...] = value
+    params = params.reshape(9, -1)
+    yp = pole_position(params[0], params[1], params[3], params[6])
     q = quadrature
     if q.method == "centred":
         parts = [(np.ones(yp.shape, bool), np.ones(yp.shape), "centred", q.n_angular)]
@@ -135,24 +133,29 @@ def traction_coefficients(
         ]
     n_out = 8 if derivatives else 2
     out = np.zeros((n_out, yp.size))
-    params = np.stack(flat)
     for part, rule_weight, kind, n_angular in parts:
-        if part.any():
-            values = _rule(
-                kind,
-                yp[part],
-                params[:, part],
-                fluid,
-                q.n_radial,
-                n_angular,
-                derivatives,
-                q.engine,
-            )
+        if not part.any():
+            continue
+        whole = part.all()  # every contact: no copies (the common case)
+        values = _rule(
+            kind,
+            yp if whole else yp[part],
+            params if whole else params[:, part],
+            fluid,
+            q.n_radial,
+            n_angular,
+            derivatives,
+            q.engine,
+        )
+        if whole:
+            out += rule_weight * values[:n_out]
+        else:
             out[:, part] += rule_weight[part] * values[:n_out]
-    out = out.reshape((n_out,) + shape)
     if not derivatives:
-        return out[0], out[1]
-    return out[0], out[1], np.moveaxis(out[2:5], 0, -1), np.moveaxis(out[5:8], 0, -1)
+        return out[0].reshape(shape), out[1].reshape(shape)
+    out = out.reshape((n_out,) + shape)
+    last = tuple(range(1, len(shape) + 1)) + (0,)  # the derivatives' axis last
+    return out[0], out[1], out[2:5].transpose(last), out[5:8].transpose(last)
 
 
 def _rule(kind, yp, params, fluid: Fluid, n_radial, n_angular, derivatives, engine):
@@ -169,7 +172,7 @@ def _rule(kind, yp, params, fluid: Fluid, n_radial, n_angular, derivatives, engi
         return np.concatenate([np.stack(values[:2]), values[2].T, values[3].T])
     out = np.empty((yp.size, kernels.N_OUT))
     par = np.ascontiguousarray(params)
-    fl, tab = _viscosity_table(fluid, float(np.max(par[4])))
+    fl, tab = _viscosity_table(fluid, float(par[4].max()))
     r01, wr, sin_phi, cos_phi = _ray_nodes(n_radial, n_angular)
     dphi = 2.0 * np.pi / n_angular
     if kind == "pole":
@@ -201,7 +204,9 @@ BLEND = (0.8, 1.0)
 
 def _pole_weight(abs_yp):
     """Weight of the pole-centred rule: 1 below ``BLEND[0]``, 0 from ``BLEND[1]`` (C1)."""
-    t = np.clip((BLEND[1] - abs_yp) / (BLEND[1] - BLEND[0]), 0.0, 1.0)
+    t = (BLEND[1] - abs_yp) / (BLEND[1] - BLEND[0])
+    np.maximum(t, 0.0, out=t)  # (np.clip's wrapper costs more than the two ufuncs)
+    np.minimum(t, 1.0, out=t)
     return t * t * (3.0 - 2.0 * t)
 
 

@@ -147,8 +147,24 @@ class EquilibriumProblem:
         return self._map(lambda a: a[index], lambda a: a[index])
 
     def expand(self) -> EquilibriumProblem:
-        """Insert a trailing batch axis of length 1 (to broadcast over perturbations)."""
-        return self._map(lambda a: a[..., None], lambda a: a[..., None, :])
+        """Insert a trailing batch axis of length 1 (to broadcast over perturbations).
+
+        Kept on the instance after the first call (every Newton iteration of a solve asks
+        for it; the problem is immutable, so the cache cannot go stale)."""
+        return self.memo(
+            "expanded", lambda: self._map(lambda a: a[..., None], lambda a: a[..., None, :])
+        )
+
+    def memo(self, name: str, build):
+        """``build()``, computed once per instance and kept under ``name``: for quantities
+        derived from the problem alone (the problem is immutable, so they cannot go
+        stale; `replace`, `flat`, `take` and `expand` give new instances without them)."""
+        key = "_memo_" + name
+        value = self.__dict__.get(key)
+        if value is None:
+            value = build()
+            object.__setattr__(self, key, value)
+        return value
 
     @property
     def reduced_modulus(self) -> float:

@@ -23,11 +23,12 @@ Balances in vector form (docs/model.md §5), per ball, with ``F_c = kappa_c mu_c
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
 from ..bearings.friction import load_dependent_torque, speed_dependent_torque
-from ..contact.film import central_film_thickness
+from ..contact.film import SPEED_EXPONENT, central_film_thickness
 from ..contact.laws import law_coefficients
 from ..contact.quadrature import Quadrature
 from ..geometry.kinematics import body_speeds, creep_term, entrainment_factor, spin
@@ -177,8 +178,7 @@ def evaluate_with_jacobian(
     nc = creep.shape[-1]
     h = step * np.maximum(np.abs(creep), 1e-4)
     # row 0: the creeps themselves; row j + 1: creep j perturbed by h_j (one pass for all)
-    offsets = np.concatenate([np.zeros((1, nc)), np.eye(nc)])
-    pert = creep[..., None, :] + h[..., None, :] * offsets  # (..., 1 + n_c, n_c)
+    pert = creep[..., None, :] + h[..., None, :] * _offsets(nc)  # (..., 1 + n_c, n_c)
     wide = problem.expand()
     ws, w, sg, u, hf = _contact_inputs(wide, pert)
     c = creep_term(pert)
@@ -198,16 +198,17 @@ def evaluate_with_jacobian(
         derivatives=True,
     )
     ex = lambda v: v[..., None, :]  # noqa: E731
-    delta = np.stack(
-        [c - ex(c[at]), sg - ex(sg[at]), np.log(u / ex(u[at])) - np.log(hf / ex(hf[at]))], axis=-1
-    )
-    mu_p = ex(mu) + np.sum(dmu[..., None, :, :] * delta, axis=-1)
-    chi_p = ex(chi) + np.sum(dchi[..., None, :, :] * delta, axis=-1)
+    delta = np.empty(c.shape + (3,))
+    delta[..., 0] = c - ex(c[at])
+    delta[..., 1] = sg - ex(sg[at])
+    delta[..., 2] = np.log((u * ex(hf[at])) / (ex(u[at]) * hf))  # d log u - d log h
+    mu_p = ex(mu) + (dmu[..., None, :, :] * delta).sum(axis=-1)
+    chi_p = ex(chi) + (dchi[..., None, :, :] * delta).sum(axis=-1)
     mu_p[at], chi_p[at] = mu, chi
     wide_state = _balances(wide, pert, ws, w, sg, u, hf, mu_p, chi_p)
     state = EquilibriumState(
         **{
-            name: np.asarray(v)[at] if np.ndim(v) > len(at) - 1 else v
+            name: v[at] if getattr(v, "ndim", 0) >= len(at) else v
             for name, v in vars(wide_state).items()
         }
     )
@@ -216,65 +217,97 @@ def evaluate_with_jacobian(
     return state, np.swapaxes(jac, -1, -2)
 
 
+@lru_cache(maxsize=8)
+def _offsets(nc: int) -> np.ndarray:
+    """Row 0: no perturbation; row ``j + 1``: creep ``j`` perturbed (read-only)."""
+    out = np.concatenate([np.zeros((1, nc)), np.eye(nc)])
+    out.flags.writeable = False
+    return out
+
+
 def _contact_inputs(problem: EquilibriumProblem, creep):
     """Speeds, spins, surface speeds and film thicknesses at the creeps (Eqs. 7-14, 67)."""
     lay, fl = problem.layout, problem.fluid
-    omega_s, omega = body_speeds(lay, problem.tilt, creep, problem.input_speed)
-    sigma = spin(lay, problem.tilt, omega_s, omega)
+    omega_s, omega = body_speeds(lay, problem.tilt, creep, problem.input_speed, problem.rho)
+    sigma = spin(lay, problem.tilt, omega_s, omega, problem.sz)
     u_ref = np.abs(omega) * problem.radius
-    film = central_film_thickness(
-        fl.viscosity,
-        fl.pressure_viscosity_coefficient,
-        problem.reduced_modulus,
-        problem.rx,
-        u_ref * entrainment_factor(creep),
-        problem.load,
-        problem.ay / problem.ax,
+    # Eq. 56 at 1 m/s, kept on the problem, times the speed term (`SPEED_EXPONENT`)
+    unit = problem.memo(
+        "film_unit_speed",
+        lambda: central_film_thickness(
+            fl.viscosity,
+            fl.pressure_viscosity_coefficient,
+            problem.reduced_modulus,
+            problem.rx,
+            1.0,
+            problem.load,
+            problem.ay / problem.ax,
+        ),
     )
+    film = unit * np.abs(u_ref * entrainment_factor(creep)) ** SPEED_EXPONENT
     return omega_s, omega, sigma, u_ref, film
+
+
+def _balance_constants(problem: EquilibriumProblem) -> dict:
+    """The creep-independent factors of `_balances` (kept on the problem, `memo`)."""
+    pb, lay, des = problem, problem.layout, problem.design
+    rs, n, bm = des.roller_radius, des.n_rollers, des.bearings
+    idler_thrust = n * pb.load * np.abs(lay.z_j)
+    return {
+        "kappa_load": lay.kappa * pb.load,
+        "load_radius": pb.load * pb.radius,
+        "rs_rho": rs * pb.rho,
+        "rs_sz": rs * pb.sz,
+        "gyro": bool(np.any(pb.gyro_factor)),
+        "idler_load_torque": np.where(
+            lay.is_idler, load_dependent_torque(idler_thrust, des.idler_bearing_diameter, bm), 0.0
+        ),
+        "ball_scale": pb.clamp_force * rs,
+        "scale": pb.torque_scale[..., None],
+        "input_drag": np.sum(pb.input_drag, axis=-1),
+        "output_drag": np.sum(pb.output_drag, axis=-1),
+    }
 
 
 def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> EquilibriumState:
     """Forces, moments, bearing torques and residuals from the contact coefficients."""
     pb, lay, des, fl = problem, problem.layout, problem.design, problem.fluid
+    k = pb.memo("balances", lambda: _balance_constants(pb))
     rs, n = des.roller_radius, des.n_rollers
-    force = lay.kappa * mu * pb.load
-    moment = -chi * pb.load * pb.radius
-    m_s = np.sum(rs * pb.rho * force + pb.sz * moment, axis=-1)
-    m_u = np.sum(-rs * pb.sz * force + pb.rho * moment, axis=-1)
-    f_sum = -np.sum(force, axis=-1)
-    axle = np.stack([0.5 * (f_sum + 2.0 * m_u / rs), 0.5 * (f_sum - 2.0 * m_u / rs)], axis=-1)
+    force = k["kappa_load"] * mu
+    moment = -chi * k["load_radius"]
+    # (array methods, not np.sum: this runs at every Newton iteration, on few points)
+    m_s = (k["rs_rho"] * force + pb.sz * moment).sum(axis=-1)
+    m_u = (pb.rho * moment - k["rs_sz"] * force).sum(axis=-1)
+    f_sum = -force.sum(axis=-1)
+    axle = np.empty(f_sum.shape + (2,))
+    axle[..., 0] = 0.5 * (f_sum + 2.0 * m_u / rs)
+    axle[..., 1] = 0.5 * (f_sum - 2.0 * m_u / rs)
     bm, nu = des.bearings, fl.kinematic_viscosity
     # with the carrier turning, the axle ends also carry the gyroscopic moment (§13)
-    bearing_load = (
-        np.hypot(axle, (pb.gyro_factor * omega_s)[..., None]) if np.any(pb.gyro_factor) else axle
-    )
-    t_bls = 2.0 * speed_dependent_torque(omega_s, des.roller_bearing_diameter, nu, bm) + np.sum(
-        load_dependent_torque(bearing_load, des.roller_bearing_diameter, bm), axis=-1
-    )
-    idler_thrust = n * pb.load * np.abs(lay.z_j)
+    bearing_load = np.hypot(axle, (pb.gyro_factor * omega_s)[..., None]) if k["gyro"] else axle
+    t_bls = 2.0 * speed_dependent_torque(
+        omega_s, des.roller_bearing_diameter, nu, bm
+    ) + load_dependent_torque(bearing_load, des.roller_bearing_diameter, bm).sum(axis=-1)
     t_bl = np.where(
         lay.is_idler,
-        speed_dependent_torque(omega, des.idler_bearing_diameter, nu, bm)
-        + load_dependent_torque(idler_thrust, des.idler_bearing_diameter, bm),
+        speed_dependent_torque(omega, des.idler_bearing_diameter, nu, bm) + k["idler_load_torque"],
         0.0,
     )
     body = n * (-force * pb.radius - moment * lay.z_j)
-    scale = pb.torque_scale[..., None]
+    scale = k["scale"]
     res = np.empty(body.shape)
     # parasitic drags (zero without design.parasitic, docs/model.md §12): churning on the
     # ball's spin like its axle bearings; the output shaft's drag adds to the load torque
-    res[..., 0] = (m_s - np.sign(omega_s) * (t_bls + pb.ball_drag)) / (pb.clamp_force * rs)
+    res[..., 0] = (m_s - np.sign(omega_s) * (t_bls + pb.ball_drag)) / k["ball_scale"]
     res[..., 1:-1] = ((body - np.sign(omega) * t_bl) / scale)[..., 1:-1]
-    input_drag = np.sum(pb.input_drag, axis=-1)
+    input_drag = k["input_drag"]
     if pb.torque_weights == (0.0, 1.0):
-        res[..., -1] = (
-            body[..., -1] - (pb.output_torque + np.sum(pb.output_drag, axis=-1))
-        ) / scale[..., 0]
+        res[..., -1] = (body[..., -1] - (pb.output_torque + k["output_drag"])) / scale[..., 0]
     else:  # the torque condition a T_0 + b T_2 = target of a planetary mode (§13)
         a, b = pb.torque_weights
         t0 = -body[..., 0] + input_drag
-        t2 = body[..., -1] - np.sum(pb.output_drag, axis=-1)
+        t2 = body[..., -1] - k["output_drag"]
         res[..., -1] = (a * t0 + b * t2 - pb.output_torque) / scale[..., 0]
     return EquilibriumState(
         creep=creep,

@@ -7,6 +7,8 @@ vector form, which reproduces Eqs. 11-14 (with the Eq. 7 typo ``omega_1 -> omega
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from ..errors import InputError
@@ -78,6 +80,7 @@ def tilt_from_ratio(ratio, theta0, theta2, k):
     return np.arctan((q * np.cos(theta0) - np.cos(theta2)) / (q * np.sin(theta0) + np.sin(theta2)))
 
 
+@lru_cache(maxsize=64)
 def ratio_range(design: Design) -> tuple[float, float]:
     """Usable ratio range: Eq. 6 limits times ``design.tilt_safety_factor`` (Fig. 3).
 
@@ -133,7 +136,7 @@ def rolling_radius(layout: ContactLayout, tilt):
     return np.cos(g) * layout.z_k + np.sin(g) * layout.z_j
 
 
-def body_speeds(layout: ContactLayout, tilt, creep, input_speed):
+def body_speeds(layout: ContactLayout, tilt, creep, input_speed, rho=None):
     """Ball speed and the signed speeds of the bodies about ``j`` (Eqs. 3, 7).
 
     Parameters
@@ -145,6 +148,8 @@ def body_speeds(layout: ContactLayout, tilt, creep, input_speed):
         Creep coefficients (Eq. 7) per contact, shape ``(..., n_contacts)`` [-].
     input_speed : array_like
         Input disc speed ``omega_0`` [rad/s], shape ``(...)``.
+    rho : array_like, optional
+        `rolling_radius` at ``tilt``, if already known [-].
 
     Returns
     -------
@@ -154,18 +159,16 @@ def body_speeds(layout: ContactLayout, tilt, creep, input_speed):
         Signed body speed ``Omega_c`` about ``j`` for every contact; index 0 is ``omega_0``,
         shape ``(..., n_contacts)`` [rad/s].
     """
-    rho = rolling_radius(layout, tilt)
+    rho = rolling_radius(layout, tilt) if rho is None else rho
     creep = np.asarray(creep, dtype=float)
     w0 = np.asarray(input_speed, dtype=float)
     omega_s = w0 * layout.radius[0] * (1.0 - creep[..., 0]) / rho[..., 0]
     omega = omega_s[..., None] * rho * (1.0 - creep) / layout.radius
-    omega = np.concatenate(
-        [np.broadcast_to(w0, omega_s.shape)[..., None], omega[..., 1:]], axis=-1
-    )
+    omega[..., 0] = w0  # the input disc turns at omega_0 (broadcasts over the batch)
     return omega_s, omega
 
 
-def spin(layout: ContactLayout, tilt, omega_s, omega):
+def spin(layout: ContactLayout, tilt, omega_s, omega, sz=None):
     """Spin coefficients ``sigma_c = (omega_S s - Omega_c j) . z_c / |Omega_c|`` (Eqs. 10-14).
 
     Parameters
@@ -177,13 +180,15 @@ def spin(layout: ContactLayout, tilt, omega_s, omega):
         Ball speed [rad/s], shape ``(...)``.
     omega : array_like
         Signed body speeds [rad/s], shape ``(..., n_contacts)``.
+    sz : array_like, optional
+        `spin_axis_projection` at ``tilt``, if already known [-].
 
     Returns
     -------
     ndarray
         Spin coefficients, shape ``(..., n_contacts)`` [-].
     """
-    sz = spin_axis_projection(layout, tilt)
+    sz = spin_axis_projection(layout, tilt) if sz is None else sz
     omega = np.asarray(omega, dtype=float)
     return (np.asarray(omega_s)[..., None] * sz - omega * layout.z_j) / np.abs(omega)
 

@@ -8,6 +8,7 @@ direction. Every per-contact quantity is an array over the contacts, in the orde
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -93,6 +94,13 @@ def contact_layout(design: Design, architecture: str) -> ContactLayout:
     """
     if architecture not in ARCHITECTURES:
         raise InputError("architecture", architecture, "one of: " + ", ".join(ARCHITECTURES))
+    return _layout(design, architecture)
+
+
+@lru_cache(maxsize=64)
+def _layout(design: Design, architecture: str) -> ContactLayout:
+    """`contact_layout` for a valid architecture, kept per (design, architecture): every
+    operating point asks for it, and its arrays are read-only."""
     check_architecture(design, architecture)
     k = design.aspect_ratio
     t0, t2, al = design.theta0, design.theta2, design.alpha
@@ -124,7 +132,13 @@ def contact_layout(design: Design, architecture: str) -> ContactLayout:
         ]
     names = CONTACT_NAMES[architecture]
     is_idler = np.array([n.startswith("idler") for n in names])
-    arr = lambda v: np.asarray(v, dtype=float)  # noqa: E731
+    is_idler.flags.writeable = False
+
+    def arr(v):
+        a = np.asarray(v, dtype=float)
+        a.flags.writeable = False
+        return a
+
     return ContactLayout(
         architecture,
         names,

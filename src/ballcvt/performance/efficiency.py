@@ -84,10 +84,10 @@ class PowerLosses:
 def loss_breakdown(losses: PowerLosses) -> dict:
     """Every kind of `LOSS_KINDS` summed over the contacts [W], shape ``(...)`` each."""
     return {
-        "creep": np.sum(losses.creep, axis=-1),
-        "spin": np.sum(losses.spin, axis=-1),
+        "creep": losses.creep.sum(axis=-1),
+        "spin": losses.spin.sum(axis=-1),
         "roller_bearings": losses.roller_bearings,
-        "idler_bearings": np.sum(losses.idler_bearings, axis=-1),
+        "idler_bearings": losses.idler_bearings.sum(axis=-1),
         "bearing": losses.bearing,
         "churning": losses.churning,
         "seals": losses.seals,

@@ -97,7 +97,7 @@ def validity(problem: EquilibriumProblem, state: EquilibriumState) -> Validity:
         ("large_contact", size > HERTZ_SIZE_LIMIT),
         ("speed_beyond_fluid_data", speed > fl.max_rolling_speed),
     ):
-        flags |= np.where(np.any(hit, axis=-1), WARNINGS[name], 0)
+        flags |= np.asarray(hit).any(axis=-1) * WARNINGS[name]
     return Validity(lambda_ratio=lam, entrainment_speed=speed, flags=flags)
 
 

@@ -437,24 +437,28 @@ def make_result(
     eff = efficiency(problem, st, loss)
     valid = validity(problem, st)
     f = lambda a: float(np.asarray(a))  # noqa: E731
-    contacts = {
-        name: ContactResult(
-            creep=f(st.creep[i]),
-            spin=f(st.spin[i]),
-            mu=f(st.mu[i]),
-            chi=f(st.chi[i]),
-            normal_load=f(problem.load[i]),
-            p_max=f(problem.p_max[i]),
-            semi_axis_x=f(problem.ax[i]),
-            semi_axis_y=f(problem.ay[i]),
-            film_thickness=f(st.film[i]),
-            tangential_force=f(st.force[i]),
-            spin_moment=f(st.moment[i]),
-            body_speed=f(st.omega[i]),
-            creep_loss=f(loss.creep[i]),
-            spin_loss=f(loss.spin[i]),
-            lambda_ratio=f(valid.lambda_ratio[i]),
+    per = {  # per-contact values as Python floats (one tolist each, not 60 conversions)
+        key: np.asarray(value, dtype=float).tolist()
+        for key, value in (
+            ("creep", st.creep),
+            ("spin", st.spin),
+            ("mu", st.mu),
+            ("chi", st.chi),
+            ("normal_load", problem.load),
+            ("p_max", problem.p_max),
+            ("semi_axis_x", problem.ax),
+            ("semi_axis_y", problem.ay),
+            ("film_thickness", st.film),
+            ("tangential_force", st.force),
+            ("spin_moment", st.moment),
+            ("body_speed", st.omega),
+            ("creep_loss", loss.creep),
+            ("spin_loss", loss.spin),
+            ("lambda_ratio", valid.lambda_ratio),
         )
+    }
+    contacts = {
+        name: ContactResult(**{key: values[i] for key, values in per.items()})
         for i, name in enumerate(lay.names)
     }
     losses = {kind: f(value) for kind, value in loss_breakdown(loss).items()}

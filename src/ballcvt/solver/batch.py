@@ -3,7 +3,8 @@
 All points of a batch iterate together, first with a coarse quadrature (the predictor,
 ``SolverOptions.predictor``) to a loose tolerance, then with the requested one. Each
 iteration evaluates the traction integrals once, with their analytic derivatives
-(`evaluate_with_jacobian`), and solves the small ``n_c x n_c`` Newton systems of every
+(`evaluate_with_jacobian`; the last one, which only confirms convergence, without them),
+and solves the small ``n_c x n_c`` Newton systems of every
 point in one `numpy.linalg.solve` call. Steps are capped so that no creep leaves its
 physical range, and a point whose residual grew is sent back along half its previous step
 (a deferred backtracking line search that costs nothing while Newton converges). Points
@@ -15,7 +16,9 @@ evaluated afresh on the final creeps, meets the tolerance; the others are flagge
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -26,6 +29,12 @@ from ..equilibrium.residual import (
     evaluate,
     evaluate_with_jacobian,
 )
+
+njit: Any
+try:
+    from numba import njit
+except ImportError:  # pragma: no cover - numba is a declared dependency
+    njit = None
 
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "CREEP_BOUNDS"]
 
@@ -49,8 +58,9 @@ class BatchSolution:
     residual_norm : ndarray
         ``max |residual|`` at the final creeps [-].
     iterations : ndarray of int
-        Newton iterations (residual-and-Jacobian evaluations) of each point; points
-        that needed the point solver add its residual evaluations.
+        Residual evaluations of each point (with the Jacobian, or without it where only
+        convergence was left to confirm, `CONFIRM_NORM`); points that needed the point
+        solver add its residual evaluations.
     """
 
     state: EquilibriumState
@@ -184,6 +194,14 @@ def _predicts(options, n_points: int) -> bool:
     )
 
 
+#: A point whose residual norm is at most this before a Newton step is expected to meet
+#: the tolerance after it (Newton's convergence is quadratic down to the Jacobian's
+#: accuracy, about 1e-5 relative here): when every point still iterating is, the next
+#: evaluation skips the Jacobian; a point that then misses the tolerance is evaluated
+#: again, with it, at the same creeps.
+CONFIRM_NORM = 1e-6
+
+
 def _newton(flat, x, iterations, options, pinned=None):
     """Damped Newton on the points of the 1-D batch ``flat``; updates ``x`` in place.
 
@@ -194,47 +212,62 @@ def _newton(flat, x, iterations, options, pinned=None):
     Returns the state at the final ``x`` of every point: each point's last evaluation,
     or a fresh one for the points whose last move was not evaluated.
     """
-    nc = x.shape[-1]
+    nc, n = x.shape[-1], flat.size
     free = np.arange(nc) if pinned is None else np.delete(np.arange(nc), pinned)
     rows = slice(None) if pinned is None else slice(0, nc - 1)
-    active = np.arange(flat.size)
+    active = np.arange(n)
     final = None
-    fresh = np.zeros(flat.size, dtype=bool)  # last evaluation was at the current x
-    best = np.full(flat.size, np.inf)  # residual norm at the last accepted creeps
+    fresh = np.zeros(n, dtype=bool)  # last evaluation was at the current x
+    best = np.full(n, np.inf)  # residual norm at the last accepted creeps
     prev_x = x.copy()
-    prev_dx = np.zeros((flat.size, free.size))
+    prev_dx = np.zeros((n, free.size))
+    confirm = False  # every active point is expected to converge: no Jacobian needed
     for _ in range(options.max_iterations):
         if active.size == 0:
             break
-        sub = flat.take(active) if active.size < flat.size else flat
-        state, jac = evaluate_with_jacobian(sub, x[active], options.quadrature)
+        whole = active.size == n  # every point still iterates: no gathers or scatters
+        sub, xa = (flat, x) if whole else (flat.take(active), x[active])
+        if confirm:
+            state, jac = evaluate(sub, xa, options.quadrature), None
+        else:
+            state, jac = evaluate_with_jacobian(sub, xa, options.quadrature)
         iterations[active] += 1
-        final = state if final is None else _scatter(final, state, active)
+        final = state if final is None or whole else _scatter(final, state, active)
         fresh[active] = True
         res = state.residual[:, rows]
         norm = _norm(res)
         done = norm <= options.tol
+        if confirm:  # the others go round again, with the Jacobian, at the same creeps
+            active, confirm = active[~done], False
+            continue
         worse = ~done & ~(norm < best[active])  # includes NaN residuals
         # Points that got worse go back along half their last step; the others step.
         ok = ~done & ~worse
-        dx = np.zeros_like(res)
-        if np.any(ok):
-            dx[ok] = _newton_step(jac[ok][:, rows][:, :, free], res[ok], x[active][ok][:, free])
         idx = active
-        back = idx[worse]
-        prev_dx[back] *= 0.5
-        x[back[:, None], free] = prev_x[back][:, free] + prev_dx[back]
-        stuck = worse & ~(np.max(np.abs(prev_dx[idx]), axis=-1) > 1e-14)
-        step = idx[ok]
-        best[step] = norm[ok]
-        prev_x[step] = x[step]
-        prev_dx[step] = dx[ok]
-        x[step[:, None], free] = x[step][:, free] + dx[ok]
-        fresh[back] = False
-        fresh[step] = False
-        active = idx[~done & ~stuck]
+        if ok.any():
+            step = idx[ok]
+            every = ok.all()
+            xs = x[step][:, free]
+            dx = _newton_step(
+                (jac if every else jac[ok])[:, rows][:, :, free], res if every else res[ok], xs
+            )
+            best[step] = norm[ok]
+            prev_x[step] = x[step]
+            prev_dx[step] = dx
+            x[step[:, None], free] = xs + dx
+            fresh[step] = False
+        if worse.any():
+            back = idx[worse]
+            prev_dx[back] *= 0.5
+            x[back[:, None], free] = prev_x[back][:, free] + prev_dx[back]
+            fresh[back] = False
+            stuck = worse & ~(np.abs(prev_dx[idx]).max(axis=-1) > 1e-14)
+            active = idx[~done & ~stuck]
+        else:
+            active = idx[ok]
+            confirm = bool((norm[ok] <= CONFIRM_NORM).all())
     stale = np.flatnonzero(~fresh)
-    if final is None or stale.size == flat.size:
+    if final is None or stale.size == n:
         return evaluate(flat, x, options.quadrature)
     if stale.size:
         final = _scatter(final, evaluate(flat.take(stale), x[stale], options.quadrature), stale)
@@ -256,14 +289,36 @@ def _scatter(full: EquilibriumState, part: EquilibriumState, index) -> Equilibri
 
 
 def _newton_step(jac, res, x):
-    """Newton steps, capped in size and kept inside `CREEP_BOUNDS`."""
-    try:
-        dx = np.linalg.solve(jac, -res[..., None])[..., 0]
-    except np.linalg.LinAlgError:
-        dx = np.stack([_lstsq(j, r) for j, r in zip(jac, res)])
+    """Newton steps, capped in size and kept inside `CREEP_BOUNDS`.
+
+    Compiled (`_capped_steps`: Gaussian elimination with partial pivoting and the caps in
+    one call; on one point it costs a tenth of `numpy.linalg.solve` and the NumPy caps);
+    a point whose matrix is singular takes the least-squares step instead.
+    """
+    if not COMPILED:  # pragma: no cover - numba is a declared dependency
+        try:
+            dx = np.linalg.solve(jac, -res[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            dx = np.stack([_lstsq(j, r) for j, r in zip(jac, res)])
+        return _cap(dx, x)
+    jac = np.ascontiguousarray(jac, dtype=float)
+    res = np.ascontiguousarray(res, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)
+    dx = np.empty_like(res)
+    singular = np.zeros(res.shape[0], dtype=np.bool_)
+    lo, hi = CREEP_BOUNDS
+    _capped_steps(jac, res, x, MAX_STEP, lo, hi, dx, singular)
+    if singular.any():
+        idx = np.flatnonzero(singular)
+        dx[idx] = _cap(np.stack([_lstsq(jac[i], res[i]) for i in idx]), x[idx])
+    return dx
+
+
+def _cap(dx, x):
+    """The caps of `_capped_steps` on steps ``(n, m)`` (NumPy)."""
     dx = np.where(np.isfinite(dx), dx, 0.0)
     big = np.max(np.abs(dx), axis=-1, keepdims=True)
-    dx *= np.minimum(1.0, MAX_STEP / np.maximum(big, 1e-300))
+    dx = dx * np.minimum(1.0, MAX_STEP / np.maximum(big, 1e-300))
     lo, hi = CREEP_BOUNDS
     # Never step more than half-way to a bound.
     room = np.where(dx > 0, 0.5 * (hi - x), 0.5 * (x - lo))
@@ -275,13 +330,74 @@ def _newton_step(jac, res, x):
     return dx * scale
 
 
+def _capped_steps(jac, res, x, max_step, lo, hi, dx, singular):  # pragma: no cover - compiled
+    """Solve ``jac[i] dx[i] = -res[i]`` for every point, then cap each step: non-finite
+    components to 0, the largest ``|dx|`` to ``max_step``, and no component more than
+    half-way to a bound of ``(lo, hi)``. ``singular[i]`` marks a zero pivot."""
+    n, m = res.shape
+    a = np.empty((m, m))
+    b = np.empty(m)
+    for i in range(n):
+        for r in range(m):
+            b[r] = -res[i, r]
+            for c in range(m):
+                a[r, c] = jac[i, r, c]
+        ok = True
+        for k in range(m):  # elimination with partial pivoting
+            p = k
+            for r in range(k + 1, m):
+                if abs(a[r, k]) > abs(a[p, k]):
+                    p = r
+            if a[p, k] == 0.0:
+                ok = False
+                break
+            if p != k:
+                for c in range(m):
+                    a[k, c], a[p, c] = a[p, c], a[k, c]
+                b[k], b[p] = b[p], b[k]
+            for r in range(k + 1, m):
+                f = a[r, k] / a[k, k]
+                for c in range(k, m):
+                    a[r, c] -= f * a[k, c]
+                b[r] -= f * b[k]
+        if not ok:
+            singular[i] = True
+            continue
+        for r in range(m - 1, -1, -1):
+            v = b[r]
+            for c in range(r + 1, m):
+                v -= a[r, c] * dx[i, c]
+            dx[i, r] = v / a[r, r]
+        big = 0.0
+        for r in range(m):
+            if not math.isfinite(dx[i, r]):
+                dx[i, r] = 0.0
+            big = max(big, abs(dx[i, r]))
+        scale = min(1.0, max_step / max(big, 1e-300))
+        for r in range(m):
+            dx[i, r] *= scale
+        scale = 1.0
+        for r in range(m):  # never more than half-way to a bound
+            room = 0.5 * (hi - x[i, r]) if dx[i, r] > 0 else 0.5 * (x[i, r] - lo)
+            if abs(dx[i, r]) > room:
+                scale = min(scale, room / max(abs(dx[i, r]), 1e-300))
+        for r in range(m):
+            dx[i, r] *= scale
+
+
+COMPILED = njit is not None
+if COMPILED:
+    _capped_steps = njit(cache=True)(_capped_steps)
+
+
 def _lstsq(jac, res):
     return np.linalg.lstsq(jac, -res, rcond=None)[0]
 
 
 def _norm(res):
-    norm = np.max(np.abs(res), axis=-1)
-    return np.where(np.isfinite(norm), norm, np.inf)
+    norm = np.abs(res).max(axis=-1)
+    norm[~np.isfinite(norm)] = np.inf
+    return norm
 
 
 def _reshape(state: EquilibriumState, shape) -> EquilibriumState:

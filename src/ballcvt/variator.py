@@ -218,7 +218,7 @@ class Variator:
             )
         else:
             sol = solve_point(problem, self.options)
-        over = sol.converged and max(abs(c) for c in sol.state.creep) > self.design.creep_limit
+        over = sol.converged and float(np.abs(sol.state.creep).max()) > self.design.creep_limit
         if follows:
             over = over or float(problem.clamp_force) > float(
                 pressure_bound_force(problem, self.design.max_pressure)

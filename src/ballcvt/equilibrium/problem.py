@@ -259,11 +259,19 @@ def build_problem(
         load = load - centrifugal_force(design, wc)[..., None] * idler_share(layout, design)
     ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
     _check_pressure(fluid, fn0, p_max)
-    # parasitic drags at the creep-free speeds (docs/model.md §12)
-    omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
-    ball, drag0, drag2 = parasitic_torques(
-        design, fluid, w0, omega[..., -1], omega_s, design.n_rollers * fn0 * np.sin(design.theta0)
-    )
+    # parasitic drags at the creep-free speeds (docs/model.md §12); none in the paper's model
+    if design.parasitic is None:
+        ball, drag0, drag2 = (np.zeros(fn0.shape + tail) for tail in ((), (3,), (3,)))
+    else:
+        omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
+        ball, drag0, drag2 = parasitic_torques(
+            design,
+            fluid,
+            w0,
+            omega[..., -1],
+            omega_s,
+            design.n_rollers * fn0 * np.sin(design.theta0),
+        )
     return EquilibriumProblem(
         design=design,
         fluid=fluid,
@@ -383,7 +391,7 @@ def _check(
     ok = np.isfinite(value) & (
         (value >= floor) if floor else (value > 0) if strict else (value >= 0)
     )
-    if not np.all(ok):
+    if not ok.all():
         bad = float(value[~ok].flat[0]) if value.ndim else float(value)
         allowed = (
             f">= {floor:g} {unit} and finite"

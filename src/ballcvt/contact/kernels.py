@@ -19,7 +19,9 @@ where it vanishes), so its magnitude is computed once per ray.
 Both rules are fans of rays: the pole-centred rule from the pole ``(0, Y_p)`` to the
 boundary, the centred rule from the centre with unit reach. One ray loop (`_ray`) serves
 both; its nodes' sums are kept in scalar registers, so that LLVM vectorises the loop over a
-ray's nodes (8 nodes per instruction with AVX-512). The exponential of the saturation is
+ray's nodes (8 nodes per instruction with AVX-512). On the pole's rays the speed is the
+ray's rate times the distance from the pole (no square root per node), and the shear law's
+slope uses ``1/a`` (one division per node). The exponential of the saturation is
 `_exp_neg`, a range-reduced polynomial that vectorises (a call to ``exp`` would not:
 numba has no vector math library); its relative error is below ``4e-16 + 4e-17 a``. Whether the
 derivatives and the visco-elastic factor are computed is fixed at compile time: four
@@ -154,7 +156,7 @@ if AVAILABLE:
         return out
 
     @njit(cache=True, fastmath=_FAST, inline="always")
-    def _ray(y0, v0, reach, sm, cm, r01, wr, dphi, c, fl, tab, pow2, deriv, ve):
+    def _ray(pole, y0, v0, reach, sm, cm, r01, wr, dphi, c, fl, tab, pow2, deriv, ve):
         """Sums of the nodes on one ray from ``(0, y0)`` in the direction ``(cm, sm)``.
 
         The nodes are ``(rho cm, y0 + rho sm)``, ``rho = reach r01[j]``, with weights
@@ -169,6 +171,7 @@ if AVAILABLE:
         last = tab.shape[0] - 2
         dx = -c[0] * sm
         dy = c[1] * cm
+        ray_speed = math.sqrt(dx * dx + dy * dy)  # |V| / rho on a ray from the pole
         s0 = s1 = s2 = s3 = s4 = s5 = s6 = s7 = 0.0
         for j in range(r01.shape[0]):
             rho = reach * r01[j]
@@ -176,7 +179,7 @@ if AVAILABLE:
             y = y0 + rho * sm
             vx = v0 + rho * dx
             vy = rho * dy
-            speed = math.sqrt(vx * vx + vy * vy)
+            speed = rho * ray_speed if pole else math.sqrt(vx * vx + vy * vy)
             w = rho * reach * wr[j] * dphi
             p = pm * math.sqrt(max(1.0 - x * x - y * y, 0.0))
             # E = eta / tau_L from its cubic Hermite table (Roelands, Eq. 51; Eq. 54)
@@ -192,7 +195,7 @@ if AVAILABLE:
             a = ek * speed
             # saturation (1 - exp(-a)) / a (Eq. 53): series below 1e-3 (error a^5 / 720)
             small = a < 1e-3
-            inv_a = 0.0 if small else 1.0 / a
+            inv_a = 1.0 / a if a > 0.0 else 0.0
             em = _exp_neg(a, pow2)
             if small:
                 sat = 1.0 - a * (0.5 - a * (1.0 / 6.0 - a * (1.0 / 24.0 - a * (1.0 / 120.0))))
@@ -222,7 +225,7 @@ if AVAILABLE:
                     slope = -0.5 + a / 3.0 - a * a / 8.0
                 else:
                     slope = ((1.0 - sat) - a * sat) * inv_a
-                kk = eh * ek * slope / speed if speed > 0.0 else 0.0
+                kk = eh * ek * ek * slope * inv_a  # (g'/|V|) / |V|: eh ek slope / |V|
                 if ve:
                     kk *= corr
                 # d/dc: dV = (u, 0)
@@ -275,7 +278,7 @@ if AVAILABLE:
                     reach = -b + math.sqrt(b * b + (1.0 - y0 * y0))
                 else:
                     reach = 1.0
-                s = _ray(y0, v0, reach, sm, cm, r01, wr, dphi, c, fl, tab, pow2, deriv, ve)
+                s = _ray(pole, y0, v0, reach, sm, cm, r01, wr, dphi, c, fl, tab, pow2, deriv, ve)
                 a0 += s[0]
                 a1 += s[1]
                 a2 += s[2]

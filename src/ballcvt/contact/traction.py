@@ -119,8 +119,40 @@ def traction_coefficients(
     for i, value in enumerate(values):
         params[i, ...] = value
     params = params.reshape(9, -1)
+    n_out = 8 if derivatives else 2
+    if params.shape[1] == 0:
+        out = np.zeros((n_out, 0))
+    elif quadrature.engine == "auto" and kernels.AVAILABLE:
+        out = _compiled(params, fluid, quadrature, derivatives)[:n_out]
+    else:
+        out = _numpy_rules(params, fluid, quadrature, derivatives)[:n_out]
+    if not derivatives:
+        return out[0].reshape(shape), out[1].reshape(shape)
+    out = out.reshape((n_out,) + shape)
+    last = tuple(range(1, len(shape) + 1)) + (0,)  # the derivatives' axis last
+    return out[0], out[1], out[2:5].transpose(last), out[5:8].transpose(last)
+
+
+def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool) -> np.ndarray:
+    """The compiled kernels' sums ``(8, n)``: both rules and their blend in one call."""
+    out = np.empty((params.shape[1], kernels.N_OUT))
+    par = np.ascontiguousarray(params)
+    fl, tab = _viscosity_table(fluid, float(par[4].max()))
+    r01, wr, sin_phi, cos_phi = _ray_nodes(q.n_radial, q.n_angular)
+    rays = (sin_phi, cos_phi, 2.0 * np.pi / q.n_angular)
+    if q.method == "centred":
+        centred, blend = rays, (0.0, 0.0)
+    else:
+        _, _, sin_c, cos_c = _ray_nodes(q.n_radial, q.n_centred)
+        centred, blend = (sin_c, cos_c, 2.0 * np.pi / q.n_centred), BLEND
+    kernels.traction_kernel(par, r01, wr, rays, centred, blend, fl, tab, derivatives, out)
+    return out.T
+
+
+def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool) -> np.ndarray:
+    """The NumPy reference path's sums ``(8 or 2, n)``: each rule on its contacts, blended
+    (the same sums as `_compiled`)."""
     yp = pole_position(params[0], params[1], params[3], params[6])
-    q = quadrature
     if q.method == "centred":
         parts = [(np.ones(yp.shape, bool), np.ones(yp.shape), "centred", q.n_angular)]
     else:
@@ -131,55 +163,20 @@ def traction_coefficients(
             (weight > 0.0, weight, "pole", q.n_angular),
             (~(weight >= 1.0), 1.0 - weight, "centred", q.n_centred),  # NaN: NaN out
         ]
-    n_out = 8 if derivatives else 2
-    out = np.zeros((n_out, yp.size))
+    out = np.zeros((8 if derivatives else 2, yp.size))
     for part, rule_weight, kind, n_angular in parts:
-        if not part.any():
-            continue
-        whole = part.all()  # every contact: no copies (the common case)
-        values = _rule(
-            kind,
-            yp if whole else yp[part],
-            params if whole else params[:, part],
-            fluid,
-            q.n_radial,
-            n_angular,
-            derivatives,
-            q.engine,
-        )
-        if whole:
-            out += rule_weight * values[:n_out]
-        else:
-            out[:, part] += rule_weight[part] * values[:n_out]
-    if not derivatives:
-        return out[0].reshape(shape), out[1].reshape(shape)
-    out = out.reshape((n_out,) + shape)
-    last = tuple(range(1, len(shape) + 1)) + (0,)  # the derivatives' axis last
-    return out[0], out[1], out[2:5].transpose(last), out[5:8].transpose(last)
-
-
-def _rule(kind, yp, params, fluid: Fluid, n_radial, n_angular, derivatives, engine):
-    """Sums of one rule for flat contacts: rows mu, chi (and their derivatives)."""
-    if engine == "numpy" or not kernels.AVAILABLE:
-        nodes = (
-            inner_pole_rule(yp, n_radial, n_angular)
-            if kind == "pole"
-            else centred_rule(n_radial, n_angular, yp.shape)
-        )
-        values = _integrate(nodes, list(params), fluid, derivatives)
-        if not derivatives:
-            return np.stack(values)
-        return np.concatenate([np.stack(values[:2]), values[2].T, values[3].T])
-    out = np.empty((yp.size, kernels.N_OUT))
-    par = np.ascontiguousarray(params)
-    fl, tab = _viscosity_table(fluid, float(par[4].max()))
-    r01, wr, sin_phi, cos_phi = _ray_nodes(n_radial, n_angular)
-    dphi = 2.0 * np.pi / n_angular
-    if kind == "pole":
-        kernels.pole_kernel(yp, par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, derivatives, out)
-    else:
-        kernels.centred_kernel(par, r01, wr, sin_phi, cos_phi, dphi, fl, tab, derivatives, out)
-    return out.T
+        if part.any():
+            y, p = yp[part], params[:, part]
+            nodes = (
+                inner_pole_rule(y, q.n_radial, n_angular)
+                if kind == "pole"
+                else centred_rule(q.n_radial, n_angular, y.shape)
+            )
+            values = _integrate(nodes, list(p), fluid, derivatives)
+            if derivatives:
+                values = np.concatenate([np.stack(values[:2]), values[2].T, values[3].T])
+            out[:, part] += rule_weight[part] * np.stack(values)
+    return out
 
 
 @lru_cache(maxsize=32)

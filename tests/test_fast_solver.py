@@ -247,3 +247,41 @@ def test_compiled_path_equals_numpy_path_on_random_designs(case):
             assert np.allclose(c, cr, rtol=1e-7, atol=1e-12 * np.max(np.abs(cr)))
             eta = efficiency(pb.take(i), ref.state).overall
             assert efficiency(pb, fast.state).overall[i] == pytest.approx(eta, abs=1e-9)
+
+
+def test_newton_update_compiled_equals_python_and_handles_singular_steps():
+    """The compiled Newton update (`_advance`) against its plain-Python form on random
+    points (steps, caps, back-offs, confirmations), and a singular Jacobian takes the
+    capped least-squares step instead of failing."""
+    from ballcvt.solver import batch as B
+
+    rng = np.random.default_rng(11)
+    n, nc = 40, 4
+    free = np.arange(nc)
+    for confirm in (False, True):
+        res = rng.normal(scale=10.0 ** rng.uniform(-13, -1, (n, 1)), size=(n, nc))
+        jac = rng.normal(size=(n, nc, nc))
+        jac[3] = 0.0  # singular
+        jac[3, :, 0] = 1.0
+        x = rng.uniform(-0.1, 0.5, (n, nc))
+        best = np.where(rng.random(n) < 0.3, 1e-14, np.inf)  # some points got worse
+        res[3], best[3] = 1e-2, np.inf  # the singular point steps
+        prev_dx = rng.normal(scale=1e-3, size=(n, nc))
+        outs = []
+        for fn in (B._advance_compiled, B._advance_python):
+            arrays = [x.copy(), best.copy(), x.copy() - prev_dx, prev_dx.copy(), np.ones(n, bool)]
+            keep, singular = np.zeros(n, bool), np.zeros(n, bool)
+            near = fn(np.arange(n), res, jac, arrays[0], free, *arrays[1:], 1e-11, confirm,
+                      B.MAX_STEP, *B.CREEP_BOUNDS, B.CONFIRM_NORM, keep, singular)
+            outs.append((near, keep, singular, arrays))
+        (n1, k1, s1, a1), (n2, k2, s2, a2) = outs
+        assert n1 == n2 and (k1 == k2).all() and (s1 == s2).all()
+        for u, w in zip(a1, a2):
+            np.testing.assert_allclose(u, w, rtol=1e-12, atol=1e-15)
+        if not confirm:
+            assert s1[3] and not s1[np.arange(n) != 3].any()
+    x = np.array([[0.01, 0.0, 0.0, 0.01]])
+    active, _ = B._advance(np.arange(1), np.ones((1, nc)) * 1e-3, np.ones((1, nc, nc)), x,
+                           free, np.full(1, np.inf), x.copy(), np.zeros((1, nc)),
+                           np.ones(1, bool), 1e-11, False)
+    assert active.tolist() == [0] and np.all(np.isfinite(x)) and not np.allclose(x[0, 0], 0.01)

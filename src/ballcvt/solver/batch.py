@@ -214,7 +214,6 @@ def _newton(flat, x, iterations, options, pinned=None):
     """
     nc, n = x.shape[-1], flat.size
     free = np.arange(nc) if pinned is None else np.delete(np.arange(nc), pinned)
-    rows = slice(None) if pinned is None else slice(0, nc - 1)
     active = np.arange(n)
     final = None
     fresh = np.zeros(n, dtype=bool)  # last evaluation was at the current x
@@ -222,50 +221,35 @@ def _newton(flat, x, iterations, options, pinned=None):
     prev_x = x.copy()
     prev_dx = np.zeros((n, free.size))
     confirm = False  # every active point is expected to converge: no Jacobian needed
+    m = free.size
     for _ in range(options.max_iterations):
         if active.size == 0:
             break
         whole = active.size == n  # every point still iterates: no gathers or scatters
         sub, xa = (flat, x) if whole else (flat.take(active), x[active])
         if confirm:
-            state, jac = evaluate(sub, xa, options.quadrature), None
+            state = evaluate(sub, xa, options.quadrature)
+            jac = np.zeros((active.size, m, m))  # not used: nothing steps
         else:
             state, jac = evaluate_with_jacobian(sub, xa, options.quadrature)
+            jac = jac[:, :m][:, :, free]
         iterations[active] += 1
         final = state if final is None or whole else _scatter(final, state, active)
         fresh[active] = True
-        res = state.residual[:, rows]
-        norm = _norm(res)
-        done = norm <= options.tol
-        if confirm:  # the others go round again, with the Jacobian, at the same creeps
-            active, confirm = active[~done], False
-            continue
-        worse = ~done & ~(norm < best[active])  # includes NaN residuals
-        # Points that got worse go back along half their last step; the others step.
-        ok = ~done & ~worse
-        idx = active
-        if ok.any():
-            step = idx[ok]
-            every = ok.all()
-            xs = x[step][:, free]
-            dx = _newton_step(
-                (jac if every else jac[ok])[:, rows][:, :, free], res if every else res[ok], xs
-            )
-            best[step] = norm[ok]
-            prev_x[step] = x[step]
-            prev_dx[step] = dx
-            x[step[:, None], free] = xs + dx
-            fresh[step] = False
-        if worse.any():
-            back = idx[worse]
-            prev_dx[back] *= 0.5
-            x[back[:, None], free] = prev_x[back][:, free] + prev_dx[back]
-            fresh[back] = False
-            stuck = worse & ~(np.abs(prev_dx[idx]).max(axis=-1) > 1e-14)
-            active = idx[~done & ~stuck]
-        else:
-            active = idx[ok]
-            confirm = bool((norm[ok] <= CONFIRM_NORM).all())
+        res = np.ascontiguousarray(state.residual[:, :m])
+        active, confirm = _advance(
+            active,
+            res,
+            np.ascontiguousarray(jac),
+            x,
+            free,
+            best,
+            prev_x,
+            prev_dx,
+            fresh,
+            options.tol,
+            confirm,
+        )
     stale = np.flatnonzero(~fresh)
     if final is None or stale.size == n:
         return evaluate(flat, x, options.quadrature)
@@ -288,34 +272,133 @@ def _scatter(full: EquilibriumState, part: EquilibriumState, index) -> Equilibri
     return EquilibriumState(**fields)
 
 
-def _newton_step(jac, res, x):
-    """Newton steps, capped in size and kept inside `CREEP_BOUNDS`.
+def _advance(active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm):
+    """One Newton update of the points ``active`` after their evaluation (``res``,
+    ``jac``: their residuals and Jacobians on the free creeps); updates ``x``, ``best``,
+    ``prev_x``, ``prev_dx`` and ``fresh`` in place.
 
-    Compiled (`_capped_steps`: Gaussian elimination with partial pivoting and the caps in
-    one call; on one point it costs a tenth of `numpy.linalg.solve` and the NumPy caps);
-    a point whose matrix is singular takes the least-squares step instead.
+    A point whose residual norm meets ``tol`` is done. After a value-only evaluation
+    (``confirm``) the others go round again at the same creeps. Otherwise a point whose
+    norm did not fall below its best goes back along half its previous step (and stops
+    if that step is below 1e-14), and the others take the Newton step, capped in size and
+    kept inside `CREEP_BOUNDS` (`_cap`; least squares where the matrix is singular).
+
+    Returns the points still iterating and whether the next evaluation only confirms
+    convergence (every step taken from a norm at most `CONFIRM_NORM`, none went back).
     """
-    if not COMPILED:  # pragma: no cover - numba is a declared dependency
-        try:
-            dx = np.linalg.solve(jac, -res[..., None])[..., 0]
-        except np.linalg.LinAlgError:
-            dx = np.stack([_lstsq(j, r) for j, r in zip(jac, res)])
-        return _cap(dx, x)
-    jac = np.ascontiguousarray(jac, dtype=float)
-    res = np.ascontiguousarray(res, dtype=float)
-    x = np.ascontiguousarray(x, dtype=float)
-    dx = np.empty_like(res)
-    singular = np.zeros(res.shape[0], dtype=np.bool_)
     lo, hi = CREEP_BOUNDS
-    _capped_steps(jac, res, x, MAX_STEP, lo, hi, dx, singular)
-    if singular.any():
-        idx = np.flatnonzero(singular)
-        dx[idx] = _cap(np.stack([_lstsq(jac[i], res[i]) for i in idx]), x[idx])
-    return dx
+    keep = np.zeros(active.size, dtype=np.bool_)
+    singular = np.zeros(active.size, dtype=np.bool_)
+    step = _advance_compiled if COMPILED else _advance_python
+    near = step(
+        active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm,
+        MAX_STEP, lo, hi, CONFIRM_NORM, keep, singular,
+    )  # fmt: skip
+    for k in np.flatnonzero(singular):  # rare: a least-squares step, capped
+        i = active[k]
+        dx = _cap(_lstsq(jac[k], res[k])[None, :], x[i, free][None, :])[0]
+        prev_x[i] = x[i]
+        prev_dx[i] = dx
+        x[i, free] += dx
+        fresh[i] = False
+    return active[keep], bool(near)
+
+
+def _advance_python(
+    active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm, max_step, lo, hi,
+    confirm_norm, keep, singular,
+):  # fmt: skip
+    """`_advance`'s loop: Gaussian elimination with partial pivoting for the steps, then
+    the caps of `_cap`; writes ``keep`` and ``singular`` per point. Compiled by numba
+    (`_advance_compiled`); this plain-Python form runs only without numba."""
+    m = free.size
+    a = np.empty((m, m))
+    b = np.empty(m)
+    dx = np.empty(m)
+    any_back = False
+    all_near = True
+    for k in range(active.size):
+        i = active[k]
+        norm = 0.0
+        for r in range(m):
+            norm = max(norm, abs(res[k, r]))
+        if not math.isfinite(norm):
+            norm = math.inf
+        if norm <= tol:
+            continue  # done
+        if confirm:
+            keep[k] = True
+            continue
+        if not norm < best[i]:  # worse (or NaN): half the previous step back
+            any_back = True
+            big = 0.0
+            for r in range(m):
+                prev_dx[i, r] *= 0.5
+                x[i, free[r]] = prev_x[i, free[r]] + prev_dx[i, r]
+                big = max(big, abs(prev_dx[i, r]))
+            fresh[i] = False
+            keep[k] = big > 1e-14
+            continue
+        keep[k] = True
+        all_near = all_near and norm <= confirm_norm
+        best[i] = norm
+        for r in range(m):
+            b[r] = -res[k, r]
+            for c in range(m):
+                a[r, c] = jac[k, r, c]
+        ok = True
+        for c in range(m):  # elimination with partial pivoting
+            p = c
+            for r in range(c + 1, m):
+                if abs(a[r, c]) > abs(a[p, c]):
+                    p = r
+            if a[p, c] == 0.0:
+                ok = False
+                break
+            if p != c:
+                for q in range(m):
+                    a[c, q], a[p, q] = a[p, q], a[c, q]
+                b[c], b[p] = b[p], b[c]
+            for r in range(c + 1, m):
+                f = a[r, c] / a[c, c]
+                for q in range(c, m):
+                    a[r, q] -= f * a[c, q]
+                b[r] -= f * b[c]
+        if not ok:
+            singular[k] = True
+            continue
+        for r in range(m - 1, -1, -1):
+            v = b[r]
+            for q in range(r + 1, m):
+                v -= a[r, q] * dx[q]
+            dx[r] = v / a[r, r]
+        big = 0.0  # the caps of `_cap`
+        for r in range(m):
+            if not math.isfinite(dx[r]):
+                dx[r] = 0.0
+            big = max(big, abs(dx[r]))
+        scale = min(1.0, max_step / max(big, 1e-300))
+        for r in range(m):
+            dx[r] *= scale
+        scale = 1.0
+        for r in range(m):
+            xr = x[i, free[r]]
+            room = 0.5 * (hi - xr) if dx[r] > 0 else 0.5 * (xr - lo)
+            if abs(dx[r]) > room:
+                scale = min(scale, room / max(abs(dx[r]), 1e-300))
+        for r in range(m):
+            prev_dx[i, r] = dx[r] * scale
+        for q in range(x.shape[1]):
+            prev_x[i, q] = x[i, q]
+        for r in range(m):
+            x[i, free[r]] += prev_dx[i, r]
+        fresh[i] = False
+    return not confirm and all_near and not any_back  # after a confirmation: the Jacobian
 
 
 def _cap(dx, x):
-    """The caps of `_capped_steps` on steps ``(n, m)`` (NumPy)."""
+    """Steps ``(n, m)`` with non-finite components set to 0, the largest ``|dx|`` capped at
+    `MAX_STEP`, and no component more than half-way to a bound of `CREEP_BOUNDS` (NumPy)."""
     dx = np.where(np.isfinite(dx), dx, 0.0)
     big = np.max(np.abs(dx), axis=-1, keepdims=True)
     dx = dx * np.minimum(1.0, MAX_STEP / np.maximum(big, 1e-300))
@@ -330,64 +413,8 @@ def _cap(dx, x):
     return dx * scale
 
 
-def _capped_steps(jac, res, x, max_step, lo, hi, dx, singular):  # pragma: no cover - compiled
-    """Solve ``jac[i] dx[i] = -res[i]`` for every point, then cap each step: non-finite
-    components to 0, the largest ``|dx|`` to ``max_step``, and no component more than
-    half-way to a bound of ``(lo, hi)``. ``singular[i]`` marks a zero pivot."""
-    n, m = res.shape
-    a = np.empty((m, m))
-    b = np.empty(m)
-    for i in range(n):
-        for r in range(m):
-            b[r] = -res[i, r]
-            for c in range(m):
-                a[r, c] = jac[i, r, c]
-        ok = True
-        for k in range(m):  # elimination with partial pivoting
-            p = k
-            for r in range(k + 1, m):
-                if abs(a[r, k]) > abs(a[p, k]):
-                    p = r
-            if a[p, k] == 0.0:
-                ok = False
-                break
-            if p != k:
-                for c in range(m):
-                    a[k, c], a[p, c] = a[p, c], a[k, c]
-                b[k], b[p] = b[p], b[k]
-            for r in range(k + 1, m):
-                f = a[r, k] / a[k, k]
-                for c in range(k, m):
-                    a[r, c] -= f * a[k, c]
-                b[r] -= f * b[k]
-        if not ok:
-            singular[i] = True
-            continue
-        for r in range(m - 1, -1, -1):
-            v = b[r]
-            for c in range(r + 1, m):
-                v -= a[r, c] * dx[i, c]
-            dx[i, r] = v / a[r, r]
-        big = 0.0
-        for r in range(m):
-            if not math.isfinite(dx[i, r]):
-                dx[i, r] = 0.0
-            big = max(big, abs(dx[i, r]))
-        scale = min(1.0, max_step / max(big, 1e-300))
-        for r in range(m):
-            dx[i, r] *= scale
-        scale = 1.0
-        for r in range(m):  # never more than half-way to a bound
-            room = 0.5 * (hi - x[i, r]) if dx[i, r] > 0 else 0.5 * (x[i, r] - lo)
-            if abs(dx[i, r]) > room:
-                scale = min(scale, room / max(abs(dx[i, r]), 1e-300))
-        for r in range(m):
-            dx[i, r] *= scale
-
-
 COMPILED = njit is not None
-if COMPILED:
-    _capped_steps = njit(cache=True)(_capped_steps)
+_advance_compiled = njit(cache=True)(_advance_python) if COMPILED else None
 
 
 def _lstsq(jac, res):

@@ -232,7 +232,8 @@ def _newton(flat, x, iterations, options, pinned=None):
             jac = np.zeros((active.size, m, m))  # not used: nothing steps
         else:
             state, jac = evaluate_with_jacobian(sub, xa, options.quadrature)
-            jac = jac[:, :m][:, :, free]
+            if pinned is not None:
+                jac = jac[:, :m][:, :, free]
         iterations[active] += 1
         final = state if final is None or whole else _scatter(final, state, active)
         fresh[active] = True

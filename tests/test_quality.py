@@ -27,3 +27,14 @@ def test_mypy_reports_nothing():
     pytest.importorskip("mypy", reason="mypy is not installed ([test] extra)")
     got = _run(sys.executable, "-m", "mypy")
     assert got.returncode == 0, got.stdout + got.stderr
+
+
+def test_benchmarks_and_examples_compile(tmp_path):
+    """The scripts outside the package (benchmarks, examples) are not imported by the other
+    tests; a syntax error there would otherwise go unnoticed."""
+    import py_compile
+
+    scripts = sorted((ROOT / "benchmarks").glob("*.py")) + sorted((ROOT / "examples").rglob("*.py"))
+    assert scripts
+    for path in scripts:
+        py_compile.compile(str(path), doraise=True, cfile=str(tmp_path / "out.pyc"))

@@ -12,23 +12,21 @@ enters the shear law only as ``E = eta / tau_L`` (the ratio of viscosity to limi
 stress, with ``tau_L = tau_L0 + a p``); ``E`` is read from a cubic Hermite table over the
 pressure (`viscosity_table`: exact values and derivatives at nodes spaced so that
 ``log E`` changes by at most 0.01 between them, a relative error below 1e-10), so a node
-costs no exponential and no division for it. On the rays of the pole-centred rule the
-sliding velocity is the ray's direction times the distance from the pole (the pole is
-where it vanishes), so its magnitude is computed once per ray.
+costs no exponential and no division for it.
 
 Both rules are fans of rays: the pole-centred rule from the pole ``(0, Y_p)`` to the
 boundary, the centred rule from the centre with unit reach. One ray loop (`_ray`) serves
 both; its nodes' sums are kept in scalar registers, so that LLVM vectorises the loop over a
-ray's nodes (8 nodes per instruction with AVX-512). On the pole's rays the speed is the
-ray's rate times the distance from the pole (no square root per node), and the shear law's
-slope uses ``1/a`` (one division per node). The exponential of the saturation is
-`_exp_neg`, a range-reduced polynomial that vectorises (a call to ``exp`` would not:
-numba has no vector math library); its relative error is below ``4e-16 + 4e-17 a``. Whether the
-derivatives and the visco-elastic factor are computed is fixed at compile time: four
-specialised kernels, chosen by `traction_kernel`. The pole position and the blend of
-the two rules are computed per contact in the same compiled call. Measured on the
-30 x 30 benchmark map (double idler, 32 x 24 nodes, with derivatives): 26 -> 5.6 ns per
-node.
+ray's nodes (8 nodes per instruction with AVX-512). On the pole's rays the sliding velocity
+is the ray's direction times the distance from the pole (the pole is where it vanishes), so
+its magnitude needs no square root per node; the shear law's slope uses ``1/a`` (one
+division per node). The exponential of the saturation is `_exp_neg`, a range-reduced
+polynomial that vectorises (a call to ``exp`` would not: numba has no vector math library);
+its relative error is below ``4e-16 + 4e-17 a``. Whether the derivatives and the
+visco-elastic factor are computed is fixed at compile time: four specialised kernels,
+chosen by `traction_kernel`. The pole position and the blend of the two rules are computed
+per contact in the same compiled call. Measured on the 30 x 30 benchmark map (double idler,
+32 x 24 nodes, with derivatives): 26 -> 5.6 ns per node.
 
 Each kernel writes, per contact, ``out[i] = (mu, chi, dmu/dc, dmu/dsigma, dmu/dlog u,
 dchi/dc, dchi/dsigma, dchi/dlog u)`` (see `traction_coefficients`).

@@ -4,10 +4,11 @@ All points of a batch iterate together, first with a coarse quadrature (the pred
 ``SolverOptions.predictor``) to a loose tolerance, then with the requested one. Each
 iteration evaluates the traction integrals once, with their analytic derivatives
 (`evaluate_with_jacobian`; the last one, which only confirms convergence, without them),
-and solves the small ``n_c x n_c`` Newton systems of every
-point in one `numpy.linalg.solve` call. Steps are capped so that no creep leaves its
-physical range, and a point whose residual grew is sent back along half its previous step
-(a deferred backtracking line search that costs nothing while Newton converges). Points
+and updates every point in one compiled loop (`_advance`: the small ``n_c x n_c`` Newton
+systems by Gaussian elimination, the caps, the back-offs). Steps are capped so that no
+creep leaves its physical range, and a point whose residual grew is sent back along half
+its previous step (a deferred backtracking line search that costs nothing while Newton
+converges). Points
 still unconverged after ``max_iterations`` go, one by one, to the robust point solver
 (hybrid method, then bracketing). A point is reported converged only if its residual,
 evaluated afresh on the final creeps, meets the tolerance; the others are flagged in

@@ -259,19 +259,11 @@ def build_problem(
         load = load - centrifugal_force(design, wc)[..., None] * idler_share(layout, design)
     ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
     _check_pressure(fluid, fn0, p_max)
-    # parasitic drags at the creep-free speeds (docs/model.md §12); none in the paper's model
-    if design.parasitic is None:
-        ball, drag0, drag2 = (np.zeros(fn0.shape + tail) for tail in ((), (3,), (3,)))
-    else:
-        omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
-        ball, drag0, drag2 = parasitic_torques(
-            design,
-            fluid,
-            w0,
-            omega[..., -1],
-            omega_s,
-            design.n_rollers * fn0 * np.sin(design.theta0),
-        )
+    # parasitic drags at the creep-free speeds (docs/model.md §12)
+    omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
+    ball, drag0, drag2 = parasitic_torques(
+        design, fluid, w0, omega[..., -1], omega_s, design.n_rollers * fn0 * np.sin(design.theta0)
+    )
     return EquilibriumProblem(
         design=design,
         fluid=fluid,

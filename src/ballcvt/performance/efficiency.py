@@ -83,18 +83,17 @@ class PowerLosses:
 
 def loss_breakdown(losses: PowerLosses) -> dict:
     """Every kind of `LOSS_KINDS` summed over the contacts [W], shape ``(...)`` each."""
-    bearing, parasitic = losses.bearing, losses.parasitic
     return {
         "creep": losses.creep.sum(axis=-1),
         "spin": losses.spin.sum(axis=-1),
         "roller_bearings": losses.roller_bearings,
         "idler_bearings": losses.idler_bearings.sum(axis=-1),
-        "bearing": bearing,
+        "bearing": losses.bearing,
         "churning": losses.churning,
         "seals": losses.seals,
         "disc_bearings": losses.disc_bearings,
-        "parasitic": parasitic,
-        "total": (losses.creep + losses.spin).sum(axis=-1) + bearing + parasitic,  # = .total
+        "parasitic": losses.parasitic,
+        "total": losses.total,
     }
 
 

@@ -230,7 +230,7 @@ def _newton(flat, x, iterations, options, pinned=None):
         sub, xa = (flat, x) if whole else (flat.take(active), x[active])
         if confirm:
             state = evaluate(sub, xa, options.quadrature)
-            jac = np.zeros((active.size, m, m))  # not used: nothing steps
+            jac = np.empty((0, m, m))  # not read: nothing steps after a confirmation
         else:
             state, jac = evaluate_with_jacobian(sub, xa, options.quadrature)
             if pinned is not None:

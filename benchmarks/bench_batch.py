@@ -35,14 +35,14 @@ import numpy as np
 from scipy.optimize import root
 
 from ballcvt import Quadrature, SolverOptions, __version__, load_builtin
-from ballcvt.contact.reference import traction_coefficients_adaptive
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.equilibrium.residual import _balances, _contact_inputs
-from ballcvt.geometry.kinematics import creep_term
+from ballcvt.model.kinematics import creep_term
+from ballcvt.model.traction.reference import traction_coefficients_adaptive
 from ballcvt.performance.efficiency import efficiency
-from ballcvt.solver.batch import initial_creep, solve_batch
-from ballcvt.solver.limit import limit_torque_batch
-from ballcvt.solver.point import solve_point
+from ballcvt.solvers.limit import limit_torque_batch
+from ballcvt.solvers.newton import initial_creep, solve_batch
+from ballcvt.solvers.point import solve_point
 
 SPEED = 2000.0 * np.pi / 30.0
 REFERENCE = SolverOptions(quadrature=Quadrature("pole", 64, 64, 128))

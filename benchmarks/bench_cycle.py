@@ -12,7 +12,8 @@ from pathlib import Path
 import numpy as np
 
 from ballcvt import Variator, load_builtin
-from ballcvt.cycles import cycle_from_arrays, read_cycle, run_cycle
+from ballcvt.analysis.cycle_files import cycle_from_arrays, read_cycle
+from ballcvt.analysis.cycles import run_cycle
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -36,9 +36,9 @@ import numpy as np
 from ballcvt import Variator, __version__, load_builtin
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.performance.efficiency import efficiency
-from ballcvt.solver.batch import solve_batch
-from ballcvt.solver.limit import bisection_steps, limit_torque_batch, saturated_traction
-from ballcvt.solver.point import solve_point
+from ballcvt.solvers.limit import bisection_steps, limit_torque_batch, saturated_traction
+from ballcvt.solvers.newton import solve_batch
+from ballcvt.solvers.point import solve_point
 
 sys.path.insert(0, os.path.dirname(__file__))
 from bench_batch import BASELINE_A, FIRST_CALL, REFERENCE, SPEED  # noqa: E402

@@ -46,7 +46,7 @@ def main():
                 c, cr = (np.array([x.creep for x in y.contacts.values()]) for y in (r, rr))
                 big = np.abs(cr) > 1e-6
                 creep_err.append(np.max(np.abs(c[big] / cr[big] - 1)))
-        print(f"  42 points ratio 0.5-2 x torque 5 N m-90 % of limit:")
+        print("  42 points ratio 0.5-2 x torque 5 N m-90 % of limit:")
         print(f"    solve time median {np.median(times) * 1e3:.2f} ms, max {np.max(times) * 1e3:.1f} ms")
         print(f"    |eta - eta_ref| max {np.max(errors):.2e}, mean {np.mean(errors):.2e}")
         print(f"    relative creep error (|C| > 1e-6) max {np.max(creep_err):.2e}")

@@ -25,7 +25,8 @@ import tempfile
 import time
 
 from ballcvt import __version__
-from ballcvt.studies import local_client, parse_study, run_study
+from ballcvt.analysis.studies.run import local_client, run_study
+from ballcvt.analysis.studies.spec import parse_study
 
 STUDY = """
 [study]

@@ -12,8 +12,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ballcvt import InputError, TractionLimitError, Variator, load_builtin
-from ballcvt.clamping import CamClamp, ConstantClamp, axial_force
-from ballcvt.cli import main as cli
+from ballcvt.interfaces.cli import main as cli
+from ballcvt.model.clamping import CamClamp, ConstantClamp, axial_force
 from ballcvt.params import drive_to_toml, parse_drive
 
 RPM = 2000.0

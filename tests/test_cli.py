@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from ballcvt.cli.main import main
+from ballcvt.interfaces.cli.main import main
 
 DOUBLE = ["input", "idler_a", "idler_b", "output"]
 SINGLE = ["input", "idler", "output"]
@@ -112,6 +112,6 @@ def test_bad_design_file_exits_2(capsys, tmp_path, edit, fragment):
 
 
 def test_console_script_entry_point():
-    proc = subprocess.run([sys.executable, "-m", "ballcvt.cli.main", "point", "--clamp", "-1"],
+    proc = subprocess.run([sys.executable, "-m", "ballcvt.interfaces.cli.main", "point", "--clamp", "-1"],
                           capture_output=True, text=True)
     assert proc.returncode == 2 and proc.stderr.startswith("ballcvt: error: clamp_force")

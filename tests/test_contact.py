@@ -7,10 +7,12 @@ from hypothesis import strategies as st
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
-from ballcvt.contact import (REFERENCE, Quadrature, central_film_thickness, hertz_contact,
-                             inner_pole_rule, centred_rule, roelands_viscosity, saturation_factor,
-                             traction_coefficients)
-from ballcvt.contact.reference import traction_coefficients_adaptive
+from ballcvt.model.film import central_film_thickness
+from ballcvt.model.hertz import hertz_contact
+from ballcvt.model.rheology import roelands_viscosity, saturation_factor
+from ballcvt.model.traction.isothermal import traction_coefficients
+from ballcvt.model.traction.quadrature import REFERENCE, Quadrature, centred_rule, inner_pole_rule
+from ballcvt.model.traction.reference import traction_coefficients_adaptive
 
 E_RED = 210e9 / (1 - 0.3**2)
 

@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 
 from ballcvt import InputError, Variator, load_builtin
-from ballcvt.cli import main as cli
-from ballcvt.cycles import cycle_from_arrays, read_cycle, run_cycle
+from ballcvt.analysis.cycle_files import cycle_from_arrays, read_cycle
+from ballcvt.analysis.cycles import run_cycle
+from ballcvt.interfaces.cli import main as cli
 
 RPM = math.pi / 30
 

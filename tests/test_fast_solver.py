@@ -5,16 +5,16 @@
 import numpy as np
 import pytest
 from hypothesis import given
+from test_invariants import cases
 
 from ballcvt import Quadrature, SolverOptions
-from ballcvt.contact.traction import traction_coefficients
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.equilibrium.residual import evaluate, evaluate_with_jacobian
+from ballcvt.model.traction.isothermal import traction_coefficients
 from ballcvt.performance.efficiency import efficiency
-from ballcvt.solver.batch import solve_batch
-from ballcvt.solver.limit import limit_search, limit_torque_batch
-from ballcvt.solver.point import solve_point
-from test_invariants import cases
+from ballcvt.solvers.limit import limit_search, limit_torque_batch
+from ballcvt.solvers.newton import solve_batch
+from ballcvt.solvers.point import solve_point
 
 REF = SolverOptions(quadrature=Quadrature("pole", 64, 64, 128))
 FAST = SolverOptions()
@@ -114,7 +114,8 @@ def test_analytic_jacobian_matches_finite_differences(drive):
 def _bisection(problem, creep_limit):
     """The bisection limit and its final bracket from T_2 = 0 (the former method)."""
     from dataclasses import replace
-    from ballcvt.solver.limit import LIMIT_RTOL, limit_torque_bisection, solve_admissible
+
+    from ballcvt.solvers.limit import LIMIT_RTOL, limit_torque_bisection, solve_admissible
     zero = solve_admissible(replace(problem, output_torque=np.zeros(problem.size)),
                             creep_limit, FAST)
     lo = np.full(problem.size, np.nan)
@@ -190,7 +191,7 @@ def test_small_batches_skip_the_predictor_to_the_same_answer(drive):
 def test_kernel_exponential_matches_numpy():
     """The kernels' vectorisable exp(-a) (range reduction + Taylor) is exact to round-off,
     and clamps instead of indexing out of its table (NaN, inf, negative, huge)."""
-    from ballcvt.contact import kernels
+    from ballcvt.model.traction import kernels
 
     a = np.concatenate([np.linspace(0.0, 60.0, 200_001), np.geomspace(1e-14, 700.0, 5000)])
     rel = np.abs(kernels.exp_neg(a) / np.exp(-a) - 1.0)
@@ -253,7 +254,7 @@ def test_newton_update_compiled_equals_python_and_handles_singular_steps():
     """The compiled Newton update (`_advance`) against its plain-Python form on random
     points (steps, caps, back-offs, confirmations), and a singular Jacobian takes the
     capped least-squares step instead of failing."""
-    from ballcvt.solver import batch as B
+    from ballcvt.solvers import newton as B
 
     rng = np.random.default_rng(11)
     n, nc = 40, 4

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from ballcvt.cli.main import build_parser, main
+from ballcvt.interfaces.cli.main import build_parser, main
 from ballcvt.params.io import builtin_text
 
 BAD_NUMBERS = ["-1", "-1e9", "0", "inf", "-inf", "nan", "1e400", "-1e400", "", "abc", "1,5",
@@ -73,9 +73,9 @@ def test_every_numeric_flag_is_fuzzed():
 @pytest.fixture(autouse=True)
 def _no_server(monkeypatch):
     """`explore-ui` would serve until interrupted: here only its arguments are fuzzed."""
-    import ballcvt.ui
+    import ballcvt.interfaces.ui
 
-    monkeypatch.setattr(ballcvt.ui, "serve", lambda *args, **kwargs: None)
+    monkeypatch.setattr(ballcvt.interfaces.ui, "serve", lambda *args, **kwargs: None)
 
 
 @pytest.mark.parametrize("command, flag, nargs", NUMERIC)

@@ -3,7 +3,6 @@
 import json
 
 import pytest
-
 from make_golden import PATH, compute
 
 

@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from ballcvt import InputError, OperatingResult, Variator
-from ballcvt.cli import main as cli
-from ballcvt.cli.main import build_parser
+from ballcvt.interfaces.cli import main as cli
+from ballcvt.interfaces.cli.main import build_parser
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -185,8 +185,8 @@ def test_reproduce_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
     class Done:
         out, files, claims, run_time = tmp_path, [], [], 0.0
 
-    import ballcvt.reports
-    monkeypatch.setattr(ballcvt.reports, "reproduce",
+    import ballcvt.analysis.reproduction
+    monkeypatch.setattr(ballcvt.analysis.reproduction, "reproduce",
                         lambda out, **kw: calls.append({"out": str(out), **kw}) or Done)
     base = ["reproduce", "--out", str(tmp_path / "a")]
     assert _options(_subcommands()["reproduce"]) == {"--out", "--quick", "--workers", "--quiet",
@@ -204,9 +204,9 @@ def test_reproduce_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
 
 
 def test_explore_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
-    from ballcvt.studies import run_study
+    from ballcvt.analysis.studies.run import run_study
     tiny = Path(__file__).parent / "data" / "study_tiny.toml"
-    from ballcvt.studies import read_study
+    from ballcvt.analysis.studies.spec import read_study
     done = run_study(read_study(tiny), tmp_path / "done", in_process=True, progress=False)
     calls = []
 
@@ -214,10 +214,10 @@ def test_explore_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
         calls.append({"out": str(out), "law": spec.study.traction_law, **kw})
         return done
 
-    import ballcvt.reports.study
-    import ballcvt.studies
-    monkeypatch.setattr(ballcvt.studies, "run_study", fake)
-    monkeypatch.setattr(ballcvt.reports.study, "study_report", lambda *a, **k: [])
+    import ballcvt.analysis.studies
+    import ballcvt.analysis.studies.report
+    monkeypatch.setattr(ballcvt.analysis.studies, "run_study", fake)
+    monkeypatch.setattr(ballcvt.analysis.studies.report, "study_report", lambda *a, **k: [])
     assert _options(_subcommands()["explore"]) == {"--out", "--workers", "--scheduler",
                                                    "--in-process", "--resume", "--quiet",
                                                    "--json", "--traction-law"}
@@ -236,9 +236,9 @@ def test_explore_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
 
 def test_explore_ui_flags_reach_the_server(capsys, small_design, monkeypatch):
     calls = []
-    import ballcvt.ui
+    import ballcvt.interfaces.ui
 
-    monkeypatch.setattr(ballcvt.ui, "serve", lambda design, fluid, **kw: calls.append(
+    monkeypatch.setattr(ballcvt.interfaces.ui, "serve", lambda design, fluid, **kw: calls.append(
         json.dumps({"design": design.model_dump_json(), "fluid": fluid.name,
                     "law": fluid.traction_law, **kw}, sort_keys=True)))
     assert _options(_subcommands()["explore-ui"]) == {
@@ -309,7 +309,7 @@ def test_results_are_validated_on_load(double, tmp_path):
 def test_plotting_import_leaves_the_backend_alone():
     import subprocess
     import sys
-    code = ("import matplotlib; matplotlib.use('pdf'); import ballcvt.plotting, ballcvt.reports;"
+    code = ("import matplotlib; matplotlib.use('pdf'); import ballcvt.plotting, ballcvt.analysis.reproduction;"
             "print(matplotlib.get_backend())")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.stdout.strip() == "pdf", out.stderr
@@ -351,7 +351,7 @@ def test_variator_default_is_the_paper_drive():
 
 
 def test_atomic_write_leaves_no_partial_file(tmp_path):
-    from ballcvt._fileio import atomic_path, atomic_write_text
+    from ballcvt.files import atomic_path, atomic_write_text
     target = atomic_write_text(tmp_path / "a.txt", "complete")
     with pytest.raises(RuntimeError):
         with atomic_path(target) as tmp:

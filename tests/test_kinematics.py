@@ -6,8 +6,17 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ballcvt import InputError
-from ballcvt.geometry import (body_speeds, check_ratio, contact_layout, ideal_ratio, ratio_range,
-                              rolling_radius, spin, tilt_from_ratio, tilt_limits)
+from ballcvt.model.architectures import contact_layout
+from ballcvt.model.kinematics import (
+    body_speeds,
+    check_ratio,
+    ideal_ratio,
+    ratio_range,
+    rolling_radius,
+    spin,
+    tilt_from_ratio,
+    tilt_limits,
+)
 
 angles = st.floats(np.radians(15), np.radians(75))
 

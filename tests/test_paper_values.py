@@ -7,7 +7,6 @@ Eq. 39 give equal results. Tolerance +/- 0.01 on efficiency (values read from th
 
 import numpy as np
 import pytest
-
 from conftest import PAPER
 
 

@@ -1,7 +1,6 @@
 """Parameter sets: the cited Table I drive, TOML round trip, validation messages."""
 
 import math
-
 import re
 
 import pytest

@@ -8,13 +8,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ballcvt import Variator, load_builtin
-from ballcvt.equilibrium.problem import (ball_mass, build_problem, centrifugal_force,
-                                         idler_share)
+from ballcvt.equilibrium.problem import ball_mass, build_problem, centrifugal_force, idler_share
 from ballcvt.errors import InputError
-from ballcvt.modes import MEMBERS, OperatingMode, relative_ratio_coefficients
+from ballcvt.model.modes import MEMBERS, OperatingMode, relative_ratio_coefficients
 from ballcvt.results.planetary import PlanetaryResult
-from ballcvt.solver.planetary import solve_mode
-from ballcvt.solver.point import solve_point
+from ballcvt.solvers.planetary import solve_mode
+from ballcvt.solvers.point import solve_point
 
 F = 2000.0
 MODES = [OperatingMode(h, d) for h in MEMBERS for d in MEMBERS if h != d]
@@ -231,7 +230,7 @@ def test_free_differential_takes_two_speeds(v):
 
 
 def test_batch_equals_point_solves(v):
-    from ballcvt.sweeps.planetary import solve_mode_batch
+    from ballcvt.solvers.planetary_batch import solve_mode_batch
     mode = OperatingMode("disc0", "carrier")
     ratios = np.array([0.6, 0.95, 1.3])
     got = solve_mode_batch(v.design, v.fluid, "double", mode, ratios, 20.0, 100.0, F)
@@ -249,7 +248,7 @@ def test_batch_equals_point_solves(v):
 
 
 def test_capacity_per_mode_matches_the_limit_with_the_carrier_held(v):
-    from ballcvt.sweeps.planetary import limit_load_batch
+    from ballcvt.solvers.planetary_batch import limit_load_batch
     ratios = np.array([0.7, 1.5])
     got = limit_load_batch(v.design, v.fluid, "double", OperatingMode(), ratios, 100.0, F)
     for ratio, limit in zip(ratios, got):
@@ -264,7 +263,7 @@ def test_carrier_torque_from_its_reactions(v, mode):
     """The carrier's torque from the axle reactions and bearing torques equals the balance
     of the three shafts, T_2 - T_0, in the carrier frame, held or turning."""
     from ballcvt.equilibrium.residual import carrier_reaction_torque
-    from ballcvt.solver.planetary import solve_mode
+    from ballcvt.solvers.planetary import solve_mode
     for ratio in (0.6, 1.7):
         if mode.driver == "disc0" and mode.held == "disc2" and ratio > 1:
             continue                          # the carrier would turn too fast

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from ballcvt.cli.main import main
+from ballcvt.interfaces.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"

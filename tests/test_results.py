@@ -3,9 +3,9 @@
 import dataclasses
 
 import pytest
+from conftest import PAPER
 
 from ballcvt import OperatingResult, __version__
-from conftest import PAPER
 
 
 def test_result_round_trip(double, tmp_path):

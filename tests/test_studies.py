@@ -9,10 +9,12 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ballcvt import InputError
-from ballcvt.cli import main as cli
+from ballcvt.analysis.studies import run as run_module
+from ballcvt.analysis.studies.pareto import pareto_mask
+from ballcvt.analysis.studies.run import local_client, run_study
+from ballcvt.analysis.studies.spec import parse_study, read_study
+from ballcvt.interfaces.cli import main as cli
 from ballcvt.params.io import load_drive
-from ballcvt.studies import local_client, pareto_mask, parse_study, read_study, run_study
-from ballcvt.studies import run as run_module
 
 DATA = Path(__file__).parent / "data"
 TINY = DATA / "study_tiny.toml"
@@ -175,7 +177,8 @@ def test_quick_example_is_valid():
 
 @pytest.mark.parametrize("path", sorted((ROOT / "examples" / "studies").glob("*.toml")))
 def test_example_studies_parse_and_their_first_design_evaluates(path):
-    from ballcvt.studies import design_vectors, evaluate_chunk, make_context
+    from ballcvt.analysis.studies.evaluate import evaluate_chunk, make_context
+    from ballcvt.analysis.studies.run import design_vectors
     spec = read_study(path)
     ctx = make_context(spec)
     n = 2

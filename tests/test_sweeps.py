@@ -4,10 +4,11 @@ import numpy as np
 import pytest
 
 from ballcvt import InputError
-from ballcvt.cli.main import main
-from ballcvt.reports import reproduce
-from ballcvt.reports.figures import FIGURES
-from ballcvt.sweeps import VARIABLES, load_dataset, to_csv, to_netcdf
+from ballcvt.analysis.reproduction import reproduce
+from ballcvt.analysis.reproduction.figures import FIGURES
+from ballcvt.analysis.sweeps.export import load_dataset, to_csv, to_netcdf
+from ballcvt.analysis.sweeps.variables import VARIABLES
+from ballcvt.interfaces.cli.main import main
 
 OP = {"clamp_force": 2000.0, "input_speed_rpm": 2000.0}
 
@@ -61,7 +62,7 @@ def test_netcdf_and_csv_round_trip(small, tmp_path):
     import pandas as pd
 
     from ballcvt import Design, Fluid
-    from ballcvt.sweeps import parameters
+    from ballcvt.analysis.sweeps.export import parameters
     path = to_netcdf(small, tmp_path / "s.nc")
     assert path.read_bytes()[:4] == b"\x89HDF"                 # NetCDF-4 (HDF5)
     back = load_dataset(path)

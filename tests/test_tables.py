@@ -7,8 +7,8 @@ from scipy.interpolate import RegularGridInterpolator
 from scipy.io import loadmat
 
 from ballcvt import Variator, load_builtin
-from ballcvt.cli import main as cli
-from ballcvt.sweeps.tables import read_modelica_tables
+from ballcvt.analysis.tables import read_modelica_tables
+from ballcvt.interfaces.cli import main as cli
 
 
 @pytest.fixture(scope="module")

@@ -8,11 +8,17 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ballcvt import InputError, Variator, load_builtin
-from ballcvt.cli import main as cli
-from ballcvt.contact import Quadrature, law_coefficients, traction_coefficients
-from ballcvt.contact.curve import traction_curve
-from ballcvt.contact.thermal import FLASH_FACTOR, film_temperature_rise, thermal_coefficients
-from ballcvt.fitting import Curves, fit_fluid, model_mu, read_curves
+from ballcvt.analysis.fitting import Curves, fit_fluid, model_mu, read_curves
+from ballcvt.interfaces.cli import main as cli
+from ballcvt.model.traction.base import law_coefficients
+from ballcvt.model.traction.curve import traction_curve
+from ballcvt.model.traction.isothermal import traction_coefficients
+from ballcvt.model.traction.quadrature import Quadrature
+from ballcvt.model.traction.thermal import (
+    FLASH_FACTOR,
+    film_temperature_rise,
+    thermal_coefficients,
+)
 from ballcvt.params.io import load_builtin_fluid, load_fluid
 from ballcvt.params.models import LAW_FIELDS, Fluid
 

@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from ballcvt import load_builtin
-from ballcvt.fitting import Curves, model_mu
+from ballcvt.analysis.fitting import Curves, model_mu
 
 design, fluid = load_builtin()
 fluid = fluid.replace(traction_law="thermal")

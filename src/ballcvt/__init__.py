@@ -12,13 +12,16 @@ Quick start::
     print(r.eta, r.contacts["output"].creep)
 """
 
+from . import _compat
 from ._version import __version__
-from .contact.quadrature import REFERENCE, Quadrature
+from .api import Variator
 from .errors import BallCVTError, ConvergenceError, InputError, TractionLimitError
+from .model.traction.quadrature import REFERENCE, Quadrature
 from .params import Design, Fluid, OperatingPoint, drive_to_toml, load_builtin, load_drive
 from .results.point import ContactResult, OperatingResult
-from .solver.point import SolverOptions
-from .variator import Variator
+from .solvers.point import SolverOptions
+
+_compat.install()
 
 __all__ = [
     "__version__",

@@ -72,3 +72,11 @@ def _fmt(value: object) -> str:
     if isinstance(value, float):
         return f"{value:.6g}"
     return repr(value) if isinstance(value, str) else str(value)
+
+
+class BallCVTDeprecationWarning(FutureWarning):
+    """A public name, module path or option was renamed: the message gives the new one.
+
+    A `FutureWarning` so that users see it by default (Python hides a plain
+    `DeprecationWarning` outside ``__main__``).
+    """

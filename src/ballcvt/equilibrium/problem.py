@@ -10,18 +10,18 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..bearings.parasitic import parasitic_torques
-from ..contact.hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
-from ..contact.rheology import roelands_pressure_limit
 from ..errors import InputError
-from ..geometry.kinematics import (
+from ..model.architectures import ContactLayout, contact_layout
+from ..model.hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
+from ..model.kinematics import (
     body_speeds,
     check_ratio,
     rolling_radius,
     spin_axis_projection,
     tilt_from_ratio,
 )
-from ..geometry.layout import ContactLayout, contact_layout
+from ..model.losses import parasitic_torques
+from ..model.rheology import roelands_pressure_limit
 from ..params.models import Design, Fluid
 
 __all__ = [

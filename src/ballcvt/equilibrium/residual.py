@@ -27,11 +27,11 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..bearings.friction import load_dependent_torque, speed_dependent_torque
-from ..contact.film import SPEED_EXPONENT, central_film_thickness
-from ..contact.laws import law_coefficients
-from ..contact.quadrature import Quadrature
-from ..geometry.kinematics import body_speeds, creep_term, entrainment_factor, spin
+from ..model.bearings import load_dependent_torque, speed_dependent_torque
+from ..model.film import SPEED_EXPONENT, central_film_thickness
+from ..model.kinematics import body_speeds, creep_term, entrainment_factor, spin
+from ..model.traction.base import law_coefficients
+from ..model.traction.quadrature import Quadrature
 from .problem import EquilibriumProblem
 
 __all__ = [

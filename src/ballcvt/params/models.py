@@ -56,7 +56,7 @@ def _opt(unit: str, description: str, **constraints: Any) -> Any:
     )
 
 
-#: Shear laws of the film (`ballcvt.contact.laws`), and the `Fluid` fields each needs.
+#: Shear laws of the film (`ballcvt.model.traction.base`), and the `Fluid` fields each needs.
 TractionLaw = Literal["isothermal", "thermal", "viscoelastic"]
 LAW_FIELDS: dict[str, tuple[str, ...]] = {
     "isothermal": (),

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState
-from ..geometry.kinematics import creep_term
+from ..model.kinematics import creep_term
 
 __all__ = [
     "PowerLosses",

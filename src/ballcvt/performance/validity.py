@@ -11,10 +11,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact.film import minimum_film_thickness
 from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState
-from ..geometry.kinematics import entrainment_factor
+from ..model.film import minimum_film_thickness
+from ..model.kinematics import entrainment_factor
 
 __all__ = [
     "WARNINGS",

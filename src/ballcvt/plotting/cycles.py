@@ -23,7 +23,7 @@ def cycle_figure(steps, title: str = "Duty cycle") -> Figure:
     Parameters
     ----------
     steps : pandas.DataFrame
-        `ballcvt.cycles.CycleResult.steps`.
+        `ballcvt.analysis.cycles.CycleResult.steps`.
     title : str
         Figure title.
 

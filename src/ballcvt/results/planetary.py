@@ -12,7 +12,7 @@ from typing import Any
 from .._display import html_summary, text_summary
 from .._version import __version__
 from ..errors import InputError
-from ..modes import MEMBERS, OperatingMode, member_torques
+from ..model.modes import MEMBERS, OperatingMode, member_torques
 from .point import OperatingResult, _JsonFile, read_result
 
 __all__ = ["PlanetaryResult", "make_planetary_result"]

@@ -18,16 +18,16 @@ import numpy as np
 from pydantic import TypeAdapter, ValidationError
 
 from .._display import html_summary, text_summary
-from .._fileio import atomic_write_text
 from .._version import __version__
-from ..clamping.laws import axial_force
-from ..contact.quadrature import Quadrature
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import InputError
+from ..files import atomic_write_text
+from ..model.clamping import axial_force
+from ..model.traction.quadrature import Quadrature
 from ..params.models import Design, Fluid
 from ..performance.efficiency import efficiency, loss_breakdown, power_losses
 from ..performance.validity import validity, warning_messages
-from ..solver.point import PointSolution
+from ..solvers.point import PointSolution
 
 __all__ = ["ContactResult", "OperatingResult", "make_result"]
 

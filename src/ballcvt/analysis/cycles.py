@@ -1,0 +1,457 @@
+"""Run a drive over a duty cycle: pick the ratio, solve every step batched, add up energy.
+
+Strategies (``strategy=``):
+
+* ``target-input-speed``: hold the input at a target speed (a cyclist's cadence, a
+  motor's best speed): ``tau_ID = omega_2 / (omega_target eta_speed)``, found in two
+  batched passes (the second corrects for the creep of the first). Steps whose ratio falls
+  outside the usable range run at the range's end and are flagged ``ratio_limited``.
+* ``max-efficiency``: at each step, the most efficient of ``candidates`` ratios spread
+  geometrically over the ratio range (or ``ratio_range``), refined by a parabola through
+  the best and its neighbours; the input speed follows from the output speed.
+
+The ratio search and the creep correction use the solver's coarse predictor rule; every
+reported value comes from a final solve on the full quadrature.
+
+Input-side cycles (test rigs) give the input speed and power; with a ``ratio`` column the
+ratio is commanded, else ``max-efficiency`` picks it. Their output torque is found by a
+batched secant iteration on ``P_in = T_0 omega_0``.
+
+Steps with no speed or no power are idle (zero energy, not flagged); negative torque
+(braking) is outside the model and flagged ``negative_torque``; an input power below the
+drive's own losses at zero output torque is flagged ``power_below_drag``; steps beyond the
+traction
+capacity (status 1) or not converged (status 2) are flagged and carry no energy, which the
+summary reports as the energy the drive could not deliver (docs/cycles.md).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time as _time
+from concurrent.futures import ProcessPoolExecutor
+from contextlib import nullcontext
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._display import html_summary, text_summary
+from .._version import __version__
+from ..errors import InputError
+from ..files import atomic_write_text
+from ..model.clamping import clamp_law as resolve_law
+from ..model.kinematics import ratio_range as usable_ratio_range
+from ..performance.efficiency import LOSS_KINDS
+from .cycle_files import STRATEGIES, Cycle
+from .sweeps.export import write_table
+from .sweeps.points import evaluate_points
+from .sweeps.variables import STATUS
+
+__all__ = ["CycleResult", "run_cycle", "STRATEGIES", "FLAGS"]
+
+#: Step flags (``flag`` column): ``ok`` and ``idle`` are not counted as flagged.
+FLAGS = (
+    "ok",
+    "idle",
+    "ratio_limited",
+    "negative_torque",
+    "power_below_drag",
+    "beyond_capacity",
+    "not_converged",
+)
+#: Secant passes for the output torque of an input-side cycle.
+POWER_PASSES = 12
+#: Relative tolerance of its input torque [-].
+POWER_RTOL = 1e-9
+
+
+@dataclass(frozen=True)
+class CycleResult:
+    """A duty cycle run: every step and the totals.
+
+    Attributes
+    ----------
+    steps : pandas.DataFrame
+        One row per step (SI units; ``input_speed_rpm``/``output_speed_rpm`` in rpm),
+        with ``flag`` (`FLAGS`) and ``status``.
+    summary : dict
+        ``energy_in_J``, ``energy_out_J``, ``efficiency`` (energy out over energy in),
+        ``losses_J`` (by kind), ``steps``, ``steps_flagged``, ``flags`` (steps and seconds
+        per flag), the inputs (design, strategy, clamping law) and the run time.
+    """
+
+    steps: Any  # pandas.DataFrame
+    summary: dict = field(default_factory=dict)
+
+    def _summary(self) -> tuple[str, list]:
+        s = self.summary
+        eff = s.get("efficiency")
+        rows = [
+            ("steps", s.get("steps", len(self.steps)), ""),
+            ("duration", s.get("duration_s", float("nan")), "s"),
+            ("energy in", s.get("energy_in_J", float("nan")) / 3.6e3, "Wh"),
+            ("energy out", s.get("energy_out_J", float("nan")) / 3.6e3, "Wh"),
+            ("efficiency", "n/a" if eff is None else eff, "-"),
+            ("steps flagged", s.get("steps_flagged", 0), ""),
+            ("strategy", s.get("strategy", ""), ""),
+        ]
+        return "CycleResult", rows
+
+    def __repr__(self) -> str:
+        return text_summary(*self._summary())
+
+    def _repr_html_(self) -> str:
+        return html_summary(*self._summary())
+
+    def to_dataframe(self):
+        """The steps, one row each (`steps`)."""
+        return self.steps
+
+    def save(self, out) -> list[Path]:
+        """Write ``steps.csv`` and ``summary.json`` into the folder ``out``."""
+        out = Path(out)
+        units = {
+            "time": "s",
+            "duration": "s",
+            "input_speed_rpm": "rpm",
+            "output_speed_rpm": "rpm",
+            "input_power": "W",
+            "output_power": "W",
+            **{f"loss_{k}": "W" for k in LOSS_KINDS},
+        }
+        files = [
+            write_table(self.steps, out / "steps.csv", units),
+            atomic_write_text(out / "summary.json", json.dumps(self.summary, indent=2)),
+        ]
+        return files
+
+
+def run_cycle(
+    variator,
+    cycle: Cycle,
+    *,
+    strategy: str = "target-input-speed",
+    target_input_speed: float | None = None,
+    clamp_force: float | None = None,
+    clamp_law=None,
+    candidates: int = 9,
+    ratio_range=None,
+    progress: bool | None = None,
+    workers: int = 1,
+) -> CycleResult:
+    """Evaluate a drive over a duty cycle, all steps batched.
+
+    Parameters
+    ----------
+    variator : Variator
+        The drive (design, fluid, architecture, solver options).
+    cycle : Cycle
+        From `ballcvt.analysis.cycles.read_cycle` or `cycle_from_arrays`.
+    strategy : {"target-input-speed", "max-efficiency"}
+        How the ratio is chosen (output-side cycles; input-side cycles with a ``ratio``
+        column use it as commanded).
+    target_input_speed : float, optional
+        Input speed held by ``target-input-speed`` [rad/s].
+    clamp_force, clamp_law
+        As in `Variator.solve` (constant force, ``cam``, ``optimal`` or a law object).
+    candidates : int
+        Ratios tried per step by ``max-efficiency`` (3-101).
+    ratio_range : (float, float), optional
+        Ratios ``max-efficiency`` may use [-]; the usable range by default.
+    progress : bool, optional
+        Progress bar (default: when stderr is a terminal).
+    workers : int
+        Processes to solve the steps on (1-64; the same results, to round-off).
+
+    Returns
+    -------
+    CycleResult
+    """
+    import sys
+
+    import pandas as pd
+    from tqdm.auto import tqdm
+
+    start = _time.perf_counter()
+    if strategy not in STRATEGIES:
+        raise InputError("strategy", strategy, "one of: " + ", ".join(STRATEGIES))
+    if not 3 <= int(candidates) <= 101:
+        raise InputError("candidates", candidates, "3-101")
+    if not 1 <= int(workers) <= 64:
+        raise InputError("workers", workers, "1-64")
+    design = variator.design
+    law = resolve_law(clamp_law, design, clamp_force)
+    lo, hi = usable_ratio_range(design)
+    r_lo, r_hi = (lo, hi) if ratio_range is None else map(float, ratio_range)
+    if not lo <= r_lo < r_hi <= hi:
+        raise InputError(
+            "ratio_range",
+            f"{r_lo:g} {r_hi:g}",
+            f"MIN < MAX within the usable range {lo:.4g}-{hi:.4g}",
+        )
+    commanded = cycle.kind == "input" and cycle.ratio is not None
+    if strategy == "target-input-speed" and not commanded:
+        if cycle.kind == "input":
+            raise InputError(
+                "strategy",
+                strategy,
+                "max-efficiency (an input-side cycle "
+                "without a ratio column fixes the input speed already)",
+            )
+        if target_input_speed is None or not target_input_speed > 0:
+            raise InputError(
+                "target_input_speed",
+                target_input_speed,
+                "> 0 rad/s for the target-input-speed strategy",
+            )
+    n = cycle.size
+    # the columns of the cycle's kind (read_cycle guarantees them)
+    speed_in: Any = cycle.input_speed if cycle.kind == "input" else None
+    speed_out: Any = cycle.output_speed if cycle.kind == "output" else None
+    torque: Any = cycle.output_torque if cycle.kind == "output" else None
+    power: Any = cycle.input_power if cycle.kind == "input" else None
+    flag = np.full(n, "ok", dtype=object)
+    if cycle.kind == "output":
+        idle = (speed_out <= 0) | (torque == 0)
+        flag[torque < 0] = "negative_torque"
+    else:
+        idle = (speed_in <= 0) | (power == 0)
+        flag[power < 0] = "negative_torque"
+    flag[idle] = "idle"
+    run = np.flatnonzero(flag == "ok")
+
+    show = sys.stderr.isatty() if progress is None else progress
+    passes = {"target-input-speed": 2, "max-efficiency": candidates + 2}[strategy]
+    if cycle.kind == "input":
+        passes = POWER_PASSES * (1 if commanded else candidates + 1)
+    bar = tqdm(
+        total=passes * run.size, desc=f"duty cycle, {n} steps", unit="point", disable=not show
+    )
+
+    # the ratio search and the creep correction run on the solver's coarse rule (the
+    # predictor); every reported value comes from a final solve on the full rule
+    fine = variator.options
+    coarse = replace(fine, quadrature=fine.predictor or fine.quadrature, predictor=None)
+
+    def solve(ratio, t2, w0, rough=False):
+        return evaluate_points(
+            design,
+            variator.fluid,
+            variator.architecture,
+            ratio,
+            t2,
+            w0,
+            clamp_force=law.force if law.name == "constant" else None,
+            law=None if law.name == "constant" else law,
+            options=coarse if rough else fine,
+            callback=bar.update,
+            executor=pool,
+        )
+
+    pool = ProcessPoolExecutor(max_workers=workers) if workers > 1 else None
+    with bar, pool or nullcontext():
+        if cycle.kind == "output":
+            ratio, w0, res = _output_side(
+                solve,
+                strategy,
+                speed_out[run],
+                torque[run],
+                target_input_speed,
+                lo,
+                hi,
+                r_lo,
+                r_hi,
+                candidates,
+                flag,
+                run,
+            )
+            t2 = torque[run]
+        else:
+            fixed = cycle.ratio[run] if commanded and cycle.ratio is not None else None
+            ratio, w0, t2, res = _input_side(
+                solve, speed_in[run], power[run], fixed, r_lo, r_hi, candidates, flag, run, lo, hi
+            )
+    status = res["status"]
+    flag[run[status == STATUS["beyond_limit"]]] = "beyond_capacity"
+    flag[run[status == STATUS["not_converged"]]] = "not_converged"
+    if "below_drag" in res:
+        flag[run[res["below_drag"]]] = "power_below_drag"
+    steps = _table(cycle, n, run, ratio, w0, t2, res, flag)
+    summary = _summary(
+        variator, cycle, steps, strategy, law, target_input_speed, _time.perf_counter() - start
+    )
+    summary["workers"] = int(workers)
+    return CycleResult(steps=pd.DataFrame(steps), summary=summary)
+
+
+def _output_side(solve, strategy, w2, t2, target, lo, hi, r_lo, r_hi, candidates, flag, run):
+    if strategy == "target-input-speed":
+        want = w2 / target
+        ratio = np.clip(want, lo, hi)
+        limited = ratio != want
+        flag[run[limited]] = "ratio_limited"
+        res = solve(ratio, t2, w2 / ratio, rough=True)
+        # second pass: the creep's speed loss, so that the input turns at the target
+        speed_eff = np.where(res["status"] == 0, res["eta_speed"], 1.0)
+        ratio2 = np.where(limited, ratio, np.clip(want / speed_eff, lo, hi))
+        w0 = np.where(limited, w2 / ratio, target)
+        return ratio2, w0, solve(ratio2, t2, w0)
+    ratio = _best_ratio(
+        lambda r: solve(r, t2, w2 / r, rough=True), t2.size, r_lo, r_hi, candidates
+    )
+    first = solve(ratio, t2, w2 / ratio, rough=True)
+    speed_eff = np.where(first["status"] == 0, first["eta_speed"], 1.0)
+    w0 = w2 / (ratio * speed_eff)  # the output turns at the cycle's speed
+    return ratio, w0, solve(ratio, t2, w0)
+
+
+def _best_ratio(evaluate, n, r_lo, r_hi, candidates):
+    """Most efficient ratio per point: the best of a geometric grid, refined by a parabola
+    in log(ratio) through it and its neighbours (kept within them)."""
+    grid = np.geomspace(r_lo, r_hi, candidates)
+    eta = np.empty((n, candidates))
+    for j, r in enumerate(grid):
+        out = evaluate(np.full(n, r))
+        eta[:, j] = np.where(out["status"] == 0, out["eta"], -np.inf)
+    best = np.argmax(eta, axis=1)
+    ratio = grid[best]
+    x = np.log(grid)
+    inner = (best > 0) & (best < candidates - 1) & np.isfinite(eta.max(axis=1))
+    i = np.flatnonzero(inner)
+    if i.size:
+        b = best[i]
+        y0, y1, y2 = eta[i, b - 1], eta[i, b], eta[i, b + 1]
+        ok = np.isfinite(y0) & np.isfinite(y2)
+        h = x[1] - x[0]
+        with np.errstate(invalid="ignore"):
+            denom = np.where(ok, y0 - 2 * y1 + y2, 0.0)
+            shift = np.where(
+                ok & (denom < 0),
+                0.5 * h * np.where(ok, y0 - y2, 0.0) / np.where(denom < 0, denom, -1.0),
+                0.0,
+            )
+        ratio[i] = np.exp(x[b] + np.clip(shift, -h, h))
+    return ratio
+
+
+def _input_side(solve, w0, power, fixed, r_lo, r_hi, candidates, flag, run, lo, hi):
+    def at(ratio):
+        """The output torque whose input torque is ``P / omega_0``: secant iterations on
+        ``T_0(T_2)``, which is nearly affine (a drag plus ``tau_ID T_2 / eta_T``)."""
+        t_in = power / w0
+        t2, prev = t_in * ratio * 0.9, None
+        for _ in range(POWER_PASSES):
+            out = solve(ratio, t2, w0)
+            ok = out["status"] == 0
+            got = np.where(ok, out["input_torque"], np.nan)
+            if np.all(~ok | (np.abs(got - t_in) <= POWER_RTOL * t_in)):
+                break
+            with np.errstate(divide="ignore", invalid="ignore"):
+                slope = ratio if prev is None else (got - prev[1]) / (t2 - prev[0])
+            slope = np.where(np.isfinite(slope) & (slope > 0), slope, ratio)
+            prev = (t2, got)
+            t2 = np.where(ok, np.maximum(t2 + (t_in - got) / slope, 0.0), t2)
+        out = solve(ratio, t2, w0)
+        missed = (out["status"] == 0) & (np.abs(out["input_torque"] - t_in) > 1e-6 * t_in)
+        out["status"] = np.where(missed, STATUS["not_converged"], out["status"])
+        # the drive's own losses at zero output torque need more than the cycle's power
+        out["below_drag"] = missed & (t2 == 0.0) & (out["input_torque"] > t_in)
+        return t2, out
+
+    if fixed is not None:
+        ratio = fixed.copy()
+        outside = (ratio < lo) | (ratio > hi)
+        ratio[outside] = np.clip(ratio[outside], lo, hi)
+        flag[run[outside]] = "ratio_limited"
+    else:
+        ratio = _best_ratio(lambda r: at(r)[1], w0.size, r_lo, r_hi, candidates)
+    t2, res = at(ratio)
+    return ratio, w0, t2, res
+
+
+def _table(cycle: Cycle, n, run, ratio, w0, t2, res, flag) -> dict:
+    nan = np.full(n, np.nan)
+    col = {}
+
+    def put(values):
+        v = nan.copy()
+        v[run] = values
+        return v
+
+    col["time"] = cycle.time
+    col["duration"] = cycle.durations
+    col["ratio"] = put(ratio)
+    col["input_speed_rpm"] = put(w0 * 30 / math.pi)
+    col["output_speed_rpm"] = put(res["actual_ratio"] * w0 * 30 / math.pi)
+    col["output_torque"] = put(t2)
+    col["input_torque"] = put(res["input_torque"])
+    col["input_power"] = col["input_torque"] * col["input_speed_rpm"] * math.pi / 30
+    col["output_power"] = col["output_torque"] * col["output_speed_rpm"] * math.pi / 30
+    col["clamp_force"] = put(res["clamp_force"])
+    col["axial_force"] = put(res["axial_force"])
+    col["eta"] = put(res["eta"])
+    col["tilt_deg"] = put(res["tilt_deg"])
+    for j, kind in enumerate(LOSS_KINDS):
+        col[f"loss_{kind}"] = put(res["losses"][:, j])
+    col["warnings"] = put(res["warnings"]).astype(float)
+    status = np.full(n, -1)
+    status[run] = res["status"]
+    col["status"] = status
+    col["flag"] = flag
+    idle = flag == "idle"
+    for key in ("input_power", "output_power", *(f"loss_{k}" for k in LOSS_KINDS)):
+        col[key] = np.where(idle, 0.0, col[key])
+    return col
+
+
+def _summary(variator, cycle, steps, strategy, law, target, run_time) -> dict:
+    dt = steps["duration"]
+    ok = steps["flag"] == "ok"
+    counted = ok | (steps["flag"] == "ratio_limited") & (steps["status"] == 0)
+    e_in = float(np.sum(np.where(counted, steps["input_power"] * dt, 0.0)))
+    e_out = float(np.sum(np.where(counted, steps["output_power"] * dt, 0.0)))
+    losses = {
+        k: float(np.sum(np.where(counted, steps[f"loss_{k}"] * dt, 0.0))) for k in LOSS_KINDS
+    }
+    flags = {}
+    for f in FLAGS:
+        mask = steps["flag"] == f
+        flags[f] = {"steps": int(mask.sum()), "time_s": float(np.sum(dt[mask]))}
+    if cycle.kind == "output":
+        demand = np.where(steps["flag"] != "idle", cycle.output_speed * cycle.output_torque, 0.0)
+        missing = float(np.sum(np.where(counted, 0.0, np.maximum(demand, 0.0)) * dt))
+    else:
+        missing = float(
+            np.sum(
+                np.where(
+                    counted | (steps["flag"] == "idle"), 0.0, np.maximum(cycle.input_power, 0.0)
+                )
+                * dt
+            )
+        )
+    return {
+        "cycle": cycle.name,
+        "kind": cycle.kind,
+        "duration_s": float(np.sum(dt)),
+        "energy_in_J": e_in,
+        "energy_out_J": e_out,
+        "efficiency": e_out / e_in if e_in > 0 else None,
+        "losses_J": losses,
+        "energy_not_delivered_J": missing,
+        "steps": int(len(dt)),
+        "steps_flagged": int(sum(v["steps"] for k, v in flags.items() if k not in ("ok", "idle"))),
+        "flags": flags,
+        "strategy": strategy
+        if not (cycle.kind == "input" and cycle.ratio is not None)
+        else "commanded ratio",
+        "target_input_speed_rpm": None if target is None else target * 30 / math.pi,
+        "clamp_law": law.name,
+        "clamp_force": getattr(law, "force", None),
+        "architecture": variator.architecture,
+        "design": variator.design.name,
+        "version": __version__,
+        "run_time_s": run_time,
+    }

@@ -1,0 +1,273 @@
+"""Evaluate designs of a study: build, check, solve the duty, score (docs/studies.md).
+
+`evaluate_chunk` is what a Dask task runs: a chunk of designs, each with all its operating
+points batched through the fast solver (`ballcvt.analysis.sweeps.points.evaluate_points`) and its
+limits in one `limit_search`. It is a pure function of its arguments, so a design gives the
+same numbers in any process.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ...errors import BallCVTError
+from ...model.architectures import contact_layout
+from ...model.clamping import clamp_law
+from ...model.kinematics import ratio_range
+from ...params.io import resolve_drive
+from ...params.models import Design, Fluid
+from ...solvers.point import SolverOptions
+from ..sweeps.curves import limit_search_curves
+from ..sweeps.points import evaluate_points
+from .spec import OBJECTIVES, StudySpec
+
+__all__ = ["Context", "make_context", "evaluate_chunk", "STATUS", "METRICS", "envelope_diameter"]
+
+#: Design status codes.
+STATUS = {0: "evaluated", 1: "cannot be built", 2: "constraint violated", 3: "not solved"}
+#: Figures recorded for every design (the objectives are among them).
+METRICS = tuple(OBJECTIVES)
+
+
+@dataclass(frozen=True)
+class Context:
+    """Everything a task needs besides the designs' parameter vectors (picklable)."""
+
+    spec: StudySpec
+    base: dict
+    fluid: Fluid
+    ratio: np.ndarray
+    torque: np.ndarray
+    speed: np.ndarray
+    weights: np.ndarray
+    capacity_ratios: np.ndarray
+
+    @property
+    def n_points(self) -> int:
+        return int(self.ratio.size)
+
+
+def make_context(spec: StudySpec) -> Context:
+    """Resolve the study's drive, fluid and operating points."""
+    design, fluid = resolve_drive(spec.study.drive)
+    fluid = fluid.with_traction_law(spec.study.traction_law)
+    op = spec.operating
+    if op.cycle is None:
+        r, t, w = np.meshgrid(
+            np.asarray(op.ratio),
+            np.asarray(op.output_torque),
+            np.asarray(op.input_speed_rpm) * math.pi / 30,
+            indexing="ij",
+        )
+        ratio, torque, speed = r.ravel(), t.ravel(), w.ravel()
+        weights = (
+            np.ones(ratio.size) if op.weights is None else np.asarray(op.weights, dtype=float)
+        )
+    else:
+        ratio = torque = speed = weights = np.zeros(0)
+    cap = spec.study.capacity_ratios
+    if cap is None:
+        cap = sorted(set(op.ratio)) if op.ratio else [1.0]
+    cap = sorted(set(cap) | {c.ratio for c in spec.constraints.min_capacity})
+    return Context(
+        spec,
+        design.model_dump(),
+        fluid,
+        ratio,
+        torque,
+        speed,
+        weights / weights.sum() if weights.size else weights,
+        np.asarray(cap, dtype=float),
+    )
+
+
+def envelope_diameter(design: Design) -> float:
+    """Diameter of the balls' envelope ``2 (k + 2) r_S`` [m]: the balls' centres lie at
+    ``(1 + k) r_S`` from the axis (docs/model.md §1)."""
+    return 2.0 * (design.aspect_ratio + 2.0) * design.roller_radius
+
+
+def evaluate_chunk(ctx: Context, index: np.ndarray, x: np.ndarray) -> dict:
+    """Evaluate designs ``x`` (rows of parameter values, `StudySpec.names` order).
+
+    Returns a dict of arrays with a leading axis of length ``len(index)``: ``design``
+    (the indices), ``status`` (`STATUS`), ``reason``, every metric of `METRICS`, ``eta``
+    and ``point_status`` ``(n, n_points)``.
+    """
+    n = len(index)
+    out: dict[str, Any] = {
+        "design": np.asarray(index, dtype=np.int64),
+        "status": np.zeros(n, np.int8),
+        "reason": np.full(n, "", dtype="<U200"),
+    }
+    out.update({m: np.full(n, np.nan) for m in METRICS})
+    out["eta"] = np.full((n, ctx.n_points), np.nan)
+    out["point_status"] = np.full((n, ctx.n_points), -1, np.int8)
+    for row in range(n):
+        try:
+            status, reason, metrics, eta, pst = _evaluate(ctx, dict(zip(ctx.spec.names, x[row])))
+        except BallCVTError as exc:  # a solve that failed: said, not raised
+            status, reason, metrics, eta, pst = 3, str(exc), {}, None, None
+        out["status"][row], out["reason"][row] = status, reason[:200]
+        for m, v in metrics.items():
+            out[m][row] = v
+        if eta is not None:
+            out["eta"][row], out["point_status"][row] = eta, pst
+    return out
+
+
+def _design(ctx: Context, values: dict):
+    fields = {k: v for k, v in values.items() if k != "clamp_force"}
+    for key, value in fields.items():  # whole numbers for integer fields
+        if Design.model_fields[key].annotation is int:
+            fields[key] = int(round(value))
+    data = {**ctx.base, **ctx.spec.fixed, **fields}
+    data["name"] = f"{ctx.spec.study.name}: " + ", ".join(
+        f"{k} = {v:.6g}" for k, v in values.items()
+    )
+    return Design(**data)
+
+
+def _evaluate(ctx: Context, values: dict):
+    """(status, reason, metrics, eta per point, point status) of one design."""
+    spec, con = ctx.spec, ctx.spec.constraints
+    try:
+        design = _design(ctx, values)
+        contact_layout(design, spec.study.architecture)
+    except BallCVTError as exc:
+        return 1, str(exc), {}, None, None
+    metrics = {"outer_diameter": envelope_diameter(design)}
+    lo, hi = ratio_range(design)
+    needed = [*ctx.ratio, *ctx.capacity_ratios] + (con.ratio_range or [])
+    if needed and (min(needed) < lo or max(needed) > hi):
+        return (
+            2,
+            (f"ratio range {lo:.3f}-{hi:.3f} does not cover {min(needed):g}-{max(needed):g}"),
+            metrics,
+            None,
+            None,
+        )
+    if con.outer_diameter_max is not None and metrics["outer_diameter"] > con.outer_diameter_max:
+        return (
+            2,
+            (f"outer_diameter {metrics['outer_diameter']:.4g} m > {con.outer_diameter_max:g} m"),
+            metrics,
+            None,
+            None,
+        )
+    force = values.get("clamp_force", spec.operating.clamp_force)
+    law = None if spec.operating.clamp_law == "constant" else spec.operating.clamp_law
+    law_obj = None if law is None else clamp_law(law, design)
+    eta = pst = None
+    if spec.operating.cycle is None:
+        res = evaluate_points(
+            design,
+            ctx.fluid,
+            spec.study.architecture,
+            ctx.ratio,
+            ctx.torque,
+            ctx.speed,
+            clamp_force=None if law else force,
+            law=law_obj,
+        )
+        pst, eta = res["status"].astype(np.int8), res["eta"]
+        beyond = int(np.sum(pst != 0))
+        metrics["max_pressure"] = float(np.nanmax(res["p_max"])) if beyond < pst.size else np.nan
+        metrics["min_lambda"] = (
+            float(np.nanmin(res["lambda_ratio"])) if beyond < pst.size else np.nan
+        )
+        if beyond:
+            return (
+                2,
+                (
+                    f"{beyond} of {pst.size} operating points beyond the traction capacity "
+                    "or not solved"
+                ),
+                metrics,
+                eta,
+                pst,
+            )
+        metrics["eta_mean"] = float(np.sum(ctx.weights * eta))
+        metrics["eta_min"] = float(np.min(eta))
+    else:
+        cyc = _cycle(ctx, design, force, law)
+        metrics["cycle_efficiency"] = cyc["efficiency"]
+        beyond = cyc["beyond"]
+        if beyond:
+            return 2, f"{beyond} cycle steps beyond the traction capacity", metrics, None, None
+    # capacity at the capacity ratios (constant force: the study's; laws: their own),
+    # searched as a sweep searches its limits
+    speed = float(np.median(ctx.speed)) if ctx.speed.size else _cycle_speed(ctx)
+    _, search = limit_search_curves(
+        design,
+        ctx.fluid,
+        spec.study.architecture,
+        ctx.capacity_ratios,
+        np.full(ctx.capacity_ratios.size, speed),
+        None if law_obj is not None else np.full(ctx.capacity_ratios.size, force),
+        law_obj,
+        SolverOptions(),
+        design.creep_limit,
+    )
+    limits = search.torque
+    metrics["capacity"] = float(np.min(limits))
+    volume = math.pi * (metrics["outer_diameter"] / 2) ** 2 * 2 * design.roller_radius
+    mass = design.n_rollers * design.material.density * 4 / 3 * math.pi * design.roller_radius**3
+    metrics["torque_per_volume"] = metrics["capacity"] / volume
+    metrics["torque_per_mass"] = metrics["capacity"] / mass
+    return _constraints(ctx, metrics, limits) + (metrics, eta, pst)
+
+
+def _constraints(ctx: Context, metrics: dict, limits) -> tuple[int, str]:
+    con = ctx.spec.constraints
+    checks = [
+        ("max_pressure", con.max_pressure_max, "<="),
+        ("min_lambda", con.min_lambda_min, ">="),
+        ("eta_min", con.eta_min_min, ">="),
+    ]
+    for name, bound, sense in checks:
+        value = metrics.get(name, np.nan)
+        if bound is not None and not (value <= bound if sense == "<=" else value >= bound):
+            return 2, f"{name} {value:.4g} {'>' if sense == '<=' else '<'} {bound:g}"
+    if not np.all(np.isfinite(limits)):
+        return 2, "no admissible equilibrium at a capacity ratio"
+    for req in con.min_capacity:
+        got = float(limits[int(np.argmin(np.abs(ctx.capacity_ratios - req.ratio)))])
+        if got < req.torque:
+            return 2, f"capacity {got:.4g} N m < {req.torque:g} N m at ratio {req.ratio:g}"
+    return 0, ""
+
+
+def _cycle_speed(ctx: Context) -> float:
+    return (ctx.spec.operating.target_input_speed_rpm or 2000.0) * math.pi / 30
+
+
+def _cycle(ctx: Context, design, force, law) -> dict:
+    """Efficiency and steps beyond capacity of the study's duty cycle."""
+    from ...api import Variator
+    from ..cycle_files import read_cycle
+    from ..cycles import run_cycle
+
+    op = ctx.spec.operating
+    v = Variator(design, ctx.fluid, ctx.spec.study.architecture)
+    target = (
+        None if op.target_input_speed_rpm is None else op.target_input_speed_rpm * math.pi / 30
+    )
+    assert op.cycle is not None
+    res = run_cycle(
+        v,
+        read_cycle(op.cycle),
+        strategy=op.strategy,
+        target_input_speed=target,
+        clamp_force=None if law else force,
+        clamp_law=law,
+        progress=False,
+    )
+    s = res.summary
+    beyond = int(s.get("flags", {}).get("beyond_capacity", {}).get("steps", 0))
+    eff = s["efficiency"]
+    return {"efficiency": np.nan if eff is None else float(eff), "beyond": beyond}

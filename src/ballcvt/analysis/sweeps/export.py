@@ -1,0 +1,114 @@
+"""Save and load sweep datasets: NetCDF4 (CF conventions, lossless) and CSV (flat table).
+
+Both are written atomically (a temporary file renamed when complete). CSV column names
+carry their units, e.g. ``output_torque [N m]``, so ``pandas.read_csv(path)`` reads them
+as they are; dimensionless quantities have unit ``1`` (CF/UDUNITS), as in the NetCDF file.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import xarray as xr
+
+from ...files import atomic_path
+from .variables import VARIABLES
+
+__all__ = ["to_netcdf", "to_csv", "load_dataset", "to_frame", "write_table", "parameters"]
+
+#: The NetCDF engine: netCDF4 (NetCDF-4/HDF5 files, the format CF tools expect).
+ENGINE = "netcdf4"
+
+
+def to_netcdf(ds: xr.Dataset, path) -> Path:
+    """Write ``ds`` to a NetCDF-4 file (CF-1.10 attributes, compressed, atomic).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep (`ballcvt.analysis.sweeps.grid.sweep`).
+    path : path-like
+        Output file.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    path = Path(path)
+    encoding: dict[Any, Any] = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
+    with atomic_path(path) as tmp:
+        ds.to_netcdf(tmp, engine=ENGINE, format="NETCDF4", encoding=encoding)  # type: ignore[call-overload]
+    return path
+
+
+def load_dataset(path) -> xr.Dataset:
+    """Read a dataset written by `to_netcdf` (loaded into memory, file closed)."""
+    with xr.open_dataset(path, engine=ENGINE) as ds:
+        return ds.load()
+
+
+def parameters(ds: xr.Dataset, prefix: str) -> dict:
+    """The nested parameter set stored as ``<prefix>_<key>`` attributes of a sweep.
+
+    ``Design(**parameters(ds, "design"))`` and ``Fluid(**parameters(ds, "fluid"))`` rebuild
+    the parameter sets a sweep was computed with.
+    """
+    nested = {"design": ("material", "bearings", "cam", "parasitic")}.get(prefix, ())
+    out: dict = {}
+    for key, value in ds.attrs.items():
+        if not key.startswith(prefix + "_"):
+            continue
+        name = key[len(prefix) + 1 :]
+        value = value.item() if hasattr(value, "item") else value
+        group = next((g for g in nested if name.startswith(g + "_")), None)
+        if group:
+            out.setdefault(group, {})[name[len(group) + 1 :]] = value
+        else:
+            out[name] = value
+    return out
+
+
+def to_frame(ds: xr.Dataset):
+    """One row per operating point; per-contact and per-loss variables become
+    ``<name>_<contact>`` and ``loss_<kind>`` columns."""
+    flat = ds.copy()
+    for dim, name_of in (("contact", lambda n, c: f"{n}_{c}"), ("loss", lambda n, c: f"loss_{c}")):
+        if dim not in ds.dims:
+            continue
+        for name in [n for n in flat.data_vars if dim in flat[n].dims]:
+            for c in ds[dim].values:
+                flat[name_of(name, c)] = (
+                    flat[name].sel({dim: c}, drop=True).assign_attrs(flat[name].attrs)
+                )
+            flat = flat.drop_vars([name])
+        flat = flat.drop_dims(dim, errors="ignore")
+    frame = flat.to_dataframe().reset_index()
+    units = {c: flat[c].attrs.get("units") for c in frame.columns if c in flat.variables}
+    return frame.rename(columns={c: f"{c} [{u}]" for c, u in units.items() if u})
+
+
+def write_table(frame, path, units: dict | None = None) -> Path:
+    """Write a DataFrame as CSV, atomically, with the units in the column names.
+
+    Columns named after a sweep variable get its unit (``output_torque [N m]``); ``units``
+    adds or overrides units of other columns; columns without a unit keep their name.
+    """
+    path = Path(path)
+    units = {
+        **{
+            c: VARIABLES[c][0]
+            for c in frame.columns
+            if c in VARIABLES and c not in ("status", "warnings")
+        },
+        **(units or {}),
+    }
+    frame = frame.rename(columns={c: f"{c} [{units[c]}]" for c in frame.columns if units.get(c)})
+    with atomic_path(path) as tmp:
+        frame.to_csv(tmp, index=False)
+    return path
+
+
+def to_csv(ds: xr.Dataset, path) -> Path:
+    """Write ``ds`` as a CSV table (see `to_frame`), units in the column names."""
+    return write_table(to_frame(ds), path)

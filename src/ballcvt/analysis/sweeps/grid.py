@@ -1,0 +1,334 @@
+"""Sweeps: the model over grids of operating conditions, as an `xarray.Dataset`.
+
+`sweep` evaluates every combination of architecture, clamping force, input speed, ratio and
+output torque. For each curve (all inputs but the torque fixed) it first finds the limiting
+torque (`ballcvt.solvers.limit.limit_search`), then solves every point below it in one
+batch, each started from the creeps interpolated in torque towards the curve's solution at
+its limit (with the limits given instead, it walks up the torque grid, each point started
+from the solution at the torque below). Points above the limit are not solved; they are NaN
+with ``status = 1``. Points that do not converge are NaN with ``status = 2``. Nothing is
+dropped.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from ..._version import __version__
+from ...equilibrium.problem import build_problem
+from ...errors import InputError
+from ...model.architectures import CONTACT_NAMES
+from ...model.clamping import clamp_law as clamp_law_of
+from ...params.models import ARCHITECTURES, Design, Fluid
+from ...solvers.limit import LimitSearch, bisection_steps
+from ...solvers.point import SolverOptions
+from .curves import solve_curves
+from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, STATUS, attrs_for
+
+__all__ = ["sweep", "STATUS"]
+
+
+def sweep(
+    design: Design,
+    fluid: Fluid,
+    *,
+    ratio,
+    output_torque,
+    clamp_force=None,
+    input_speed,
+    clamp_law=None,
+    architecture="double",
+    options: SolverOptions = SolverOptions(),
+    creep_limit: float | None = None,
+    limit_torque=None,
+    workers: int = 1,
+    progress: bool | None = None,
+    label: str | None = None,
+    input_speed_rpm=None,
+) -> xr.Dataset:
+    """Evaluate the model over a grid of operating conditions.
+
+    Parameters
+    ----------
+    design, fluid : Design, Fluid
+        Parameter sets.
+    ratio : float or array_like
+        Ideal speed ratios ``tau_ID`` [-].
+    output_torque : float or array_like
+        Output torques ``T_2`` >= 0 [N m], increasing (the continuation axis).
+    clamp_force : float or array_like, optional
+        Clamping forces ``F_N0`` > 0 [N] of the constant law (a dimension of the result).
+    input_speed : float or array_like
+        Input speeds ``omega_0`` > 0 [rad/s].
+    clamp_law : str or law object, optional
+        ``"cam"``, ``"optimal"`` or a law of `ballcvt.model.clamping` (docs/model.md §11); then
+        ``clamp_force`` is not given, the result has no ``clamp_force`` dimension, and
+        ``clamp_force`` is a variable: the force the law sets at each point. The limiting
+        torque is the law's (`limit_torque_batch`).
+    architecture : str or sequence of str
+        ``"double"`` and/or ``"single"``.
+    options : SolverOptions
+        Solver options (the fast batched Newton method by default).
+    creep_limit : float, optional
+        ``C_lim`` of the limiting torque; ``design.creep_limit`` by default.
+    limit_torque : array_like or LimitSearch, optional
+        Limiting torques already found at these conditions (`limit_torque_batch` with
+        the same ``creep_limit``), broadcastable to ``(clamp_force, input_speed, ratio)``
+        [N m]; one architecture only. By default they are computed. A
+        `ballcvt.solvers.limit.LimitSearch` of these curves (C order) also hands over the
+        creeps at the limits, from which every point is started in one batch; with bare
+        torques the sweep walks up the torque grid instead.
+    workers : int
+        Processes to use (curves are split between them).
+    progress : bool, optional
+        Show a progress bar; by default only when stderr is a terminal.
+    label : str, optional
+        What the progress bar says it computes (default: ``"sweep, <arch> idler"``).
+    input_speed_rpm : array_like, optional
+        The same input speeds in rpm: the speed dimension is then ``input_speed_rpm``
+        with these values, and ``input_speed`` [rad/s] a second coordinate on it.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``architecture, clamp_force, input_speed, ratio, output_torque`` (no
+        ``clamp_force`` dimension under a clamping law other than ``constant``) (and
+        ``contact`` for per-contact variables, ``loss`` for ``losses``); every variable has
+        ``units`` and ``long_name``. ``status`` flags each point (0 converged, 1 beyond the
+        limiting torque, 2 not converged); flagged points are NaN. ``warnings`` holds the
+        validity warnings of each converged point as bit flags (``flag_masks``,
+        ``flag_meanings``; docs/model.md §10). The design, fluid and solver settings are
+        attributes (``design_<key>``, ``fluid_<key>``).
+    """
+    start = time.perf_counter()
+    archs = [architecture] if isinstance(architecture, str) else list(architecture)
+    for a in archs:
+        if a not in ARCHITECTURES:
+            raise InputError("architecture", a, "one of: " + ", ".join(ARCHITECTURES))
+    c_lim = design.creep_limit if creep_limit is None else float(creep_limit)
+    if not 0.0 < c_lim < 1.0:
+        raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
+    law: Any = None
+    if clamp_law is None or clamp_law == "constant":  # the forces are a dimension
+        if clamp_force is None:
+            clamp_law_of(None, design, None)  # raises: says what is missing
+    else:
+        law = clamp_law_of(clamp_law, design, clamp_force)
+        if law.name == "constant":
+            law, clamp_force = None, law.force
+    axes = {
+        name: _axis(name, value)
+        for name, value in (
+            ("clamp_force", np.nan if law else clamp_force),
+            ("input_speed", input_speed),
+            ("ratio", ratio),
+            ("output_torque", output_torque),
+        )
+    }
+    torque = axes["output_torque"]
+    if np.any(np.diff(torque) < 0):
+        raise InputError(
+            "output_torque",
+            float(torque[np.argmax(np.diff(torque) < 0) + 1]),
+            "an increasing sequence (torque is the continuation axis)",
+        )
+    # validate every input once (raises InputError on the first bad value)
+    build_problem(
+        design,
+        fluid,
+        archs[0],
+        axes["ratio"][:, None],
+        torque,
+        1.0 if law else axes["clamp_force"][:, None, None],
+        axes["input_speed"][:, None, None, None],
+    )
+    shape = tuple(len(axes[n]) for n in ("clamp_force", "input_speed", "ratio"))
+    grid = np.meshgrid(axes["clamp_force"], axes["input_speed"], axes["ratio"], indexing="ij")
+    flat = [g.ravel() for g in grid]
+    if isinstance(limit_torque, (bool, np.bool_)):
+        raise InputError(
+            "limit_torque",
+            limit_torque,
+            "torques [N m] or a LimitSearch (None: computed)",
+        )
+    if limit_torque is not None:
+        if len(archs) != 1:
+            raise InputError(
+                "architecture",
+                ", ".join(archs),
+                "a single architecture when limit_torque is given",
+            )
+        limits: Any
+        if isinstance(limit_torque, LimitSearch):
+            limits = limit_torque.flat()
+            if limits.torque.size != int(np.prod(shape)):
+                raise InputError(
+                    "limit_torque",
+                    f"a search of {limits.torque.size} curves",
+                    f"one per (clamp_force, input_speed, ratio): {int(np.prod(shape))}",
+                )
+        else:
+            limits = np.broadcast_to(np.asarray(limit_torque, dtype=float), shape).ravel()
+    contacts = _contact_axis(archs)
+    show = sys.stderr.isatty() if progress is None else progress
+    chunks = np.array_split(np.arange(flat[0].size), max(1, min(workers, flat[0].size)))
+    blocks = {}
+    for arch in archs:
+        jobs = [
+            (
+                design,
+                fluid,
+                arch,
+                flat[0][c],
+                flat[1][c],
+                flat[2][c],
+                torque,
+                options,
+                c_lim,
+                None if limit_torque is None else _part(limits, c),
+                law,
+            )
+            for c in chunks
+        ]
+        text = f"{label}, {arch} idler" if label and len(archs) > 1 else label
+        blocks[arch] = _run(jobs, workers, show, text or f"sweep, {arch} idler")
+    speed_dim = "input_speed" if input_speed_rpm is None else "input_speed_rpm"
+    ds = _assemble(blocks, archs, axes, shape, contacts, input_speed_rpm)
+    if law is not None:
+        used = np.stack([blocks[a]["clamp_force"].reshape(shape + (torque.size,)) for a in archs])[
+            :, 0
+        ]
+        ds = ds.isel(clamp_force=0, drop=True)
+        ds["clamp_force"] = xr.Variable(
+            ("architecture", speed_dim, "ratio", "output_torque"), used, attrs_for("clamp_force")
+        )
+    ds.attrs.update(
+        clamp_law=law.name if law else "constant",
+        traction_law=fluid.traction_law,
+        title="ballcvt sweep",
+        Conventions="CF-1.10",
+        institution="ballcvt",
+        source=f"ballcvt {__version__}",
+        ballcvt_version=__version__,
+        references="Tomaselli, Bottiglione, Lino, Carbone, Mech. Mach. Theory 150 (2020) "
+        "103877, doi:10.1016/j.mechmachtheory.2020.103877",
+        creep_limit=c_lim,
+        quadrature=repr(options.quadrature),
+        solver=options.method,
+        tolerance=options.tol,
+        run_time_s=time.perf_counter() - start,
+    )
+    ds.attrs.update(flat_attrs("design", design.model_dump()))
+    ds.attrs.update(flat_attrs("fluid", fluid.model_dump()))
+    return ds
+
+
+def flat_attrs(prefix: str, data: dict) -> dict:
+    """Nested parameters as flat NetCDF attributes ``<prefix>_<key>[_<subkey>]``."""
+    out = {}
+    for key, value in data.items():
+        if value is None:  # an optional table the design lacks
+            continue
+        if isinstance(value, dict):
+            out.update(flat_attrs(f"{prefix}_{key}", value))
+        else:
+            out[f"{prefix}_{key}"] = value
+    return out
+
+
+def _axis(name, value):
+    arr = np.atleast_1d(np.asarray(value, dtype=float))
+    if arr.ndim != 1 or arr.size == 0:
+        raise InputError(name, value, "a number or a non-empty 1-D sequence")
+    return arr
+
+
+def _contact_axis(archs):
+    names = []
+    for a in ("input", "idler", "idler_a", "idler_b", "output"):
+        if any(a in CONTACT_NAMES[arch] for arch in archs):
+            names.append(a)
+    return names
+
+
+def _run(jobs, workers, show, label):
+    from tqdm.auto import tqdm  # only the orchestration needs a progress bar
+
+    if workers > 1 and len(jobs) > 1:
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            futures = [pool.submit(solve_curves, *job) for job in jobs]
+            with tqdm(total=len(jobs), desc=label, disable=not show, unit="block") as bar:
+                out = []
+                for f in futures:
+                    out.append(f.result())
+                    bar.update()
+        return _concat(out)
+    steps = sum(len(job[6]) + (bisection_steps() if job[9] is None else 0) for job in jobs)
+    with tqdm(total=steps, desc=label, disable=not show, unit="step") as bar:
+        return _concat([solve_curves(*job, callback=bar.update) for job in jobs])
+
+
+def _part(limits, index):
+    """The limits of the curves ``index`` (an array or a `LimitSearch`)."""
+    return limits.take(index) if isinstance(limits, LimitSearch) else limits[index]
+
+
+def _concat(parts):
+    return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+
+
+def _assemble(blocks, archs, axes, shape, contacts, rpm=None):
+    speed_dim = "input_speed" if rpm is None else "input_speed_rpm"
+    dims = ("clamp_force", speed_dim, "ratio")
+    data = {}
+    for name in (
+        "limit_torque",
+        "eta_at_limit",
+        "status",
+        "warnings",
+        "iterations",
+        "residual_norm",
+        *POINT_VARIABLES,
+        "losses",
+        *CONTACT_VARIABLES,
+    ):
+        per_arch = []
+        for arch in archs:
+            v = blocks[arch][name]
+            v = v.reshape(shape + v.shape[1:])
+            if name in CONTACT_VARIABLES:
+                full = np.full(v.shape[:-1] + (len(contacts),), np.nan)
+                for j, c in enumerate(CONTACT_NAMES[arch]):
+                    full[..., contacts.index(c)] = v[..., j]
+                v = full
+            per_arch.append(v)
+        arr = np.stack(per_arch)
+        d = ("architecture",) + dims
+        if name not in ("limit_torque", "eta_at_limit"):
+            d += ("output_torque",)
+        if name in CONTACT_VARIABLES:
+            d += ("contact",)
+        elif name == "losses":
+            d += ("loss",)
+        data[name] = xr.Variable(d, arr, attrs_for(name))
+    coords = {
+        "architecture": ("architecture", np.array(archs), {"long_name": "idler architecture"}),
+        "contact": ("contact", np.array(contacts), {"long_name": "contact"}),
+        "loss": ("loss", np.array(LOSS_KINDS), {"long_name": "kind of power loss"}),
+    }
+    for n, v in axes.items():
+        coords[n] = (n, v, attrs_for(n))
+    if rpm is not None:
+        coords["input_speed"] = (speed_dim, axes["input_speed"], attrs_for("input_speed"))
+        coords[speed_dim] = (
+            speed_dim,
+            np.atleast_1d(np.asarray(rpm, dtype=float)),
+            attrs_for(speed_dim),
+        )
+    return xr.Dataset(data, coords=coords)

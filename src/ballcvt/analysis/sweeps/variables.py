@@ -1,0 +1,101 @@
+"""Names, units and long names of every variable a sweep writes (CF-style attributes)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ...performance.efficiency import LOSS_KINDS  # the ``loss`` axis of a sweep
+from ...performance.validity import WARNINGS
+
+__all__ = [
+    "VARIABLES",
+    "POINT_VARIABLES",
+    "CONTACT_VARIABLES",
+    "LOSS_KINDS",
+    "STATUS",
+    "attrs_for",
+]
+
+#: ``status`` values.
+STATUS = {"converged": 0, "beyond_limit": 1, "not_converged": 2}
+
+
+#: name -> (units, long name). Dimensionless quantities have units "1" (CF conventions).
+VARIABLES = {
+    "ratio": ("1", "ideal speed ratio tau_ID"),
+    "output_torque": ("N m", "output torque T_2"),
+    "clamp_force": ("N", "clamping force at the input contact F_N0"),
+    "axial_force": ("N", "axial thrust on each disc n F_N0 sin(theta_0)"),
+    "input_speed": ("rad/s", "input speed omega_0"),
+    "input_speed_rpm": ("rpm", "input speed omega_0"),
+    "limit_torque": ("N m", "limiting output torque (all |creep| <= creep_limit)"),
+    "eta_at_limit": ("1", "overall efficiency (Eq. 38) at the limiting output torque"),
+    "status": ("1", "point status: 0 converged, 1 beyond limiting torque, 2 not converged"),
+    "iterations": ("1", "solver iterations (residual-and-Jacobian evaluations)"),
+    "residual_norm": ("1", "max |residual| of the equilibrium at the solution"),
+    "eta": ("1", "overall efficiency (Eq. 38)"),
+    "eta_loss": ("1", "overall efficiency from the power losses (Eq. 39)"),
+    "eta_speed": ("1", "speed efficiency (Eq. 9)"),
+    "eta_torque": ("1", "torque efficiency (Eq. 37)"),
+    "input_torque": ("N m", "input torque T_0"),
+    "actual_ratio": ("1", "actual speed ratio omega_2 / omega_0"),
+    "tilt_deg": ("degree", "ball tilt angle gamma"),
+    "losses": ("W", "power loss by kind (Eq. 40; total = creep + spin + bearing + parasitic)"),
+    "warnings": ("1", "validity warnings (bit flags, docs/model.md section 10)"),
+    "creep": ("1", "creep coefficient C (Eq. 7)"),
+    "spin": ("1", "spin coefficient sigma (Eqs. 11-14)"),
+    "mu": ("1", "traction coefficient mu (Eq. 30)"),
+    "chi": ("1", "spin-moment coefficient chi (Eq. 31)"),
+    "p_max": ("Pa", "Hertz peak pressure"),
+    "film_thickness": ("m", "central film thickness (Hamrock-Dowson)"),
+    "normal_load": ("N", "contact normal load F_N"),
+    "creep_loss": ("W", "creep power loss of the contact, all balls"),
+    "spin_loss": ("W", "spin power loss of the contact, all balls"),
+    "lambda_ratio": ("1", "film thickness ratio h_min / surface roughness"),
+    "loss": ("1", "kind of power loss"),
+}
+
+POINT_VARIABLES = (
+    "eta",
+    "eta_loss",
+    "eta_speed",
+    "eta_torque",
+    "input_torque",
+    "actual_ratio",
+    "tilt_deg",
+    "axial_force",
+)
+CONTACT_VARIABLES = (
+    "creep",
+    "spin",
+    "mu",
+    "chi",
+    "p_max",
+    "film_thickness",
+    "normal_load",
+    "creep_loss",
+    "spin_loss",
+    "lambda_ratio",
+)
+
+
+def attrs_for(name: str) -> dict:
+    """CF attributes of a variable: ``units``, ``long_name`` and the flags of ``status`` and
+    ``warnings`` (``flag_values`` / ``flag_masks`` with ``flag_meanings``)."""
+    units, long_name = VARIABLES[name]
+    attrs: dict[str, Any] = {"long_name": long_name}
+    if name not in ("status", "warnings"):  # CF: flag variables carry no units
+        attrs["units"] = units
+    if name == "status":
+        attrs.update(
+            flag_values=np.array(list(STATUS.values()), dtype=np.int8),
+            flag_meanings=" ".join(STATUS),
+        )
+    elif name == "warnings":
+        attrs.update(
+            flag_masks=np.array(list(WARNINGS.values()), dtype=np.int8),
+            flag_meanings=" ".join(WARNINGS),
+        )
+    return attrs

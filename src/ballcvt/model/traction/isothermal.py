@@ -1,0 +1,264 @@
+"""Traction and spin coefficients by quadrature over the contact ellipse (Eqs. 53-66).
+
+With ``X = x / a_x``, ``Y = y / a_y`` on the unit disc, the local sliding speed of the body
+over the ball (Eq. 55, docs/model.md §3) is
+
+    ``V = u_ref (c - s_y Y, s_x X)``, ``s_x = sigma a_x / r_c``, ``s_y = sigma a_y / r_c``,
+
+with ``u_ref = |Omega_c| r_c`` and ``c`` the creep term (`creep_term`). The shear stress is
+``tau = tau_L (1 - exp(-eta |V| / (h tau_L))) V / |V|`` (Eq. 53), with the Hertz pressure
+``p = p_max sqrt(1 - X^2 - Y^2)`` in the Roelands viscosity and the limiting shear stress.
+Then (Eqs. 57-66, lever arms with their semi-axes, docs/model.md §3)
+
+    ``mu = (a_x a_y / F_N) int tau_x dX dY``,
+    ``chi = (a_x a_y / (F_N r_c)) int (a_x X tau_y - a_y Y tau_x) dX dY``.
+
+``mu`` has the sign of the creep and ``chi`` the sign of the spin.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from ...params.models import Fluid
+from ..rheology import (
+    limiting_shear_stress,
+    roelands_viscosity,
+    saturation_factor,
+    saturation_slope,
+)
+from . import kernels
+from .quadrature import Quadrature, centred_rule, inner_pole_rule, radial_rule
+
+__all__ = ["pole_position", "traction_coefficients"]
+
+
+def pole_position(creep_term, spin, ay, radius):
+    """``Y`` of the no-sliding point ``(0, Y_p)``: ``Y_p = c r_c / (sigma a_y)`` [-].
+
+    ``inf`` where the spin vanishes (the sliding field is then uniform).
+    """
+    c = np.asarray(creep_term, dtype=float)
+    sy = np.asarray(spin, dtype=float) * np.asarray(ay) / np.asarray(radius)
+    if c.shape != sy.shape:
+        c, sy = np.broadcast_arrays(c, sy)
+    return np.divide(c, sy, out=np.full(c.shape, np.inf), where=np.abs(sy) > 1e-300)
+
+
+def traction_coefficients(
+    creep_term,
+    spin,
+    ax,
+    ay,
+    p_max,
+    load,
+    radius,
+    u_ref,
+    film,
+    fluid: Fluid,
+    quadrature: Quadrature = Quadrature(),
+    derivatives: bool = False,
+):
+    """Traction coefficient ``mu`` and spin-moment coefficient ``chi`` of contacts.
+
+    The shear law is node-local: the isothermal law of Eq. 53 or, with a fluid whose
+    ``traction_law`` is ``"viscoelastic"``, that law with Maxwell elasticity
+    (docs/model.md §14). The thermal law wraps this function
+    (`ballcvt.model.traction.thermal`); `ballcvt.model.traction.base.law_coefficients` dispatches.
+
+    All array arguments broadcast together to the shape ``(...)`` of the result.
+
+    Parameters
+    ----------
+    creep_term : array_like
+        Gross sliding over ``u_ref``: ``C_0`` at the input, ``C/(1-C)`` elsewhere [-].
+    spin : array_like
+        Spin coefficient ``sigma`` (Eqs. 11-14) [-].
+    ax, ay : array_like
+        Hertz semi-axes along rolling and transverse directions [m].
+    p_max : array_like
+        Hertz peak pressure [Pa].
+    load : array_like
+        Normal load ``F_N`` [N].
+    radius : array_like
+        Radial position of the contact ``r_c`` [m].
+    u_ref : array_like
+        Body surface speed ``|Omega_c| r_c`` [m/s].
+    film : array_like
+        Central film thickness ``h`` [m].
+    fluid : Fluid
+        Traction fluid.
+    quadrature : Quadrature
+        Rule and node counts (see `ballcvt.model.traction.quadrature`).
+    derivatives : bool
+        Also return the derivatives of ``mu`` and ``chi``, computed in the same pass.
+
+    Returns
+    -------
+    mu, chi : ndarray
+        Traction coefficient (Eq. 30) and spin-moment coefficient (Eq. 31) [-].
+    dmu, dchi : ndarray
+        Only with ``derivatives``: shape ``(..., 3)``, the derivatives with respect to
+        ``creep_term`` [-], ``spin`` [-] and ``log(u_ref)`` [-]. The shear law depends on
+        the sliding speed over the film thickness only, so the derivative with respect to
+        ``log(film)`` is minus the last one. The motion of the nodes with the pole is not
+        differentiated (it changes the result only by the discretisation error), nor is the
+        blend weight: these are Jacobians for Newton's method, not exact gradients.
+    """
+    if fluid.traction_law == "thermal":
+        raise ValueError(
+            "the thermal law's coefficients are "
+            "ballcvt.model.traction.thermal.thermal_coefficients (or dispatch with "
+            "ballcvt.model.traction.base.law_coefficients)"
+        )
+    values = (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)
+    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
+    params = np.empty((9,) + shape)
+    for i, value in enumerate(values):
+        params[i, ...] = value
+    params = params.reshape(9, -1)
+    n_out = 8 if derivatives else 2
+    if params.shape[1] == 0:
+        out = np.zeros((n_out, 0))
+    elif quadrature.engine == "auto" and kernels.AVAILABLE:
+        out = _compiled(params, fluid, quadrature, derivatives)[:n_out]
+    else:
+        out = _numpy_rules(params, fluid, quadrature, derivatives)[:n_out]
+    if not derivatives:
+        return out[0].reshape(shape), out[1].reshape(shape)
+    out = out.reshape((n_out,) + shape)
+    last = tuple(range(1, len(shape) + 1)) + (0,)  # the derivatives' axis last
+    return out[0], out[1], out[2:5].transpose(last), out[5:8].transpose(last)
+
+
+def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool) -> np.ndarray:
+    """The compiled kernels' sums ``(8, n)``: both rules and their blend in one call."""
+    out = np.empty((params.shape[1], kernels.N_OUT))
+    par = np.ascontiguousarray(params)
+    fl, tab = _viscosity_table(fluid, float(par[4].max()))
+    r01, wr, sin_phi, cos_phi = _ray_nodes(q.n_radial, q.n_angular)
+    rays = (sin_phi, cos_phi, 2.0 * np.pi / q.n_angular)
+    if q.method == "centred":
+        centred, blend = rays, (0.0, 0.0)
+    else:
+        _, _, sin_c, cos_c = _ray_nodes(q.n_radial, q.n_centred)
+        centred, blend = (sin_c, cos_c, 2.0 * np.pi / q.n_centred), BLEND
+    kernels.traction_kernel(par, r01, wr, rays, centred, blend, fl, tab, derivatives, out)
+    return out.T
+
+
+def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool) -> np.ndarray:
+    """The NumPy reference path's sums ``(8 or 2, n)``: each rule on its contacts, blended
+    (the same sums as `_compiled`)."""
+    yp = pole_position(params[0], params[1], params[3], params[6])
+    if q.method == "centred":
+        parts = [(np.ones(yp.shape, bool), np.ones(yp.shape), "centred", q.n_angular)]
+    else:
+        # Pole-centred rule while the pole is well inside, centred rule once it is
+        # outside, blended in between so that mu and chi stay continuous (C1) in the creep.
+        weight = _pole_weight(np.abs(yp))
+        parts = [
+            (weight > 0.0, weight, "pole", q.n_angular),
+            (~(weight >= 1.0), 1.0 - weight, "centred", q.n_centred),  # NaN: NaN out
+        ]
+    out = np.zeros((8 if derivatives else 2, yp.size))
+    for part, rule_weight, kind, n_angular in parts:
+        if part.any():
+            y, p = yp[part], params[:, part]
+            nodes = (
+                inner_pole_rule(y, q.n_radial, n_angular)
+                if kind == "pole"
+                else centred_rule(q.n_radial, n_angular, y.shape)
+            )
+            values = _integrate(nodes, list(p), fluid, derivatives)
+            if derivatives:
+                values = np.concatenate([np.stack(values[:2]), values[2].T, values[3].T])
+            out[:, part] += rule_weight[part] * np.stack(values)
+    return out
+
+
+@lru_cache(maxsize=32)
+def _viscosity_table(fluid: Fluid, p_max: float):
+    """`kernels.viscosity_table`, kept for the iterations of a solve (same fluid and
+    pressure range: the same table, so caching changes no result)."""
+    return kernels.viscosity_table(fluid, p_max)
+
+
+@lru_cache(maxsize=16)
+def _ray_nodes(n_radial, n_angular):
+    """Radial nodes and weights, sines and cosines of the ray angles (read-only): the
+    rays of both rules (`ballcvt.model.traction.quadrature`)."""
+    r01, wr = radial_rule(n_radial)
+    phi = 2.0 * np.pi * np.arange(n_angular) / n_angular
+    return r01, wr, np.sin(phi), np.cos(phi)
+
+
+#: Range of |Y_p| over which the pole-centred rule hands over to the centred rule.
+BLEND = (0.8, 1.0)
+
+
+def _pole_weight(abs_yp):
+    """Weight of the pole-centred rule: 1 below ``BLEND[0]``, 0 from ``BLEND[1]`` (C1)."""
+    t = (BLEND[1] - abs_yp) / (BLEND[1] - BLEND[0])
+    np.maximum(t, 0.0, out=t)  # (np.clip's wrapper costs more than the two ufuncs)
+    np.minimum(t, 1.0, out=t)
+    return t * t * (3.0 - 2.0 * t)
+
+
+def _integrate(nodes, params, fluid: Fluid, derivatives: bool = False):
+    """Quadrature of Eqs. 57-66 for flat parameter arrays on the given nodes.
+
+    Returns ``mu, chi`` and, with ``derivatives``, ``dmu, dchi`` of shape ``(m, 3)``
+    (see `traction_coefficients`).
+    """
+    x, y, w = nodes
+    c, sg, ax, ay, pm, fn, rc, u, h = params
+    ex = lambda v: v[..., None]  # noqa: E731  (broadcast over the nodes)
+    p = ex(pm) * np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
+    eta = roelands_viscosity(
+        p, fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure, fluid.roelands_index
+    )
+    tau_l = limiting_shear_stress(p, fluid.limiting_shear_stress, fluid.limiting_shear_slope)
+    vx = ex(u) * (ex(c) - ex(sg * ay / rc) * y)
+    vy = ex(u * sg * ax / rc) * x
+    speed = np.hypot(vx, vy)
+    arg = eta * speed / (ex(h) * tau_l)
+    sat = saturation_factor(arg)
+    g = eta / ex(h) * sat  # tau = g V
+    corr, lin_extra = 1.0, 0.0
+    if fluid.traction_law == "viscoelastic":  # Maxwell elasticity (§14)
+        t_in = ex(ax) * (x + np.sqrt(np.maximum(1.0 - y * y, 0.0))) / ex(u)
+        theta = fluid.shear_modulus * t_in / (ex(h) * g)
+        em = np.exp(-theta)
+        f = -np.expm1(-theta)
+        corr, lin_extra = f - theta * em, -g * theta * em
+        g = g * f
+    area = ax * ay
+    wx, wy = w * ex(ax) * x, w * ex(ay) * y  # lever-arm weights of chi
+
+    def moments(tx, ty):
+        return (
+            area / fn * np.sum(w * tx, axis=-1),
+            area / (fn * rc) * np.sum(wx * ty - wy * tx, axis=-1),
+        )
+
+    mu, chi = moments(g * vx, g * vy)
+    if not derivatives:
+        return mu, chi
+    # d tau = g dV + (dg/d|V|) (V.dV / |V|) V; k = (dg/d|V|) / |V| stays finite times V.V
+    k = (eta / ex(h)) ** 2 / tau_l * saturation_slope(arg, sat)
+    k = np.divide(k, speed, out=np.zeros_like(k), where=speed > 0.0) * corr
+    dvx_s, dvy_s = -ex(u * ay / rc) * y, ex(u * ax / rc) * x  # dV / d sigma
+    d_c = moments(g * ex(u) + k * vx * ex(u) * vx, k * vx * ex(u) * vy)
+    dot_s = vx * dvx_s + vy * dvy_s
+    d_s = moments(g * dvx_s + k * dot_s * vx, g * dvy_s + k * dot_s * vy)
+    lin = g + k * speed * speed + lin_extra  # dV / d log u = V
+    d_u = moments(lin * vx, lin * vy)
+    return (
+        mu,
+        chi,
+        np.stack([d_c[0], d_s[0], d_u[0]], axis=-1),
+        np.stack([d_c[1], d_s[1], d_u[1]], axis=-1),
+    )

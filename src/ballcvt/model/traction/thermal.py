@@ -1,0 +1,266 @@
+"""Thermal traction law: shear heating raises the film temperature (docs/model.md §14).
+
+The paper's law (Eq. 53) is isothermal. Here each contact's film runs at one temperature
+``T_in + dT`` above the inlet, with the viscosity and the limiting shear stress
+thinned by it:
+
+    ``eta = eta_R(p) exp(-beta dT)``, ``tau_L = (tau_L0 + a p) exp(-beta_L dT)``.
+
+The rise ``dT`` is the mean heat flux of the contact, ``q = Q / (pi a_x a_y)``, times two
+thermal resistances in series, after Olver and Spikes (1998, Proc. IMechE J 212, 321):
+
+* the flash temperature of the surfaces, each taking half the heat through a moving
+  semi-infinite solid at high Peclet number (Jaeger 1942; Carslaw and Jaeger 1959 §2.9):
+  the mean over the contact of ``2 (q/2) sqrt(kappa t / pi) / K`` with ``t = (x + a_x)/u``,
+  ``R_flash = 1.064 sqrt(kappa a_x / u) / (2 K)``;
+* the temperature rise of the mid-film over the surfaces with the heat generated
+  uniformly across a Couette film, ``R_film = h / (8 k)``.
+
+The shear heat of a contact is its sliding power, ``Q = u F_N (c mu + sigma chi)``: the
+integral of ``tau . V`` over the ellipse written with the definitions of ``mu`` and
+``chi`` (Eqs. 57-66). With one temperature per contact, the shear law becomes the
+isothermal one with ``h`` scaled and ``tau`` scaled:
+
+    ``tau(dT) = exp(-beta_L dT) tau_iso(h exp((beta - beta_L) dT))``
+
+(Eq. 53 depends on ``eta / h`` and ``eta / tau_L`` only), so the isothermal quadrature
+serves unchanged. ``dT`` solves ``dT = (R_flash + R_film) q(dT)`` by safeguarded Newton
+on the cheap `TEMPERATURE_RULE`, then one Newton step on the requested rule.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from ...params.models import Fluid
+from .isothermal import traction_coefficients
+from .quadrature import Quadrature
+
+__all__ = [
+    "thermal_coefficients",
+    "thermal_coefficients_and_rise",
+    "film_temperature_rise",
+    "TEMPERATURE_RULE",
+    "FLASH_FACTOR",
+]
+
+#: Cheap rule on which Newton finds the film temperature before one step on the
+#: requested rule (`_rise_and_coefficients`).
+TEMPERATURE_RULE = Quadrature("pole", 8, 8, 8)
+#: Mean flash temperature of a uniform moving source at high Peclet number,
+#: ``(4/3) sqrt(2/pi)`` (Jaeger 1942).
+FLASH_FACTOR = 4.0 / 3.0 * np.sqrt(2.0 / np.pi)
+
+
+@lru_cache(maxsize=16)
+def _isothermal(fluid: Fluid) -> Fluid:
+    """The same fluid under the isothermal law (the quadrature of Eq. 53)."""
+    return fluid.model_copy(update={"traction_law": "isothermal"})
+
+
+class _Contacts:
+    """Flat contact arrays and the temperature-independent parts of the heat balance."""
+
+    def __init__(self, args, fluid: Fluid):
+        (self.c, self.s, self.ax, self.ay, self.pm, self.fn, self.rc, self.u, self.h) = args
+        self.fluid = _isothermal(fluid)
+        values = (
+            fluid.temperature_viscosity_coefficient,
+            fluid.limiting_shear_temperature_coefficient,
+            fluid.thermal_conductivity,
+            fluid.surface_conductivity,
+            fluid.surface_diffusivity,
+        )
+        if any(v is None for v in values):
+            raise ValueError(f"fluid '{fluid.name}' lacks the thermal law's parameters")
+        beta, beta_l, k_f, k_s, kappa = (float(v) for v in values if v is not None)
+        self.beta_l = beta_l
+        self.b = beta - beta_l
+        self.load_flux = self.fn / (np.pi * self.ax * self.ay)  # F_N / contact area
+        self.r_flash = FLASH_FACTOR * np.sqrt(kappa * self.ax / self.u) / (2.0 * k_s)
+        # thermal resistance of the contact, flash and film in series [K m^2/W]
+        self.resistance = self.r_flash + self.h / (8.0 * k_f)
+
+    @classmethod
+    def from_args(cls, values, fluid: Fluid) -> tuple[_Contacts, tuple[int, ...]]:
+        """Contacts from the broadcast arguments of `thermal_coefficients`, and their shape."""
+        args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
+        return cls([a.ravel() for a in args], fluid), args[0].shape
+
+    def take(self, i) -> _Contacts:
+        out = object.__new__(_Contacts)
+        out.__dict__.update(
+            {k: (v[i] if isinstance(v, np.ndarray) else v) for k, v in self.__dict__.items()}
+        )
+        return out
+
+    def at(self, dt, quadrature: Quadrature):
+        """``mu, chi`` and their partials ``(c, sigma, log u, dT)`` at the rises ``dt``."""
+        f_t = np.exp(-self.beta_l * dt)
+        mu, chi, dmu, dchi = traction_coefficients(
+            self.c,
+            self.s,
+            self.ax,
+            self.ay,
+            self.pm,
+            self.fn,
+            self.rc,
+            self.u,
+            self.h * np.exp(self.b * dt),
+            self.fluid,
+            quadrature,
+            derivatives=True,
+        )
+        mu, chi, dmu, dchi = f_t * mu, f_t * chi, f_t[:, None] * dmu, f_t[:, None] * dchi
+        d_t = lambda v, dv: -self.beta_l * v - self.b * dv[:, 2]  # noqa: E731
+        return (
+            mu,
+            chi,
+            np.column_stack([dmu, d_t(mu, dmu)]),
+            np.column_stack([dchi, d_t(chi, dchi)]),
+        )
+
+    def flux(self, mu, chi):
+        """Mean shear-heat flux ``Q / (pi a_x a_y)`` [W/m^2]; linear in ``mu, chi``, so of
+        their derivatives it gives the flux's (columns of ``(n, k)`` arrays: one each)."""
+        k, c, s = self.load_flux * self.u, self.c, self.s
+        if np.ndim(mu) == 2:
+            k, c, s = k[:, None], c[:, None], s[:, None]
+        return k * (c * mu + s * chi)
+
+
+def _solve_rise(con: _Contacts, quadrature: Quadrature, tol=1e-6, max_iter=60):
+    """``dT = R q(dT)`` per contact: Newton, kept inside the bracket ``[0, R q(0)]``."""
+    r = con.resistance
+    dt = np.zeros(con.c.shape)
+    lo, hi = np.zeros_like(dt), np.full_like(dt, np.inf)
+    todo = np.arange(dt.size)
+    for _ in range(max_iter):
+        sub = con.take(todo)
+        mu, chi, dmu, dchi = sub.at(dt[todo], quadrature)
+        q = sub.flux(mu, chi)
+        q_t = sub.flux(dmu[:, 3], dchi[:, 3])
+        g = dt[todo] - r[todo] * q
+        lo[todo] = np.where(g <= 0.0, dt[todo], lo[todo])
+        hi[todo] = np.where(g >= 0.0, dt[todo], hi[todo])
+        slope = 1.0 - r[todo] * q_t
+        new = dt[todo] - g / np.where(slope > 0.0, slope, np.inf)
+        hi_t, lo_t = hi[todo], lo[todo]
+        outside = (new <= lo_t) | (new >= hi_t) | (slope <= 0.0)
+        new = np.where(outside, np.where(np.isfinite(hi_t), 0.5 * (lo_t + hi_t), r[todo] * q), new)
+        step = np.abs(new - dt[todo])
+        dt[todo] = new
+        todo = todo[step > tol * (1.0 + np.abs(new))]
+        if todo.size == 0:
+            break
+    return dt
+
+
+def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature):
+    """The rise on the requested rule and the coefficients there (4-column partials).
+
+    Newton converges on `TEMPERATURE_RULE`; one Newton step on ``quadrature`` then moves
+    the rise to that rule's fixed point, and the coefficients with it (to first order:
+    the remaining error is the square of a step of a fraction of a kelvin).
+    """
+    dt = _solve_rise(con, TEMPERATURE_RULE)
+    mu, chi, dmu, dchi = con.at(dt, quadrature)
+    r = con.resistance
+    step = -(dt - r * con.flux(mu, chi)) / (1.0 - r * con.flux(dmu[:, 3], dchi[:, 3]))
+    step = np.maximum(step, -dt)  # the rise stays >= 0
+    return dt + step, mu + dmu[:, 3] * step, chi + dchi[:, 3] * step, dmu, dchi
+
+
+def film_temperature_rise(
+    creep_term,
+    spin,
+    ax,
+    ay,
+    p_max,
+    load,
+    radius,
+    u_ref,
+    film,
+    fluid: Fluid,
+    quadrature: Quadrature = Quadrature(),
+):
+    """Film temperature rise ``dT`` above the inlet of contacts under the thermal law [K].
+
+    Parameters are those of `thermal_coefficients` (same units).
+    """
+    return thermal_coefficients_and_rise(
+        creep_term, spin, ax, ay, p_max, load, radius, u_ref, film, fluid, quadrature
+    )[2]
+
+
+def thermal_coefficients_and_rise(
+    creep_term,
+    spin,
+    ax,
+    ay,
+    p_max,
+    load,
+    radius,
+    u_ref,
+    film,
+    fluid: Fluid,
+    quadrature: Quadrature = Quadrature(),
+):
+    """``mu``, ``chi`` [-] and the film temperature rise ``dT`` [K] from one solve of the
+    film temperature (parameters as in `thermal_coefficients`)."""
+    con, shape = _Contacts.from_args(
+        (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film), fluid
+    )
+    dt, mu, chi, _, _ = _rise_and_coefficients(con, quadrature)
+    return mu.reshape(shape), chi.reshape(shape), dt.reshape(shape)
+
+
+def thermal_coefficients(
+    creep_term,
+    spin,
+    ax,
+    ay,
+    p_max,
+    load,
+    radius,
+    u_ref,
+    film,
+    fluid: Fluid,
+    quadrature: Quadrature = Quadrature(),
+    derivatives: bool = False,
+):
+    """``mu`` and ``chi`` of contacts under the thermal law (module docstring).
+
+    Parameters and returns are those of
+    `ballcvt.model.traction.isothermal.traction_coefficients`: ``creep_term`` [-], ``spin`` [-],
+    ``ax, ay`` [m], ``p_max`` [Pa], ``load`` [N], ``radius`` [m], ``u_ref`` [m/s],
+    ``film`` [m]. The fluid needs the thermal fields (`ballcvt.params.Fluid`). The
+    derivatives include the film temperature's response (implicit function theorem);
+    the one with respect to ``log u`` is at fixed ``film`` (the identity with
+    ``-d/dlog h`` of the isothermal law does not hold with heating; Newton's Jacobians
+    only use it).
+    """
+    con, shape = _Contacts.from_args(
+        (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film), fluid
+    )
+    _, mu, chi, dmu, dchi = _rise_and_coefficients(con, quadrature)
+    if not derivatives:
+        return mu.reshape(shape), chi.reshape(shape)
+    q = con.flux(mu, chi)
+    k = con.load_flux * con.u
+    r = con.resistance
+    slopes = con.flux(dmu, dchi)  # the flux's partials (c, sigma, log u, dT) at fixed c, sigma
+    # d q / d(c, sigma, log u): q is also linear in c, sigma and proportional to u
+    dq = slopes[:, :3] + np.column_stack([k * mu, k * chi, q])
+    dr = np.column_stack([np.zeros_like(q), np.zeros_like(q), -0.5 * con.r_flash])
+    d_dt = (r[:, None] * dq + q[:, None] * dr) / (1.0 - r * slopes[:, 3])[:, None]
+    dmu_total = dmu[:, :3] + dmu[:, 3:] * d_dt
+    dchi_total = dchi[:, :3] + dchi[:, 3:] * d_dt
+    return (
+        mu.reshape(shape),
+        chi.reshape(shape),
+        dmu_total.reshape(shape + (3,)),
+        dchi_total.reshape(shape + (3,)),
+    )

@@ -1,0 +1,133 @@
+"""Equilibrium under a clamping law (docs/model.md §11).
+
+A law whose force follows the output torque (a cam on the output disc) fixes ``F_N0``
+before the equilibrium is solved. A law whose force follows the input torque (a cam on
+the input disc) makes ``F_N0`` an unknown of the equilibrium: it is found by a fixed-point
+iteration ``F_N0 <- law(T_0(F_N0))`` around the creep solver, warm-started from the last
+creeps. The map is a strong contraction (``T_0`` changes with ``F_N0`` only through the
+losses), and a point counts as converged only when its equilibrium residual meets the
+solver's tolerance *and* the clamping equation holds to ``CLAMP_RTOL``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem, build_problem
+from ..model.rheology import roelands_pressure_limit
+
+__all__ = [
+    "with_clamp",
+    "solve_clamped",
+    "pressure_bound_force",
+    "capacity_basis",
+    "CLAMP_RTOL",
+    "MAX_CLAMP_ITERATIONS",
+]
+
+#: Relative tolerance of the clamping equation ``F_N0 = law(T_0, T_2)`` [-].
+CLAMP_RTOL = 1e-11
+#: Fixed-point iterations allowed for a law that senses the input torque.
+MAX_CLAMP_ITERATIONS = 30
+
+
+def with_clamp(problem: EquilibriumProblem, clamp_force) -> EquilibriumProblem:
+    """The same operating points at other clamping forces ``F_N0`` [N]."""
+    return build_problem(
+        problem.design,
+        problem.fluid,
+        problem.layout.architecture,
+        problem.ratio,
+        problem.output_torque,
+        clamp_force,
+        problem.input_speed,
+    )
+
+
+def pressure_bound_force(problem: EquilibriumProblem, max_pressure: float) -> np.ndarray:
+    """Largest ``F_N0`` [N] whose peak pressure stays at or below ``max_pressure`` [Pa].
+
+    Every contact load is proportional to ``F_N0`` and the Hertz peak pressure grows as
+    ``F^(1/3)`` (Eqs. 48-50), so ``F = F_N0 (p_lim / p_max)^3``. The bound never exceeds the
+    pressure at which the Roelands viscosity overflows (docs/model.md §10).
+    """
+    fl = problem.fluid
+    p_lim = min(
+        float(max_pressure),
+        roelands_pressure_limit(
+            fl.viscosity, fl.pole_viscosity, fl.pole_pressure, fl.roelands_index
+        ),
+    )
+    return problem.clamp_force * (p_lim / np.max(problem.p_max, axis=-1)) ** 3
+
+
+def capacity_basis(problem: EquilibriumProblem, law, creep_limit: float):
+    """What the limiting torque under ``law`` is searched on: ``(problem, law, creep_limit)``.
+
+    Under ``optimal`` the optimiser may pick any force up to the pressure bound, so its
+    capacity is that of the constant law at the largest force within the law's (or the
+    design's) ``max_pressure``, with the law's own ``creep_limit`` if it has one
+    (docs/model.md §11). Any other law is returned unchanged.
+    """
+    if law is None or law.name != "optimal":
+        return problem, law, creep_limit
+    p_lim = problem.design.max_pressure if law.max_pressure is None else law.max_pressure
+    c_lim = creep_limit if law.creep_limit is None else law.creep_limit
+    return with_clamp(problem, pressure_bound_force(problem, p_lim)), None, c_lim
+
+
+def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):
+    """Solve ``problem`` with its clamping force set by ``law``.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating points; their ``clamp_force`` is a starting value only (any positive
+        force).
+    law : clamping law
+        See `ballcvt.model.clamping`.
+    solve : callable
+        ``solve(problem, x0) -> solution`` with ``state`` and ``converged`` (the batched
+        or the point solver).
+    x0 : array_like, optional
+        Starting creeps.
+
+    Returns
+    -------
+    (EquilibriumProblem, solution)
+        The problem at the law's force and its solution, whose ``converged`` also requires
+        the clamping equation to hold.
+    """
+    t2 = problem.output_torque
+    force = law.clamp_force(problem.design, t2 * problem.ratio, t2)
+    pb = with_clamp(problem, force)
+    sol = solve(pb, x0)
+    if not law.implicit:
+        return pb, sol
+    for _ in range(MAX_CLAMP_ITERATIONS):
+        new = law.clamp_force(pb.design, sol.state.input_torque, t2)
+        # points whose creeps did not converge keep their force (their torque means
+        # nothing); no force beyond the model's pressure range is tried (such a point
+        # then fails the clamping equation below and is flagged, never clipped silently)
+        move = np.asarray(sol.converged) & np.isfinite(new)
+        if np.all(~move | (np.abs(new - pb.clamp_force) <= CLAMP_RTOL * pb.clamp_force)):
+            break
+        ceiling = pressure_bound_force(pb, np.inf)
+        pb = with_clamp(problem, np.where(move, np.minimum(new, ceiling), pb.clamp_force))
+        sol = solve(pb, sol.state.creep)
+    new = law.clamp_force(pb.design, sol.state.input_torque, t2)
+    held = np.abs(new - pb.clamp_force) <= CLAMP_RTOL * pb.clamp_force
+    converged = np.asarray(sol.converged) & held
+    if np.ndim(sol.converged) == 0:
+        converged = bool(converged)
+        if sol.converged and not converged:
+            return pb, replace(
+                sol,
+                converged=False,
+                message=sol.message.replace(
+                    "converged", "equilibrium converged, clamping force did not", 1
+                ),
+            )
+    return pb, replace(sol, converged=converged)

@@ -1,0 +1,525 @@
+"""Limiting output torque (docs/model.md §8).
+
+The traction law saturates (``mu -> a + tau_L0 A / F_N``), so creep runs away over a
+narrow torque band instead of stopping at a sharp maximum. The limiting torque is the
+largest ``T_2`` with a converged equilibrium and every ``|C| <= C_lim``. Under a constant
+clamping force it is found directly, by holding a disc creep at ``C_lim`` and solving for
+the output torque (`limit_search`, `ballcvt.solvers.newton.solve_pinned`); otherwise, and as
+the fallback, by bisection on ``T_2``, each trial started from the solution at the highest
+torque known to be admissible (continuation).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem
+from ..errors import NoEquilibriumError
+from ..model.traction.base import traction_rises_with_creep
+from .clamped import pressure_bound_force, solve_clamped, with_clamp
+from .newton import initial_creep, solve_batch, solve_pinned
+from .point import SolverOptions, solve_point
+
+__all__ = [
+    "limit_torque",
+    "limit_torque_batch",
+    "limit_search",
+    "LimitSearch",
+    "limit_torque_bisection",
+    "solve_admissible",
+    "Admissibility",
+    "traction_ceiling_torque",
+    "saturated_traction",
+    "bisection_steps",
+    "LIMIT_RTOL",
+]
+
+
+#: Default relative width of the final torque bracket of the limit bisections.
+LIMIT_RTOL = 1e-4
+#: Most bisection steps of `limit_torque_batch` (a bracket of 2^-60 of the ceiling).
+MAX_BISECTIONS = 60
+
+
+def bisection_steps(rtol: float = LIMIT_RTOL) -> int:
+    """Bisection steps of `limit_torque_batch` for a relative bracket ``rtol``."""
+    return int(np.ceil(np.log2(1.0 / rtol))) + 1
+
+
+def saturated_traction(problem: EquilibriumProblem) -> np.ndarray:
+    """Traction ceiling ``mu_max = a + tau_L0 pi a_x a_y / F_N`` of every contact [-].
+
+    ``|tau| <= tau_L = tau_L0 + a p`` and the pressure integrates to ``F_N`` over the
+    ellipse, so ``|mu| <= mu_max`` (Eqs. 53-54, 57).
+    """
+    fl = problem.fluid
+    area = np.pi * problem.ax * problem.ay
+    return fl.limiting_shear_slope + fl.limiting_shear_stress * area / problem.load
+
+
+def traction_ceiling_torque(problem: EquilibriumProblem) -> np.ndarray:
+    """Upper bound on ``T_2`` from the saturated traction of the disc contacts [N m].
+
+    With the spin moment bounded like the traction (`saturated_traction`), the output
+    torque cannot exceed ``n F_N r_c (1 + sin(theta)) mu_max`` at the output contact, nor
+    that of the input contact over ``tau_ID`` (power cannot grow: ``T_2 <= T_0 / tau_ID``).
+    Shape ``(...)``, the batch shape of ``problem``.
+    """
+    cap = (
+        problem.design.n_rollers
+        * problem.load
+        * problem.radius
+        * saturated_traction(problem)
+        * (1 + np.abs(problem.layout.z_j))
+    )
+    return np.minimum(cap[..., -1], cap[..., 0] / problem.ratio)
+
+
+def limit_torque(
+    problem: EquilibriumProblem,
+    creep_limit: float,
+    options: SolverOptions = SolverOptions(),
+    rtol: float = LIMIT_RTOL,
+    law=None,
+) -> float:
+    """Largest admissible output torque of a single operating point [N m].
+
+    `limit_torque_batch` on one point, so that a point, a sweep and a map give the same
+    limit; when there is none, the cause is diagnosed and raised.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating point (its ``output_torque`` is ignored).
+    creep_limit : float
+        ``C_lim``, the largest admissible ``|C|`` [-].
+    options : SolverOptions
+        Solver options.
+    rtol : float
+        Relative width of the final torque bracket [-].
+    law : clamping law, optional
+        A law whose force follows the torque (`ballcvt.model.clamping`); by default the
+        problem's constant ``clamp_force``.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    NoEquilibriumError
+        If no admissible equilibrium exists even at zero output torque.
+    """
+    torque = float(limit_torque_batch(problem, creep_limit, options, rtol, law=law))
+    if not np.isnan(torque):
+        return torque
+    zero = replace(problem, output_torque=np.asarray(0.0))
+    if _follows_torque(law):
+        zero, best = solve_clamped(zero, law, lambda p, x: solve_point(p, options, x))
+        if float(zero.clamp_force) > float(pressure_bound_force(zero, zero.design.max_pressure)):
+            raise NoEquilibriumError(
+                f"no admissible equilibrium even at zero output torque: the {law.name} law's "
+                f"clamping force {float(zero.clamp_force):.4g} N already exceeds the pressure "
+                f"limit max_pressure = {zero.design.max_pressure:g} Pa"
+            )
+    else:
+        best = solve_point(zero, options)
+    where = (
+        f"ratio {float(problem.ratio):g}, clamp_force {float(problem.clamp_force):g} N, "
+        f"input speed {float(problem.input_speed):g} rad/s"
+    )
+    if best.converged:
+        why = (
+            f"its creep {float(np.max(np.abs(best.state.creep))):.3g} already exceeds "
+            f"creep_limit {creep_limit:g}: the drive's own spin and bearing drag use up "
+            "its traction"
+        )
+    else:
+        why = (
+            "the traction this clamping force can transmit at this speed does not carry "
+            f"the drive's own drag; raise clamp_force ({best.message})"
+        )
+    raise NoEquilibriumError(
+        f"no admissible equilibrium even at zero output torque ({where}): {why}"
+    )
+
+
+@dataclass(frozen=True)
+class Admissibility:
+    """Outcome of `solve_admissible`; arrays have the batch shape ``(n,)``.
+
+    Attributes
+    ----------
+    problem : EquilibriumProblem
+        The points at the forces their clamping law set.
+    ok : ndarray of bool
+        Converged with every ``|C| <= creep_limit`` (and, under a torque-following law,
+        every peak pressure within ``design.max_pressure``).
+    converged : ndarray of bool
+        The equilibrium (and clamping equation) converged.
+    creep : ndarray
+        Final creeps, ``(n, n_c)``.
+    """
+
+    problem: EquilibriumProblem
+    ok: np.ndarray
+    converged: np.ndarray
+    creep: np.ndarray
+
+
+def solve_admissible(
+    problem: EquilibriumProblem,
+    creep_limit: float,
+    options: SolverOptions = SolverOptions(),
+    law=None,
+    x0=None,
+) -> Admissibility:
+    """Solve a 1-D batch and say which points lie within the traction capacity.
+
+    Newton alone first; the point solver only for the points whose Newton run failed
+    without its creeps running past the limit (a failure of the method, not of the
+    equilibrium). A point whose Newton run fails with its creeps beyond the limit is
+    beyond the capacity at once. This is the admissibility test of the limiting torque
+    (docs/model.md §8, §11), so a point is admissible exactly when its torque is at most
+    the limit.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating points, 1-D batch.
+    creep_limit : float
+        ``C_lim`` [-].
+    options : SolverOptions
+        Solver options.
+    law : clamping law, optional
+        A torque-following law (`ballcvt.model.clamping`); by default the problem's forces.
+    x0 : array_like, optional
+        Starting creeps ``(n, n_c)``.
+
+    Returns
+    -------
+    Admissibility
+    """
+    law = law if _follows_torque(law) else None
+    if law is not None:
+
+        def solve(pb, x, fallback):
+            return solve_clamped(pb, law, lambda p, y: solve_batch(p, options, y, fallback), x)
+    else:
+
+        def solve(pb, x, fallback):
+            return pb, solve_batch(pb, options, x, fallback=fallback)
+
+    pb, sol = solve(problem, x0, False)
+    big = np.max(np.abs(sol.state.creep), axis=-1)
+    conv, creep = sol.converged.copy(), sol.state.creep.copy()
+    unsure = np.flatnonzero(~conv & ~(big > creep_limit))
+    if unsure.size:
+        _, again = solve(pb.take(unsure), None if x0 is None else np.asarray(x0)[unsure], True)
+        conv[unsure], creep[unsure] = again.converged, again.state.creep
+    ok = conv & (np.max(np.abs(creep), axis=-1) <= creep_limit)
+    if law is not None:
+        ok &= pb.clamp_force <= pressure_bound_force(pb, pb.design.max_pressure) * (1 + 1e-12)
+    return Admissibility(pb, ok, conv, creep)
+
+
+def _follows_torque(law) -> bool:
+    """Whether ``law`` sets a torque-dependent force (else the problem's force is used)."""
+    return law is not None and getattr(law, "name", "constant") != "constant"
+
+
+@dataclass(frozen=True)
+class LimitSearch:
+    """Outcome of `limit_search`; arrays have the batch shape ``(...)`` of the problem.
+
+    Attributes
+    ----------
+    torque : ndarray
+        Limiting output torques [N m]; NaN where even ``T_2 = 0`` is inadmissible.
+    creep : ndarray
+        Creeps at the limit, ``(..., n_c)`` (NaN where there is none) [-]: a warm start
+        for the points at or near the limit.
+    creep_zero : ndarray
+        Creeps at zero output torque, ``(..., n_c)`` [-], where they were solved for
+        (points that needed the bisection or have no limit; NaN elsewhere).
+    """
+
+    torque: np.ndarray
+    creep: np.ndarray
+    creep_zero: np.ndarray
+
+    def flat(self) -> LimitSearch:
+        """The same points as a 1-D batch (C order)."""
+        nc = self.creep.shape[-1]
+        return LimitSearch(
+            self.torque.reshape(-1), self.creep.reshape(-1, nc), self.creep_zero.reshape(-1, nc)
+        )
+
+    def take(self, index) -> LimitSearch:
+        """The points ``index`` of a 1-D batch."""
+        return LimitSearch(self.torque[index], self.creep[index], self.creep_zero[index])
+
+
+def limit_torque_batch(
+    problem: EquilibriumProblem,
+    creep_limit: float,
+    options: SolverOptions = SolverOptions(),
+    rtol: float = LIMIT_RTOL,
+    callback=None,
+    law=None,
+) -> np.ndarray:
+    """Limiting output torque of every point of a batch (its ``output_torque`` is ignored).
+
+    `limit_search` returning the torques only: shape ``(...)`` [N m], NaN where even
+    ``T_2 = 0`` is inadmissible. Parameters as in `limit_search`.
+    """
+    return limit_search(problem, creep_limit, options, rtol, callback, law).torque
+
+
+def limit_search(
+    problem: EquilibriumProblem,
+    creep_limit: float,
+    options: SolverOptions = SolverOptions(),
+    rtol: float = LIMIT_RTOL,
+    callback=None,
+    law=None,
+) -> LimitSearch:
+    """Limiting output torque of every point of a batch, and the creeps there.
+
+    Under a constant clamping force the limit is found directly: the creep of a disc
+    contact is held at ``creep_limit`` and the output torque that goes with it solved for
+    (`solve_pinned`), first at the disc contact with the lower traction ceiling, then at
+    the other one for the points where that answer is inadmissible (the other disc's creep
+    beyond the limit). The creeps grow with the torque, so a non-negative torque found so,
+    with every creep within the limit, is the largest admissible one, exact to the solver
+    tolerance. The other points, and every point under a torque-following law, are solved
+    at ``T_2 = 0``: inadmissible there, they have no limit (NaN); otherwise the pinned
+    solve is tried again from those creeps and, failing that (a non-monotone creep, a
+    failed solve), the bisection on ``T_2`` of `limit_torque_bisection` decides. The two
+    methods agree within ``rtol`` (tests/test_fast_solver.py). Under a traction law whose
+    traction can fall with the creep (the thermal law), the torque at the creep limit may
+    lie past the peak of the curve ``T_2(C)``: there the limit is the largest admissible
+    torque over each disc contact's pinned creep, found by a scan and a golden-section
+    search (`_peak_limits`, docs/model.md §8, §14).
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating points, batch shape ``(...)``.
+    creep_limit : float
+        ``C_lim`` [-].
+    options : SolverOptions
+        Solver options.
+    rtol : float
+        Relative width of the final torque brackets of the bisection [-].
+    callback : callable, optional
+        Called with no argument `bisection_steps` times in all (progress bars).
+    law : clamping law, optional
+        A law whose force follows the torque (`ballcvt.model.clamping`). Its force grows with
+        the torque, so the capacity is also bounded by the peak pressure: a trial counts as
+        admissible only if its force keeps every contact at or below
+        ``design.max_pressure`` (docs/model.md §11). By default the problem's constant
+        ``clamp_force``.
+
+    Returns
+    -------
+    LimitSearch
+    """
+    flat = problem.flat()
+    law = law if _follows_torque(law) else None
+    nc = flat.layout.n_contacts
+    calls = [0]
+
+    def tick(n=1):
+        for _ in range(n if callback is not None else 0):
+            if calls[0] < bisection_steps(rtol):
+                calls[0] += 1
+                callback()
+
+    torque = np.full(flat.size, np.nan)
+    creep = np.full((flat.size, nc), np.nan)
+    x_zero = np.full((flat.size, nc), np.nan)
+    if law is None:
+        torque, creep = _pinned_limits(flat, creep_limit, options, initial_creep(flat))
+        tick()
+    rest = np.flatnonzero(np.isnan(torque))
+    if rest.size:
+        zero = solve_admissible(
+            replace(flat.take(rest), output_torque=np.zeros(rest.size)), creep_limit, options, law
+        )
+        tick()
+        x_zero[rest] = np.where(zero.converged[:, None], zero.creep, np.nan)
+        todo = rest[zero.ok]
+        if law is None and todo.size:  # once more, from the T_2 = 0 creeps
+            torque[todo], creep[todo] = _pinned_limits(
+                flat.take(todo), creep_limit, options, x_zero[todo]
+            )
+        todo = todo[np.isnan(torque[todo])]
+        if todo.size:
+            torque[todo], creep[todo] = limit_torque_bisection(
+                flat.take(todo), creep_limit, options, rtol, tick, law, x_zero[todo]
+            )
+    tick(bisection_steps(rtol))
+    shape = problem.shape
+    return LimitSearch(
+        torque.reshape(shape), creep.reshape(shape + (nc,)), x_zero.reshape(shape + (nc,))
+    )
+
+
+def _pinned_limits(flat, creep_limit, options, x_zero):
+    """Torques at which a disc creep reaches ``creep_limit`` with every creep admissible
+    (`limit_search`); NaN where neither disc contact gives one."""
+    if not traction_rises_with_creep(flat.fluid):
+        return _peak_limits(flat, creep_limit, options, x_zero)
+    nc = flat.layout.n_contacts
+    torque = np.full(flat.size, np.nan)
+    creep = np.full((flat.size, nc), np.nan)
+    # the disc contact with the lower traction ceiling usually limits: try it first
+    cap = (flat.load * flat.radius * saturated_traction(flat))[:, [0, -1]]
+    cap[:, 0] /= flat.ratio
+    first = np.where(cap[:, 0] <= cap[:, 1], 0, nc - 1)
+    for attempt in range(2):
+        for k in (0, nc - 1):
+            idx = np.flatnonzero(np.isnan(torque) & ((first == k) == (attempt == 0)))
+            if idx.size == 0:
+                continue
+            x0 = x_zero[idx].copy()
+            x0[:, [0, -1]] = creep_limit
+            t, sol = solve_pinned(flat.take(idx), k, x0, options)
+            x = sol.state.creep
+            good = (
+                sol.converged
+                & np.isfinite(t)
+                & (t >= 0.0)
+                & (np.max(np.abs(x), axis=-1) <= creep_limit * (1.0 + 1e-9))
+            )
+            torque[idx[good]], creep[idx[good]] = t[good], x[good]
+    return torque, creep
+
+
+#: Pinned creeps scanned per disc contact by `_peak_limits`, then golden-section steps
+#: about the best: the creep bracket shrinks to 2/12 x 0.618^20 = 1.5e-5 of the creep
+#: limit, and the torque, flat at its peak, is exact to about 1e-9 relative.
+PEAK_SCAN, PEAK_STEPS = 12, 20
+
+
+def _peak_limits(flat, creep_limit, options, x_zero):
+    """Limits under a law whose traction can fall with the creep. For each disc contact,
+    its creep is pinned at rising values up to ``creep_limit``, each solve started from
+    the last (continuation on the branch that starts at no load), until ``T_2`` stops
+    rising or a solve is inadmissible; golden section then refines the largest ``T_2``
+    about the best pinned creep. The limit is the larger of the two contacts' (the branch
+    folds where one contact passes the peak of its traction curve). NaN where no pinned
+    solve is admissible."""
+    nc = flat.layout.n_contacts
+    n = flat.size
+    torque = np.full(n, -np.inf)
+    creep = np.full((n, nc), np.nan)
+    start = np.where(np.isnan(x_zero), initial_creep(flat), x_zero)
+
+    def pinned(rows, k, c, x_start):
+        x0 = np.array(x_start, dtype=float)
+        x0[:, k] = c
+        t, sol = solve_pinned(flat.take(rows), k, x0, options)
+        x = sol.state.creep
+        ok = (
+            sol.converged
+            & np.isfinite(t)
+            & (np.max(np.abs(x), axis=-1) <= creep_limit * (1.0 + 1e-9))
+        )
+        return np.where(ok, t, -np.inf), x
+
+    grid = creep_limit * np.arange(1, PEAK_SCAN + 1) / PEAK_SCAN
+    g = 0.5 * (np.sqrt(5.0) - 1.0)
+    for k in (0, nc - 1):
+        # continuation up the pinned creep, on the branch that starts at no load, until
+        # the torque stops rising (the fold) or the solution is inadmissible
+        best_t, best_x = np.full(n, -np.inf), start.copy()
+        j = np.zeros(n, dtype=int)
+        going = np.arange(n)
+        for step, c in enumerate(grid):
+            if going.size == 0:
+                break
+            t, x = pinned(going, k, np.full(going.size, c), best_x[going])
+            up = t > best_t[going]
+            rise = going[up]
+            best_t[rise], best_x[rise], j[rise] = t[up], x[up], step
+            going = rise
+        live = np.flatnonzero(np.isfinite(best_t))
+        a = grid[np.maximum(j[live] - 1, 0)] * (j[live] > 0)
+        b = grid[np.minimum(j[live] + 1, PEAK_SCAN - 1)]
+        seed = best_x[live]
+        c1, c2 = b - g * (b - a), a + g * (b - a)
+        (t1, x1), (t2, x2) = pinned(live, k, c1, seed), pinned(live, k, c2, seed)
+        bt, bx = best_t[live], best_x[live]
+        for _ in range(PEAK_STEPS):
+            for t, x in ((t1, x1), (t2, x2)):
+                better = t > bt
+                bt, bx = np.where(better, t, bt), np.where(better[:, None], x, bx)
+            left = t1 >= t2  # the peak lies in [a, c2]
+            a, b = np.where(left, a, c1), np.where(left, c2, b)
+            c1, c2 = b - g * (b - a), a + g * (b - a)
+            c_new = np.where(left, c1, c2)
+            t_new, x_new = pinned(live, k, c_new, bx)
+            t1, x1, t2, x2 = (
+                np.where(left, t_new, t2),
+                np.where(left[:, None], x_new, x2),
+                np.where(left, t1, t_new),
+                np.where(left[:, None], x1, x_new),
+            )
+        better = bt > torque[live]
+        torque[live[better]], creep[live[better]] = bt[better], bx[better]
+    keep = np.isfinite(torque) & (torque >= 0.0)
+    return np.where(keep, torque, np.nan), np.where(keep[:, None], creep, np.nan)
+
+
+def limit_torque_bisection(
+    flat: EquilibriumProblem,
+    creep_limit: float,
+    options: SolverOptions,
+    rtol: float,
+    callback,
+    law,
+    x_zero,
+):
+    """Bisection on ``T_2`` for the limits of a 1-D batch admissible at ``T_2 = 0``.
+
+    Each trial is started from the point's last admissible creeps (continuation) and
+    counts as admissible only if it converges with every ``|C| <= creep_limit`` (and,
+    under a torque-following ``law``, within the pressure limit; `solve_admissible`).
+
+    Returns
+    -------
+    torque : ndarray
+        The highest admissible torque found, within ``rtol`` of the limit [N m].
+    creep : ndarray
+        The creeps there.
+    """
+    if law is not None:
+        f_cap = pressure_bound_force(flat, flat.design.max_pressure)
+        hi = np.minimum(
+            law.output_torque_bound(flat.design, f_cap, flat.ratio),
+            traction_ceiling_torque(with_clamp(flat, f_cap)),
+        )
+    else:
+        hi = traction_ceiling_torque(flat)
+    best = np.array(x_zero, dtype=float)
+    lo = np.zeros(flat.size)
+    # bisect until every bracket is narrow: a loose ceiling (extreme designs) needs more
+    # than the bisection_steps() of a typical one
+    steps = bisection_steps(rtol)
+    for step in range(MAX_BISECTIONS):
+        active = np.flatnonzero((step < steps) | (hi - lo > rtol * hi))
+        if active.size == 0:
+            break
+        mid = 0.5 * (lo[active] + hi[active])
+        got = solve_admissible(
+            replace(flat.take(active), output_torque=mid), creep_limit, options, law, best[active]
+        )
+        lo[active] = np.where(got.ok, mid, lo[active])
+        hi[active] = np.where(got.ok, hi[active], mid)
+        best[active] = np.where(got.ok[:, None], got.creep, best[active])
+        callback()
+    return lo, best

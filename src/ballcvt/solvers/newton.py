@@ -1,0 +1,437 @@
+"""Batched Newton solver: many operating points at once (the fast default path).
+
+All points of a batch iterate together, first with a coarse quadrature (the predictor,
+``SolverOptions.predictor``) to a loose tolerance, then with the requested one. Each
+iteration evaluates the traction integrals once, with their analytic derivatives
+(`evaluate_with_jacobian`; the last one, which only confirms convergence, without them),
+and updates every point in one compiled loop (`_advance`: the small ``n_c x n_c`` Newton
+systems by Gaussian elimination, the caps, the back-offs). Steps are capped so that no
+creep leaves its physical range, and a point whose residual grew is sent back along half
+its previous step (a deferred backtracking line search that costs nothing while Newton
+converges). Points
+still unconverged after ``max_iterations`` go, one by one, to the robust point solver
+(hybrid method, then bracketing). A point is reported converged only if its residual,
+evaluated afresh on the final creeps, meets the tolerance; the others are flagged in
+``converged``, never hidden.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem
+from ..equilibrium.residual import (
+    EquilibriumState,
+    balancing_output_torque,
+    evaluate,
+    evaluate_with_jacobian,
+)
+
+njit: Any
+try:
+    from numba import njit
+except ImportError:  # pragma: no cover - numba is a declared dependency
+    njit = None
+
+__all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "CREEP_BOUNDS"]
+
+#: Creeps outside this open interval are unphysical (speeds reverse).
+CREEP_BOUNDS = (-0.5, 0.98)
+#: Largest change of any creep in one Newton step [-].
+MAX_STEP = 0.05
+
+
+@dataclass(frozen=True)
+class BatchSolution:
+    """Outcome of `solve_batch`; arrays have the batch shape ``(...)``.
+
+    Attributes
+    ----------
+    state : EquilibriumState
+        Every quantity at the final creeps (also for unconverged points: check
+        ``converged``).
+    converged : ndarray of bool
+        Residual at most the tolerance and finite.
+    residual_norm : ndarray
+        ``max |residual|`` at the final creeps [-].
+    iterations : ndarray of int
+        Residual evaluations of each point (with the Jacobian, or without it where only
+        convergence was left to confirm, `CONFIRM_NORM`); points that needed the point
+        solver add its residual evaluations.
+    """
+
+    state: EquilibriumState
+    converged: np.ndarray
+    residual_norm: np.ndarray
+    iterations: np.ndarray
+
+
+def initial_creep(problem: EquilibriumProblem) -> np.ndarray:
+    """A starting creep vector per point: small positive disc creeps, zero idler creeps."""
+    x0 = np.where(problem.layout.is_idler, 0.0, 1e-3)
+    return np.broadcast_to(x0, problem.shape + x0.shape).copy()
+
+
+def solve_batch(
+    problem: EquilibriumProblem, options=None, x0=None, fallback: bool = True, predict: bool = True
+) -> BatchSolution:
+    """Solve every operating point of ``problem`` for its creeps.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating points, batch shape ``(...)``.
+    options : SolverOptions, optional
+        Quadrature, tolerance and ``max_iterations`` (Newton iterations before a point goes
+        to the point solver); ``ballcvt.solvers.point.SolverOptions()`` by default.
+    x0 : array_like, optional
+        Starting creeps, broadcastable to ``(..., n_c)`` (e.g. a neighbour's solution).
+    fallback : bool
+        Whether unconverged points go to the point solver (otherwise they are flagged).
+    predict : bool
+        Whether to run the predictor stage (``options.predictor``); False when ``x0`` is
+        already close to the solution on the requested rule (e.g. a solution found by
+        `solve_pinned` at the same torque), which the predictor would only move away.
+
+    Returns
+    -------
+    BatchSolution
+    """
+    from .point import SolverOptions, solve_point  # the point solver builds on this module
+
+    options = SolverOptions() if options is None else options
+    shape, nc = problem.shape, problem.layout.n_contacts
+    flat = problem.flat()
+    x = (
+        initial_creep(flat)
+        if x0 is None
+        else np.broadcast_to(np.asarray(x0, dtype=float), shape + (nc,)).reshape(-1, nc).copy()
+    )
+    iterations = np.zeros(flat.size, dtype=int)
+    x, state = _staged_newton(flat, x, iterations, options, predict=predict)
+    norm = _norm(state.residual)
+    bad = np.flatnonzero(~(norm <= options.tol))
+    if fallback and bad.size:
+        robust = replace(options, method="hybr")
+        for i in bad:
+            sol = solve_point(flat.take(int(i)), robust)
+            iterations[i] += sol.evaluations
+            if sol.residual_norm < norm[i]:
+                x[i] = sol.state.creep
+        state = evaluate(flat, x, options.quadrature)
+        norm = _norm(state.residual)
+    converged = norm <= options.tol
+    return BatchSolution(
+        state=_reshape(state, shape),
+        converged=converged.reshape(shape),
+        residual_norm=norm.reshape(shape),
+        iterations=iterations.reshape(shape),
+    )
+
+
+def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
+    """Solve with one contact's creep held, for the output torque that goes with it.
+
+    The output torque enters only the output disc's balance, and linearly (the last
+    residual, docs/model.md §5). With the creep of ``contact`` held at its value in
+    ``x0``, the other balances fix the other creeps; the output torque is then the one
+    that balances the output disc: ``T_2 = T_body,2 - T_drag,2``. This gives the torque
+    at which a creep reaches a given value in one Newton solve (`ballcvt.solvers.limit`).
+    The problem's own ``output_torque`` is not used.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating points, 1-D batch ``(n,)``, at a torque-independent clamping force.
+    contact : int
+        Index of the contact whose creep is held.
+    x0 : array_like
+        Starting creeps ``(n, n_c)``; column ``contact`` holds the prescribed creep [-].
+    options : SolverOptions, optional
+        As in `solve_batch` (no fallback: a point that fails is flagged).
+
+    Returns
+    -------
+    torque : ndarray
+        Output torque ``T_2`` at the solution [N m], ``(n,)``.
+    solution : BatchSolution
+        Creeps and state; ``converged`` refers to the balances other than the output's.
+    """
+    from .point import SolverOptions
+
+    options = SolverOptions() if options is None else options
+    flat = problem.flat()
+    x = np.array(x0, dtype=float).reshape(flat.size, -1)
+    iterations = np.zeros(flat.size, dtype=int)
+    _, state = _staged_newton(flat, x, iterations, options, pinned=contact)
+    norm = _norm(state.residual[:, :-1])
+    return balancing_output_torque(flat, state), BatchSolution(
+        state=state, converged=norm <= options.tol, residual_norm=norm, iterations=iterations
+    )
+
+
+def _staged_newton(flat, x, iterations, options, pinned=None, predict=True):
+    """The predictor stage on the coarse rule (where it pays, `_predicts`), then Newton on
+    the requested rule; a point whose coarse run went non-finite restarts from ``x``.
+    Returns the final creeps (updated in place where possible) and state."""
+    if predict and _predicts(options, flat.size):
+        coarse = replace(options, quadrature=options.predictor, tol=options.predictor_tol)
+        start = x.copy()
+        _newton(flat, x, iterations, coarse, pinned=pinned)
+        x = np.where(np.all(np.isfinite(x), axis=-1, keepdims=True), x, start)
+    return x, _newton(flat, x, iterations, options, pinned=pinned)
+
+
+def _predicts(options, n_points: int) -> bool:
+    """Whether a batch of ``n_points`` runs the predictor stage first."""
+    return (
+        options.predictor is not None
+        and options.predictor != options.quadrature
+        and n_points >= options.predictor_min_points
+    )
+
+
+#: A point whose residual norm is at most this before a Newton step is expected to meet
+#: the tolerance after it (Newton's convergence is quadratic down to the Jacobian's
+#: accuracy, about 1e-5 relative here): when every point still iterating is, the next
+#: evaluation skips the Jacobian; a point that then misses the tolerance is evaluated
+#: again, with it, at the same creeps.
+CONFIRM_NORM = 1e-6
+
+
+def _newton(flat, x, iterations, options, pinned=None):
+    """Damped Newton on the points of the 1-D batch ``flat``; updates ``x`` in place.
+
+    ``pinned``: the index of a contact whose creep stays at its value in ``x``; the
+    output balance (the last residual) is then dropped, the output torque being the
+    unknown it defines (`solve_pinned`).
+
+    Returns the state at the final ``x`` of every point: each point's last evaluation,
+    or a fresh one for the points whose last move was not evaluated.
+    """
+    nc, n = x.shape[-1], flat.size
+    free = np.arange(nc) if pinned is None else np.delete(np.arange(nc), pinned)
+    active = np.arange(n)
+    final = None
+    fresh = np.zeros(n, dtype=bool)  # last evaluation was at the current x
+    best = np.full(n, np.inf)  # residual norm at the last accepted creeps
+    prev_x = x.copy()
+    prev_dx = np.zeros((n, free.size))
+    confirm = False  # every active point is expected to converge: no Jacobian needed
+    m = free.size
+    for _ in range(options.max_iterations):
+        if active.size == 0:
+            break
+        whole = active.size == n  # every point still iterates: no gathers or scatters
+        sub, xa = (flat, x) if whole else (flat.take(active), x[active])
+        if confirm:
+            state = evaluate(sub, xa, options.quadrature)
+            jac = np.empty((0, m, m))  # not read: nothing steps after a confirmation
+        else:
+            state, jac = evaluate_with_jacobian(sub, xa, options.quadrature)
+            if pinned is not None:
+                jac = jac[:, :m][:, :, free]
+        iterations[active] += 1
+        final = state if final is None or whole else _scatter(final, state, active)
+        fresh[active] = True
+        res = np.ascontiguousarray(state.residual[:, :m])
+        active, confirm = _advance(
+            active,
+            res,
+            np.ascontiguousarray(jac),
+            x,
+            free,
+            best,
+            prev_x,
+            prev_dx,
+            fresh,
+            options.tol,
+            confirm,
+        )
+    stale = np.flatnonzero(~fresh)
+    if final is None or stale.size == n:
+        return evaluate(flat, x, options.quadrature)
+    if stale.size:
+        final = _scatter(final, evaluate(flat.take(stale), x[stale], options.quadrature), stale)
+    return final
+
+
+def _scatter(full: EquilibriumState, part: EquilibriumState, index) -> EquilibriumState:
+    """``full`` with the points ``index`` replaced by ``part`` (copies, 1-D batches)."""
+    if part.creep.shape[0] == full.creep.shape[0] and np.array_equal(
+        index, np.arange(full.creep.shape[0])
+    ):
+        return part
+    fields = {}
+    for name, value in vars(full).items():
+        value = np.array(value, copy=True)
+        value[index] = getattr(part, name)
+        fields[name] = value
+    return EquilibriumState(**fields)
+
+
+def _advance(active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm):
+    """One Newton update of the points ``active`` after their evaluation (``res``,
+    ``jac``: their residuals and Jacobians on the free creeps); updates ``x``, ``best``,
+    ``prev_x``, ``prev_dx`` and ``fresh`` in place.
+
+    A point whose residual norm meets ``tol`` is done. After a value-only evaluation
+    (``confirm``) the others go round again at the same creeps. Otherwise a point whose
+    norm did not fall below its best goes back along half its previous step (and stops
+    if that step is below 1e-14), and the others take the Newton step, capped in size and
+    kept inside `CREEP_BOUNDS` (`_cap`; least squares where the matrix is singular).
+
+    Returns the points still iterating and whether the next evaluation only confirms
+    convergence (every step taken from a norm at most `CONFIRM_NORM`, none went back).
+    """
+    lo, hi = CREEP_BOUNDS
+    keep = np.zeros(active.size, dtype=np.bool_)
+    singular = np.zeros(active.size, dtype=np.bool_)
+    step = _advance_compiled if COMPILED else _advance_python
+    near = step(
+        active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm,
+        MAX_STEP, lo, hi, CONFIRM_NORM, keep, singular,
+    )  # fmt: skip
+    for k in np.flatnonzero(singular):  # rare: a least-squares step, capped
+        i = active[k]
+        dx = _cap(_lstsq(jac[k], res[k])[None, :], x[i, free][None, :])[0]
+        prev_x[i] = x[i]
+        prev_dx[i] = dx
+        x[i, free] += dx
+        fresh[i] = False
+    return active[keep], bool(near)
+
+
+def _advance_python(
+    active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm, max_step, lo, hi,
+    confirm_norm, keep, singular,
+):  # fmt: skip
+    """`_advance`'s loop: Gaussian elimination with partial pivoting for the steps, then
+    the caps of `_cap`; writes ``keep`` and ``singular`` per point. Compiled by numba
+    (`_advance_compiled`); this plain-Python form runs only without numba."""
+    m = free.size
+    a = np.empty((m, m))
+    b = np.empty(m)
+    dx = np.empty(m)
+    any_back = False
+    all_near = True
+    for k in range(active.size):
+        i = active[k]
+        norm = 0.0
+        for r in range(m):
+            norm = max(norm, abs(res[k, r]))
+        if not math.isfinite(norm):
+            norm = math.inf
+        if norm <= tol:
+            continue  # done
+        if confirm:
+            keep[k] = True
+            continue
+        if not norm < best[i]:  # worse (or NaN): half the previous step back
+            any_back = True
+            big = 0.0
+            for r in range(m):
+                prev_dx[i, r] *= 0.5
+                x[i, free[r]] = prev_x[i, free[r]] + prev_dx[i, r]
+                big = max(big, abs(prev_dx[i, r]))
+            fresh[i] = False
+            keep[k] = big > 1e-14
+            continue
+        keep[k] = True
+        all_near = all_near and norm <= confirm_norm
+        best[i] = norm
+        for r in range(m):
+            b[r] = -res[k, r]
+            for c in range(m):
+                a[r, c] = jac[k, r, c]
+        ok = True
+        for c in range(m):  # elimination with partial pivoting
+            p = c
+            for r in range(c + 1, m):
+                if abs(a[r, c]) > abs(a[p, c]):
+                    p = r
+            if a[p, c] == 0.0:
+                ok = False
+                break
+            if p != c:
+                for q in range(m):
+                    a[c, q], a[p, q] = a[p, q], a[c, q]
+                b[c], b[p] = b[p], b[c]
+            for r in range(c + 1, m):
+                f = a[r, c] / a[c, c]
+                for q in range(c, m):
+                    a[r, q] -= f * a[c, q]
+                b[r] -= f * b[c]
+        if not ok:
+            singular[k] = True
+            continue
+        for r in range(m - 1, -1, -1):
+            v = b[r]
+            for q in range(r + 1, m):
+                v -= a[r, q] * dx[q]
+            dx[r] = v / a[r, r]
+        big = 0.0  # the caps of `_cap`
+        for r in range(m):
+            if not math.isfinite(dx[r]):
+                dx[r] = 0.0
+            big = max(big, abs(dx[r]))
+        scale = min(1.0, max_step / max(big, 1e-300))
+        for r in range(m):
+            dx[r] *= scale
+        scale = 1.0
+        for r in range(m):
+            xr = x[i, free[r]]
+            room = 0.5 * (hi - xr) if dx[r] > 0 else 0.5 * (xr - lo)
+            if abs(dx[r]) > room:
+                scale = min(scale, room / max(abs(dx[r]), 1e-300))
+        for r in range(m):
+            prev_dx[i, r] = dx[r] * scale
+        for q in range(x.shape[1]):
+            prev_x[i, q] = x[i, q]
+        for r in range(m):
+            x[i, free[r]] += prev_dx[i, r]
+        fresh[i] = False
+    return not confirm and all_near and not any_back  # after a confirmation: the Jacobian
+
+
+def _cap(dx, x):
+    """Steps ``(n, m)`` with non-finite components set to 0, the largest ``|dx|`` capped at
+    `MAX_STEP`, and no component more than half-way to a bound of `CREEP_BOUNDS` (NumPy)."""
+    dx = np.where(np.isfinite(dx), dx, 0.0)
+    big = np.max(np.abs(dx), axis=-1, keepdims=True)
+    dx = dx * np.minimum(1.0, MAX_STEP / np.maximum(big, 1e-300))
+    lo, hi = CREEP_BOUNDS
+    # Never step more than half-way to a bound.
+    room = np.where(dx > 0, 0.5 * (hi - x), 0.5 * (x - lo))
+    scale = np.min(
+        np.where(np.abs(dx) > room, room / np.maximum(np.abs(dx), 1e-300), 1.0),
+        axis=-1,
+        keepdims=True,
+    )
+    return dx * scale
+
+
+COMPILED = njit is not None
+_advance_compiled = njit(cache=True)(_advance_python) if COMPILED else None
+
+
+def _lstsq(jac, res):
+    return np.linalg.lstsq(jac, -res, rcond=None)[0]
+
+
+def _norm(res):
+    norm = np.abs(res).max(axis=-1)
+    norm[~np.isfinite(norm)] = np.inf
+    return norm
+
+
+def _reshape(state: EquilibriumState, shape) -> EquilibriumState:
+    fields = {}
+    for name, value in vars(state).items():
+        value = np.asarray(value)
+        fields[name] = value.reshape(shape + value.shape[1:])
+    return EquilibriumState(**fields)

@@ -1,0 +1,180 @@
+"""Equilibrium of the variator as a planetary (docs/model.md §13).
+
+With the carrier turning, the model of §§1-12 holds in the carrier's frame: the contacts
+see the speeds relative to the carrier. A mode (`ballcvt.model.modes.OperatingMode`) gives the
+driver's speed and the driven member's load torque; the relative input speed then depends
+on the actual ratio ``tau_R`` (creep included) through Willis' relation, and the load torque
+sets the condition ``a T_0 + b T_2 = target`` that closes the last balance. The speeds are
+found by a fixed point on ``tau_R`` (it depends on the speeds only through the film
+thickness and the bearing drag: two or three passes), each pass a warm-started solve.
+
+Where the relative input speed is negative the problem is solved mirrored: all speeds and
+torques change sign together and the creeps stay (the shear stress and the bearing drags
+are odd in the speeds, the centrifugal force even, the gyroscopic force odd in each of the
+two speeds whose product it carries).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem, build_problem
+from ..equilibrium.residual import balancing_output_torque
+from ..errors import ConvergenceError, InputError
+from ..model.modes import OperatingMode
+from .point import PointSolution, SolverOptions, solve_point
+
+__all__ = ["ModeSolution", "solve_mode", "carrier_frame_problem", "RATIO_TOL"]
+
+#: Relative tolerance of the fixed point on the actual ratio.
+RATIO_TOL = 1e-13
+
+
+@dataclass(frozen=True)
+class ModeSolution:
+    """Outcome of `solve_mode`.
+
+    Attributes
+    ----------
+    problem : EquilibriumProblem
+        The point in the carrier frame, its input disc turning forward (mirrored where
+        the relative input speed is negative), with its output torque the solved ``T_2``
+        and the default torque condition: a standard problem at the solution.
+    solution : PointSolution
+        Creeps and state of ``problem``.
+    sign : float
+        +1, or -1 where mirrored: physical speeds and torques are ``sign`` times the
+        carrier-frame ones.
+    speeds : dict of float
+        Speeds of ``disc0``, ``disc2``, ``carrier`` [rad/s].
+    passes : int
+        Solves of the fixed point on the actual ratio.
+    """
+
+    problem: EquilibriumProblem
+    solution: PointSolution
+    sign: float
+    speeds: dict
+    passes: int
+
+
+def solve_mode(
+    design,
+    fluid,
+    architecture: str,
+    mode: OperatingMode,
+    ratio: float,
+    load_torque: float,
+    driver_speed: float,
+    clamp_force: float,
+    options: SolverOptions = SolverOptions(),
+    max_passes: int = 30,
+) -> ModeSolution:
+    """Solve one operating point of the variator in a planetary mode.
+
+    Parameters
+    ----------
+    design, fluid : Design, Fluid
+        Parameter sets.
+    architecture : {"double", "single"}
+        Idler architecture.
+    mode : OperatingMode
+        Held, driving and driven members.
+    ratio : float
+        Ideal ratio relative to the carrier ``tau_ID`` [-].
+    load_torque : float
+        Load torque of the driven member (the torque it delivers; applied to it: minus
+        that) [N m].
+    driver_speed : float
+        Speed of the driver [rad/s] (signed).
+    clamp_force : float
+        ``F_N0`` [N] (constant clamping).
+    options : SolverOptions
+        Solver options.
+    max_passes : int
+        Most passes of the fixed point on the actual ratio.
+
+    Returns
+    -------
+    ModeSolution
+
+    Raises
+    ------
+    InputError
+        Out-of-range inputs, or a mode and ratio that need an infinite speed.
+    ConvergenceError
+        If an equilibrium or the fixed point does not converge.
+    """
+    tau, x, sol, pb = float(ratio), None, None, None
+    for passes in range(1, max_passes + 1):  # noqa: B007 (the count is returned)
+        speeds = mode.speeds(float(driver_speed), tau)
+        if not abs(float(speeds["disc0"] - speeds["carrier"])) > 0.0:
+            raise InputError(
+                "driver_speed",
+                driver_speed,
+                f"!= 0: with {mode.label} at "
+                f"ratio {ratio:g} the discs would not turn relative to the "
+                "carrier",
+            )
+        pb, sign = carrier_frame_problem(
+            design, fluid, architecture, mode, ratio, float(load_torque), speeds, clamp_force
+        )
+        sign = float(sign)
+        sol = solve_point(pb, options, x)
+        if not sol.converged:
+            raise ConvergenceError(f"{mode.label}: {sol.message}")
+        x = sol.state.creep
+        new = float(sol.state.omega[-1] / sol.state.omega[0])
+        if abs(new - tau) <= RATIO_TOL * abs(tau):
+            break
+        tau = new
+    else:
+        raise ConvergenceError(
+            f"{mode.label}: the speeds did not settle in {max_passes} "
+            f"passes (actual ratio {tau:.15g})"
+        )
+    speeds = {m: float(v) for m, v in mode.speeds(float(driver_speed), new).items()}
+    t2 = balancing_output_torque(pb, sol.state)
+    standard = replace(pb, output_torque=np.asarray(t2), torque_weights=(0.0, 1.0))
+    return ModeSolution(standard, sol, sign, speeds, passes)
+
+
+def carrier_frame_problem(
+    design, fluid, architecture: str, mode: OperatingMode, ratio, load_torque, speeds, clamp_force
+):
+    """The point(s) in the carrier frame, mirrored where the relative input speed is
+    negative (module docstring).
+
+    Parameters
+    ----------
+    speeds : dict of array_like
+        Member speeds of `OperatingMode.speeds` [rad/s]; the relative input speed
+        ``omega_0 - omega_c`` must not be zero.
+    ratio, load_torque, clamp_force
+        As in `solve_mode` (arrays broadcast).
+
+    Returns
+    -------
+    (EquilibriumProblem, ndarray)
+        The problem, and ``sign``: +1, or -1 where mirrored.
+    """
+    a, b, target = mode.torque_condition(load_torque)
+    relative = np.asarray(speeds["disc0"] - speeds["carrier"], dtype=float)
+    sign = np.where(relative > 0, 1.0, -1.0)
+    pb = build_problem(
+        design,
+        fluid,
+        architecture,
+        ratio,
+        sign * target,
+        clamp_force,
+        np.abs(relative),
+        carrier_speed=sign * speeds["carrier"],
+        torque_weights=(a, b),
+        centrifugal=mode.centrifugal,
+        gyroscopic=mode.gyroscopic,
+        signed_torque=True,
+    )
+    return pb, sign

@@ -1,0 +1,217 @@
+"""Planetary modes over many points, batched through the fast solver (docs/model.md §13).
+
+`solve_mode_batch` is `ballcvt.solvers.planetary.solve_mode` on a batch: every pass of the
+fixed point on the actual ratio is one batched solve. `limit_load_batch` finds the capacity
+per mode by bisection on the load.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..equilibrium.problem import build_problem, max_carrier_speed
+from ..equilibrium.residual import balancing_output_torque
+from ..model.architectures import contact_layout
+from ..model.modes import MEMBERS, OperatingMode, member_torques
+from ..performance.efficiency import power_losses
+from .limit import traction_ceiling_torque
+from .newton import initial_creep, solve_batch
+from .planetary import RATIO_TOL, carrier_frame_problem
+from .point import SolverOptions
+
+__all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch", "MODE_STATUS"]
+
+
+#: Status codes of `solve_mode_batch` (as in a sweep, plus 3).
+MODE_STATUS = {
+    0: "converged within the traction capacity",
+    1: "beyond the traction capacity",
+    2: "not converged",
+    3: "speeds out of range (infinite, none relative to the "
+    "carrier, or a carrier fast enough to unload the idler)",
+}
+
+
+@dataclass(frozen=True)
+class ModeBatch:
+    """Outcome of `solve_mode_batch`; arrays ``(n,)`` (speeds and torques ``(3, n)`` in
+    the order of `ballcvt.model.modes.MEMBERS`), NaN where ``status`` is not 0."""
+
+    status: np.ndarray
+    speeds: np.ndarray
+    torques: np.ndarray
+    loss: np.ndarray
+    actual_ratio: np.ndarray
+    max_creep: np.ndarray
+    circulating_power: np.ndarray
+
+    @property
+    def powers(self) -> np.ndarray:
+        """Power into the drive through each member [W], ``(3, n)``."""
+        return self.torques * self.speeds
+
+    @property
+    def input_power(self) -> np.ndarray:
+        """Power into the drive: the sum of the members' positive powers [W]."""
+        return np.sum(np.maximum(self.powers, 0.0), axis=0)
+
+    @property
+    def eta(self) -> np.ndarray:
+        """Power out over power in [-] (as `PlanetaryResult.eta`)."""
+        p_in = self.input_power
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(p_in > 0, np.sum(np.maximum(-self.powers, 0.0), axis=0) / p_in, np.nan)
+
+    def braking_direction(self, mode: OperatingMode) -> np.ndarray:
+        """Sign of a load that brakes the driven member: that of its speed in this batch
+        (solved at zero load), +1 where it is zero or unknown."""
+        return np.where(np.nan_to_num(self.speeds[MEMBERS.index(mode.driven)]) < 0, -1.0, 1.0)
+
+
+def solve_mode_batch(
+    design,
+    fluid,
+    architecture: str,
+    mode: OperatingMode,
+    ratio,
+    load_torque,
+    driver_speed,
+    clamp_force: float,
+    options: SolverOptions = SolverOptions(),
+    max_passes: int = 30,
+) -> ModeBatch:
+    """`solve_mode` on a batch of points, batched through the fast solver.
+
+    ``ratio``, ``load_torque`` and ``driver_speed`` broadcast to ``(n,)``. Every pass of the
+    fixed point on the actual ratio is one `solve_batch` of the points not yet settled;
+    a point's figures are taken from the pass in which it settles. Points whose speeds are
+    out of range are flagged (status 3), not raised; points whose creeps exceed
+    ``design.creep_limit`` are flagged 1.
+    """
+    ratio, load, w = (
+        np.ravel(v)
+        for v in np.broadcast_arrays(
+            *(np.asarray(v, dtype=float) for v in (ratio, load_torque, driver_speed))
+        )
+    )
+    n = ratio.size
+    layout = contact_layout(design, architecture)
+    w_max = float(max_carrier_speed(design, layout, clamp_force)) if mode.centrifugal else np.inf
+    status = np.full(n, 2)
+    tau = ratio.copy()
+    x = np.full((n, layout.n_contacts), np.nan)
+    speeds, torques = np.full((3, n), np.nan), np.full((3, n), np.nan)
+    loss, circ, big = (np.full(n, np.nan) for _ in range(3))
+    settled = np.zeros(n, dtype=bool)
+    for _ in range(max_passes):
+        sp = mode.speeds(w, tau, check=False)
+        rel = sp["disc0"] - sp["carrier"]
+        ok = (
+            np.isfinite(rel)
+            & (np.abs(rel) > 0)
+            & np.isfinite(sp["carrier"])
+            & (np.abs(sp["carrier"]) < w_max)
+        )
+        status[~ok & ~settled] = 3
+        todo = np.flatnonzero(ok & ~settled)
+        if todo.size == 0:
+            break
+        pb, sign = carrier_frame_problem(
+            design,
+            fluid,
+            architecture,
+            mode,
+            ratio[todo],
+            load[todo],
+            {m: v[todo] for m, v in sp.items()},
+            clamp_force,
+        )
+        sol = solve_batch(pb, options, np.where(np.isnan(x[todo]), initial_creep(pb), x[todo]))
+        st = sol.state
+        x[todo] = st.creep
+        new = st.omega[:, -1] / st.omega[:, 0]
+        done = ~sol.converged | (np.abs(new - tau[todo]) <= RATIO_TOL * np.abs(tau[todo]))
+        settled[todo[done]] = True
+        fin = done & sol.converged
+        j = todo[fin]
+        status[j] = 0
+        members = member_torques(sign * st.input_torque, sign * balancing_output_torque(pb, st))
+        for row, m in enumerate(MEMBERS):
+            speeds[row, j] = sp[m][todo][fin]
+            torques[row, j] = members[m][fin]
+        loss[j] = power_losses(pb, st).total[fin]
+        circ[j] = np.abs(st.input_torque * pb.input_speed)[fin]
+        big[j] = np.max(np.abs(st.creep[fin]), axis=-1)
+        tau[todo] = np.where(sol.converged, new, tau[todo])
+    status[(status == 0) & (big > design.creep_limit)] = 1
+    keep = status == 0
+    return ModeBatch(
+        status,
+        np.where(keep, speeds, np.nan),
+        np.where(keep, torques, np.nan),
+        np.where(keep, loss, np.nan),
+        np.where(keep, tau, np.nan),
+        np.where(keep, big, np.nan),
+        np.where(keep, circ, np.nan),
+    )
+
+
+def limit_load_batch(
+    design,
+    fluid,
+    architecture: str,
+    mode: OperatingMode,
+    ratio,
+    driver_speed,
+    clamp_force: float,
+    options: SolverOptions = SolverOptions(),
+    rtol: float = 1e-3,
+    max_steps: int = 40,
+) -> np.ndarray:
+    """Largest load torque of the driven member with every ``|C| <= creep_limit``.
+
+    The load brakes the driven member: its sign is that of the driven speed at zero load
+    (positive at geared neutral). Bracketed by doubling from the carrier-frame traction
+    ceiling, then bisected to ``rtol`` on all ratios at once (`solve_mode_batch`).
+
+    Returns
+    -------
+    ndarray
+        ``|L|`` at the limit [N m], ``(n,)``; NaN where even zero load is not admissible or
+        the speeds are out of range.
+    """
+    ratio = np.ravel(np.asarray(ratio, dtype=float))
+    n = ratio.size
+
+    def admissible(load):
+        return (
+            solve_mode_batch(
+                design, fluid, architecture, mode, ratio, load, driver_speed, clamp_force, options
+            ).status
+            == 0
+        )
+
+    zero = solve_mode_batch(
+        design, fluid, architecture, mode, ratio, 0.0, driver_speed, clamp_force, options
+    )
+    direction = zero.braking_direction(mode)
+    ok0 = zero.status == 0
+    hi = traction_ceiling_torque(
+        build_problem(design, fluid, architecture, ratio, 0.0, clamp_force, 1.0)
+    )
+    lo = np.zeros(n)
+    for _ in range(12):  # double until beyond the capacity
+        up = admissible(direction * hi) & ok0
+        if not up.any():
+            break
+        lo = np.where(up, hi, lo)
+        hi = np.where(up, 2.0 * hi, hi)
+    for _ in range(max_steps):
+        if np.all(~ok0 | (hi - lo <= rtol * hi)):
+            break
+        mid = 0.5 * (lo + hi)
+        up = admissible(direction * mid)
+        lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
+    return np.where(ok0, lo, np.nan)

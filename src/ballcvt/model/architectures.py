@@ -15,6 +15,7 @@ import numpy as np
 from ..errors import InputError
 from ..params.feasibility import check_architecture
 from ..params.models import ARCHITECTURES, Design
+from ..registry import ARCHITECTURES as REGISTRY
 
 __all__ = ["ContactLayout", "contact_layout", "CONTACT_NAMES"]
 
@@ -23,6 +24,8 @@ CONTACT_NAMES = {
     "double": ("input", "idler_a", "idler_b", "output"),
     "single": ("input", "idler", "output"),
 }
+for _name, _contacts in CONTACT_NAMES.items():
+    REGISTRY.register(_contacts, name=_name)
 
 
 @dataclass(frozen=True)

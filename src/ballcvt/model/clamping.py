@@ -24,6 +24,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..params.models import Design
+from ..registry import CLAMP_LAWS as REGISTRY
 
 __all__ = ["ConstantClamp", "CamClamp", "OptimalClamp", "CLAMP_LAWS", "axial_force", "clamp_law"]
 
@@ -172,6 +173,10 @@ class OptimalClamp:
     max_pressure: float | None = None
     name: str = "optimal"
     implicit: bool = False
+
+
+for _law in (ConstantClamp, CamClamp, OptimalClamp):
+    REGISTRY.register(_law, name=_law.name)
 
 
 def clamp_law(law, design: Design, clamp_force=None):

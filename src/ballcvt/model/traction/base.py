@@ -20,8 +20,10 @@ fields in `ballcvt.params.models.LAW_FIELDS`, and its tests.
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 
 from ...params.models import TRACTION_LAWS, Fluid
+from ...registry import TRACTION_LAWS as REGISTRY
 from .isothermal import traction_coefficients
 from .quadrature import Quadrature
 from .thermal import thermal_coefficients
@@ -39,6 +41,19 @@ LAWS: dict[str, Callable] = {
 #: curve when that comes before the creep limit (`ballcvt.solvers.limit`).
 MONOTONE: dict[str, bool] = {"isothermal": True, "viscoelastic": True, "thermal": False}
 assert set(LAWS) == set(TRACTION_LAWS) == set(MONOTONE)
+
+
+@dataclass(frozen=True)
+class TractionLaw:
+    """A registered traction law: its name, coefficient function and monotonicity."""
+
+    name: str
+    coefficients: Callable
+    monotone: bool = True
+
+
+for _name in LAWS:
+    REGISTRY.register(TractionLaw(_name, LAWS[_name], MONOTONE[_name]))
 
 
 def traction_rises_with_creep(fluid: Fluid) -> bool:

@@ -41,14 +41,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 import numpy as np
 from tqdm import tqdm
 
-from ballcvt import (
-    ConvergenceError,
-    InputError,
-    TractionLimitError,
-    Variator,
-    __version__,
-    load_builtin,
-)
+from ballcvt import ConvergenceError, InputError, TractionLimitError, Variator, __version__, load_builtin
 from ballcvt.errors import NoEquilibriumError
 
 BASE_DESIGN, BASE_FLUID = load_builtin()

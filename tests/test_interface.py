@@ -185,8 +185,8 @@ def test_reproduce_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
     class Done:
         out, files, claims, run_time = tmp_path, [], [], 0.0
 
-    import ballcvt.analysis.reproduction
-    monkeypatch.setattr(ballcvt.analysis.reproduction, "reproduce",
+    import ballcvt.reports
+    monkeypatch.setattr(ballcvt.reports, "reproduce",
                         lambda out, **kw: calls.append({"out": str(out), **kw}) or Done)
     base = ["reproduce", "--out", str(tmp_path / "a")]
     assert _options(_subcommands()["reproduce"]) == {"--out", "--quick", "--workers", "--quiet",
@@ -215,9 +215,9 @@ def test_explore_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
         return done
 
     import ballcvt.analysis.studies
-    import ballcvt.analysis.studies.report
+    import ballcvt.reports.study
     monkeypatch.setattr(ballcvt.analysis.studies, "run_study", fake)
-    monkeypatch.setattr(ballcvt.analysis.studies.report, "study_report", lambda *a, **k: [])
+    monkeypatch.setattr(ballcvt.reports.study, "study_report", lambda *a, **k: [])
     assert _options(_subcommands()["explore"]) == {"--out", "--workers", "--scheduler",
                                                    "--in-process", "--resume", "--quiet",
                                                    "--json", "--traction-law"}
@@ -309,7 +309,7 @@ def test_results_are_validated_on_load(double, tmp_path):
 def test_plotting_import_leaves_the_backend_alone():
     import subprocess
     import sys
-    code = ("import matplotlib; matplotlib.use('pdf'); import ballcvt.plotting, ballcvt.analysis.reproduction;"
+    code = ("import matplotlib; matplotlib.use('pdf'); import ballcvt.plotting, ballcvt.reports;"
             "print(matplotlib.get_backend())")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.stdout.strip() == "pdf", out.stderr

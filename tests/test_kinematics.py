@@ -7,16 +7,7 @@ from hypothesis import strategies as st
 
 from ballcvt import InputError
 from ballcvt.model.architectures import contact_layout
-from ballcvt.model.kinematics import (
-    body_speeds,
-    check_ratio,
-    ideal_ratio,
-    ratio_range,
-    rolling_radius,
-    spin,
-    tilt_from_ratio,
-    tilt_limits,
-)
+from ballcvt.model.kinematics import body_speeds, check_ratio, ideal_ratio, ratio_range, rolling_radius, spin, tilt_from_ratio, tilt_limits
 
 angles = st.floats(np.radians(15), np.radians(75))
 

@@ -10,13 +10,7 @@ from hypothesis import strategies as st
 
 from ballcvt import TractionLimitError, Variator, load_builtin
 from ballcvt.errors import NoEquilibriumError
-from ballcvt.model.losses import (
-    moment_coefficient,
-    parasitic_torques,
-    seal_torque,
-    thrust_bearing_torque,
-    windage_torque,
-)
+from ballcvt.model.losses import moment_coefficient, parasitic_torques, seal_torque, thrust_bearing_torque, windage_torque
 
 
 @pytest.fixture(scope="module")

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from ballcvt import InputError
-from ballcvt.analysis.reproduction import reproduce
-from ballcvt.analysis.reproduction.figures import FIGURES
+from ballcvt.reports import reproduce
+from ballcvt.reports.figures import FIGURES
 from ballcvt.analysis.sweeps.export import load_dataset, to_csv, to_netcdf
 from ballcvt.analysis.sweeps.variables import VARIABLES
 from ballcvt.interfaces.cli.main import main

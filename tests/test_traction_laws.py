@@ -14,11 +14,7 @@ from ballcvt.model.traction.base import law_coefficients
 from ballcvt.model.traction.curve import traction_curve
 from ballcvt.model.traction.isothermal import traction_coefficients
 from ballcvt.model.traction.quadrature import Quadrature
-from ballcvt.model.traction.thermal import (
-    FLASH_FACTOR,
-    film_temperature_rise,
-    thermal_coefficients,
-)
+from ballcvt.model.traction.thermal import FLASH_FACTOR, film_temperature_rise, thermal_coefficients
 from ballcvt.params.io import load_builtin_fluid, load_fluid
 from ballcvt.params.models import LAW_FIELDS, Fluid
 

@@ -19,7 +19,7 @@ from .errors import BallCVTError, ConvergenceError, InputError, TractionLimitErr
 from .model.traction.quadrature import REFERENCE, Quadrature
 from .params import Design, Fluid, OperatingPoint, drive_to_toml, load_builtin, load_drive
 from .results.point import ContactResult, OperatingResult
-from .solvers.point import SolverOptions
+from .solvers.options import SolverOptions
 
 _compat.install()
 

@@ -60,12 +60,6 @@ MOVED_MODULES = {
     "ballcvt.studies.run": "ballcvt.analysis.studies.run",
     "ballcvt.studies.pareto": "ballcvt.analysis.studies.pareto",
     "ballcvt.studies.store": "ballcvt.analysis.studies.store",
-    "ballcvt.reports.study": "ballcvt.analysis.studies.report",
-    "ballcvt.reports.claims": "ballcvt.analysis.reproduction.claims",
-    "ballcvt.reports.figures": "ballcvt.analysis.reproduction.figures",
-    "ballcvt.reports.planetary": "ballcvt.analysis.reproduction.planetary",
-    "ballcvt.reports.report": "ballcvt.analysis.reproduction.report",
-    "ballcvt.reports.reproduce": "ballcvt.analysis.reproduction.reproduce",
     "ballcvt.variator": "ballcvt.api",
     "ballcvt.cli.main": "ballcvt.interfaces.cli.main",
     "ballcvt.cli.format": "ballcvt.interfaces.cli.format",
@@ -198,11 +192,6 @@ MOVED_PACKAGES = {
         **dict.fromkeys(
             ("CONSTRAINTS", "OBJECTIVES", "StudySpec", "parse_study", "read_study"),
             "ballcvt.analysis.studies.spec",
-        ),
-    },
-    "ballcvt.reports": {
-        **dict.fromkeys(
-            ("GRIDS", "Reproduction", "reproduce"), "ballcvt.analysis.reproduction.reproduce"
         ),
     },
     "ballcvt.cli": {},

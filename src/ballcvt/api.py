@@ -360,9 +360,7 @@ class Variator:
                 input_speed,
                 "exactly one of input_speed [rad/s] or input_speed_rpm [rpm]",
             )
-        from .analysis.sweeps.grid import (
-            sweep,  # xarray and pandas load only when a sweep is asked for
-        )
+        from .analysis.sweeps.grid import sweep
 
         rpm = (
             None if input_speed_rpm is None else np.atleast_1d(np.asarray(input_speed_rpm, float))

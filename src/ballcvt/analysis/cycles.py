@@ -45,6 +45,7 @@ from ..files import atomic_write_text
 from ..model.clamping import clamp_law as resolve_law
 from ..model.kinematics import ratio_range as usable_ratio_range
 from ..performance.efficiency import LOSS_KINDS
+from ..solvers.options import SolverOptions
 from .cycle_files import STRATEGIES, Cycle
 from .sweeps.export import write_table
 from .sweeps.points import evaluate_points
@@ -146,7 +147,7 @@ def run_cycle(
 
     Parameters
     ----------
-    variator : Variator
+    variator : Drive or Variator
         The drive (design, fluid, architecture, solver options).
     cycle : Cycle
         From `ballcvt.analysis.cycles.read_cycle` or `cycle_from_arrays`.
@@ -233,7 +234,7 @@ def run_cycle(
 
     # the ratio search and the creep correction run on the solver's coarse rule (the
     # predictor); every reported value comes from a final solve on the full rule
-    fine = variator.options
+    fine = getattr(variator, "options", None) or SolverOptions()
     coarse = replace(fine, quadrature=fine.predictor or fine.quadrature, predictor=None)
 
     def solve(ratio, t2, w0, rough=False):

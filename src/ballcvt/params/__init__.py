@@ -1,5 +1,6 @@
 """Layer 0: parameter sets (design, material, bearings, fluid, operating point)."""
 
+from .drive import Drive
 from .io import BUILTIN_DRIVES, builtin_text, drive_to_toml, load_builtin, load_drive, parse_drive
 from .models import (
     ARCHITECTURES,
@@ -15,6 +16,7 @@ from .models import (
 )
 
 __all__ = [
+    "Drive",
     "ARCHITECTURES",
     "Architecture",
     "BearingModel",

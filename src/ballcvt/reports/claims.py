@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...solvers.limit import saturated_traction
+from ..solvers.limit import saturated_traction
 
 __all__ = ["Claim", "paper_claims"]
 

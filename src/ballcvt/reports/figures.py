@@ -15,11 +15,11 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ...model.architectures import contact_layout
-from ...model.kinematics import body_speeds, ideal_ratio, spin, tilt_from_ratio, tilt_limits
-from ...params.models import Design
-from ...plotting import LABELS, efficiency_map, line_panels, ratio_vs_tilt, save
-from ..sweeps.export import write_table
+from ..analysis.sweeps.export import write_table
+from ..model.architectures import contact_layout
+from ..model.kinematics import body_speeds, ideal_ratio, spin, tilt_from_ratio, tilt_limits
+from ..params.models import Design
+from ..plotting import LABELS, efficiency_map, line_panels, ratio_vs_tilt, save
 
 __all__ = ["FigureData", "FIGURES"]
 

@@ -15,11 +15,11 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ...model.kinematics import ideal_ratio, ratio_range
-from ...model.modes import MEMBERS, OperatingMode
-from ...plotting.figures import line_panels, save
-from ...solvers.planetary_batch import limit_load_batch, solve_mode_batch
-from ..sweeps.export import write_table
+from ..analysis.sweeps.export import write_table
+from ..model.kinematics import ideal_ratio, ratio_range
+from ..model.modes import MEMBERS, OperatingMode
+from ..plotting.figures import line_panels, save
+from ..solvers.planetary_batch import limit_load_batch, solve_mode_batch
 
 __all__ = ["PlanetaryData", "planetary_section", "MODES", "ALL_MODES", "DRIVER_SPEED", "LOADS"]
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...files import atomic_write_text
+from ..files import atomic_write_text
 from .figures import FIGURES
 
 __all__ = ["write_report"]
@@ -269,7 +269,7 @@ def write_report(
     """Write ``report.md`` and ``report.html`` in ``out``; returns their paths.
 
     ``ceiling`` is `ceiling_numbers` of the double idler at tau_ID = 1; ``planetary`` the
-    `ballcvt.analysis.reproduction.planetary.PlanetaryData` of the section beyond the paper, if any.
+    `ballcvt.reports.planetary.PlanetaryData` of the section beyond the paper, if any.
     """
     blocks = _blocks(data, claims, ceiling, peak, quick, run_time, inputs)
     if planetary is not None:

@@ -22,11 +22,11 @@ import pandas as pd
 from scipy.optimize import minimize_scalar
 from tqdm.auto import tqdm
 
-from ..._version import __version__
-from ...api import Variator
-from ...equilibrium.problem import build_problem
-from ...files import check_output_dir
-from ..sweeps.export import to_netcdf, write_table
+from .._version import __version__
+from ..analysis.sweeps.export import to_netcdf, write_table
+from ..api import Variator
+from ..equilibrium.problem import build_problem
+from ..files import check_output_dir
 from .claims import ceiling_numbers, paper_claims
 from .figures import FIGURES, FigureData
 from .planetary import planetary_section

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ...api import Variator
-from ...plotting import maps_figure, parameters_figure, pareto_figure, save
-from ..reproduction.report import write_blocks
-from .spec import OBJECTIVES
+from ..analysis.studies.spec import OBJECTIVES
+from ..api import Variator
+from ..plotting import maps_figure, parameters_figure, pareto_figure, save
+from .report import write_blocks
 
 __all__ = ["study_report"]
 
@@ -102,7 +102,7 @@ def study_report(result, spec, out, quick_maps: bool = False) -> list[Path]:
 
 def _maps(result, spec, out, quick):
     """Efficiency maps of the base and the chosen design."""
-    from .evaluate import make_context
+    from ..analysis.studies.evaluate import make_context
 
     ctx = make_context(spec)
     i = result.chosen
@@ -117,7 +117,7 @@ def _maps(result, spec, out, quick):
         if spec.operating.input_speed_rpm
         else spec.operating.target_input_speed_rpm
     )
-    from ...params.models import Design
+    from ..params.models import Design
 
     base = Variator(Design(**ctx.base), ctx.fluid, spec.study.architecture)
     chosen = Variator(result.chosen_design, ctx.fluid, spec.study.architecture)

@@ -30,6 +30,8 @@ from ..equilibrium.residual import (
     evaluate,
     evaluate_with_jacobian,
 )
+from .options import CREEP_BOUNDS, SolverOptions
+from .robust import solve_robust
 
 njit: Any
 try:
@@ -39,8 +41,6 @@ except ImportError:  # pragma: no cover - numba is a declared dependency
 
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "CREEP_BOUNDS"]
 
-#: Creeps outside this open interval are unphysical (speeds reverse).
-CREEP_BOUNDS = (-0.5, 0.98)
 #: Largest change of any creep in one Newton step [-].
 MAX_STEP = 0.05
 
@@ -101,8 +101,6 @@ def solve_batch(
     -------
     BatchSolution
     """
-    from .point import SolverOptions, solve_point  # the point solver builds on this module
-
     options = SolverOptions() if options is None else options
     shape, nc = problem.shape, problem.layout.n_contacts
     flat = problem.flat()
@@ -118,7 +116,8 @@ def solve_batch(
     if fallback and bad.size:
         robust = replace(options, method="hybr")
         for i in bad:
-            sol = solve_point(flat.take(int(i)), robust)
+            one = flat.take(int(i))
+            sol = solve_robust(one, robust, initial_creep(one))
             iterations[i] += sol.evaluations
             if sol.residual_norm < norm[i]:
                 x[i] = sol.state.creep
@@ -161,8 +160,6 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     solution : BatchSolution
         Creeps and state; ``converged`` refers to the balances other than the output's.
     """
-    from .point import SolverOptions
-
     options = SolverOptions() if options is None else options
     flat = problem.flat()
     x = np.array(x0, dtype=float).reshape(flat.size, -1)

@@ -23,7 +23,7 @@ from ..errors import InputError, TractionLimitError
 from ..params.models import Design, Fluid
 from ..performance.efficiency import efficiency
 from .newton import solve_batch
-from .point import SolverOptions
+from .options import SolverOptions
 
 __all__ = ["ClampOptimum", "optimal_clamp_force"]
 

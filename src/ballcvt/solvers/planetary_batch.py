@@ -18,8 +18,8 @@ from ..model.modes import MEMBERS, OperatingMode, member_torques
 from ..performance.efficiency import power_losses
 from .limit import traction_ceiling_torque
 from .newton import initial_creep, solve_batch
+from .options import SolverOptions
 from .planetary import RATIO_TOL, carrier_frame_problem
-from .point import SolverOptions
 
 __all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch", "MODE_STATUS"]
 

@@ -20,7 +20,7 @@ from ...model.clamping import clamp_law
 from ...model.kinematics import ratio_range
 from ...params.io import resolve_drive
 from ...params.models import Design, Fluid
-from ...solvers.point import SolverOptions
+from ...solvers.options import SolverOptions
 from ..sweeps.curves import limit_search_curves
 from ..sweeps.points import evaluate_points
 from .spec import OBJECTIVES, StudySpec
@@ -248,12 +248,12 @@ def _cycle_speed(ctx: Context) -> float:
 
 def _cycle(ctx: Context, design, force, law) -> dict:
     """Efficiency and steps beyond capacity of the study's duty cycle."""
-    from ...api import Variator
+    from ...params.drive import Drive
     from ..cycle_files import read_cycle
     from ..cycles import run_cycle
 
     op = ctx.spec.operating
-    v = Variator(design, ctx.fluid, ctx.spec.study.architecture)
+    v = Drive(design, ctx.fluid, ctx.spec.study.architecture)
     target = (
         None if op.target_input_speed_rpm is None else op.target_input_speed_rpm * math.pi / 30
     )

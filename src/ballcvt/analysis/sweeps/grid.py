@@ -27,7 +27,7 @@ from ...model.architectures import CONTACT_NAMES
 from ...model.clamping import clamp_law as clamp_law_of
 from ...params.models import ARCHITECTURES, Design, Fluid
 from ...solvers.limit import LimitSearch, bisection_steps
-from ...solvers.point import SolverOptions
+from ...solvers.options import SolverOptions
 from .curves import solve_curves
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, STATUS, attrs_for
 

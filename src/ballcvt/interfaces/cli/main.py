@@ -966,7 +966,7 @@ def _cmd_reproduce(args) -> int:
     import matplotlib
 
     matplotlib.use("Agg")  # the CLI writes files only
-    from ...analysis.reproduction import reproduce
+    from ...reports import reproduce
 
     r = reproduce(
         args.out,
@@ -1121,7 +1121,7 @@ def _cmd_explore(args) -> int:
 
     matplotlib.use("Agg")
     from ...analysis.studies import read_study, run_study
-    from ...analysis.studies.report import study_report
+    from ...reports.study import study_report
 
     spec = read_study(args.study_file)
     if args.traction_law is not None:

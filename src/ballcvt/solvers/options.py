@@ -1,0 +1,57 @@
+"""Numerical options of the equilibrium solvers (the one place every solver reads them)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..model.traction.quadrature import Quadrature
+
+__all__ = ["SolverOptions", "METHODS", "CREEP_BOUNDS"]
+
+#: Creeps outside this open interval are unphysical (speeds reverse) [-].
+CREEP_BOUNDS = (-0.5, 0.98)
+METHODS = ("newton", "hybr")
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Numerical options of the equilibrium solvers.
+
+    Attributes
+    ----------
+    quadrature : Quadrature
+        Traction-integral rule.
+    tol : float
+        Largest accepted ``max |residual|`` (residuals are torques over ``F_N0 r_S``) [-].
+    method : {"newton", "hybr"}
+        ``newton``: the batched Newton method with analytic traction derivatives (fast,
+        default); ``hybr``: SciPy's hybrid method with a finite-difference Jacobian (the
+        straightforward path, kept as a baseline). Both fall back to bracketing.
+    max_iterations : int
+        Newton iterations allowed (per stage) before the fallback.
+    predictor : Quadrature or None
+        Coarse rule on which the Newton method first converges to ``predictor_tol``
+        (a cheap starting point for the iterations on ``quadrature``); None to skip.
+    predictor_tol : float
+        Tolerance of the predictor stage [-].
+    predictor_min_points : int
+        Smallest batch that runs the predictor stage. On a few points an iteration
+        costs the same on either rule (Python, not the integrals, dominates), and Newton
+        on the requested rule alone needs 3-5 iterations where the two stages need 7;
+        the predictor pays from a few tens of points up (benchmarks/bench_paths.py).
+    max_evaluations : int
+        Residual evaluations allowed to the hybrid method before the fallback.
+    """
+
+    quadrature: Quadrature = Quadrature()
+    tol: float = 1e-11
+    method: str = "newton"
+    max_iterations: int = 40
+    max_evaluations: int = 400
+    predictor: Quadrature | None = Quadrature("pole", 12, 8, 12)
+    predictor_tol: float = 1e-6
+    predictor_min_points: int = 32
+
+    def __post_init__(self):
+        if self.method not in METHODS:
+            raise ValueError(f"solver method must be one of {METHODS}, got {self.method!r}")

@@ -9,116 +9,22 @@ pass by seeing nothing.
 
 from __future__ import annotations
 
-import ast
 from pathlib import Path
 
 import pytest
+from codemap import (  # tools/codemap.py: the same code draws docs/architecture.md's diagram
+    LAYERS,
+    LEAVES,
+    _room,
+    import_cycles,
+    import_graph,
+    module_names,
+    upward_imports,
+)
 
 import ballcvt
 
 ROOT = Path(ballcvt.__file__).parent
-#: Lowest first: each layer may import the layers to its left and the leaves.
-LAYERS = ["params", "model", "equilibrium", "performance", "solvers", "results", "analysis",
-          "api", "reports", "interfaces"]
-#: Import no layer (only other leaves); any layer may import them.
-LEAVES = ["errors", "units", "registry", "files", "_version", "_compat", "_display",
-          "plotting"]
-
-
-def module_names(root: Path) -> dict[str, tuple[Path, bool]]:
-    """Dotted module name -> (file, is a package) for every module under ``root``."""
-    out = {}
-    for path in root.rglob("*.py"):
-        parts = list(path.relative_to(root.parent).with_suffix("").parts)
-        is_pkg = parts[-1] == "__init__"
-        out[".".join(parts[:-1] if is_pkg else parts)] = (path, is_pkg)
-    return out
-
-
-def import_graph(root: Path) -> dict[str, set[str]]:
-    """Module -> the package's modules it imports (absolute and relative imports alike)."""
-    mods = module_names(root)
-    top = root.name
-    graph: dict[str, set[str]] = {}
-    for name, (path, is_pkg) in mods.items():
-        targets: set[str] = set()
-        for node in ast.walk(ast.parse(path.read_text())):
-            if isinstance(node, ast.Import):
-                targets.update(a.name for a in node.names if a.name.split(".")[0] == top)
-            elif isinstance(node, ast.ImportFrom):
-                if node.level:
-                    base = name.split(".") if is_pkg else name.split(".")[:-1]
-                    base = base[: len(base) - node.level + 1] + ([node.module] if node.module else [])
-                    module = ".".join(base)
-                elif (node.module or "").split(".")[0] == top:
-                    module = node.module
-                else:
-                    continue
-                for alias in node.names:
-                    sub = f"{module}.{alias.name}"
-                    targets.add(sub if sub in mods else module)
-        graph[name] = {t for t in targets if t != name}
-    return graph
-
-
-def _room(module: str) -> str:
-    parts = module.split(".")
-    return parts[1] if len(parts) > 1 else ""
-
-
-def upward_imports(graph) -> list[str]:
-    """Imports of a higher layer, and leaves importing a layer."""
-    offences = []
-    for src, targets in graph.items():
-        a = _room(src)
-        for dst in sorted(targets):
-            b = _room(dst)
-            if a in LEAVES and b not in LEAVES and b:
-                offences.append(f"leaf {src} imports {dst}")
-            elif a in LAYERS and b in LAYERS and LAYERS.index(b) > LAYERS.index(a):
-                offences.append(f"{src} ({a}) imports {dst} ({b})")
-            elif a and b == "" and dst != src:
-                offences.append(f"{src} imports the package root {dst}")
-            elif a and a not in LAYERS + LEAVES:
-                offences.append(f"{src} is in no layer: add {a!r} to LAYERS or LEAVES")
-    return offences
-
-
-def import_cycles(graph) -> list[list[str]]:
-    """Strongly connected components of more than one module (Tarjan)."""
-    index: dict[str, int] = {}
-    low: dict[str, int] = {}
-    stack: list[str] = []
-    on_stack: set[str] = set()
-    cycles = []
-
-    def visit(v):
-        index[v] = low[v] = len(index)
-        stack.append(v)
-        on_stack.add(v)
-        for w in graph.get(v, ()):
-            if w not in graph:
-                continue
-            if w not in index:
-                visit(w)
-                low[v] = min(low[v], low[w])
-            elif w in on_stack:
-                low[v] = min(low[v], index[w])
-        if low[v] == index[v]:
-            comp = []
-            while True:
-                w = stack.pop()
-                on_stack.discard(w)
-                comp.append(w)
-                if w == v:
-                    break
-            if len(comp) > 1:
-                cycles.append(sorted(comp))
-
-    for v in graph:
-        if v not in index:
-            visit(v)
-    return cycles
 
 
 def test_no_upward_imports():

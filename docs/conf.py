@@ -29,7 +29,7 @@ extensions = [
     "sphinx_gallery.gen_gallery",
 ]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
-exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "auto_examples/*.ipynb",
+exclude_patterns = ["_build", "_generated", "Thumbs.db", ".DS_Store", "auto_examples/*.ipynb",
                     "auto_examples/*.py", "auto_examples/*.zip", "auto_examples/*.json",
                     "auto_examples/*.md5", "sg_execution_times.rst"]
 myst_enable_extensions = ["dollarmath", "colon_fence"]
@@ -58,3 +58,15 @@ sphinx_gallery_conf = {
 
 html_theme = "furo"
 html_title = f"ballcvt {release}"
+
+# docs/architecture.md shows the package's layers as they are: the diagram and the table
+# are drawn from the source's imports at every build (tools/codemap.py), never by hand.
+sys.path.insert(0, str(ROOT / "tools"))
+import codemap  # noqa: E402
+
+_GENERATED = Path(__file__).resolve().parent / "_generated"
+_GENERATED.mkdir(exist_ok=True)
+_graph = codemap.import_graph(codemap.ROOT)
+codemap.draw_layers(_graph, _GENERATED / "layers.png")
+(_GENERATED / "layers_table.md").write_text(codemap.layer_table(_graph) + "\n")
+(_GENERATED / "hygiene.md").write_text(codemap.figures_markdown() + "\n")

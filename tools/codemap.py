@@ -209,6 +209,18 @@ def figures(root: Path = ROOT) -> dict[str, object]:
     }
 
 
+def figures_markdown(root: Path = ROOT) -> str:
+    """`figures` as a Markdown list (docs/architecture.md)."""
+    out = []
+    for key, value in figures(root).items():
+        if isinstance(value, list):
+            value = "none" if not value else "; ".join(f"`{v}`" for v in value)
+        elif isinstance(value, tuple):
+            value = f"`{value[0]}` ({value[1]} lines)"
+        out.append(f"- {key.strip()}: {value}")
+    return "\n".join(out)
+
+
 # --- the layer diagram ----------------------------------------------------------------
 
 

@@ -1,6 +1,6 @@
 """Layer 0: parameter sets (design, material, bearings, fluid, operating point)."""
 
-from .drive import Drive
+from .drive import PAPER_POINT, Drive
 from .io import BUILTIN_DRIVES, builtin_text, drive_to_toml, load_builtin, load_drive, parse_drive
 from .models import (
     ARCHITECTURES,
@@ -17,6 +17,7 @@ from .models import (
 
 __all__ = [
     "Drive",
+    "PAPER_POINT",
     "ARCHITECTURES",
     "Architecture",
     "BearingModel",

@@ -4,9 +4,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .models import Design, Fluid
+from ..units import rpm_to_rad_s
+from .models import Design, Fluid, OperatingPoint
 
-__all__ = ["Drive"]
+__all__ = ["Drive", "PAPER_POINT"]
+
+#: The paper's operating point of Figs. 7 and 9-13 (Sec. 4): tau_ID = 1, T_2 = 40 N m,
+#: F_N0 = 2000 N, 2000 rpm input. The command line's, the explorer's and the
+#: reproduction's starting point.
+PAPER_POINT = OperatingPoint(
+    ratio=1.0, output_torque=40.0, clamp_force=2000.0, input_speed=rpm_to_rad_s(2000.0)
+)
 
 
 @dataclass(frozen=True)

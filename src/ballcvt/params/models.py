@@ -516,5 +516,5 @@ class OperatingPoint(ParameterModel):
 
     @property
     def input_speed_rpm(self) -> float:
-        """Input speed [rpm]."""
-        return self.input_speed * 30.0 / math.pi
+        """Input speed [rpm], to 12 significant digits (2000 rpm reads back as 2000)."""
+        return float(f"{self.input_speed * 30.0 / math.pi:.12g}")

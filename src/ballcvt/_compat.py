@@ -176,12 +176,14 @@ MOVED_PACKAGES = {
             ("load_dataset", "parameters", "to_csv", "to_frame", "to_netcdf"),
             "ballcvt.analysis.sweeps.export",
         ),
-        **dict.fromkeys(("STATUS", "sweep"), "ballcvt.analysis.sweeps.grid"),
+        **dict.fromkeys(("sweep",), "ballcvt.analysis.sweeps.grid"),
+        "STATUS": "ballcvt.analysis.sweeps",
         **dict.fromkeys(("LOSS_KINDS", "VARIABLES"), "ballcvt.analysis.sweeps.variables"),
     },
     "ballcvt.studies": {
+        "STATUS": "ballcvt.analysis.studies",
         **dict.fromkeys(
-            ("STATUS", "envelope_diameter", "evaluate_chunk", "make_context"),
+            ("envelope_diameter", "evaluate_chunk", "make_context"),
             "ballcvt.analysis.studies.evaluate",
         ),
         **dict.fromkeys(("choose", "pareto_mask"), "ballcvt.analysis.studies.pareto"),

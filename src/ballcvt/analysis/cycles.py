@@ -46,10 +46,10 @@ from ..model.clamping import clamp_law as resolve_law
 from ..model.kinematics import ratio_range as usable_ratio_range
 from ..performance.efficiency import LOSS_KINDS
 from ..solvers.options import SolverOptions
+from ..status import Status
 from .cycle_files import STRATEGIES, Cycle
 from .sweeps.export import write_table
 from .sweeps.points import evaluate_points
-from .sweeps.variables import STATUS
 
 __all__ = ["CycleResult", "run_cycle", "STRATEGIES", "FLAGS"]
 
@@ -276,8 +276,8 @@ def run_cycle(
                 solve, speed_in[run], power[run], fixed, r_lo, r_hi, candidates, flag, run, lo, hi
             )
     status = res["status"]
-    flag[run[status == STATUS["beyond_limit"]]] = "beyond_capacity"
-    flag[run[status == STATUS["not_converged"]]] = "not_converged"
+    flag[run[status == Status.BEYOND_LIMIT]] = "beyond_capacity"
+    flag[run[status == Status.NOT_CONVERGED]] = "not_converged"
     if "below_drag" in res:
         flag[run[res["below_drag"]]] = "power_below_drag"
     steps = _table(cycle, n, run, ratio, w0, t2, res, flag)
@@ -357,7 +357,7 @@ def _input_side(solve, w0, power, fixed, r_lo, r_hi, candidates, flag, run, lo, 
             t2 = np.where(ok, np.maximum(t2 + (t_in - got) / slope, 0.0), t2)
         out = solve(ratio, t2, w0)
         missed = (out["status"] == 0) & (np.abs(out["input_torque"] - t_in) > 1e-6 * t_in)
-        out["status"] = np.where(missed, STATUS["not_converged"], out["status"])
+        out["status"] = np.where(missed, Status.NOT_CONVERGED, out["status"])
         # the drive's own losses at zero output torque need more than the cycle's power
         out["below_drag"] = missed & (t2 == 0.0) & (out["input_torque"] > t_in)
         return t2, out

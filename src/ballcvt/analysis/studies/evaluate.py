@@ -21,14 +21,27 @@ from ...model.kinematics import ratio_range
 from ...params.io import resolve_drive
 from ...params.models import Design, Fluid
 from ...solvers.options import SolverOptions
+from ...status import Status
 from ..sweeps.curves import limit_search_curves
 from ..sweeps.points import evaluate_points
 from .spec import OBJECTIVES, StudySpec
 
-__all__ = ["Context", "make_context", "evaluate_chunk", "STATUS", "METRICS", "envelope_diameter"]
+__all__ = [
+    "Context",
+    "make_context",
+    "evaluate_chunk",
+    "DESIGN_CODES",
+    "METRICS",
+    "envelope_diameter",
+]
 
-#: Design status codes.
-STATUS = {0: "evaluated", 1: "cannot be built", 2: "constraint violated", 3: "not solved"}
+#: The status codes of a design (`ballcvt.status.Status`), with their words.
+DESIGN_CODES = {
+    Status.CONVERGED: "evaluated",
+    Status.CANNOT_BE_BUILT: "cannot be built",
+    Status.CONSTRAINT_VIOLATED: "constraint violated",
+    Status.NOT_CONVERGED: "not solved",
+}
 #: Figures recorded for every design (the objectives are among them).
 METRICS = tuple(OBJECTIVES)
 
@@ -95,7 +108,7 @@ def evaluate_chunk(ctx: Context, index: np.ndarray, x: np.ndarray) -> dict:
     """Evaluate designs ``x`` (rows of parameter values, `StudySpec.names` order).
 
     Returns a dict of arrays with a leading axis of length ``len(index)``: ``design``
-    (the indices), ``status`` (`STATUS`), ``reason``, every metric of `METRICS`, ``eta``
+    (the indices), ``status`` (`DESIGN_CODES`), ``reason``, every metric of `METRICS`, ``eta``
     and ``point_status`` ``(n, n_points)``.
     """
     n = len(index)
@@ -111,7 +124,7 @@ def evaluate_chunk(ctx: Context, index: np.ndarray, x: np.ndarray) -> dict:
         try:
             status, reason, metrics, eta, pst = _evaluate(ctx, dict(zip(ctx.spec.names, x[row])))
         except BallCVTError as exc:  # a solve that failed: said, not raised
-            status, reason, metrics, eta, pst = 3, str(exc), {}, None, None
+            status, reason, metrics, eta, pst = Status.NOT_CONVERGED, str(exc), {}, None, None
         out["status"][row], out["reason"][row] = status, reason[:200]
         for m, v in metrics.items():
             out[m][row] = v
@@ -139,13 +152,13 @@ def _evaluate(ctx: Context, values: dict):
         design = _design(ctx, values)
         contact_layout(design, spec.study.architecture)
     except BallCVTError as exc:
-        return 1, str(exc), {}, None, None
+        return Status.CANNOT_BE_BUILT, str(exc), {}, None, None
     metrics = {"outer_diameter": envelope_diameter(design)}
     lo, hi = ratio_range(design)
     needed = [*ctx.ratio, *ctx.capacity_ratios] + (con.ratio_range or [])
     if needed and (min(needed) < lo or max(needed) > hi):
         return (
-            2,
+            Status.CONSTRAINT_VIOLATED,
             (f"ratio range {lo:.3f}-{hi:.3f} does not cover {min(needed):g}-{max(needed):g}"),
             metrics,
             None,
@@ -153,7 +166,7 @@ def _evaluate(ctx: Context, values: dict):
         )
     if con.outer_diameter_max is not None and metrics["outer_diameter"] > con.outer_diameter_max:
         return (
-            2,
+            Status.CONSTRAINT_VIOLATED,
             (f"outer_diameter {metrics['outer_diameter']:.4g} m > {con.outer_diameter_max:g} m"),
             metrics,
             None,
@@ -182,7 +195,7 @@ def _evaluate(ctx: Context, values: dict):
         )
         if beyond:
             return (
-                2,
+                Status.CONSTRAINT_VIOLATED,
                 (
                     f"{beyond} of {pst.size} operating points beyond the traction capacity "
                     "or not solved"
@@ -198,7 +211,13 @@ def _evaluate(ctx: Context, values: dict):
         metrics["cycle_efficiency"] = cyc["efficiency"]
         beyond = cyc["beyond"]
         if beyond:
-            return 2, f"{beyond} cycle steps beyond the traction capacity", metrics, None, None
+            return (
+                Status.CONSTRAINT_VIOLATED,
+                f"{beyond} cycle steps beyond the traction capacity",
+                metrics,
+                None,
+                None,
+            )
     # capacity at the capacity ratios (constant force: the study's; laws: their own),
     # searched as a sweep searches its limits
     speed = float(np.median(ctx.speed)) if ctx.speed.size else _cycle_speed(ctx)
@@ -232,14 +251,20 @@ def _constraints(ctx: Context, metrics: dict, limits) -> tuple[int, str]:
     for name, bound, sense in checks:
         value = metrics.get(name, np.nan)
         if bound is not None and not (value <= bound if sense == "<=" else value >= bound):
-            return 2, f"{name} {value:.4g} {'>' if sense == '<=' else '<'} {bound:g}"
+            return (
+                Status.CONSTRAINT_VIOLATED,
+                f"{name} {value:.4g} {'>' if sense == '<=' else '<'} {bound:g}",
+            )
     if not np.all(np.isfinite(limits)):
-        return 2, "no admissible equilibrium at a capacity ratio"
+        return Status.CONSTRAINT_VIOLATED, "no admissible equilibrium at a capacity ratio"
     for req in con.min_capacity:
         got = float(limits[int(np.argmin(np.abs(ctx.capacity_ratios - req.ratio)))])
         if got < req.torque:
-            return 2, f"capacity {got:.4g} N m < {req.torque:g} N m at ratio {req.ratio:g}"
-    return 0, ""
+            return (
+                Status.CONSTRAINT_VIOLATED,
+                f"capacity {got:.4g} N m < {req.torque:g} N m at ratio {req.ratio:g}",
+            )
+    return Status.CONVERGED, ""
 
 
 def _cycle_speed(ctx: Context) -> float:

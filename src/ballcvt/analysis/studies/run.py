@@ -32,7 +32,7 @@ from ...errors import InputError
 from ...files import atomic_write_text, check_output_dir
 from ...params.io import drive_to_toml
 from ...params.models import Design
-from .evaluate import STATUS, Context, _design, evaluate_chunk, make_context
+from .evaluate import DESIGN_CODES, Context, _design, evaluate_chunk, make_context
 from .pareto import choose, pareto_mask
 from .spec import OBJECTIVES, StudySpec
 from .store import STORE, append, chunk_dataset, evaluated, load
@@ -107,7 +107,7 @@ class StudyResult:
     def counts(self) -> dict:
         """Designs by status, and the infeasible ones by reason (first words)."""
         st = self.dataset["status"].values
-        out: dict[str, Any] = {STATUS[k]: int(np.sum(st == k)) for k in STATUS}
+        out: dict[str, Any] = {w: int(np.sum(st == k)) for k, w in DESIGN_CODES.items()}
         reasons: dict[str, int] = {}
         for s, r in zip(st, self.dataset["reason"].values):
             if s != 0:  # the reason with its numbers left out

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from .evaluate import METRICS, STATUS
+from .evaluate import DESIGN_CODES, METRICS
 
 __all__ = ["STORE", "chunk_dataset", "append", "load", "evaluated"]
 
@@ -31,8 +31,8 @@ def chunk_dataset(spec, ctx, x, result: dict) -> xr.Dataset:
         "design",
         result["status"],
         {
-            "flag_values": list(STATUS),
-            "flag_meanings": " ".join(s.replace(" ", "_") for s in STATUS.values()),
+            "flag_values": [int(k) for k in DESIGN_CODES],
+            "flag_meanings": " ".join(w.replace(" ", "_") for w in DESIGN_CODES.values()),
         },
     )
     data["reason"] = ("design", result["reason"])

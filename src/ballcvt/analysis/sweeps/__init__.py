@@ -2,14 +2,13 @@
 
 from .curves import limit_torques, solve_curves
 from .export import load_dataset, parameters, to_csv, to_frame, to_netcdf
-from .grid import STATUS, sweep
+from .grid import sweep
 from .variables import LOSS_KINDS, VARIABLES
 
 __all__ = [
     "sweep",
     "solve_curves",
     "limit_torques",
-    "STATUS",
     "VARIABLES",
     "LOSS_KINDS",
     "to_netcdf",
@@ -18,3 +17,13 @@ __all__ = [
     "load_dataset",
     "parameters",
 ]
+
+
+def __getattr__(name):
+    if name == "STATUS":  # the old name -> code table of a sweep's status
+        from ..._compat import warn_renamed
+        from .variables import SWEEP_CODES
+
+        warn_renamed("ballcvt.analysis.sweeps.STATUS", "ballcvt.status.Status")
+        return {s.label: int(s) for s in SWEEP_CODES}
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -29,9 +29,9 @@ from ...params.models import ARCHITECTURES, Design, Fluid
 from ...solvers.limit import LimitSearch, bisection_steps
 from ...solvers.options import SolverOptions
 from .curves import solve_curves
-from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, STATUS, attrs_for
+from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, attrs_for
 
-__all__ = ["sweep", "STATUS"]
+__all__ = ["sweep"]
 
 
 def sweep(

@@ -15,8 +15,8 @@ from ...equilibrium.problem import build_problem
 from ...model.architectures import CONTACT_NAMES
 from ...solvers.limit import solve_admissible
 from ...solvers.point import SolverOptions
+from ...status import Status
 from .curves import at_optimal_forces, derived
-from .variables import STATUS
 
 __all__ = ["evaluate_points", "CHUNK"]
 
@@ -109,7 +109,7 @@ def evaluate_points(
             if callback is not None:
                 callback(i.size)
         return {k: np.concatenate([d[k] for d in done]) for k in done[0]}
-    status = np.full(n, STATUS["not_converged"], dtype=np.int8)
+    status = np.full(n, Status.NOT_CONVERGED, dtype=np.int8)
     creep = np.full((n, 1, len(CONTACT_NAMES[architecture])), np.nan)
     used = force.copy()
     for idx in parts:
@@ -124,8 +124,8 @@ def evaluate_points(
         beyond = got.converged | (np.max(np.abs(got.creep), axis=-1) > c_lim)
         status[idx] = np.where(
             got.ok,
-            STATUS["converged"],
-            np.where(beyond, STATUS["beyond_limit"], STATUS["not_converged"]),
+            Status.CONVERGED,
+            np.where(beyond, Status.BEYOND_LIMIT, Status.NOT_CONVERGED),
         )
         creep[idx, 0] = np.where(got.ok[:, None], got.creep, np.nan)
         if callback is not None:

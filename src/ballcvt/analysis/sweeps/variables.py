@@ -8,18 +8,19 @@ import numpy as np
 
 from ...performance.efficiency import LOSS_KINDS  # the ``loss`` axis of a sweep
 from ...performance.validity import WARNINGS
+from ...status import Status
 
 __all__ = [
     "VARIABLES",
     "POINT_VARIABLES",
     "CONTACT_VARIABLES",
     "LOSS_KINDS",
-    "STATUS",
     "attrs_for",
+    "SWEEP_CODES",
 ]
 
-#: ``status`` values.
-STATUS = {"converged": 0, "beyond_limit": 1, "not_converged": 2}
+#: The ``status`` codes a sweep writes (`ballcvt.status.Status`).
+SWEEP_CODES = (Status.CONVERGED, Status.BEYOND_LIMIT, Status.NOT_CONVERGED)
 
 
 #: name -> (units, long name). Dimensionless quantities have units "1" (CF conventions).
@@ -90,8 +91,8 @@ def attrs_for(name: str) -> dict:
         attrs["units"] = units
     if name == "status":
         attrs.update(
-            flag_values=np.array(list(STATUS.values()), dtype=np.int8),
-            flag_meanings=" ".join(STATUS),
+            flag_values=np.array([int(s) for s in SWEEP_CODES], dtype=np.int8),
+            flag_meanings=" ".join(s.label for s in SWEEP_CODES),
         )
     elif name == "warnings":
         attrs.update(

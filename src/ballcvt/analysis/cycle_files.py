@@ -14,7 +14,6 @@ units are listed in `UNITS`. Values are converted to SI on reading.
 
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -22,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from ..units import RAD_S_PER_RPM
 
 __all__ = ["Cycle", "read_cycle", "cycle_from_arrays", "UNITS", "KINDS", "STRATEGIES"]
 
@@ -31,8 +31,8 @@ STRATEGIES = ("target-input-speed", "max-efficiency")
 #: Accepted units per column: unit -> factor to SI.
 UNITS = {
     "time": {"s": 1.0, "min": 60.0, "h": 3600.0},
-    "output_speed": {"rpm": math.pi / 30.0, "rad/s": 1.0},
-    "input_speed": {"rpm": math.pi / 30.0, "rad/s": 1.0},
+    "output_speed": {"rpm": RAD_S_PER_RPM, "rad/s": 1.0},
+    "input_speed": {"rpm": RAD_S_PER_RPM, "rad/s": 1.0},
     "output_torque": {"N m": 1.0, "Nm": 1.0},
     "input_power": {"W": 1.0, "kW": 1e3},
     "ratio": {"1": 1.0, "-": 1.0},

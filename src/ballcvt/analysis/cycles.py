@@ -28,7 +28,6 @@ summary reports as the energy the drive could not deliver (docs/cycles.md).
 from __future__ import annotations
 
 import json
-import math
 import time as _time
 from concurrent.futures import ProcessPoolExecutor
 from contextlib import nullcontext
@@ -47,6 +46,7 @@ from ..model.kinematics import ratio_range as usable_ratio_range
 from ..performance.efficiency import LOSS_KINDS
 from ..solvers.options import SolverOptions
 from ..status import Status
+from ..units import rad_s_to_rpm, rpm_to_rad_s
 from .cycle_files import STRATEGIES, Cycle
 from .sweeps.export import write_table
 from .sweeps.points import evaluate_points
@@ -385,12 +385,13 @@ def _table(cycle: Cycle, n, run, ratio, w0, t2, res, flag) -> dict:
     col["time"] = cycle.time
     col["duration"] = cycle.durations
     col["ratio"] = put(ratio)
-    col["input_speed_rpm"] = put(w0 * 30 / math.pi)
-    col["output_speed_rpm"] = put(res["actual_ratio"] * w0 * 30 / math.pi)
+    col["input_speed_rpm"] = put(rad_s_to_rpm(w0))
+    col["output_speed_rpm"] = put(rad_s_to_rpm(res["actual_ratio"] * w0))
     col["output_torque"] = put(t2)
     col["input_torque"] = put(res["input_torque"])
-    col["input_power"] = col["input_torque"] * col["input_speed_rpm"] * math.pi / 30
-    col["output_power"] = col["output_torque"] * col["output_speed_rpm"] * math.pi / 30
+    # torque x rpm -> W (converted last, as always)
+    col["input_power"] = rpm_to_rad_s(col["input_torque"] * col["input_speed_rpm"])
+    col["output_power"] = rpm_to_rad_s(col["output_torque"] * col["output_speed_rpm"])
     col["clamp_force"] = put(res["clamp_force"])
     col["axial_force"] = put(res["axial_force"])
     col["eta"] = put(res["eta"])
@@ -448,7 +449,7 @@ def _summary(variator, cycle, steps, strategy, law, target, run_time) -> dict:
         "strategy": strategy
         if not (cycle.kind == "input" and cycle.ratio is not None)
         else "commanded ratio",
-        "target_input_speed_rpm": None if target is None else target * 30 / math.pi,
+        "target_input_speed_rpm": None if target is None else rad_s_to_rpm(target),
         "clamp_law": law.name,
         "clamp_force": getattr(law, "force", None),
         "architecture": variator.architecture,

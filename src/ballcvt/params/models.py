@@ -18,6 +18,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from ..errors import InputError
+from ..units import rad_s_to_rpm
 from .feasibility import check_design
 
 __all__ = [
@@ -517,4 +518,4 @@ class OperatingPoint(ParameterModel):
     @property
     def input_speed_rpm(self) -> float:
         """Input speed [rpm], to 12 significant digits (2000 rpm reads back as 2000)."""
-        return float(f"{self.input_speed * 30.0 / math.pi:.12g}")
+        return float(f"{rad_s_to_rpm(self.input_speed):.12g}")

@@ -28,6 +28,7 @@ from ..params.models import Design, Fluid
 from ..performance.efficiency import efficiency, loss_breakdown, power_losses
 from ..performance.validity import validity, warning_messages
 from ..solvers.point import PointSolution
+from ..units import rad_s_to_rpm
 
 __all__ = ["ContactResult", "OperatingResult", "make_result"]
 
@@ -201,7 +202,7 @@ class OperatingResult:
     @property
     def input_speed_rpm(self) -> float:
         """Input speed [rpm] (rounded to 12 significant digits: no conversion noise)."""
-        return float(f"{self.input_speed * 30.0 / math.pi:.12g}")
+        return float(f"{rad_s_to_rpm(self.input_speed):.12g}")
 
     @property
     def axial_force(self) -> float:

@@ -18,10 +18,12 @@ from ...errors import BallCVTError
 from ...model.architectures import contact_layout
 from ...model.clamping import clamp_law
 from ...model.kinematics import ratio_range
+from ...params.drive import PAPER_POINT
 from ...params.io import resolve_drive
 from ...params.models import Design, Fluid
 from ...solvers.options import SolverOptions
 from ...status import Status
+from ...units import rpm_to_rad_s
 from ..sweeps.curves import limit_search_curves
 from ..sweeps.points import evaluate_points
 from .spec import OBJECTIVES, StudySpec
@@ -73,7 +75,7 @@ def make_context(spec: StudySpec) -> Context:
         r, t, w = np.meshgrid(
             np.asarray(op.ratio),
             np.asarray(op.output_torque),
-            np.asarray(op.input_speed_rpm) * math.pi / 30,
+            rpm_to_rad_s(np.asarray(op.input_speed_rpm)),
             indexing="ij",
         )
         ratio, torque, speed = r.ravel(), t.ravel(), w.ravel()
@@ -268,7 +270,7 @@ def _constraints(ctx: Context, metrics: dict, limits) -> tuple[int, str]:
 
 
 def _cycle_speed(ctx: Context) -> float:
-    return (ctx.spec.operating.target_input_speed_rpm or 2000.0) * math.pi / 30
+    return rpm_to_rad_s(ctx.spec.operating.target_input_speed_rpm or PAPER_POINT.input_speed_rpm)
 
 
 def _cycle(ctx: Context, design, force, law) -> dict:
@@ -279,9 +281,7 @@ def _cycle(ctx: Context, design, force, law) -> dict:
 
     op = ctx.spec.operating
     v = Drive(design, ctx.fluid, ctx.spec.study.architecture)
-    target = (
-        None if op.target_input_speed_rpm is None else op.target_input_speed_rpm * math.pi / 30
-    )
+    target = None if op.target_input_speed_rpm is None else rpm_to_rad_s(op.target_input_speed_rpm)
     assert op.cycle is not None
     res = run_cycle(
         v,

@@ -51,7 +51,7 @@ from .cycle_files import STRATEGIES, Cycle
 from .sweeps.export import write_table
 from .sweeps.points import evaluate_points
 
-__all__ = ["CycleResult", "run_cycle", "STRATEGIES", "FLAGS"]
+__all__ = ["CycleResult", "CycleSettings", "run_cycle", "STRATEGIES", "FLAGS"]
 
 #: Step flags (``flag`` column): ``ok`` and ``idle`` are not counted as flagged.
 FLAGS = (
@@ -130,34 +130,19 @@ class CycleResult:
         return files
 
 
-def run_cycle(
-    variator,
-    cycle: Cycle,
-    *,
-    strategy: str = "target-input-speed",
-    target_input_speed: float | None = None,
-    clamp_force: float | None = None,
-    clamp_law=None,
-    candidates: int = 9,
-    ratio_range=None,
-    progress: bool | None = None,
-    workers: int = 1,
-) -> CycleResult:
-    """Evaluate a drive over a duty cycle, all steps batched.
+@dataclass(frozen=True)
+class CycleSettings:
+    """How a duty cycle is run (`run_cycle`).
 
-    Parameters
+    Attributes
     ----------
-    variator : Drive or Variator
-        The drive (design, fluid, architecture, solver options).
-    cycle : Cycle
-        From `ballcvt.analysis.cycles.read_cycle` or `cycle_from_arrays`.
     strategy : {"target-input-speed", "max-efficiency"}
         How the ratio is chosen (output-side cycles; input-side cycles with a ``ratio``
         column use it as commanded).
     target_input_speed : float, optional
         Input speed held by ``target-input-speed`` [rad/s].
     clamp_force, clamp_law
-        As in `Variator.solve` (constant force, ``cam``, ``optimal`` or a law object).
+        As in `Variator.solve` (constant force [N], ``cam``, ``optimal`` or a law object).
     candidates : int
         Ratios tried per step by ``max-efficiency`` (3-101).
     ratio_range : (float, float), optional
@@ -166,142 +151,191 @@ def run_cycle(
         Progress bar (default: when stderr is a terminal).
     workers : int
         Processes to solve the steps on (1-64; the same results, to round-off).
+    """
+
+    strategy: str = "target-input-speed"
+    target_input_speed: float | None = None
+    clamp_force: float | None = None
+    clamp_law: Any = None
+    candidates: int = 9
+    ratio_range: Any = None
+    progress: bool | None = None
+    workers: int = 1
+
+    def check(self) -> None:
+        """Refuse settings out of range (one `InputError` naming the setting)."""
+        if self.strategy not in STRATEGIES:
+            raise InputError("strategy", self.strategy, "one of: " + ", ".join(STRATEGIES))
+        if not 3 <= int(self.candidates) <= 101:
+            raise InputError("candidates", self.candidates, "3-101")
+        if not 1 <= int(self.workers) <= 64:
+            raise InputError("workers", self.workers, "1-64")
+
+
+@dataclass(frozen=True)
+class _Plan:
+    """What the ratio strategies share within one run: the batched solve, the usable and
+    allowed ratios, the step flags and the steps that run."""
+
+    solve: Any
+    usable: tuple[float, float]
+    allowed: tuple[float, float]
+    candidates: int
+    flag: np.ndarray
+    run: np.ndarray
+
+    def limit(self, ratio, commanded=None):
+        """``ratio`` within the usable range; the clipped steps flagged ``ratio_limited``."""
+        clipped = np.clip(ratio, *self.usable)
+        changed = clipped != ratio
+        self.flag[self.run[changed]] = "ratio_limited"
+        return clipped, changed
+
+
+def run_cycle(drive, cycle: Cycle, settings: CycleSettings | None = None, **keywords):
+    """Evaluate a drive over a duty cycle, all steps batched.
+
+    Parameters
+    ----------
+    drive : Drive or Variator
+        The drive (design, fluid, architecture and, if it has them, solver ``options``).
+    cycle : Cycle
+        From `ballcvt.analysis.cycle_files.read_cycle` or `cycle_from_arrays`.
+    settings : CycleSettings, optional
+        How the cycle is run; or give its fields as keywords (``strategy=...``).
 
     Returns
     -------
     CycleResult
     """
-    import sys
-
     import pandas as pd
-    from tqdm.auto import tqdm
 
     start = _time.perf_counter()
-    if strategy not in STRATEGIES:
-        raise InputError("strategy", strategy, "one of: " + ", ".join(STRATEGIES))
-    if not 3 <= int(candidates) <= 101:
-        raise InputError("candidates", candidates, "3-101")
-    if not 1 <= int(workers) <= 64:
-        raise InputError("workers", workers, "1-64")
-    design = variator.design
-    law = resolve_law(clamp_law, design, clamp_force)
-    lo, hi = usable_ratio_range(design)
-    r_lo, r_hi = (lo, hi) if ratio_range is None else map(float, ratio_range)
-    if not lo <= r_lo < r_hi <= hi:
-        raise InputError(
-            "ratio_range",
-            f"{r_lo:g} {r_hi:g}",
-            f"MIN < MAX within the usable range {lo:.4g}-{hi:.4g}",
-        )
+    s = replace(settings or CycleSettings(), **keywords)
+    s.check()
+    design = drive.design
+    law = resolve_law(s.clamp_law, design, s.clamp_force)
     commanded = cycle.kind == "input" and cycle.ratio is not None
-    if strategy == "target-input-speed" and not commanded:
-        if cycle.kind == "input":
-            raise InputError(
-                "strategy",
-                strategy,
-                "max-efficiency (an input-side cycle "
-                "without a ratio column fixes the input speed already)",
-            )
-        if target_input_speed is None or not target_input_speed > 0:
-            raise InputError(
-                "target_input_speed",
-                target_input_speed,
-                "> 0 rad/s for the target-input-speed strategy",
-            )
-    n = cycle.size
-    # the columns of the cycle's kind (read_cycle guarantees them)
-    speed_in: Any = cycle.input_speed if cycle.kind == "input" else None
-    speed_out: Any = cycle.output_speed if cycle.kind == "output" else None
-    torque: Any = cycle.output_torque if cycle.kind == "output" else None
-    power: Any = cycle.input_power if cycle.kind == "input" else None
-    flag = np.full(n, "ok", dtype=object)
-    if cycle.kind == "output":
-        idle = (speed_out <= 0) | (torque == 0)
-        flag[torque < 0] = "negative_torque"
-    else:
-        idle = (speed_in <= 0) | (power == 0)
-        flag[power < 0] = "negative_torque"
-    flag[idle] = "idle"
+    usable, allowed = _ratio_ranges(design, s)
+    _check_strategy(s, cycle, commanded)
+    flag = _step_flags(cycle)
     run = np.flatnonzero(flag == "ok")
-
-    show = sys.stderr.isatty() if progress is None else progress
-    passes = {"target-input-speed": 2, "max-efficiency": candidates + 2}[strategy]
+    passes = {"target-input-speed": 2, "max-efficiency": s.candidates + 2}[s.strategy]
     if cycle.kind == "input":
-        passes = POWER_PASSES * (1 if commanded else candidates + 1)
-    bar = tqdm(
-        total=passes * run.size, desc=f"duty cycle, {n} steps", unit="point", disable=not show
-    )
-
+        passes = POWER_PASSES * (1 if commanded else s.candidates + 1)
     # the ratio search and the creep correction run on the solver's coarse rule (the
     # predictor); every reported value comes from a final solve on the full rule
-    fine = getattr(variator, "options", None) or SolverOptions()
+    fine = getattr(drive, "options", None) or SolverOptions()
     coarse = replace(fine, quadrature=fine.predictor or fine.quadrature, predictor=None)
+    pool = ProcessPoolExecutor(max_workers=s.workers) if s.workers > 1 else None
+    with _bar(s, passes * run.size, cycle.size) as bar, pool or nullcontext():
 
-    def solve(ratio, t2, w0, rough=False):
-        return evaluate_points(
-            design,
-            variator.fluid,
-            variator.architecture,
-            ratio,
-            t2,
-            w0,
-            clamp_force=law.force if law.name == "constant" else None,
-            law=None if law.name == "constant" else law,
-            options=coarse if rough else fine,
-            callback=bar.update,
-            executor=pool,
-        )
-
-    pool = ProcessPoolExecutor(max_workers=workers) if workers > 1 else None
-    with bar, pool or nullcontext():
-        if cycle.kind == "output":
-            ratio, w0, res = _output_side(
-                solve,
-                strategy,
-                speed_out[run],
-                torque[run],
-                target_input_speed,
-                lo,
-                hi,
-                r_lo,
-                r_hi,
-                candidates,
-                flag,
-                run,
+        def solve(ratio, t2, w0, rough=False):
+            return evaluate_points(
+                design,
+                drive.fluid,
+                drive.architecture,
+                ratio,
+                t2,
+                w0,
+                clamp_force=law.force if law.name == "constant" else None,
+                law=None if law.name == "constant" else law,
+                options=coarse if rough else fine,
+                callback=bar.update,
+                executor=pool,
             )
-            t2 = torque[run]
+
+        plan = _Plan(solve, usable, allowed, s.candidates, flag, run)
+        if cycle.kind == "output":
+            assert cycle.output_speed is not None and cycle.output_torque is not None
+            t2 = cycle.output_torque[run]
+            ratio, w0, res = _output_side(plan, s, cycle.output_speed[run], t2)
         else:
+            assert cycle.input_speed is not None and cycle.input_power is not None
             fixed = cycle.ratio[run] if commanded and cycle.ratio is not None else None
             ratio, w0, t2, res = _input_side(
-                solve, speed_in[run], power[run], fixed, r_lo, r_hi, candidates, flag, run, lo, hi
+                plan, cycle.input_speed[run], cycle.input_power[run], fixed
             )
     status = res["status"]
     flag[run[status == Status.BEYOND_LIMIT]] = "beyond_capacity"
     flag[run[status == Status.NOT_CONVERGED]] = "not_converged"
     if "below_drag" in res:
         flag[run[res["below_drag"]]] = "power_below_drag"
-    steps = _table(cycle, n, run, ratio, w0, t2, res, flag)
+    steps = _table(cycle, run, (ratio, w0, t2), res, flag)
     summary = _summary(
-        variator, cycle, steps, strategy, law, target_input_speed, _time.perf_counter() - start
+        drive, cycle, steps, s.strategy, law, s.target_input_speed, _time.perf_counter() - start
     )
-    summary["workers"] = int(workers)
+    summary["workers"] = int(s.workers)
     return CycleResult(steps=pd.DataFrame(steps), summary=summary)
 
 
-def _output_side(solve, strategy, w2, t2, target, lo, hi, r_lo, r_hi, candidates, flag, run):
-    if strategy == "target-input-speed":
+def _bar(settings: CycleSettings, total: int, n: int):
+    import sys
+
+    from tqdm.auto import tqdm
+
+    show = sys.stderr.isatty() if settings.progress is None else settings.progress
+    return tqdm(total=total, desc=f"duty cycle, {n} steps", unit="point", disable=not show)
+
+
+def _ratio_ranges(design, s: CycleSettings):
+    """(usable, allowed) ratio ranges: the design's, and the one ``max-efficiency`` may use."""
+    lo, hi = usable_ratio_range(design)
+    r_lo, r_hi = (lo, hi) if s.ratio_range is None else map(float, s.ratio_range)
+    if not lo <= r_lo < r_hi <= hi:
+        raise InputError(
+            "ratio_range",
+            f"{r_lo:g} {r_hi:g}",
+            f"MIN < MAX within the usable range {lo:.4g}-{hi:.4g}",
+        )
+    return (lo, hi), (r_lo, r_hi)
+
+
+def _check_strategy(s: CycleSettings, cycle: Cycle, commanded: bool) -> None:
+    if s.strategy != "target-input-speed" or commanded:
+        return
+    if cycle.kind == "input":
+        raise InputError(
+            "strategy",
+            s.strategy,
+            "max-efficiency (an input-side cycle without a ratio column fixes the input "
+            "speed already)",
+        )
+    if s.target_input_speed is None or not s.target_input_speed > 0:
+        raise InputError(
+            "target_input_speed",
+            s.target_input_speed,
+            "> 0 rad/s for the target-input-speed strategy",
+        )
+
+
+def _step_flags(cycle: Cycle) -> np.ndarray:
+    """``ok``, ``idle`` or ``negative_torque`` per step, from the cycle's own columns."""
+    flag = np.full(cycle.size, "ok", dtype=object)
+    if cycle.kind == "output":
+        speed, load = cycle.output_speed, cycle.output_torque
+    else:
+        speed, load = cycle.input_speed, cycle.input_power
+    assert speed is not None and load is not None  # read_cycle guarantees them
+    flag[load < 0] = "negative_torque"
+    flag[(speed <= 0) | (load == 0)] = "idle"
+    return flag
+
+
+def _output_side(plan: _Plan, s: CycleSettings, w2, t2):
+    solve = plan.solve
+    if s.strategy == "target-input-speed":
+        target = s.target_input_speed
         want = w2 / target
-        ratio = np.clip(want, lo, hi)
-        limited = ratio != want
-        flag[run[limited]] = "ratio_limited"
+        ratio, limited = plan.limit(want)
         res = solve(ratio, t2, w2 / ratio, rough=True)
         # second pass: the creep's speed loss, so that the input turns at the target
         speed_eff = np.where(res["status"] == 0, res["eta_speed"], 1.0)
-        ratio2 = np.where(limited, ratio, np.clip(want / speed_eff, lo, hi))
+        ratio2 = np.where(limited, ratio, np.clip(want / speed_eff, *plan.usable))
         w0 = np.where(limited, w2 / ratio, target)
         return ratio2, w0, solve(ratio2, t2, w0)
     ratio = _best_ratio(
-        lambda r: solve(r, t2, w2 / r, rough=True), t2.size, r_lo, r_hi, candidates
+        lambda r: solve(r, t2, w2 / r, rough=True), t2.size, *plan.allowed, plan.candidates
     )
     first = solve(ratio, t2, w2 / ratio, rough=True)
     speed_eff = np.where(first["status"] == 0, first["eta_speed"], 1.0)
@@ -338,7 +372,9 @@ def _best_ratio(evaluate, n, r_lo, r_hi, candidates):
     return ratio
 
 
-def _input_side(solve, w0, power, fixed, r_lo, r_hi, candidates, flag, run, lo, hi):
+def _input_side(plan: _Plan, w0, power, fixed):
+    solve = plan.solve
+
     def at(ratio):
         """The output torque whose input torque is ``P / omega_0``: secant iterations on
         ``T_0(T_2)``, which is nearly affine (a drag plus ``tau_ID T_2 / eta_T``)."""
@@ -363,17 +399,17 @@ def _input_side(solve, w0, power, fixed, r_lo, r_hi, candidates, flag, run, lo, 
         return t2, out
 
     if fixed is not None:
-        ratio = fixed.copy()
-        outside = (ratio < lo) | (ratio > hi)
-        ratio[outside] = np.clip(ratio[outside], lo, hi)
-        flag[run[outside]] = "ratio_limited"
+        ratio, _ = plan.limit(fixed)
     else:
-        ratio = _best_ratio(lambda r: at(r)[1], w0.size, r_lo, r_hi, candidates)
+        ratio = _best_ratio(lambda r: at(r)[1], w0.size, *plan.allowed, plan.candidates)
     t2, res = at(ratio)
     return ratio, w0, t2, res
 
 
-def _table(cycle: Cycle, n, run, ratio, w0, t2, res, flag) -> dict:
+def _table(cycle: Cycle, run, solved, res, flag) -> dict:
+    """The steps' columns; ``solved``: (ratio, input speed, output torque) of the run."""
+    ratio, w0, t2 = solved
+    n = cycle.size
     nan = np.full(n, np.nan)
     col = {}
 

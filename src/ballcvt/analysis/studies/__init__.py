@@ -2,7 +2,7 @@
 
 from .evaluate import DESIGN_CODES, envelope_diameter, evaluate_chunk, make_context
 from .pareto import choose, pareto_mask
-from .run import StudyResult, design_vectors, local_client, run_study
+from .run import Compute, StudyResult, design_vectors, local_client, run_study
 from .spec import CONSTRAINTS, OBJECTIVES, StudySpec, parse_study, read_study
 
 __all__ = [
@@ -13,6 +13,7 @@ __all__ = [
     "choose",
     "pareto_mask",
     "StudyResult",
+    "Compute",
     "design_vectors",
     "local_client",
     "run_study",

@@ -147,33 +147,30 @@ def _design(ctx: Context, values: dict):
     return Design(**data)
 
 
+def _geometry_violation(ctx: Context, design, outer_diameter: float) -> str:
+    """Why the design's ratio range or size breaks a constraint ("" if neither does)."""
+    con = ctx.spec.constraints
+    lo, hi = ratio_range(design)
+    needed = [*ctx.ratio, *ctx.capacity_ratios] + (con.ratio_range or [])
+    if needed and (min(needed) < lo or max(needed) > hi):
+        return f"ratio range {lo:.3f}-{hi:.3f} does not cover {min(needed):g}-{max(needed):g}"
+    if con.outer_diameter_max is not None and outer_diameter > con.outer_diameter_max:
+        return f"outer_diameter {outer_diameter:.4g} m > {con.outer_diameter_max:g} m"
+    return ""
+
+
 def _evaluate(ctx: Context, values: dict):
     """(status, reason, metrics, eta per point, point status) of one design."""
-    spec, con = ctx.spec, ctx.spec.constraints
+    spec = ctx.spec
     try:
         design = _design(ctx, values)
         contact_layout(design, spec.study.architecture)
     except BallCVTError as exc:
         return Status.CANNOT_BE_BUILT, str(exc), {}, None, None
     metrics = {"outer_diameter": envelope_diameter(design)}
-    lo, hi = ratio_range(design)
-    needed = [*ctx.ratio, *ctx.capacity_ratios] + (con.ratio_range or [])
-    if needed and (min(needed) < lo or max(needed) > hi):
-        return (
-            Status.CONSTRAINT_VIOLATED,
-            (f"ratio range {lo:.3f}-{hi:.3f} does not cover {min(needed):g}-{max(needed):g}"),
-            metrics,
-            None,
-            None,
-        )
-    if con.outer_diameter_max is not None and metrics["outer_diameter"] > con.outer_diameter_max:
-        return (
-            Status.CONSTRAINT_VIOLATED,
-            (f"outer_diameter {metrics['outer_diameter']:.4g} m > {con.outer_diameter_max:g} m"),
-            metrics,
-            None,
-            None,
-        )
+    violated = _geometry_violation(ctx, design, metrics["outer_diameter"])
+    if violated:
+        return Status.CONSTRAINT_VIOLATED, violated, metrics, None, None
     force = values.get("clamp_force", spec.operating.clamp_force)
     law = None if spec.operating.clamp_law == "constant" else spec.operating.clamp_law
     law_obj = None if law is None else clamp_law(law, design)

@@ -19,7 +19,7 @@ import re
 import sys
 import time
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -37,7 +37,7 @@ from .pareto import choose, pareto_mask
 from .spec import OBJECTIVES, StudySpec
 from .store import STORE, append, chunk_dataset, evaluated, load
 
-__all__ = ["StudyResult", "run_study", "design_vectors", "local_client"]
+__all__ = ["StudyResult", "Compute", "run_study", "design_vectors", "local_client"]
 
 
 @dataclass(frozen=True)
@@ -200,16 +200,38 @@ class _Evaluator:
         bar.update(index.size)
 
 
+@dataclass(frozen=True)
+class Compute:
+    """Where and how a study's designs are evaluated.
+
+    Attributes
+    ----------
+    workers : int
+        Processes of the local Dask cluster (when neither ``scheduler`` nor ``client``).
+    scheduler : str, optional
+        Address of a running Dask scheduler (``tcp://host:8786``).
+    client : distributed.Client, optional
+        A client to use (not closed here).
+    in_process : bool
+        Evaluate in this process, without Dask.
+    progress : bool, optional
+        Progress bar (default: when stderr is a terminal).
+    """
+
+    workers: int = 2
+    scheduler: str | None = None
+    client: Any = None
+    in_process: bool = False
+    progress: bool | None = None
+
+
 def run_study(
     spec: StudySpec,
     out,
+    compute: Compute | None = None,
     *,
-    workers: int = 2,
-    scheduler: str | None = None,
-    client=None,
-    in_process: bool = False,
     resume: bool = False,
-    progress: bool | None = None,
+    **keywords,
 ) -> StudyResult:
     """Run ``spec`` and write its store and files into ``out``.
 
@@ -220,23 +242,18 @@ def run_study(
     out : path-like
         Output folder: ``designs.zarr`` (the store), ``designs.csv``, ``pareto.csv``,
         ``chosen_design.toml``, ``summary.json``.
-    workers : int
-        Processes of the local Dask cluster (when neither ``scheduler`` nor ``client``).
-    scheduler : str, optional
-        Address of a running Dask scheduler (``tcp://host:8786``).
-    client : distributed.Client, optional
-        A client to use (not closed here).
-    in_process : bool
-        Evaluate in this process, without Dask.
+    compute : Compute, optional
+        Where the designs are evaluated; or give its fields as keywords
+        (``in_process=True``, ``workers=2``, ``scheduler=...``, ``client=...``,
+        ``progress=False``).
     resume : bool
         Continue the study in ``out``: designs in its store are not evaluated again.
-    progress : bool, optional
-        Progress bar (default: when stderr is a terminal).
 
     Returns
     -------
     StudyResult
     """
+    compute = replace(compute or Compute(), **keywords)
     start = time.perf_counter()
     out = check_output_dir(out)
     store = out / STORE
@@ -257,22 +274,9 @@ def run_study(
         "Conventions": "CF-1.10",
         "title": f"ballcvt design study: {spec.study.name}",
     }
-    own = None
-    execution = "in process (no Dask)"
-    if client is None and not in_process:
-        if scheduler is not None:
-            from distributed import Client
-
-            client = own = Client(scheduler)
-            execution = f"Dask scheduler {scheduler}"
-        else:
-            client = own = local_client(workers)
-            execution = f"local Dask cluster, {workers} worker processes"
-        print(f"Dask dashboard: {client.dashboard_link}", file=sys.stderr)
-    elif client is not None:
-        execution = f"Dask client {client.scheduler.address}"
+    client, own, execution = _connect(compute)
     try:
-        ev = _Evaluator(ctx, store, client, attrs, progress)
+        ev = _Evaluator(ctx, store, client, attrs, compute.progress)
         if spec.study.method == "nsga2":
             _optimise(spec, ev, done)
         else:
@@ -286,6 +290,24 @@ def run_study(
             if cluster is not None:
                 cluster.close()
     return _finish(spec, ctx, out, store, ev.count, time.perf_counter() - start, execution)
+
+
+def _connect(compute: Compute):
+    """(client or None, the client this run owns or None, how the designs are evaluated)."""
+    if compute.client is not None:
+        return compute.client, None, f"Dask client {compute.client.scheduler.address}"
+    if compute.in_process:
+        return None, None, "in process (no Dask)"
+    if compute.scheduler is not None:
+        from distributed import Client
+
+        client = Client(compute.scheduler)
+        execution = f"Dask scheduler {compute.scheduler}"
+    else:
+        client = local_client(compute.workers)
+        execution = f"local Dask cluster, {compute.workers} worker processes"
+    print(f"Dask dashboard: {client.dashboard_link}", file=sys.stderr)
+    return client, client, execution
 
 
 def _optimise(spec: StudySpec, ev: _Evaluator, done: set) -> None:

@@ -171,7 +171,7 @@ MOVED_PACKAGES = {
         ),
     },
     "ballcvt.sweeps": {
-        **dict.fromkeys(("limit_torques", "solve_curves"), "ballcvt.analysis.sweeps.curves"),
+        **dict.fromkeys(("solve_curves",), "ballcvt.analysis.sweeps.curves"),
         **dict.fromkeys(
             ("load_dataset", "parameters", "to_csv", "to_frame", "to_netcdf"),
             "ballcvt.analysis.sweeps.export",

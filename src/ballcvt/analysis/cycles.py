@@ -43,11 +43,13 @@ from ..errors import InputError
 from ..files import atomic_write_text
 from ..model.clamping import clamp_law as resolve_law
 from ..model.kinematics import ratio_range as usable_ratio_range
+from ..params.drive import Drive
 from ..performance.efficiency import LOSS_KINDS
 from ..solvers.options import SolverOptions
 from ..status import Status
 from ..units import rad_s_to_rpm, rpm_to_rad_s
 from .cycle_files import STRATEGIES, Cycle
+from .sweeps.curves import Curves
 from .sweeps.export import write_table
 from .sweeps.points import evaluate_points
 
@@ -229,21 +231,18 @@ def run_cycle(drive, cycle: Cycle, settings: CycleSettings | None = None, **keyw
     coarse = replace(fine, quadrature=fine.predictor or fine.quadrature, predictor=None)
     pool = ProcessPoolExecutor(max_workers=s.workers) if s.workers > 1 else None
     with _bar(s, passes * run.size, cycle.size) as bar, pool or nullcontext():
+        here = Drive(design, drive.fluid, drive.architecture)
 
         def solve(ratio, t2, w0, rough=False):
-            return evaluate_points(
-                design,
-                drive.fluid,
-                drive.architecture,
+            points = Curves.of(
+                here,
                 ratio,
-                t2,
                 w0,
                 clamp_force=law.force if law.name == "constant" else None,
                 law=None if law.name == "constant" else law,
                 options=coarse if rough else fine,
-                callback=bar.update,
-                executor=pool,
             )
+            return evaluate_points(points, t2, callback=bar.update, executor=pool)
 
         plan = _Plan(solve, usable, allowed, s.candidates, flag, run)
         if cycle.kind == "output":

@@ -18,13 +18,12 @@ from ...errors import BallCVTError
 from ...model.architectures import contact_layout
 from ...model.clamping import clamp_law
 from ...model.kinematics import ratio_range
-from ...params.drive import PAPER_POINT
+from ...params.drive import PAPER_POINT, Drive
 from ...params.io import resolve_drive
 from ...params.models import Design, Fluid
-from ...solvers.options import SolverOptions
 from ...status import Status
 from ...units import rpm_to_rad_s
-from ..sweeps.curves import limit_search_curves
+from ..sweeps.curves import Curves, limit_search_curves
 from ..sweeps.points import evaluate_points
 from .spec import OBJECTIVES, StudySpec
 
@@ -176,16 +175,9 @@ def _evaluate(ctx: Context, values: dict):
     law_obj = None if law is None else clamp_law(law, design)
     eta = pst = None
     if spec.operating.cycle is None:
-        res = evaluate_points(
-            design,
-            ctx.fluid,
-            spec.study.architecture,
-            ctx.ratio,
-            ctx.torque,
-            ctx.speed,
-            clamp_force=None if law else force,
-            law=law_obj,
-        )
+        drive = Drive(design, ctx.fluid, spec.study.architecture)
+        points = Curves.of(drive, ctx.ratio, ctx.speed, None if law else force, law_obj)
+        res = evaluate_points(points, ctx.torque)
         pst, eta = res["status"].astype(np.int8), res["eta"]
         beyond = int(np.sum(pst != 0))
         metrics["max_pressure"] = float(np.nanmax(res["p_max"])) if beyond < pst.size else np.nan
@@ -220,17 +212,14 @@ def _evaluate(ctx: Context, values: dict):
     # capacity at the capacity ratios (constant force: the study's; laws: their own),
     # searched as a sweep searches its limits
     speed = float(np.median(ctx.speed)) if ctx.speed.size else _cycle_speed(ctx)
-    _, search = limit_search_curves(
-        design,
-        ctx.fluid,
-        spec.study.architecture,
+    rows = Curves.of(
+        Drive(design, ctx.fluid, spec.study.architecture),
         ctx.capacity_ratios,
         np.full(ctx.capacity_ratios.size, speed),
-        None if law_obj is not None else np.full(ctx.capacity_ratios.size, force),
+        None if law_obj is not None else force,
         law_obj,
-        SolverOptions(),
-        design.creep_limit,
     )
+    _, search = limit_search_curves(rows)
     limits = search.torque
     metrics["capacity"] = float(np.min(limits))
     volume = math.pi * (metrics["outer_diameter"] / 2) ** 2 * 2 * design.roller_radius
@@ -272,7 +261,6 @@ def _cycle_speed(ctx: Context) -> float:
 
 def _cycle(ctx: Context, design, force, law) -> dict:
     """Efficiency and steps beyond capacity of the study's duty cycle."""
-    from ...params.drive import Drive
     from ..cycle_files import read_cycle
     from ..cycles import run_cycle
 

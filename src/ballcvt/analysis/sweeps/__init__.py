@@ -1,6 +1,6 @@
 """Layer 7: sweeps over operating conditions as `xarray.Dataset` objects, and their export."""
 
-from .curves import limit_torques, solve_curves
+from .curves import Curves, limit_search_curves, solve_curves
 from .export import load_dataset, parameters, to_csv, to_frame, to_netcdf
 from .grid import sweep
 from .variables import LOSS_KINDS, VARIABLES
@@ -8,7 +8,8 @@ from .variables import LOSS_KINDS, VARIABLES
 __all__ = [
     "sweep",
     "solve_curves",
-    "limit_torques",
+    "limit_search_curves",
+    "Curves",
     "VARIABLES",
     "LOSS_KINDS",
     "to_netcdf",

@@ -7,43 +7,123 @@ reported quantity at the converged points.
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
+from typing import Any
+
 import numpy as np
 
 from ...equilibrium.problem import build_problem
 from ...equilibrium.residual import evaluate
 from ...errors import TractionLimitError
 from ...model.clamping import axial_force
+from ...params.drive import Drive
 from ...performance.efficiency import efficiency, loss_breakdown, power_losses
 from ...performance.validity import validity
 from ...solvers.clamped import capacity_basis, solve_clamped, with_clamp
 from ...solvers.limit import LimitSearch, limit_search
 from ...solvers.newton import initial_creep, solve_batch
 from ...solvers.optimal_clamp import optimal_clamp_force
+from ...solvers.options import SolverOptions
+from ...status import Status
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
 
-__all__ = ["solve_curves", "limit_torques", "derived", "solve_column", "at_optimal_forces"]
+__all__ = [
+    "Curves",
+    "solve_curves",
+    "limit_search_curves",
+    "derived",
+    "solve_column",
+    "at_optimal_forces",
+]
 
 
-def solve_curves(
-    design,
-    fluid,
-    architecture,
-    clamp_force,
-    input_speed,
-    ratio,
-    torque,
-    options,
-    creep_limit,
-    limit=None,
-    law=None,
-    callback=None,
-):
-    """Solve the curves ``(clamp_force[i], input_speed[i], ratio[i])`` over ``torque``.
+@dataclass(frozen=True)
+class Curves:
+    """Rows of operating conditions to solve over the output torque: the curves of a sweep,
+    or scattered points (one row each). Picklable: sent to worker processes.
+
+    Attributes
+    ----------
+    drive : Drive
+        Design, fluid and idler architecture.
+    ratio, input_speed : ndarray
+        Ideal ratio [-] and input speed [rad/s] of each row, ``(m,)``.
+    clamp_force : ndarray or None
+        ``F_N0`` [N] of each row under the constant law (``law`` None).
+    law : clamping law or None
+        A law other than constant (`ballcvt.model.clamping`).
+    options : SolverOptions
+        Solver options.
+    creep_limit : float
+        ``C_lim`` of the limiting torque [-].
+    """
+
+    drive: Drive
+    ratio: np.ndarray
+    input_speed: np.ndarray
+    clamp_force: np.ndarray | None = None
+    law: Any = None
+    options: SolverOptions = SolverOptions()
+    creep_limit: float = 0.1
+
+    @classmethod
+    def of(
+        cls,
+        drive: Drive,
+        ratio,
+        input_speed,
+        clamp_force=None,
+        law=None,
+        options: SolverOptions = SolverOptions(),
+        creep_limit: float | None = None,
+    ) -> Curves:
+        """Rows from array-likes: ``clamp_force`` [N] broadcast to the rows (ignored under
+        a ``law``), ``creep_limit`` the design's by default."""
+        ratio, speed = (np.atleast_1d(np.asarray(a, dtype=float)) for a in (ratio, input_speed))
+        force = None
+        if law is None:
+            force = np.broadcast_to(np.asarray(clamp_force, dtype=float), ratio.shape)
+            force = force.astype(float)
+        c_lim = drive.design.creep_limit if creep_limit is None else float(creep_limit)
+        return cls(drive, ratio, speed, force, law, options, c_lim)
+
+    @property
+    def size(self) -> int:
+        return int(self.ratio.size)
+
+    @property
+    def optimal(self) -> bool:
+        """Whether the clamping force is the efficiency-optimal one (an optimisation)."""
+        return self.law is not None and self.law.name == "optimal"
+
+    def take(self, index) -> Curves:
+        """The rows ``index``."""
+        force = None if self.clamp_force is None else self.clamp_force[index]
+        return replace(
+            self, ratio=self.ratio[index], input_speed=self.input_speed[index], clamp_force=force
+        )
+
+    def problem(self, rows, torque, force):
+        """The equilibrium problem of rows ``rows`` at ``torque`` [N m] and ``force`` [N]."""
+        d = self.drive
+        return build_problem(
+            d.design,
+            d.fluid,
+            d.architecture,
+            self.ratio[rows],
+            torque,
+            force,
+            self.input_speed[rows],
+        )
+
+
+def solve_curves(curves: Curves, torque, limit=None, callback=None) -> dict:
+    """Solve the rows of ``curves`` over ``torque`` [N m].
 
     ``limit``: the curves' limiting torques if already known, or their
-    `ballcvt.solvers.limit.LimitSearch` (else computed here).
-    ``law``: a clamping law other than constant (then ``clamp_force`` is ignored and the
-    force the law sets at each point is returned as ``clamp_force``, ``(m, n_T)``).
+    `ballcvt.solvers.limit.LimitSearch` (else computed here). Under a clamping law other
+    than constant the force the law sets at each point is returned as ``clamp_force``,
+    ``(m, n_T)``.
 
     When the limit search ran here (or was handed over), every point within the limits is
     solved in one batch, each started from the creeps interpolated in torque between the
@@ -52,289 +132,161 @@ def solve_curves(
     from the last solution (continuation).
 
     Returns a dict of arrays ``(m, n_T)`` or ``(m, n_T, n_c)`` (and ``limit_torque``,
-    ``(m,)``) with the variables of `ballcvt.analysis.sweeps.variables`; run in worker processes.
+    ``(m,)``) with the variables of `ballcvt.analysis.sweeps.variables`; run in worker
+    processes.
     """
-    m, nt = ratio.size, torque.size
-    optimal = law is not None and law.name == "optimal"
-    base, search = limit_search_curves(
-        design,
-        fluid,
-        architecture,
-        ratio,
-        input_speed,
-        clamp_force,
-        law,
-        options,
-        creep_limit,
-        callback,
-        limit,
-    )
+    m, nt = curves.size, torque.size
+    base, search = limit_search_curves(curves, callback, limit)
     limit = search.torque if search is not None else limit
-    nc = base.layout.n_contacts
+    within = torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None]
     state = {
-        "creep": np.full((m, nt, nc), np.nan),
+        "creep": np.full((m, nt, base.layout.n_contacts), np.nan),
         "force": np.broadcast_to(base.clamp_force[:, None], (m, nt)).copy(),
-        # points within the limit start as "not converged" (2) until solved
-        "status": np.where(torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None], 2, 1),
+        # points within the limit start as "not converged" until solved
+        "status": np.where(within, Status.NOT_CONVERGED, Status.BEYOND_LIMIT),
         "iterations": np.zeros((m, nt), dtype=int),
         "residual": np.full((m, nt), np.nan),
     }
-    if search is not None and not optimal:
-        i, k = np.nonzero(state["status"] == 2)
-        lim = search.torque[i]
-        share = np.divide(torque[k], lim, out=np.zeros(lim.size), where=lim > 0)[:, None]
-        zero = np.where(np.isnan(search.creep_zero), initial_creep(base), search.creep_zero)
-        x0 = zero[i] + share * (search.creep[i] - zero[i])
-        pb, sol = _solve_points(
-            state, design, fluid, architecture, ratio, torque, input_speed, law, options, i, k, x0
-        )
-        stray = _off_branch(state, i, k, sol, creep_limit)
-        if stray.size:  # another equilibrium than the one reached from T_2 = 0
-            _continue_from_below(
-                state,
-                design,
-                fluid,
-                architecture,
-                ratio,
-                torque,
-                input_speed,
-                law,
-                options,
-                i[stray],
-                k[stray],
-                zero,
-                creep_limit,
-            )
-            solved = None  # evaluated again in `derived`
-        else:
-            solved = (pb.take(sol.converged), sol.state.take(sol.converged))
+    if search is not None and not curves.optimal:
+        solved = _solve_from_limits(state, curves, torque, search, base)
         for _ in range(nt) if callback is not None else ():
             callback()
     else:
-        x, solved = None, None
-        for k in range(nt):
-            i = np.flatnonzero(state["status"][:, k] == 2)
-            if i.size:
-                _, sol = _solve_points(
-                    state,
-                    design,
-                    fluid,
-                    architecture,
-                    ratio,
-                    torque,
-                    input_speed,
-                    law,
-                    options,
-                    i,
-                    np.full(i.size, k),
-                    None if x is None else x[i],
-                )
-                if x is None:
-                    x = np.broadcast_to(sol.state.creep[:1], (m, nc)).copy()
-                good = sol.converged
-                x[i[good]] = sol.state.creep[good]
-            if callback is not None:
-                callback()
+        solved = None
+        _solve_upwards(state, curves, torque, callback)
     creep, force, status = state["creep"], state["force"], state["status"]
     out = {
         "limit_torque": limit,
         "eta_at_limit": _eta_at(
-            design,
-            fluid,
-            architecture,
+            curves,
             base.clamp_force,
-            input_speed,
-            ratio,
             limit,
-            options,
-            None if optimal else law,
+            None if curves.optimal else curves.law,
             None if search is None else search.creep,
         ),
         "status": status.astype(np.int8),
         "iterations": state["iterations"],
         "residual_norm": state["residual"],
     }
-    out.update(
-        derived(
-            design,
-            fluid,
-            architecture,
-            force,
-            input_speed,
-            ratio,
-            torque,
-            creep,
-            status,
-            options,
-            solved,
-        )
-    )
-    if law is not None:
-        out["clamp_force"] = np.where(status == 0, force, np.nan)
+    out.update(derived(curves, force, torque, creep, status, solved))
+    if curves.law is not None:
+        out["clamp_force"] = np.where(status == Status.CONVERGED, force, np.nan)
     return out
 
 
-def _off_branch(state, i, k, sol, creep_limit):
+def _solve_from_limits(state, curves: Curves, torque, search: LimitSearch, base):
+    """Every point within the limits in one batch, started between the creeps at zero
+    torque and at the limit; returns the converged points' (problem, state), or None when
+    some had to be solved again from below."""
+    i, k = np.nonzero(state["status"] == Status.NOT_CONVERGED)
+    lim = search.torque[i]
+    share = np.divide(torque[k], lim, out=np.zeros(lim.size), where=lim > 0)[:, None]
+    zero = np.where(np.isnan(search.creep_zero), initial_creep(base), search.creep_zero)
+    x0 = zero[i] + share * (search.creep[i] - zero[i])
+    pb, sol = _solve_points(state, curves, torque, (i, k), x0)
+    stray = _off_branch(state, (i, k), sol, curves.creep_limit)
+    if stray.size:  # another equilibrium than the one reached from T_2 = 0
+        _continue_from_below(state, curves, torque, (i[stray], k[stray]), zero)
+        return None  # evaluated again in `derived`
+    return pb.take(sol.converged), sol.state.take(sol.converged)
+
+
+def _solve_upwards(state, curves: Curves, torque, callback) -> None:
+    """Torque by torque up the curves, each point from the last solution (continuation)."""
+    x = None
+    for k in range(torque.size):
+        i = np.flatnonzero(state["status"][:, k] == Status.NOT_CONVERGED)
+        if i.size:
+            _, sol = _solve_points(
+                state, curves, torque, (i, np.full(i.size, k)), None if x is None else x[i]
+            )
+            if x is None:
+                x = np.broadcast_to(sol.state.creep[:1], (curves.size, sol.state.creep.shape[-1]))
+                x = x.copy()
+            good = sol.converged
+            x[i[good]] = sol.state.creep[good]
+        if callback is not None:
+            callback()
+
+
+def _off_branch(state, points, sol, creep_limit):
     """Points of one batch that converged with a creep beyond ``creep_limit`` although
     their torque is within the limit: where the traction can fall with the creep (the
     thermal law, docs/model.md §14) a second equilibrium exists past the peak of the
     traction curve, and Newton reached it. They go back to "not converged" (indices into
     the batch)."""
+    i, k = points
     big = np.max(np.abs(sol.state.creep), axis=-1) > creep_limit * (1.0 + 1e-9)
     stray = np.flatnonzero(sol.converged & big)
-    state["status"][i[stray], k[stray]] = 2
+    state["status"][i[stray], k[stray]] = Status.NOT_CONVERGED
     state["creep"][i[stray], k[stray]] = np.nan
     return stray
 
 
-def _continue_from_below(
-    state,
-    design,
-    fluid,
-    architecture,
-    ratio,
-    torque,
-    input_speed,
-    law,
-    options,
-    i,
-    k,
-    zero,
-    creep_limit,
-):
-    """Solve the points ``(i, k)`` torque by torque up their curves, each from the last
-    admissible solution below it (from ``zero``, the creeps at ``T_2 = 0``, at first):
-    the equilibrium reached continuously from no load. Points that still end past the
-    creep limit stay "not converged"."""
+def _continue_from_below(state, curves: Curves, torque, points, zero):
+    """Solve the ``points`` (curve, torque index) torque by torque up their curves, each
+    from the last admissible solution below it (from ``zero``, the creeps at ``T_2 = 0``,
+    at first): the equilibrium reached continuously from no load. Points that still end
+    past the creep limit stay "not converged"."""
+    i, k = points
     for kk in np.unique(k):
-        sel = k == kk
-        ii = i[sel]
-        below = state["status"][ii, :kk] == 0
+        ii = i[k == kk]
+        below = state["status"][ii, :kk] == Status.CONVERGED
         last = (
             np.where(below.any(axis=1), kk - 1 - np.argmax(below[:, ::-1], axis=1), -1)
             if kk > 0
             else np.full(ii.size, -1)
         )
         x0 = np.where((last >= 0)[:, None], state["creep"][ii, np.maximum(last, 0)], zero[ii])
-        _, sol = _solve_points(
-            state,
-            design,
-            fluid,
-            architecture,
-            ratio,
-            torque,
-            input_speed,
-            law,
-            options,
-            ii,
-            np.full(ii.size, kk),
-            x0,
-        )
-        _off_branch(state, ii, np.full(ii.size, kk), sol, creep_limit)
+        at = (ii, np.full(ii.size, kk))
+        _, sol = _solve_points(state, curves, torque, at, x0)
+        _off_branch(state, at, sol, curves.creep_limit)
 
 
-def _solve_points(
-    state, design, fluid, architecture, ratio, torque, input_speed, law, options, i, k, x0
-):
-    """Solve the points ``(curve i[j], torque k[j])`` in one batch; record them in
+def _solve_points(state, curves: Curves, torque, points, x0):
+    """Solve the ``points`` (curve ``i[j]``, torque ``k[j]``) in one batch; record them in
     ``state`` and return the problem (at the forces used) and the batch solution."""
-    pb = build_problem(
-        design, fluid, architecture, ratio[i], torque[k], state["force"][i, k], input_speed[i]
-    )
-    pb, sol = solve_column(pb, law, options, x0)
+    i, k = points
+    pb = curves.problem(i, torque[k], state["force"][i, k])
+    pb, sol = solve_column(pb, curves.law, curves.options, x0)
     good = sol.converged
     state["force"][i, k] = pb.clamp_force
     state["creep"][i[good], k[good]] = sol.state.creep[good]
-    state["status"][i[good], k[good]] = 0
+    state["status"][i[good], k[good]] = Status.CONVERGED
     state["iterations"][i, k] = sol.iterations
     state["residual"][i, k] = sol.residual_norm
     return pb, sol
 
 
-def limit_search_curves(
-    design,
-    fluid,
-    architecture,
-    ratio,
-    input_speed,
-    clamp_force,
-    law,
-    options,
-    creep_limit,
-    callback=None,
-    limit=None,
-):
-    """Limit search of the curves ``(ratio[i], input_speed[i])`` under a clamping law.
+def limit_search_curves(curves: Curves, callback=None, limit=None):
+    """Limit search of the rows of ``curves`` under their clamping law.
 
-    As `limit_torques`, but returns the `ballcvt.solvers.limit.LimitSearch` (limits and
-    the creeps at zero torque and at the limits); ``limit`` may be one already made, or
-    bare torques (then None is returned in its place).
+    Parameters
+    ----------
+    curves : Curves
+        The rows (ratio, input speed, constant force or law).
+    callback : callable, optional
+        Called after each step of the search.
+    limit : ndarray or LimitSearch, optional
+        A search already made (returned as it is), or bare torques [N m] (then None is
+        returned in its place).
+
+    Returns
+    -------
+    (EquilibriumProblem, LimitSearch or None)
+        The rows at zero torque (at the constant force, or the optimal law's bound) and
+        the `ballcvt.solvers.limit.LimitSearch`: limiting torques [N m] (NaN where none)
+        and the creeps at zero torque and at the limits.
     """
-    start = np.ones(ratio.size) if law is not None else clamp_force
-    base = build_problem(design, fluid, architecture, ratio, 0.0, start, input_speed)
-    base, follows, creep_limit = capacity_basis(base, law, creep_limit)
+    start = np.ones(curves.size) if curves.law is not None else curves.clamp_force
+    base = curves.problem(slice(None), 0.0, start)
+    base, follows, creep_limit = capacity_basis(base, curves.law, curves.creep_limit)
     if isinstance(limit, LimitSearch):
         return base, limit
     if limit is not None:
         return base, None
-    return base, limit_search(base, creep_limit, options, callback=callback, law=follows)
-
-
-def limit_torques(
-    design,
-    fluid,
-    architecture,
-    ratio,
-    input_speed,
-    clamp_force,
-    law,
-    options,
-    creep_limit,
-    callback=None,
-    limit=None,
-):
-    """Limiting torques of the curves ``(ratio[i], input_speed[i])`` under a clamping law.
-
-    Parameters
-    ----------
-    design, fluid, architecture
-        The drive.
-    ratio, input_speed : ndarray
-        Ideal ratios [-] and input speeds [rad/s] of the curves, shape ``(m,)``.
-    clamp_force : ndarray or None
-        ``F_N0`` [N] of the constant law (``law`` None).
-    law : clamping law or None
-        A torque-following law (``cam``), ``optimal`` (the limit at the largest force
-        within the pressure limit, which the optimiser may pick), or None (constant).
-    options : SolverOptions
-        Solver options.
-    creep_limit : float
-        ``C_lim`` [-] (the optimal law's own, if it has one, wins).
-    callback : callable, optional
-        Called after each step of the limit search.
-    limit : ndarray, optional
-        Limits already known (returned as they are).
-
-    Returns
-    -------
-    (EquilibriumProblem, ndarray)
-        The curves at zero torque (at the constant force, or the optimal law's bound)
-        and their limiting torques [N m] (NaN where none).
-    """
-    base, search = limit_search_curves(
-        design,
-        fluid,
-        architecture,
-        ratio,
-        input_speed,
-        clamp_force,
-        law,
-        options,
-        creep_limit,
-        callback,
-        limit,
-    )
-    return base, (limit if search is None else search.torque)
+    search = limit_search(base, creep_limit, curves.options, callback=callback, law=follows)
+    return base, search
 
 
 def solve_column(pb, law, options, x0):
@@ -370,17 +322,14 @@ def at_optimal_forces(pb, law, options):
     return with_clamp(pb, forces)
 
 
-def _eta_at(
-    design, fluid, arch, clamp_force, input_speed, ratio, torque, options, law=None, x0=None
-):
+def _eta_at(curves: Curves, clamp_force, torque, law=None, x0=None):
     """Overall efficiency (Eq. 38) at one torque per curve (NaN where there is none);
     ``x0``: starting creeps per curve (the limit search's, at these torques)."""
-    eta = np.full(ratio.size, np.nan)
+    eta = np.full(curves.size, np.nan)
     ok = np.flatnonzero(np.isfinite(torque))
     if ok.size:
-        pb = build_problem(
-            design, fluid, arch, ratio[ok], torque[ok], clamp_force[ok], input_speed[ok]
-        )
+        pb = curves.problem(ok, torque[ok], clamp_force[ok])
+        options = curves.options
         if x0 is not None and law is None:  # the limit search's own solutions
             sol = solve_batch(pb, options, x0[ok], predict=False)
         else:
@@ -389,27 +338,14 @@ def _eta_at(
     return eta
 
 
-def derived(
-    design,
-    fluid,
-    arch,
-    clamp_force,
-    input_speed,
-    ratio,
-    torque,
-    creep,
-    status,
-    options,
-    solved=None,
-):
+def derived(curves: Curves, clamp_force, torque, creep, status, solved=None):
     """Every reported quantity at the converged points (NaN elsewhere); ``clamp_force``
     has the shape ``(m, n_T)`` of the points, ``torque`` is ``(n_T,)`` or ``(m, n_T)``.
 
     ``solved``: the problem and state of exactly the converged points, in C order,
     when the solve already has them (else they are evaluated here)."""
     m, nt, nc = creep.shape
-    ok = status == 0
-    i, k = np.nonzero(ok)
+    i, k = np.nonzero(status == Status.CONVERGED)
     values = {name: np.full((m, nt), np.nan) for name in POINT_VARIABLES}
     values.update({name: np.full((m, nt, nc), np.nan) for name in CONTACT_VARIABLES})
     values["losses"] = np.full((m, nt, len(LOSS_KINDS)), np.nan)
@@ -418,16 +354,22 @@ def derived(
         return values
     if solved is None:
         torque = np.broadcast_to(torque, (m, nt))  # one axis for all, or per point
-        pb = build_problem(
-            design, fluid, arch, ratio[i], torque[i, k], clamp_force[i, k], input_speed[i]
-        )
-        st = evaluate(pb, creep[i, k], options.quadrature)
+        pb = curves.problem(i, torque[i, k], clamp_force[i, k])
+        st = evaluate(pb, creep[i, k], curves.options.quadrature)
     else:
         pb, st = solved
+    for name, v in _point_values(curves, pb, st).items():
+        values[name][i, k] = v
+    return values
+
+
+def _point_values(curves: Curves, pb, st) -> dict:
+    """The reported quantities of solved points (`ballcvt.analysis.sweeps.variables`)."""
     loss = power_losses(pb, st)
     eff = efficiency(pb, st, loss)
     valid = validity(pb, st)
-    point = {
+    kinds = loss_breakdown(loss)
+    return {
         "eta": eff.overall,
         "eta_loss": eff.from_losses,
         "eta_speed": eff.speed,
@@ -435,9 +377,7 @@ def derived(
         "input_torque": st.input_torque,
         "actual_ratio": st.omega[:, -1] / st.omega[:, 0],
         "tilt_deg": np.degrees(pb.tilt),
-        "axial_force": axial_force(design, pb.clamp_force),
-    }
-    contact = {
+        "axial_force": axial_force(curves.drive.design, pb.clamp_force),
         "creep": st.creep,
         "spin": st.spin,
         "mu": st.mu,
@@ -448,12 +388,6 @@ def derived(
         "creep_loss": loss.creep,
         "spin_loss": loss.spin,
         "lambda_ratio": valid.lambda_ratio,
+        "losses": np.stack([kinds[kind] for kind in LOSS_KINDS], axis=-1),
+        "warnings": valid.flags,
     }
-    for name, v in point.items():
-        values[name][i, k] = v
-    for name, v in contact.items():
-        values[name][i, k] = v
-    kinds = loss_breakdown(loss)
-    values["losses"][i, k] = np.stack([kinds[kind] for kind in LOSS_KINDS], axis=-1)
-    values["warnings"][i, k] = valid.flags
-    return values

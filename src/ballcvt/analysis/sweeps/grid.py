@@ -15,6 +15,7 @@ from __future__ import annotations
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -25,39 +26,22 @@ from ...equilibrium.problem import build_problem
 from ...errors import InputError
 from ...model.architectures import CONTACT_NAMES
 from ...model.clamping import clamp_law as clamp_law_of
+from ...params.drive import Drive
 from ...params.models import ARCHITECTURES, Design, Fluid
 from ...solvers.limit import LimitSearch, bisection_steps
 from ...solvers.options import SolverOptions
-from .curves import solve_curves
+from .curves import Curves, solve_curves
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, attrs_for
 
-__all__ = ["sweep"]
+__all__ = ["sweep", "SweepSettings"]
 
 
-def sweep(
-    design: Design,
-    fluid: Fluid,
-    *,
-    ratio,
-    output_torque,
-    clamp_force=None,
-    input_speed,
-    clamp_law=None,
-    architecture="double",
-    options: SolverOptions = SolverOptions(),
-    creep_limit: float | None = None,
-    limit_torque=None,
-    workers: int = 1,
-    progress: bool | None = None,
-    label: str | None = None,
-    input_speed_rpm=None,
-) -> xr.Dataset:
-    """Evaluate the model over a grid of operating conditions.
+@dataclass(frozen=True)
+class SweepSettings:
+    """The grid a `sweep` evaluates and how.
 
-    Parameters
+    Attributes
     ----------
-    design, fluid : Design, Fluid
-        Parameter sets.
     ratio : float or array_like
         Ideal speed ratios ``tau_ID`` [-].
     output_torque : float or array_like
@@ -93,6 +77,36 @@ def sweep(
     input_speed_rpm : array_like, optional
         The same input speeds in rpm: the speed dimension is then ``input_speed_rpm``
         with these values, and ``input_speed`` [rad/s] a second coordinate on it.
+    """
+
+    ratio: Any = None
+    output_torque: Any = None
+    clamp_force: Any = None
+    input_speed: Any = None
+    clamp_law: Any = None
+    architecture: Any = "double"
+    options: SolverOptions = SolverOptions()
+    creep_limit: float | None = None
+    limit_torque: Any = None
+    workers: int = 1
+    progress: bool | None = None
+    label: str | None = None
+    input_speed_rpm: Any = None
+
+
+def sweep(
+    design: Design, fluid: Fluid, settings: SweepSettings | None = None, **keywords
+) -> xr.Dataset:
+    """Evaluate the model over a grid of operating conditions.
+
+    Parameters
+    ----------
+    design, fluid : Design, Fluid
+        Parameter sets.
+    settings : SweepSettings, optional
+        The grid and how to evaluate it; or give its fields as keywords (``ratio=...,
+        output_torque=..., clamp_force=..., input_speed=...``; ``ratio``,
+        ``output_torque`` and ``input_speed`` are required).
 
     Returns
     -------
@@ -107,106 +121,48 @@ def sweep(
         attributes (``design_<key>``, ``fluid_<key>``).
     """
     start = time.perf_counter()
-    archs = [architecture] if isinstance(architecture, str) else list(architecture)
+    s = replace(settings or SweepSettings(), **keywords)
+    for name in ("ratio", "output_torque", "input_speed"):
+        if getattr(s, name) is None:
+            raise InputError(name, None, "a number or a non-empty 1-D sequence")
+    archs = [s.architecture] if isinstance(s.architecture, str) else list(s.architecture)
     for a in archs:
         if a not in ARCHITECTURES:
             raise InputError("architecture", a, "one of: " + ", ".join(ARCHITECTURES))
-    c_lim = design.creep_limit if creep_limit is None else float(creep_limit)
+    c_lim = design.creep_limit if s.creep_limit is None else float(s.creep_limit)
     if not 0.0 < c_lim < 1.0:
         raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
-    law: Any = None
-    if clamp_law is None or clamp_law == "constant":  # the forces are a dimension
-        if clamp_force is None:
-            clamp_law_of(None, design, None)  # raises: says what is missing
-    else:
-        law = clamp_law_of(clamp_law, design, clamp_force)
-        if law.name == "constant":
-            law, clamp_force = None, law.force
-    axes = {
-        name: _axis(name, value)
-        for name, value in (
-            ("clamp_force", np.nan if law else clamp_force),
-            ("input_speed", input_speed),
-            ("ratio", ratio),
-            ("output_torque", output_torque),
-        )
-    }
+    law, clamp_force = _law(design, s)
+    axes = _axes(design, fluid, archs[0], s, law, clamp_force)
     torque = axes["output_torque"]
-    if np.any(np.diff(torque) < 0):
-        raise InputError(
-            "output_torque",
-            float(torque[np.argmax(np.diff(torque) < 0) + 1]),
-            "an increasing sequence (torque is the continuation axis)",
-        )
-    # validate every input once (raises InputError on the first bad value)
-    build_problem(
-        design,
-        fluid,
-        archs[0],
-        axes["ratio"][:, None],
-        torque,
-        1.0 if law else axes["clamp_force"][:, None, None],
-        axes["input_speed"][:, None, None, None],
-    )
     shape = tuple(len(axes[n]) for n in ("clamp_force", "input_speed", "ratio"))
     grid = np.meshgrid(axes["clamp_force"], axes["input_speed"], axes["ratio"], indexing="ij")
     flat = [g.ravel() for g in grid]
-    if isinstance(limit_torque, (bool, np.bool_)):
-        raise InputError(
-            "limit_torque",
-            limit_torque,
-            "torques [N m] or a LimitSearch (None: computed)",
-        )
-    if limit_torque is not None:
-        if len(archs) != 1:
-            raise InputError(
-                "architecture",
-                ", ".join(archs),
-                "a single architecture when limit_torque is given",
-            )
-        limits: Any
-        if isinstance(limit_torque, LimitSearch):
-            limits = limit_torque.flat()
-            if limits.torque.size != int(np.prod(shape)):
-                raise InputError(
-                    "limit_torque",
-                    f"a search of {limits.torque.size} curves",
-                    f"one per (clamp_force, input_speed, ratio): {int(np.prod(shape))}",
-                )
-        else:
-            limits = np.broadcast_to(np.asarray(limit_torque, dtype=float), shape).ravel()
-    contacts = _contact_axis(archs)
-    show = sys.stderr.isatty() if progress is None else progress
-    chunks = np.array_split(np.arange(flat[0].size), max(1, min(workers, flat[0].size)))
+    limits = _given_limits(s.limit_torque, archs, shape)
+    show = sys.stderr.isatty() if s.progress is None else s.progress
+    chunks = np.array_split(np.arange(flat[0].size), max(1, min(s.workers, flat[0].size)))
     blocks = {}
     for arch in archs:
+        drive = Drive(design, fluid, arch)
         jobs = [
             (
-                design,
-                fluid,
-                arch,
-                flat[0][c],
-                flat[1][c],
-                flat[2][c],
+                Curves(drive, flat[2][c], flat[1][c], flat[0][c], law, s.options, c_lim),
                 torque,
-                options,
-                c_lim,
-                None if limit_torque is None else _part(limits, c),
-                law,
+                None if limits is None else _part(limits, c),
             )
             for c in chunks
         ]
-        text = f"{label}, {arch} idler" if label and len(archs) > 1 else label
-        blocks[arch] = _run(jobs, workers, show, text or f"sweep, {arch} idler")
-    speed_dim = "input_speed" if input_speed_rpm is None else "input_speed_rpm"
-    ds = _assemble(blocks, archs, axes, shape, contacts, input_speed_rpm)
+        text = f"{s.label}, {arch} idler" if s.label and len(archs) > 1 else s.label
+        blocks[arch] = _run(jobs, s.workers, show, text or f"sweep, {arch} idler")
+    ds = _assemble(blocks, archs, axes, shape, _contact_axis(archs), s.input_speed_rpm)
     if law is not None:
-        used = np.stack([blocks[a]["clamp_force"].reshape(shape + (torque.size,)) for a in archs])[
-            :, 0
-        ]
+        speed_dim = "input_speed" if s.input_speed_rpm is None else "input_speed_rpm"
+        used = np.stack([blocks[a]["clamp_force"].reshape(shape + (torque.size,)) for a in archs])
         ds = ds.isel(clamp_force=0, drop=True)
         ds["clamp_force"] = xr.Variable(
-            ("architecture", speed_dim, "ratio", "output_torque"), used, attrs_for("clamp_force")
+            ("architecture", speed_dim, "ratio", "output_torque"),
+            used[:, 0],
+            attrs_for("clamp_force"),
         )
     ds.attrs.update(
         clamp_law=law.name if law else "constant",
@@ -219,14 +175,84 @@ def sweep(
         references="Tomaselli, Bottiglione, Lino, Carbone, Mech. Mach. Theory 150 (2020) "
         "103877, doi:10.1016/j.mechmachtheory.2020.103877",
         creep_limit=c_lim,
-        quadrature=repr(options.quadrature),
-        solver=options.method,
-        tolerance=options.tol,
+        quadrature=repr(s.options.quadrature),
+        solver=s.options.method,
+        tolerance=s.options.tol,
         run_time_s=time.perf_counter() - start,
     )
     ds.attrs.update(flat_attrs("design", design.model_dump()))
     ds.attrs.update(flat_attrs("fluid", fluid.model_dump()))
     return ds
+
+
+def _law(design: Design, s: SweepSettings):
+    """(clamping law other than constant or None, the constant law's forces)."""
+    if s.clamp_law is None or s.clamp_law == "constant":  # the forces are a dimension
+        if s.clamp_force is None:
+            clamp_law_of(None, design, None)  # raises: says what is missing
+        return None, s.clamp_force
+    law = clamp_law_of(s.clamp_law, design, s.clamp_force)
+    if law.name == "constant":
+        return None, law.force
+    return law, s.clamp_force
+
+
+def _axes(design: Design, fluid: Fluid, arch: str, s: SweepSettings, law, clamp_force):
+    """The grid's axes, each validated (one `InputError` on the first bad value)."""
+    axes = {
+        name: _axis(name, value)
+        for name, value in (
+            ("clamp_force", np.nan if law else clamp_force),
+            ("input_speed", s.input_speed),
+            ("ratio", s.ratio),
+            ("output_torque", s.output_torque),
+        )
+    }
+    torque = axes["output_torque"]
+    if np.any(np.diff(torque) < 0):
+        raise InputError(
+            "output_torque",
+            float(torque[np.argmax(np.diff(torque) < 0) + 1]),
+            "an increasing sequence (torque is the continuation axis)",
+        )
+    build_problem(
+        design,
+        fluid,
+        arch,
+        axes["ratio"][:, None],
+        torque,
+        1.0 if law else axes["clamp_force"][:, None, None],
+        axes["input_speed"][:, None, None, None],
+    )
+    return axes
+
+
+def _given_limits(limit_torque, archs, shape):
+    """The limits handed over (flat, C order), or None to search them."""
+    if isinstance(limit_torque, (bool, np.bool_)):
+        raise InputError(
+            "limit_torque",
+            limit_torque,
+            "torques [N m] or a LimitSearch (None: computed)",
+        )
+    if limit_torque is None:
+        return None
+    if len(archs) != 1:
+        raise InputError(
+            "architecture",
+            ", ".join(archs),
+            "a single architecture when limit_torque is given",
+        )
+    if isinstance(limit_torque, LimitSearch):
+        limits = limit_torque.flat()
+        if limits.torque.size != int(np.prod(shape)):
+            raise InputError(
+                "limit_torque",
+                f"a search of {limits.torque.size} curves",
+                f"one per (clamp_force, input_speed, ratio): {int(np.prod(shape))}",
+            )
+        return limits
+    return np.broadcast_to(np.asarray(limit_torque, dtype=float), shape).ravel()
 
 
 def flat_attrs(prefix: str, data: dict) -> dict:
@@ -269,7 +295,7 @@ def _run(jobs, workers, show, label):
                     out.append(f.result())
                     bar.update()
         return _concat(out)
-    steps = sum(len(job[6]) + (bisection_steps() if job[9] is None else 0) for job in jobs)
+    steps = sum(len(job[1]) + (bisection_steps() if job[2] is None else 0) for job in jobs)
     with tqdm(total=steps, desc=label, disable=not show, unit="step") as bar:
         return _concat([solve_curves(*job, callback=bar.update) for job in jobs])
 

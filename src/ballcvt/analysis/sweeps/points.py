@@ -11,12 +11,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...equilibrium.problem import build_problem
 from ...model.architectures import CONTACT_NAMES
 from ...solvers.limit import solve_admissible
-from ...solvers.point import SolverOptions
 from ...status import Status
-from .curves import at_optimal_forces, derived
+from .curves import Curves, at_optimal_forces, derived
 
 __all__ = ["evaluate_points", "CHUNK"]
 
@@ -24,40 +22,17 @@ __all__ = ["evaluate_points", "CHUNK"]
 CHUNK = 1024
 
 
-def evaluate_points(
-    design,
-    fluid,
-    architecture,
-    ratio,
-    output_torque,
-    input_speed,
-    *,
-    clamp_force=None,
-    law=None,
-    options: SolverOptions = SolverOptions(),
-    creep_limit: float | None = None,
-    callback=None,
-    executor=None,
-) -> dict:
+def evaluate_points(points: Curves, output_torque, callback=None, executor=None) -> dict:
     """Solve scattered operating points and report every quantity of a sweep at each.
 
     Parameters
     ----------
-    design, fluid : Design, Fluid
-        The drive.
-    architecture : {"double", "single"}
-        Idler architecture.
-    ratio, output_torque, input_speed : array_like
-        Ideal ratios [-], output torques >= 0 [N m] and input speeds > 0 [rad/s] of the
-        points, 1-D and of equal length.
-    clamp_force : array_like, optional
-        ``F_N0`` [N] of the constant law (a number or one per point).
-    law : clamping law, optional
-        ``cam``, ``optimal`` or any law of `ballcvt.model.clamping` instead of ``clamp_force``.
-    options : SolverOptions
-        Solver options.
-    creep_limit : float, optional
-        ``C_lim`` [-]; the design's by default.
+    points : Curves
+        The points' drive, ratios [-], input speeds > 0 [rad/s] and constant clamping
+        forces [N] (or clamping law), one row per point (`Curves.of` builds them from
+        array-likes).
+    output_torque : array_like
+        Output torque >= 0 [N m] of each point, 1-D, as long as ``points``.
     callback : callable, optional
         Called with the number of points done after each chunk (progress bars).
     executor : concurrent.futures.Executor, optional
@@ -66,43 +41,20 @@ def evaluate_points(
     Returns
     -------
     dict of ndarray
-        ``status`` (0 converged within the capacity, 1 beyond it, 2 not converged),
-        ``clamp_force`` [N], and the point, contact and loss variables of a sweep
-        (`ballcvt.analysis.sweeps.variables`) with a leading axis of length ``n`` (NaN where
-        ``status`` is not 0).
+        ``status`` (`ballcvt.status.Status`: converged within the capacity, beyond it,
+        not converged), ``clamp_force`` [N], and the point, contact and loss variables of a
+        sweep (`ballcvt.analysis.sweeps.variables`) with a leading axis of length ``n``
+        (NaN where ``status`` is not converged).
     """
-    ratio, torque, speed = (
-        np.atleast_1d(np.asarray(a, dtype=float)) for a in (ratio, output_torque, input_speed)
-    )
-    n = ratio.size
-    c_lim = design.creep_limit if creep_limit is None else float(creep_limit)
-    optimal = law is not None and law.name == "optimal"
-    follows = law if law is not None and not optimal else None
-    force = (
-        np.ones(n)
-        if law is not None
-        else np.broadcast_to(np.asarray(clamp_force, dtype=float), (n,)).astype(float)
-    )
-    build_problem(design, fluid, architecture, ratio, torque, force, speed)  # validate all
+    torque = np.atleast_1d(np.asarray(output_torque, dtype=float))
+    n, law = points.size, points.law
+    given = points.clamp_force
+    force = np.ones(n) if law is not None or given is None else given
+    points.problem(slice(None), torque, force)  # validate all
     # the same chunks with or without worker processes: the same results to round-off
     parts = np.array_split(np.arange(n), -(-n // CHUNK))
     if executor is not None and len(parts) > 1:
-        futures = [
-            executor.submit(
-                evaluate_points,
-                design,
-                fluid,
-                architecture,
-                ratio[i],
-                torque[i],
-                speed[i],
-                clamp_force=None if law is not None else force[i],
-                law=law,
-                options=options,
-                creep_limit=c_lim,
-            )
-            for i in parts
-        ]
+        futures = [executor.submit(evaluate_points, points.take(i), torque[i]) for i in parts]
         done = []
         for i, f in zip(parts, futures):
             done.append(f.result())
@@ -110,15 +62,15 @@ def evaluate_points(
                 callback(i.size)
         return {k: np.concatenate([d[k] for d in done]) for k in done[0]}
     status = np.full(n, Status.NOT_CONVERGED, dtype=np.int8)
-    creep = np.full((n, 1, len(CONTACT_NAMES[architecture])), np.nan)
-    used = force.copy()
+    creep = np.full((n, 1, len(CONTACT_NAMES[points.drive.architecture])), np.nan)
+    used = np.array(force, dtype=float)
+    follows = law if law is not None and not points.optimal else None
+    c_lim = points.creep_limit
     for idx in parts:
-        pb = build_problem(
-            design, fluid, architecture, ratio[idx], torque[idx], force[idx], speed[idx]
-        )
-        if optimal:  # the optimiser's force, then the constant law
-            pb = at_optimal_forces(pb, law, options)
-        got = solve_admissible(pb, c_lim, options, follows)
+        pb = points.problem(idx, torque[idx], force[idx])
+        if points.optimal:  # the optimiser's force, then the constant law
+            pb = at_optimal_forces(pb, law, points.options)
+        got = solve_admissible(pb, c_lim, points.options, follows)
         used[idx] = got.problem.clamp_force
         # converged but inadmissible (creep or, under a cam, pressure), or running away
         beyond = got.converged | (np.max(np.abs(got.creep), axis=-1) > c_lim)
@@ -130,19 +82,8 @@ def evaluate_points(
         creep[idx, 0] = np.where(got.ok[:, None], got.creep, np.nan)
         if callback is not None:
             callback(idx.size)
-    out = derived(
-        design,
-        fluid,
-        architecture,
-        used[:, None],
-        speed,
-        ratio,
-        torque[:, None],
-        creep,
-        status[:, None],
-        options,
-    )
+    out = derived(points, used[:, None], torque[:, None], creep, status[:, None])
     out = {k: v[:, 0] for k, v in out.items()}
     out["status"] = status
-    out["clamp_force"] = np.where(status == 0, used, np.nan)
+    out["clamp_force"] = np.where(status == Status.CONVERGED, used, np.nan)
     return out

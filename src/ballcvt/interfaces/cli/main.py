@@ -775,11 +775,11 @@ def _limits(args, v, law, ratios, speeds):
     """The limit search of every (ratio, speed), run once (with a progress bar): its
     torques set the default torque range, and the search (torques and the creeps there)
     is handed to the sweep."""
-    import numpy as np
     from tqdm.auto import tqdm
 
-    from ...analysis.sweeps.curves import limit_search_curves
+    from ...analysis.sweeps.curves import Curves, limit_search_curves
     from ...equilibrium.problem import build_problem
+    from ...params.drive import Drive
     from ...solvers.limit import bisection_steps
 
     force = law.get("clamp_force")
@@ -792,18 +792,15 @@ def _limits(args, v, law, ratios, speeds):
         unit="step",
         disable=not _show(args),
     ) as bar:
-        return limit_search_curves(
-            v.design,
-            v.fluid,
-            v.architecture,
+        rows = Curves.of(
+            Drive(v.design, v.fluid, v.architecture),
             ratios,
             speeds,
-            None if force is None else np.full(ratios.size, force),
+            force,
             None if force is not None else v.clamp_law(args.clamp_law),
             v.options,
-            v.design.creep_limit,
-            bar.update,
-        )[1]
+        )
+        return limit_search_curves(rows, bar.update)[1]
 
 
 def _cmd_map(args) -> int:

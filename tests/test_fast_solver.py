@@ -282,7 +282,7 @@ def test_newton_update_compiled_equals_python_and_handles_singular_steps():
         if not confirm:
             assert s1[3] and not s1[np.arange(n) != 3].any()
     x = np.array([[0.01, 0.0, 0.0, 0.01]])
-    active, _ = B._advance(np.arange(1), np.ones((1, nc)) * 1e-3, np.ones((1, nc, nc)), x,
-                           free, np.full(1, np.inf), x.copy(), np.zeros((1, nc)),
-                           np.ones(1, bool), 1e-11, False)
+    it = B._Iterates(x, np.full(1, np.inf), x.copy(), np.zeros((1, nc)), np.ones(1, bool))
+    active, _ = B._advance(it, np.arange(1), np.ones((1, nc)) * 1e-3, np.ones((1, nc, nc)),
+                           free, 1e-11, False)
     assert active.tolist() == [0] and np.all(np.isfinite(x)) and not np.allclose(x[0, 0], 0.01)

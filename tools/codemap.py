@@ -136,8 +136,8 @@ def import_cycles(graph) -> list[list[str]]:
 
 # --- size and shape -------------------------------------------------------------------
 
-#: A function over this many parameters takes a parameter object, unless the line above
-#: its ``def`` carries a comment starting ``# many parameters:`` that says why.
+#: A function over this many parameters takes a parameter object, unless the comment block
+#: right above its ``def`` has a line starting ``# many parameters:`` that says why.
 MAX_PARAMETERS = 7
 #: Longest function body, docstring aside [lines].
 MAX_BODY = 80
@@ -173,8 +173,11 @@ def functions(root: Path = ROOT):
         for node in ast.walk(ast.parse("\n".join(lines))):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 first = min([node.lineno] + [d.lineno for d in node.decorator_list])
-                above = lines[first - 2].strip() if first >= 2 else ""
-                why = above if above.startswith(JUSTIFICATION) else None
+                why, row = None, first - 2  # the comment block right above the def
+                while row >= 0 and lines[row].strip().startswith("#"):
+                    if lines[row].strip().startswith(JUSTIFICATION):
+                        why = lines[row].strip()
+                    row -= 1
                 where = f"{path.relative_to(root.parent)}:{node.lineno}"
                 out.append((where, node.name, len(_parameters(node)), _body_lines(node), why))
     return out

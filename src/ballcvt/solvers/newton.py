@@ -214,10 +214,14 @@ def _newton(flat, x, iterations, options, pinned=None):
     free = np.arange(nc) if pinned is None else np.delete(np.arange(nc), pinned)
     active = np.arange(n)
     final = None
-    fresh = np.zeros(n, dtype=bool)  # last evaluation was at the current x
-    best = np.full(n, np.inf)  # residual norm at the last accepted creeps
-    prev_x = x.copy()
-    prev_dx = np.zeros((n, free.size))
+    it = _Iterates(
+        x=x,
+        best=np.full(n, np.inf),
+        prev_x=x.copy(),
+        prev_dx=np.zeros((n, free.size)),
+        fresh=np.zeros(n, dtype=bool),
+    )
+    fresh = it.fresh
     confirm = False  # every active point is expected to converge: no Jacobian needed
     m = free.size
     for _ in range(options.max_iterations):
@@ -237,17 +241,7 @@ def _newton(flat, x, iterations, options, pinned=None):
         fresh[active] = True
         res = np.ascontiguousarray(state.residual[:, :m])
         active, confirm = _advance(
-            active,
-            res,
-            np.ascontiguousarray(jac),
-            x,
-            free,
-            best,
-            prev_x,
-            prev_dx,
-            fresh,
-            options.tol,
-            confirm,
+            it, active, res, np.ascontiguousarray(jac), free, options.tol, confirm
         )
     stale = np.flatnonzero(~fresh)
     if final is None or stale.size == n:
@@ -271,10 +265,32 @@ def _scatter(full: EquilibriumState, part: EquilibriumState, index) -> Equilibri
     return EquilibriumState(**fields)
 
 
-def _advance(active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm):
+@dataclass(frozen=True)
+class _Iterates:
+    """The Newton iterates of a batch, updated in place by `_advance`.
+
+    Attributes
+    ----------
+    x : ndarray
+        Creeps ``(n, n_c)`` [-].
+    best : ndarray
+        Residual norm at each point's last accepted creeps ``(n,)`` [-].
+    prev_x, prev_dx : ndarray
+        Creeps before the last step ``(n, n_c)`` and that step on the free creeps.
+    fresh : ndarray of bool
+        Whether each point's last evaluation was at its current creeps ``(n,)``.
+    """
+
+    x: np.ndarray
+    best: np.ndarray
+    prev_x: np.ndarray
+    prev_dx: np.ndarray
+    fresh: np.ndarray
+
+
+def _advance(it: _Iterates, active, res, jac, free, tol, confirm):
     """One Newton update of the points ``active`` after their evaluation (``res``,
-    ``jac``: their residuals and Jacobians on the free creeps); updates ``x``, ``best``,
-    ``prev_x``, ``prev_dx`` and ``fresh`` in place.
+    ``jac``: their residuals and Jacobians on the free creeps); updates ``it`` in place.
 
     A point whose residual norm meets ``tol`` is done. After a value-only evaluation
     (``confirm``) the others go round again at the same creeps. Otherwise a point whose
@@ -289,8 +305,9 @@ def _advance(active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confi
     keep = np.zeros(active.size, dtype=np.bool_)
     singular = np.zeros(active.size, dtype=np.bool_)
     step = _advance_compiled if COMPILED else _advance_python
+    x, prev_x, prev_dx, fresh = it.x, it.prev_x, it.prev_dx, it.fresh
     near = step(
-        active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm,
+        active, res, jac, x, free, it.best, prev_x, prev_dx, fresh, tol, confirm,
         MAX_STEP, lo, hi, CONFIRM_NORM, keep, singular,
     )  # fmt: skip
     for k in np.flatnonzero(singular):  # rare: a least-squares step, capped
@@ -303,6 +320,39 @@ def _advance(active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confi
     return active[keep], bool(near)
 
 
+def _gauss_python(a, b, dx):
+    """Solve ``a dx = b`` (``m x m``) by Gaussian elimination with partial pivoting, in
+    place (``a`` and ``b`` are overwritten); False, with ``dx`` untouched, if singular."""
+    m = b.size
+    for c in range(m):
+        p = c
+        for r in range(c + 1, m):
+            if abs(a[r, c]) > abs(a[p, c]):
+                p = r
+        if a[p, c] == 0.0:
+            return False
+        if p != c:
+            for q in range(m):
+                a[c, q], a[p, q] = a[p, q], a[c, q]
+            b[c], b[p] = b[p], b[c]
+        for r in range(c + 1, m):
+            f = a[r, c] / a[c, c]
+            for q in range(c, m):
+                a[r, q] -= f * a[c, q]
+            b[r] -= f * b[c]
+    for r in range(m - 1, -1, -1):
+        v = b[r]
+        for q in range(r + 1, m):
+            v -= a[r, q] * dx[q]
+        dx[r] = v / a[r, r]
+    return True
+
+
+_gauss = njit(cache=True)(_gauss_python) if njit is not None else _gauss_python
+
+
+# many parameters: compiled by numba, which takes arrays and scalars (an object would not
+# compile); `_advance` is the typed entry point.
 def _advance_python(
     active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm, max_step, lo, hi,
     confirm_norm, keep, singular,
@@ -345,32 +395,9 @@ def _advance_python(
             b[r] = -res[k, r]
             for c in range(m):
                 a[r, c] = jac[k, r, c]
-        ok = True
-        for c in range(m):  # elimination with partial pivoting
-            p = c
-            for r in range(c + 1, m):
-                if abs(a[r, c]) > abs(a[p, c]):
-                    p = r
-            if a[p, c] == 0.0:
-                ok = False
-                break
-            if p != c:
-                for q in range(m):
-                    a[c, q], a[p, q] = a[p, q], a[c, q]
-                b[c], b[p] = b[p], b[c]
-            for r in range(c + 1, m):
-                f = a[r, c] / a[c, c]
-                for q in range(c, m):
-                    a[r, q] -= f * a[c, q]
-                b[r] -= f * b[c]
-        if not ok:
+        if not _gauss(a, b, dx):
             singular[k] = True
             continue
-        for r in range(m - 1, -1, -1):
-            v = b[r]
-            for q in range(r + 1, m):
-                v -= a[r, q] * dx[q]
-            dx[r] = v / a[r, r]
         big = 0.0  # the caps of `_cap`
         for r in range(m):
             if not math.isfinite(dx[r]):
@@ -413,7 +440,7 @@ def _cap(dx, x):
 
 
 COMPILED = njit is not None
-_advance_compiled = njit(cache=True)(_advance_python) if COMPILED else None
+_advance_compiled: Any = njit(cache=True)(_advance_python) if COMPILED else None
 
 
 def _lstsq(jac, res):

@@ -15,6 +15,7 @@ from ..analysis.sweeps.export import load_dataset, to_csv, to_frame, to_netcdf
 from ..analysis.tables import read_modelica_tables, table_arrays, write_tables
 from ..model.modes import MEMBERS, OperatingMode
 from ..model.traction.curve import TractionCurve, traction_curve
+from ..params import Design, Fluid, drive_to_toml, load_builtin, load_drive
 from ..params.io import BUILTIN_DRIVES, BUILTIN_FLUIDS, builtin_text, resolve_drive, resolve_fluid
 from ..results.planetary import PlanetaryResult
 from ..results.point import ContactResult, OperatingResult
@@ -67,6 +68,11 @@ __all__ = [
     "open_drive",
     "contact_fluid",
     "drive_text",
+    "Design",
+    "Fluid",
+    "load_builtin",
+    "load_drive",
+    "drive_to_toml",
     "resolve_drive",
     "resolve_fluid",
     "builtin_text",

@@ -214,9 +214,9 @@ def test_explore_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
         calls.append({"out": str(out), "law": spec.study.traction_law, **kw})
         return done
 
-    import ballcvt.analysis.studies
+    import ballcvt.api
     import ballcvt.reports.study
-    monkeypatch.setattr(ballcvt.analysis.studies, "run_study", fake)
+    monkeypatch.setattr(ballcvt.api, "run_study", fake)
     monkeypatch.setattr(ballcvt.reports.study, "study_report", lambda *a, **k: [])
     assert _options(_subcommands()["explore"]) == {"--out", "--workers", "--scheduler",
                                                    "--in-process", "--resume", "--quiet",

@@ -10,18 +10,75 @@ Quick start::
     r = Variator().solve(ratio=1.0, output_torque=40.0, clamp_force=2000.0,
                          input_speed_rpm=2000)
     print(r.eta, r.contacts["output"].creep)
+
+Everything the command line does is a public name here (docs/api.md).
 """
+
+from typing import TYPE_CHECKING, Any
 
 from . import _compat
 from ._version import __version__
-from .api import Variator
+from .api import (
+    BUILTIN_DRIVES,
+    BUILTIN_FLUIDS,
+    MEMBERS,
+    STRATEGIES,
+    Curves,
+    Cycle,
+    CycleResult,
+    CycleSettings,
+    FluidFit,
+    LimitCurve,
+    MapGrid,
+    ModeBatch,
+    OperatingMode,
+    PlanetaryResult,
+    SolveSettings,
+    StudyResult,
+    StudySpec,
+    SweepSettings,
+    TableGrid,
+    TractionCurve,
+    Variator,
+    contact_fluid,
+    cycle_from_arrays,
+    drive_text,
+    fit_fluid,
+    load_dataset,
+    open_drive,
+    read_curves,
+    read_cycle,
+    read_modelica_tables,
+    read_study,
+    run_study,
+    to_csv,
+    to_netcdf,
+    traction_curve,
+    write_tables,
+)
 from .errors import BallCVTError, ConvergenceError, InputError, TractionLimitError
 from .model.traction.quadrature import REFERENCE, Quadrature
 from .params import Design, Fluid, OperatingPoint, drive_to_toml, load_builtin, load_drive
 from .results.point import ContactResult, OperatingResult
 from .solvers.options import SolverOptions
 
+if TYPE_CHECKING:
+    from .reports import reproduce
+    from .reports.study import study_report
+
 _compat.install()
+
+#: Names of the reports layer (above the API), imported on first use: they load matplotlib.
+_REPORTS = {"reproduce": "ballcvt.reports", "study_report": "ballcvt.reports.study"}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _REPORTS:
+        import importlib
+
+        return getattr(importlib.import_module(_REPORTS[name]), name)
+    raise AttributeError(f"module 'ballcvt' has no attribute {name!r}")
+
 
 __all__ = [
     "__version__",
@@ -41,4 +98,47 @@ __all__ = [
     "InputError",
     "TractionLimitError",
     "ConvergenceError",
+    # settings and grids of the Variator methods
+    "SolveSettings",
+    "SweepSettings",
+    "CycleSettings",
+    "MapGrid",
+    "TableGrid",
+    "LimitCurve",
+    # planetary modes
+    "OperatingMode",
+    "MEMBERS",
+    "PlanetaryResult",
+    "ModeBatch",
+    # duty cycles, tables and data files
+    "Cycle",
+    "CycleResult",
+    "STRATEGIES",
+    "read_cycle",
+    "cycle_from_arrays",
+    "to_netcdf",
+    "to_csv",
+    "load_dataset",
+    "write_tables",
+    "read_modelica_tables",
+    # single contacts and fluid fitting
+    "traction_curve",
+    "TractionCurve",
+    "Curves",
+    "FluidFit",
+    "fit_fluid",
+    "read_curves",
+    # drives by name or file
+    "open_drive",
+    "contact_fluid",
+    "drive_text",
+    "BUILTIN_DRIVES",
+    "BUILTIN_FLUIDS",
+    # design studies and the reproduction of the paper
+    "StudySpec",
+    "StudyResult",
+    "read_study",
+    "run_study",
+    "study_report",
+    "reproduce",
 ]

@@ -49,11 +49,11 @@ from ..solvers.options import SolverOptions
 from ..status import Status
 from ..units import rad_s_to_rpm, rpm_to_rad_s
 from .cycle_files import STRATEGIES, Cycle
-from .sweeps.curves import Curves
+from .sweeps.curves import OperatingRows
 from .sweeps.export import write_table
 from .sweeps.points import evaluate_points
 
-__all__ = ["CycleResult", "CycleSettings", "run_cycle", "STRATEGIES", "FLAGS"]
+__all__ = ["CycleResult", "CycleRequest", "run_cycle", "STRATEGIES", "FLAGS"]
 
 #: Step flags (``flag`` column): ``ok`` and ``idle`` are not counted as flagged.
 FLAGS = (
@@ -133,7 +133,7 @@ class CycleResult:
 
 
 @dataclass(frozen=True)
-class CycleSettings:
+class CycleRequest:
     """How a duty cycle is run (`run_cycle`).
 
     Attributes
@@ -194,7 +194,7 @@ class _Plan:
         return clipped, changed
 
 
-def run_cycle(drive, cycle: Cycle, settings: CycleSettings | None = None, **keywords):
+def run_cycle(drive, cycle: Cycle, settings: CycleRequest | None = None, **keywords):
     """Evaluate a drive over a duty cycle, all steps batched.
 
     Parameters
@@ -203,7 +203,7 @@ def run_cycle(drive, cycle: Cycle, settings: CycleSettings | None = None, **keyw
         The drive (design, fluid, architecture and, if it has them, solver ``options``).
     cycle : Cycle
         From `ballcvt.analysis.cycle_files.read_cycle` or `cycle_from_arrays`.
-    settings : CycleSettings, optional
+    settings : CycleRequest, optional
         How the cycle is run; or give its fields as keywords (``strategy=...``).
 
     Returns
@@ -213,7 +213,7 @@ def run_cycle(drive, cycle: Cycle, settings: CycleSettings | None = None, **keyw
     import pandas as pd
 
     start = _time.perf_counter()
-    s = replace(settings or CycleSettings(), **keywords)
+    s = replace(settings or CycleRequest(), **keywords)
     s.check()
     design = drive.design
     law = resolve_law(s.clamp_law, design, s.clamp_force)
@@ -234,7 +234,7 @@ def run_cycle(drive, cycle: Cycle, settings: CycleSettings | None = None, **keyw
         here = Drive(design, drive.fluid, drive.architecture)
 
         def solve(ratio, t2, w0, rough=False):
-            points = Curves.of(
+            points = OperatingRows.of(
                 here,
                 ratio,
                 w0,
@@ -268,7 +268,7 @@ def run_cycle(drive, cycle: Cycle, settings: CycleSettings | None = None, **keyw
     return CycleResult(steps=pd.DataFrame(steps), summary=summary)
 
 
-def _bar(settings: CycleSettings, total: int, n: int):
+def _bar(settings: CycleRequest, total: int, n: int):
     import sys
 
     from tqdm.auto import tqdm
@@ -277,7 +277,7 @@ def _bar(settings: CycleSettings, total: int, n: int):
     return tqdm(total=total, desc=f"duty cycle, {n} steps", unit="point", disable=not show)
 
 
-def _ratio_ranges(design, s: CycleSettings):
+def _ratio_ranges(design, s: CycleRequest):
     """(usable, allowed) ratio ranges: the design's, and the one ``max-efficiency`` may use."""
     lo, hi = usable_ratio_range(design)
     r_lo, r_hi = (lo, hi) if s.ratio_range is None else map(float, s.ratio_range)
@@ -290,7 +290,7 @@ def _ratio_ranges(design, s: CycleSettings):
     return (lo, hi), (r_lo, r_hi)
 
 
-def _check_strategy(s: CycleSettings, cycle: Cycle, commanded: bool) -> None:
+def _check_strategy(s: CycleRequest, cycle: Cycle, commanded: bool) -> None:
     if s.strategy != "target-input-speed" or commanded:
         return
     if cycle.kind == "input":
@@ -321,7 +321,7 @@ def _step_flags(cycle: Cycle) -> np.ndarray:
     return flag
 
 
-def _output_side(plan: _Plan, s: CycleSettings, w2, t2):
+def _output_side(plan: _Plan, s: CycleRequest, w2, t2):
     solve = plan.solve
     if s.strategy == "target-input-speed":
         target = s.target_input_speed

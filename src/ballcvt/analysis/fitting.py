@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -244,6 +245,75 @@ class FluidFit:
     residuals: np.ndarray
     warnings: tuple = field(default_factory=tuple)
     converged: bool = True
+
+    def to_toml(self, source: str = "curves") -> str:
+        """TOML text of the fitted fluid (``[fluid]``), with the estimates, their standard
+        errors and the warnings as comments; any command loads it with ``--fluid``.
+
+        Parameters
+        ----------
+        source : str
+            The measured curves' file (as given), named in the header and the fluid's name.
+        """
+        from .._version import __version__
+        from ..params.io import fluid_to_toml
+
+        start = self.fluid.name
+        header = (
+            f"ballcvt {__version__} fit-fluid: {self.fluid.traction_law} law fitted to "
+            f"{source} ({self.model.size} points, rms residual {self.rms:.3e})\n"
+            + "\n".join(
+                f"{n} = {self.estimates[n]:.6g} +/- {self.standard_errors[n]:.3g} "
+                f"[{Fluid.unit(n)}] (one standard error)"
+                for n in self.parameters
+            )
+            + "".join(f"\nWARNING: {w}" for w in self.warnings)
+            + f"\nthe other values are those of the start fluid '{start}'"
+        )
+        named = Fluid(
+            **{**self.fluid.model_dump(), "name": f"{start} (fitted to {Path(source).name})"}
+        )
+        return fluid_to_toml(named, header)
+
+    def save(self, out, curves: Curves, source: str = "curves") -> list[Path]:
+        """Write ``fluid.toml`` (`to_toml`), ``fit.json`` (`as_dict`) and ``fit.csv`` (each
+        point's creep, measured and modelled ``mu`` and residual [-]) in the folder ``out``.
+
+        Parameters
+        ----------
+        out : path
+            An existing folder.
+        curves : Curves
+            The measured points the fit was made to.
+        source : str
+            The curves' file, for `to_toml`.
+
+        Returns
+        -------
+        list of Path
+            The files written.
+        """
+        import json
+
+        import pandas as pd
+
+        from ..files import atomic_write_text
+
+        out = Path(out)
+        frame = pd.DataFrame(
+            {
+                "condition": curves.condition,
+                "creep": curves.creep,
+                "mu": curves.mu,
+                "mu_model": self.model,
+                "residual": self.residuals,
+            }
+        )
+        files = [out / "fluid.toml", out / "fit.json", out / "fit.csv"]
+        atomic_write_text(files[0], self.to_toml(source))
+        atomic_write_text(files[1], json.dumps(self.as_dict(), indent=2))
+        atomic_write_text(files[2], frame.to_csv(index=False))
+        return files
 
     def as_dict(self) -> dict:
         """JSON-ready summary (no arrays of points)."""

@@ -23,7 +23,7 @@ from ...params.io import resolve_drive
 from ...params.models import Design, Fluid
 from ...status import Status
 from ...units import rpm_to_rad_s
-from ..sweeps.curves import Curves, limit_search_curves
+from ..sweeps.curves import OperatingRows, limit_search_curves
 from ..sweeps.points import evaluate_points
 from .spec import OBJECTIVES, StudySpec
 
@@ -176,7 +176,7 @@ def _evaluate(ctx: Context, values: dict):
     eta = pst = None
     if spec.operating.cycle is None:
         drive = Drive(design, ctx.fluid, spec.study.architecture)
-        points = Curves.of(drive, ctx.ratio, ctx.speed, None if law else force, law_obj)
+        points = OperatingRows.of(drive, ctx.ratio, ctx.speed, None if law else force, law_obj)
         res = evaluate_points(points, ctx.torque)
         pst, eta = res["status"].astype(np.int8), res["eta"]
         beyond = int(np.sum(pst != 0))
@@ -212,7 +212,7 @@ def _evaluate(ctx: Context, values: dict):
     # capacity at the capacity ratios (constant force: the study's; laws: their own),
     # searched as a sweep searches its limits
     speed = float(np.median(ctx.speed)) if ctx.speed.size else _cycle_speed(ctx)
-    rows = Curves.of(
+    rows = OperatingRows.of(
         Drive(design, ctx.fluid, spec.study.architecture),
         ctx.capacity_ratios,
         np.full(ctx.capacity_ratios.size, speed),

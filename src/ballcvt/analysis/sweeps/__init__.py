@@ -1,6 +1,6 @@
 """Layer 7: sweeps over operating conditions as `xarray.Dataset` objects, and their export."""
 
-from .curves import Curves, limit_search_curves, solve_curves
+from .curves import OperatingRows, limit_search_curves, solve_curves
 from .export import load_dataset, parameters, to_csv, to_frame, to_netcdf
 from .grid import sweep
 from .variables import LOSS_KINDS, VARIABLES
@@ -9,7 +9,7 @@ __all__ = [
     "sweep",
     "solve_curves",
     "limit_search_curves",
-    "Curves",
+    "OperatingRows",
     "VARIABLES",
     "LOSS_KINDS",
     "to_netcdf",

@@ -28,7 +28,7 @@ from ...status import Status
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
 
 __all__ = [
-    "Curves",
+    "OperatingRows",
     "solve_curves",
     "limit_search_curves",
     "derived",
@@ -38,7 +38,7 @@ __all__ = [
 
 
 @dataclass(frozen=True)
-class Curves:
+class OperatingRows:
     """Rows of operating conditions to solve over the output torque: the curves of a sweep,
     or scattered points (one row each). Picklable: sent to worker processes.
 
@@ -76,7 +76,7 @@ class Curves:
         law=None,
         options: SolverOptions = SolverOptions(),
         creep_limit: float | None = None,
-    ) -> Curves:
+    ) -> OperatingRows:
         """Rows from array-likes: ``clamp_force`` [N] broadcast to the rows (ignored under
         a ``law``), ``creep_limit`` the design's by default."""
         ratio, speed = (np.atleast_1d(np.asarray(a, dtype=float)) for a in (ratio, input_speed))
@@ -96,7 +96,7 @@ class Curves:
         """Whether the clamping force is the efficiency-optimal one (an optimisation)."""
         return self.law is not None and self.law.name == "optimal"
 
-    def take(self, index) -> Curves:
+    def take(self, index) -> OperatingRows:
         """The rows ``index``."""
         force = None if self.clamp_force is None else self.clamp_force[index]
         return replace(
@@ -117,7 +117,7 @@ class Curves:
         )
 
 
-def solve_curves(curves: Curves, torque, limit=None, callback=None) -> dict:
+def solve_curves(curves: OperatingRows, torque, limit=None, callback=None) -> dict:
     """Solve the rows of ``curves`` over ``torque`` [N m].
 
     ``limit``: the curves' limiting torques if already known, or their
@@ -174,7 +174,7 @@ def solve_curves(curves: Curves, torque, limit=None, callback=None) -> dict:
     return out
 
 
-def _solve_from_limits(state, curves: Curves, torque, search: LimitSearch, base):
+def _solve_from_limits(state, curves: OperatingRows, torque, search: LimitSearch, base):
     """Every point within the limits in one batch, started between the creeps at zero
     torque and at the limit; returns the converged points' (problem, state), or None when
     some had to be solved again from below."""
@@ -191,7 +191,7 @@ def _solve_from_limits(state, curves: Curves, torque, search: LimitSearch, base)
     return pb.take(sol.converged), sol.state.take(sol.converged)
 
 
-def _solve_upwards(state, curves: Curves, torque, callback) -> None:
+def _solve_upwards(state, curves: OperatingRows, torque, callback) -> None:
     """Torque by torque up the curves, each point from the last solution (continuation)."""
     x = None
     for k in range(torque.size):
@@ -223,7 +223,7 @@ def _off_branch(state, points, sol, creep_limit):
     return stray
 
 
-def _continue_from_below(state, curves: Curves, torque, points, zero):
+def _continue_from_below(state, curves: OperatingRows, torque, points, zero):
     """Solve the ``points`` (curve, torque index) torque by torque up their curves, each
     from the last admissible solution below it (from ``zero``, the creeps at ``T_2 = 0``,
     at first): the equilibrium reached continuously from no load. Points that still end
@@ -243,7 +243,7 @@ def _continue_from_below(state, curves: Curves, torque, points, zero):
         _off_branch(state, at, sol, curves.creep_limit)
 
 
-def _solve_points(state, curves: Curves, torque, points, x0):
+def _solve_points(state, curves: OperatingRows, torque, points, x0):
     """Solve the ``points`` (curve ``i[j]``, torque ``k[j]``) in one batch; record them in
     ``state`` and return the problem (at the forces used) and the batch solution."""
     i, k = points
@@ -258,12 +258,12 @@ def _solve_points(state, curves: Curves, torque, points, x0):
     return pb, sol
 
 
-def limit_search_curves(curves: Curves, callback=None, limit=None):
+def limit_search_curves(curves: OperatingRows, callback=None, limit=None):
     """Limit search of the rows of ``curves`` under their clamping law.
 
     Parameters
     ----------
-    curves : Curves
+    curves : OperatingRows
         The rows (ratio, input speed, constant force or law).
     callback : callable, optional
         Called after each step of the search.
@@ -322,7 +322,7 @@ def at_optimal_forces(pb, law, options):
     return with_clamp(pb, forces)
 
 
-def _eta_at(curves: Curves, clamp_force, torque, law=None, x0=None):
+def _eta_at(curves: OperatingRows, clamp_force, torque, law=None, x0=None):
     """Overall efficiency (Eq. 38) at one torque per curve (NaN where there is none);
     ``x0``: starting creeps per curve (the limit search's, at these torques)."""
     eta = np.full(curves.size, np.nan)
@@ -338,7 +338,7 @@ def _eta_at(curves: Curves, clamp_force, torque, law=None, x0=None):
     return eta
 
 
-def derived(curves: Curves, clamp_force, torque, creep, status, solved=None):
+def derived(curves: OperatingRows, clamp_force, torque, creep, status, solved=None):
     """Every reported quantity at the converged points (NaN elsewhere); ``clamp_force``
     has the shape ``(m, n_T)`` of the points, ``torque`` is ``(n_T,)`` or ``(m, n_T)``.
 
@@ -363,7 +363,7 @@ def derived(curves: Curves, clamp_force, torque, creep, status, solved=None):
     return values
 
 
-def _point_values(curves: Curves, pb, st) -> dict:
+def _point_values(curves: OperatingRows, pb, st) -> dict:
     """The reported quantities of solved points (`ballcvt.analysis.sweeps.variables`)."""
     loss = power_losses(pb, st)
     eff = efficiency(pb, st, loss)

@@ -30,14 +30,14 @@ from ...params.drive import Drive
 from ...params.models import ARCHITECTURES, Design, Fluid
 from ...solvers.limit import LimitSearch, bisection_steps
 from ...solvers.options import SolverOptions
-from .curves import Curves, solve_curves
+from .curves import OperatingRows, solve_curves
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, attrs_for
 
-__all__ = ["sweep", "SweepSettings"]
+__all__ = ["sweep", "SweepRequest"]
 
 
 @dataclass(frozen=True)
-class SweepSettings:
+class SweepRequest:
     """The grid a `sweep` evaluates and how.
 
     Attributes
@@ -95,7 +95,7 @@ class SweepSettings:
 
 
 def sweep(
-    design: Design, fluid: Fluid, settings: SweepSettings | None = None, **keywords
+    design: Design, fluid: Fluid, settings: SweepRequest | None = None, **keywords
 ) -> xr.Dataset:
     """Evaluate the model over a grid of operating conditions.
 
@@ -103,7 +103,7 @@ def sweep(
     ----------
     design, fluid : Design, Fluid
         Parameter sets.
-    settings : SweepSettings, optional
+    settings : SweepRequest, optional
         The grid and how to evaluate it; or give its fields as keywords (``ratio=...,
         output_torque=..., clamp_force=..., input_speed=...``; ``ratio``,
         ``output_torque`` and ``input_speed`` are required).
@@ -121,7 +121,7 @@ def sweep(
         attributes (``design_<key>``, ``fluid_<key>``).
     """
     start = time.perf_counter()
-    s = replace(settings or SweepSettings(), **keywords)
+    s = replace(settings or SweepRequest(), **keywords)
     for name in ("ratio", "output_torque", "input_speed"):
         if getattr(s, name) is None:
             raise InputError(name, None, "a number or a non-empty 1-D sequence")
@@ -146,7 +146,7 @@ def sweep(
         drive = Drive(design, fluid, arch)
         jobs = [
             (
-                Curves(drive, flat[2][c], flat[1][c], flat[0][c], law, s.options, c_lim),
+                OperatingRows(drive, flat[2][c], flat[1][c], flat[0][c], law, s.options, c_lim),
                 torque,
                 None if limits is None else _part(limits, c),
             )
@@ -185,7 +185,7 @@ def sweep(
     return ds
 
 
-def _law(design: Design, s: SweepSettings):
+def _law(design: Design, s: SweepRequest):
     """(clamping law other than constant or None, the constant law's forces)."""
     if s.clamp_law is None or s.clamp_law == "constant":  # the forces are a dimension
         if s.clamp_force is None:
@@ -197,7 +197,7 @@ def _law(design: Design, s: SweepSettings):
     return law, s.clamp_force
 
 
-def _axes(design: Design, fluid: Fluid, arch: str, s: SweepSettings, law, clamp_force):
+def _axes(design: Design, fluid: Fluid, arch: str, s: SweepRequest, law, clamp_force):
     """The grid's axes, each validated (one `InputError` on the first bad value)."""
     axes = {
         name: _axis(name, value)

@@ -14,7 +14,7 @@ import numpy as np
 from ...model.architectures import CONTACT_NAMES
 from ...solvers.limit import solve_admissible
 from ...status import Status
-from .curves import Curves, at_optimal_forces, derived
+from .curves import OperatingRows, at_optimal_forces, derived
 
 __all__ = ["evaluate_points", "CHUNK"]
 
@@ -22,14 +22,14 @@ __all__ = ["evaluate_points", "CHUNK"]
 CHUNK = 1024
 
 
-def evaluate_points(points: Curves, output_torque, callback=None, executor=None) -> dict:
+def evaluate_points(points: OperatingRows, output_torque, callback=None, executor=None) -> dict:
     """Solve scattered operating points and report every quantity of a sweep at each.
 
     Parameters
     ----------
-    points : Curves
+    points : OperatingRows
         The points' drive, ratios [-], input speeds > 0 [rad/s] and constant clamping
-        forces [N] (or clamping law), one row per point (`Curves.of` builds them from
+        forces [N] (or clamping law), one row per point (`OperatingRows.of` builds them from
         array-likes).
     output_torque : array_like
         Output torque >= 0 [N m] of each point, 1-D, as long as ``points``.

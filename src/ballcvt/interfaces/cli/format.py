@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from ...results.planetary import PlanetaryResult
-from ...results.point import OperatingResult
+from ...api import OperatingResult, PlanetaryResult
 
 __all__ = ["point_table", "planetary_table", "limit_table", "clamp_table"]
 

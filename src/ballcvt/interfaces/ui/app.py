@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ...analysis.sweeps.curves import Curves, limit_search_curves
+from ...analysis.sweeps.curves import OperatingRows, limit_search_curves
 from ...api import Variator
 from ...errors import BallCVTError
 from ...params.drive import Drive
@@ -131,7 +131,7 @@ class _State:
         try:
             # one limit search for the whole map, handed to the sweep; the torque axis
             # reaches past the limits at both ends and in the middle of the ratio range
-            rows = Curves.of(
+            rows = OperatingRows.of(
                 Drive(var.design, var.fluid, var.architecture),
                 ratio,
                 np.full(n, float(v["input_speed_rpm"]) * math.pi / 30.0),

@@ -4,27 +4,29 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
-from ._display import html_summary, text_summary
-from .equilibrium.problem import build_problem
-from .errors import ConvergenceError, InputError, TractionLimitError
-from .model.clamping import ConstantClamp
-from .model.clamping import clamp_law as _clamp_law
-from .model.kinematics import ratio_range
-from .model.modes import OperatingMode
-from .model.traction.quadrature import Quadrature
-from .params.feasibility import check_architecture
-from .params.io import load_builtin
-from .params.models import ARCHITECTURES, Design, Fluid
-from .results.planetary import PlanetaryResult, make_planetary_result
-from .results.point import OperatingResult, make_result
-from .solvers.clamped import capacity_basis, pressure_bound_force, solve_clamped
-from .solvers.limit import limit_torque
-from .solvers.optimal_clamp import ClampOptimum, optimal_clamp_force
-from .solvers.planetary import solve_mode
-from .solvers.point import SolverOptions, solve_point
+from .._display import html_summary, text_summary
+from ..equilibrium.problem import build_problem
+from ..errors import ConvergenceError, InputError, TractionLimitError
+from ..model.clamping import ConstantClamp
+from ..model.clamping import clamp_law as _clamp_law
+from ..model.kinematics import ratio_range
+from ..model.traction.quadrature import Quadrature
+from ..params.feasibility import check_architecture
+from ..params.io import load_builtin
+from ..params.models import ARCHITECTURES, Design, Fluid
+from ..results.planetary import PlanetaryResult
+from ..results.point import OperatingResult, make_result
+from ..solvers.clamped import capacity_basis, pressure_bound_force, solve_clamped
+from ..solvers.limit import limit_torque
+from ..solvers.optimal_clamp import ClampOptimum, optimal_clamp_force
+from ..solvers.point import SolverOptions, solve_point
+from . import grids, planetary
+from .batched import BatchMethods
+from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
 
 __all__ = ["Variator"]
 
@@ -34,7 +36,7 @@ def _default_drive():
 
 
 @dataclass(frozen=True)
-class Variator:
+class Variator(BatchMethods):
     """A ball variator of a given design, fluid and idler architecture.
 
     Parameters
@@ -151,8 +153,8 @@ class Variator:
         clamp_law=None,
         input_speed: float | None = None,
         input_speed_rpm: float | None = None,
-        check_capacity: bool = True,
-        mode: OperatingMode | None = None,
+        settings: SolveSettings | None = None,
+        **legacy: Any,
     ) -> OperatingResult | PlanetaryResult:
         """Solve the steady operating point.
 
@@ -172,18 +174,18 @@ class Variator:
             (docs/model.md §11). The force used is ``result.clamp_force``.
         input_speed : float, optional
             Input speed ``omega_0`` [rad/s]; or give ``input_speed_rpm`` [rpm].
-        check_capacity : bool
-            If True (default), a torque whose equilibrium has a creep above
+        settings : SolveSettings, optional
+            ``check_capacity`` (default True): a torque whose equilibrium has a creep above
             ``design.creep_limit``, or has none, raises `TractionLimitError` with the limit;
             so does, under a torque-following law, a force whose peak pressure exceeds
-            ``design.max_pressure``.
-        mode : OperatingMode, optional
-            The variator as a planetary (`ballcvt.model.modes.OperatingMode`, docs/model.md
-            §13): which member is held and which drives. Then ``output_torque`` is the
-            driven member's load torque [N m], ``input_speed`` (or ``input_speed_rpm``) the
-            driver's speed (signed), ``ratio`` still ``tau_ID`` relative to the carrier,
-            and a `PlanetaryResult` is returned. The default (carrier held, disc 0
-            drives) is the paper's drive.
+            ``design.max_pressure``. ``mode`` (`ballcvt.model.modes.OperatingMode`,
+            docs/model.md §13): which member is held and which drives; then
+            ``output_torque`` is the driven member's load torque [N m], ``input_speed`` (or
+            ``input_speed_rpm``) the driver's speed (signed), ``ratio`` still ``tau_ID``
+            relative to the carrier, and a `PlanetaryResult` is returned. The default
+            (carrier held, disc 0 drives) is the paper's drive.
+        **legacy
+            ``check_capacity=`` and ``mode=`` as keywords, as before `SolveSettings`.
 
         Returns
         -------
@@ -197,15 +199,16 @@ class Variator:
         ConvergenceError
             If no equilibrium is found and ``check_capacity`` is False.
         """
-        if mode is not None and not mode.is_default:
-            return self._solve_mode(
-                mode,
+        how = merge_settings(SolveSettings, settings, legacy, "solve")
+        if how.mode is not None and not how.mode.is_default:
+            return planetary.solve_in_mode(
+                self,
+                how.mode,
                 ratio,
                 output_torque,
-                clamp_force,
-                clamp_law,
+                {"clamp_force": clamp_force, "clamp_law": clamp_law},
                 _speed(input_speed, input_speed_rpm),
-                check_capacity,
+                how.check_capacity,
             )
         law, name = self._resolve(
             ratio, output_torque, clamp_force, clamp_law, input_speed, input_speed_rpm
@@ -223,7 +226,7 @@ class Variator:
             over = over or float(problem.clamp_force) > float(
                 pressure_bound_force(problem, self.design.max_pressure)
             ) * (1 + 1e-12)
-        if check_capacity and (over or not sol.converged):
+        if how.check_capacity and (over or not sol.converged):
             lim = limit_torque(problem, self.design.creep_limit, self.options, law=law)
             if output_torque > lim:
                 where = (
@@ -237,42 +240,6 @@ class Variator:
         if not sol.converged:
             raise ConvergenceError(sol.message)
         return make_result(problem, sol, self.options.quadrature, clamp_law=name)
-
-    def _solve_mode(
-        self, mode, ratio, load_torque, clamp_force, clamp_law, driver_speed, check_capacity
-    ) -> PlanetaryResult:
-        """`solve` in a planetary mode (docs/model.md §13)."""
-        law = self.clamp_law(clamp_law, clamp_force)
-        if law.name != "constant":
-            raise InputError(
-                "clamp_law",
-                law.name,
-                "constant in a planetary mode (the cam "
-                "and optimal laws are not yet defined with the carrier turning)",
-            )
-        got = solve_mode(
-            self.design,
-            self.fluid,
-            self.architecture,
-            mode,
-            float(ratio),
-            float(load_torque),
-            driver_speed,
-            law.force,
-            self.options,
-        )
-        creep = max(abs(c) for c in got.solution.state.creep)
-        if check_capacity and creep > self.design.creep_limit:
-            raise InputError(
-                "output_torque",
-                float(load_torque),
-                f"within the traction capacity: the largest creep {creep:.3g} "
-                f"exceeds creep_limit {self.design.creep_limit:g} ({mode.label})",
-            )
-        rel = make_result(got.problem, got.solution, self.options.quadrature)
-        return make_planetary_result(
-            mode, rel, got.sign, got.speeds, float(load_torque), driver_speed, got.passes
-        )
 
     def limit_torque(
         self,
@@ -315,12 +282,8 @@ class Variator:
         clamp_law=None,
         input_speed=None,
         input_speed_rpm=None,
-        architecture=None,
-        creep_limit: float | None = None,
-        limit_torque=None,
-        workers: int = 1,
-        progress: bool | None = None,
-        label: str | None = None,
+        settings: SweepSettings | None = None,
+        **legacy: Any,
     ):
         """Evaluate a grid of operating points (see `ballcvt.analysis.sweeps.grid.sweep`).
 
@@ -336,37 +299,30 @@ class Variator:
             Input speeds [rad/s] or [rpm] (exactly one). The speed dimension is named after
             the one given, with the values as given (``ds.sel(input_speed_rpm=2000)``);
             with rpm, ``input_speed`` [rad/s] is a second coordinate on it.
-        architecture : str or sequence of str, optional
-            This variator's architecture by default; e.g. ``("double", "single")``.
-        creep_limit : float, optional
-            ``C_lim`` of the limiting torque [-].
-        limit_torque : array_like, optional
-            Limiting torques already known at these conditions [N m] (see
-            `ballcvt.analysis.sweeps.grid.sweep`).
-        workers : int
-            Processes to use.
-        progress : bool, optional
-            Progress bar (default: when stderr is a terminal).
-        label : str, optional
-            What the progress bar says it computes.
+        settings : SweepSettings, optional
+            Architecture(s), creep limit [-], known limiting torques [N m] (e.g. a
+            `LimitCurve`), workers, progress bar and its label.
+        **legacy
+            The fields of `SweepSettings` as keywords (``workers=2``), as before it.
 
         Returns
         -------
         xarray.Dataset
         """
+        how = merge_settings(SweepSettings, settings, legacy, "sweep")
         if (input_speed is None) == (input_speed_rpm is None):
             raise InputError(
                 "input_speed",
                 input_speed,
                 "exactly one of input_speed [rad/s] or input_speed_rpm [rpm]",
             )
-        from .analysis.sweeps.grid import sweep
+        from ..analysis.sweeps.grid import sweep
 
         rpm = (
             None if input_speed_rpm is None else np.atleast_1d(np.asarray(input_speed_rpm, float))
         )
         speed = np.asarray(input_speed, float) if rpm is None else rpm * math.pi / 30.0
-        ds = sweep(
+        return sweep(
             self.design,
             self.fluid,
             ratio=ratio,
@@ -374,16 +330,15 @@ class Variator:
             clamp_force=clamp_force,
             clamp_law=clamp_law,
             input_speed=speed,
-            architecture=architecture or self.architecture,
+            architecture=how.architecture or self.architecture,
             options=self.options,
-            creep_limit=creep_limit,
-            limit_torque=limit_torque,
-            workers=workers,
-            progress=progress,
-            label=label,
+            creep_limit=how.creep_limit,
+            limit_torque=grids.sweep_limit(how.limit_torque),
+            workers=how.workers,
+            progress=how.progress,
+            label=how.label,
             input_speed_rpm=rpm,
         )
-        return ds
 
     def optimal_clamp_force(
         self,
@@ -416,15 +371,10 @@ class Variator:
         self,
         cycle,
         *,
-        strategy: str = "target-input-speed",
-        target_input_speed: float | None = None,
-        target_input_speed_rpm: float | None = None,
         clamp_force: float | None = None,
         clamp_law=None,
-        candidates: int = 9,
-        ratio_range=None,
-        progress: bool | None = None,
-        workers: int = 1,
+        settings: CycleSettings | None = None,
+        **legacy: Any,
     ):
         """Run this drive over a duty cycle (see `ballcvt.analysis.cycles.run_cycle`).
 
@@ -432,52 +382,36 @@ class Variator:
         ----------
         cycle : Cycle or path
             A `ballcvt.analysis.cycles.Cycle`, or a cycle CSV file (docs/cycles.md).
-        strategy : {"target-input-speed", "max-efficiency"}
-            How the ratio is chosen.
-        target_input_speed, target_input_speed_rpm : float, optional
-            Input speed held by ``target-input-speed`` [rad/s] or [rpm].
         clamp_force, clamp_law
             As in `solve`.
-        candidates : int
-            Ratios tried per step by ``max-efficiency``.
-        ratio_range : (float, float), optional
-            Ratios ``max-efficiency`` may use [-].
-        progress : bool, optional
-            Progress bar (default: when stderr is a terminal).
-        workers : int
-            Processes to solve the steps on.
+        settings : CycleSettings, optional
+            Strategy (``"target-input-speed"`` or ``"max-efficiency"``), the target input
+            speed [rad/s] or [rpm], candidate ratios per step, the ratio range [-], progress
+            bar and workers.
+        **legacy
+            The fields of `CycleSettings` as keywords (``strategy=...``), as before it.
 
         Returns
         -------
         CycleResult
         """
-        from .analysis.cycle_files import Cycle, read_cycle
-        from .analysis.cycles import run_cycle
+        from ..analysis.cycle_files import Cycle, read_cycle
+        from ..analysis.cycles import run_cycle
 
+        how = merge_settings(CycleSettings, settings, legacy, "run_cycle")
         if not isinstance(cycle, Cycle):
             cycle = read_cycle(cycle)
-        if target_input_speed is not None and target_input_speed_rpm is not None:
-            raise InputError(
-                "target_input_speed",
-                target_input_speed,
-                "at most one of target_input_speed [rad/s] or target_input_speed_rpm [rpm]",
-            )
-        target = (
-            target_input_speed_rpm * math.pi / 30.0
-            if target_input_speed_rpm is not None
-            else target_input_speed
-        )
         return run_cycle(
             self,
             cycle,
-            strategy=strategy,
-            target_input_speed=target,
+            strategy=how.strategy,
+            target_input_speed=how.target(),
             clamp_force=clamp_force,
             clamp_law=clamp_law,
-            candidates=candidates,
-            ratio_range=ratio_range,
-            progress=progress,
-            workers=workers,
+            candidates=how.candidates,
+            ratio_range=how.ratio_range,
+            progress=how.progress,
+            workers=how.workers,
         )
 
     def with_quadrature(self, quadrature: Quadrature) -> Variator:

@@ -1,0 +1,81 @@
+"""Layer 10, the public API: `Variator` and every function the front ends use.
+
+Everything the command line does is reachable from here (and from ``ballcvt``'s top-level
+names): points, limits and limit curves, optimal clamping, sweeps, efficiency maps and
+lookup tables, duty cycles, planetary modes, traction curves, fluid fitting, design
+studies and drive files. The front ends (`ballcvt.interfaces`) import only this package,
+the leaves and the reports (tests/test_public_api.py).
+"""
+
+from ..analysis.cycle_files import STRATEGIES, Cycle, cycle_from_arrays, read_cycle
+from ..analysis.cycles import CycleResult
+from ..analysis.fitting import Curves, FluidFit, fit_fluid, read_curves
+from ..analysis.studies import StudyResult, StudySpec, run_study
+from ..analysis.sweeps.export import load_dataset, to_csv, to_frame, to_netcdf
+from ..analysis.tables import read_modelica_tables, table_arrays, write_tables
+from ..model.modes import MEMBERS, OperatingMode
+from ..model.traction.curve import TractionCurve, traction_curve
+from ..params import Design, Fluid, drive_to_toml, load_builtin, load_drive
+from ..params.io import BUILTIN_DRIVES, BUILTIN_FLUIDS, builtin_text, resolve_drive, resolve_fluid
+from ..results.planetary import PlanetaryResult
+from ..results.point import ContactResult, OperatingResult
+from ..solvers.limit import LimitSearch
+from ..solvers.planetary_batch import ModeBatch
+from .batched import CAM_KEYS
+from .grids import LimitCurve
+from .settings import CycleSettings, MapGrid, SolveSettings, SweepSettings, TableGrid
+from .tools import contact_fluid, drive_text, open_drive, read_study
+from .variator import Variator
+
+__all__ = [
+    "Variator",
+    "SolveSettings",
+    "SweepSettings",
+    "CycleSettings",
+    "MapGrid",
+    "TableGrid",
+    "LimitCurve",
+    "LimitSearch",
+    "CAM_KEYS",
+    "OperatingResult",
+    "ContactResult",
+    "PlanetaryResult",
+    "OperatingMode",
+    "MEMBERS",
+    "ModeBatch",
+    "Cycle",
+    "CycleResult",
+    "STRATEGIES",
+    "read_cycle",
+    "cycle_from_arrays",
+    "to_netcdf",
+    "to_csv",
+    "to_frame",
+    "load_dataset",
+    "write_tables",
+    "read_modelica_tables",
+    "table_arrays",
+    "traction_curve",
+    "TractionCurve",
+    "Curves",
+    "FluidFit",
+    "fit_fluid",
+    "read_curves",
+    "StudySpec",
+    "StudyResult",
+    "read_study",
+    "run_study",
+    "open_drive",
+    "contact_fluid",
+    "drive_text",
+    "Design",
+    "Fluid",
+    "load_builtin",
+    "load_drive",
+    "drive_to_toml",
+    "resolve_drive",
+    "resolve_fluid",
+    "builtin_text",
+    "BUILTIN_DRIVES",
+    "BUILTIN_FLUIDS",
+]

@@ -1,0 +1,94 @@
+"""``ballcvt cycle``: a duty cycle's energy, efficiency and losses over a time series."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ...api import STRATEGIES, CycleSettings, read_cycle
+from ...files import check_output_dir
+from . import options as o
+
+
+def add_parser(subparsers) -> None:
+    """Add ``cycle`` and its options."""
+    p = o.sub(
+        subparsers,
+        "cycle",
+        "a duty cycle: energy, efficiency and losses over a time series",
+        "Run the drive over a duty cycle (a CSV time series with the units in the "
+        "header: time and output speed and torque, or time and input speed and power "
+        "with an optional ratio; docs/cycles.md). A strategy picks the ratio at each "
+        "step; all steps are solved batched. Writes steps.csv, summary.json and "
+        "cycle.png/.svg in --out; steps beyond the capacity or outside the ratio range "
+        "are flagged, never hidden.",
+        "ballcvt cycle examples/cycles/ebike_commute.csv --design hub --clamp-law cam "
+        "--strategy target-input-speed --target-speed 180 --out commute",
+    )
+    p.add_argument("cycle_file", type=Path, metavar="CYCLE.csv", help="the duty cycle")
+    o.add(p, "arch", *o.CLAMP_OPTIONS, *o.FLUID_OPTIONS)
+    p.add_argument(
+        "--strategy",
+        choices=STRATEGIES,
+        default="target-input-speed",
+        help="how the ratio is chosen (default: %(default)s)",
+    )
+    p.add_argument(
+        "--target-speed",
+        type=o.number,
+        default=None,
+        help="input speed held by target-input-speed [rpm] (required by it)",
+    )
+    p.add_argument(
+        "--candidates",
+        type=o.count(3, 101),
+        default=9,
+        help="ratios tried per step by max-efficiency, 3-101 (default: 9)",
+    )
+    p.add_argument(
+        "--ratio-range",
+        type=o.number,
+        nargs=2,
+        default=None,
+        metavar=("MIN", "MAX"),
+        help="ratios max-efficiency may use (default: the usable range)",
+    )
+    o.out(p, "ballcvt-cycle")
+    o.add(p, "json")
+    o.run_options(p)
+
+
+def run(args) -> int:
+    """Run the cycle; write steps.csv, summary.json and the figure; print a summary."""
+    out = check_output_dir(args.out)
+    cycle = read_cycle(args.cycle_file)
+    v = o.variator(args)
+    settings = CycleSettings(
+        strategy=args.strategy,
+        target_input_speed_rpm=None if args.target_speed is None else o.rpm(args.target_speed),
+        candidates=args.candidates,
+        ratio_range=args.ratio_range,
+        progress=o.show(args),
+        workers=args.workers,
+    )
+    result = v.run_cycle(cycle, **o.law(args), settings=settings)
+    result.save(out)
+    import matplotlib
+
+    matplotlib.use("Agg")  # the CLI writes files only
+    from ...plotting import cycle_figure, save
+
+    s = result.summary
+    title = f"{cycle.name}: {v.design.name}, {s['strategy']}, {o.clamp_label(args)}"
+    save(cycle_figure(result.steps, title), out, "cycle")
+    if args.json:
+        print(json.dumps(s, indent=2))
+    elif not args.quiet:
+        eff = "n/a" if s["efficiency"] is None else f"{s['efficiency']:.4f}"
+        print(
+            f"wrote {out}/steps.csv, summary.json, cycle.png, cycle.svg: {s['steps']} steps "
+            f"({s['duration_s']:.0f} s), energy in {s['energy_in_J'] / 3.6e3:.2f} Wh, out "
+            f"{s['energy_out_J'] / 3.6e3:.2f} Wh, efficiency {eff}; {s['steps_flagged']} "
+            f"steps flagged; {s['run_time_s']:.1f} s on {args.workers} worker(s)"
+        )
+    return 0

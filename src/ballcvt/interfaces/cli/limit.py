@@ -1,0 +1,46 @@
+"""``ballcvt limit``: the limiting output torque at a ratio, clamp and speed."""
+
+from __future__ import annotations
+
+import json
+
+from ..._version import __version__
+from . import options as o
+from .format import limit_table
+
+
+def add_parser(subparsers) -> None:
+    """Add ``limit`` and its options."""
+    p = o.sub(
+        subparsers,
+        "limit",
+        "limiting output torque at a ratio, clamp and speed",
+        "The largest output torque with a converged equilibrium and every abs(creep) <= "
+        "the creep limit (docs/model.md section 8); under the cam law also every peak "
+        "pressure <= the design's max_pressure (section 11).",
+        "ballcvt limit --arch single --ratio 2 --clamp 2000 --speed 2000",
+    )
+    o.add(p, "arch", "ratio", *o.CLAMP_OPTIONS, "speed", "creep-limit", *o.FLUID_OPTIONS, "json")
+
+
+def run(args) -> int:
+    """Find the limit; print it as a table or JSON."""
+    v = o.variator(args)
+    c_lim = v.design.creep_limit if args.creep_limit is None else args.creep_limit
+    law = o.law(args)
+    t = v.limit_torque(
+        ratio=args.ratio, **law, input_speed_rpm=o.rpm(args.speed), creep_limit=c_lim
+    )
+    data = {
+        "limit_torque": t,
+        "architecture": args.arch,
+        "ratio": args.ratio,
+        "clamp_law": args.clamp_law,
+        "clamp_force": law.get("clamp_force"),
+        "input_speed_rpm": args.speed,
+        "creep_limit": c_lim,
+        "design": v.design.name,
+        "version": __version__,
+    }
+    print(json.dumps(data, indent=2) if args.json else limit_table(data))
+    return 0

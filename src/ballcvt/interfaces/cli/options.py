@@ -1,0 +1,258 @@
+"""Options and helpers the subcommands share: argument types, the drive, clamping, fluid,
+grid and run options, and their translation into the Python API's arguments.
+
+The choices of ``--arch``, ``--clamp-law`` and ``--traction-law`` are read from
+`ballcvt.registry` when the parser is built, so a law a user registers before calling
+`ballcvt.interfaces.cli.main.main` is offered.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import textwrap
+from pathlib import Path
+
+from ...api import BUILTIN_FLUIDS, CAM_KEYS, Variator, open_drive
+from ...errors import InputError
+from ...registry import ARCHITECTURES, CLAMP_LAWS, TRACTION_LAWS
+
+#: The paper's operating point: the defaults of ``point``, ``limit`` and ``clamp``.
+PAPER_POINT = {"ratio": 1.0, "torque": 40.0, "clamp": 2000.0, "speed": 2000.0}
+#: The drive and fluid options of every command that solves the drive.
+FLUID_OPTIONS = ("design", "fluid", "traction-law")
+#: The clamping-law options.
+CLAMP_OPTIONS = (
+    "clamp",
+    "clamp-law",
+    "cam-disc",
+    "cam-preload",
+    "cam-angle",
+    "cam-radius",
+    "cam-friction",
+)
+#: The cam options, in the order of the ``[design.cam]`` keys they override.
+CAM_OPTIONS = CLAMP_OPTIONS[2:]
+
+
+def number(text: str) -> float:
+    """A finite decimal number (``nan``, ``inf`` and overflowing literals are refused)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a finite number")
+    return value
+
+
+def count(lo: int, hi: int):
+    """A whole number in ``lo``-``hi``."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        if not lo <= value <= hi:
+            raise argparse.ArgumentTypeError(f"{value} is out of range: allowed {lo}-{hi}")
+        return value
+
+    return parse
+
+
+def sub(subparsers, name: str, summary: str, description: str, example: str):
+    """A subcommand's parser with its summary, description and example."""
+    return subparsers.add_parser(
+        name,
+        help=summary,
+        description=textwrap.fill(description, 88),
+        epilog="example:\n  " + example + "\n",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+
+
+def _cam_option(unit: str, what: str) -> dict:
+    return {
+        "type": number,
+        "default": None,
+        "help": f"cam {what} [{unit}] (default: the design's)",
+    }
+
+
+def options() -> dict[str, dict]:
+    """The options several subcommands share: name -> add_argument keywords (the choices
+    read from the registries now)."""
+    return {
+        "arch": {
+            "default": "double",
+            "choices": ARCHITECTURES.names(),
+            "help": "idler architecture (default: double)",
+        },
+        "ratio": {
+            "type": number,
+            "default": PAPER_POINT["ratio"],
+            "help": "ideal speed ratio tau_ID [-] (default: %(default)s)",
+        },
+        "torque": {
+            "type": number,
+            "default": PAPER_POINT["torque"],
+            "help": "output torque T2 [N m] (default: %(default)s)",
+        },
+        "clamp": {
+            "type": number,
+            "default": None,
+            "help": f"input-contact normal load F_N0 [N] of the constant clamping law "
+            f"(default: {PAPER_POINT['clamp']:g})",
+        },
+        "clamp-law": {
+            "default": "constant",
+            "choices": CLAMP_LAWS.names(),
+            "help": "clamping law (docs/model.md section 11): constant F_N0 (--clamp), "
+            "the design's loading cam, or the efficiency-optimal force "
+            "(default: constant)",
+        },
+        "cam-disc": {
+            "choices": ("input", "output"),
+            "default": None,
+            "help": "disc whose torque the cam senses (default: the design's)",
+        },
+        "cam-preload": _cam_option("N", "spring preload"),
+        "cam-angle": _cam_option("deg", "ramp angle"),
+        "cam-radius": _cam_option("m", "mean radius"),
+        "cam-friction": _cam_option("-", "ramp friction coefficient"),
+        "speed": {
+            "type": number,
+            "default": PAPER_POINT["speed"],
+            "help": "input speed [rpm] (default: %(default)s)",
+        },
+        "creep-limit": {
+            "type": number,
+            "default": None,
+            "help": "largest admissible abs(creep) (default: the design's, 0.10)",
+        },
+        "design": {
+            "metavar": "FILE.toml",
+            "help": "drive definition: a TOML file, or a built-in drive's name (table1, "
+            "hub) (default: table1, the paper's Table I drive)",
+        },
+        "json": {"action": "store_true", "help": "print one JSON object"},
+        "traction-law": {
+            "choices": TRACTION_LAWS.names(),
+            "default": None,
+            "help": "shear law of the film (docs/model.md section 14): the paper's "
+            "isothermal law, thermal or viscoelastic (default: the fluid's "
+            "own, isothermal for the built-in drives)",
+        },
+        "fluid": {
+            "metavar": "FILE.toml",
+            "help": "fluid replacing the drive's: a TOML file with a [fluid] table (a "
+            "drive file or one written by fit-fluid), or a built-in fluid's name "
+            f"({', '.join(BUILTIN_FLUIDS)}) (default: the drive's fluid)",
+        },
+    }
+
+
+def add(p, *names: str) -> None:
+    """Add the shared options ``names`` to the parser ``p``."""
+    table = options()
+    for name in names:
+        p.add_argument(f"--{name}", **table[name])
+
+
+def out(p, default: str) -> None:
+    """The ``--out`` folder option."""
+    p.add_argument(
+        "--out", type=Path, default=Path(default), help="output folder (default: %(default)s)"
+    )
+
+
+def run_options(p) -> None:
+    """``--workers`` and ``--quiet``."""
+    p.add_argument(
+        "--workers", type=count(1, 64), default=1, help="worker processes, 1-64 (default: 1)"
+    )
+    p.add_argument("--quiet", action="store_true", help="no progress bars and no summary line")
+
+
+def variator(args) -> Variator:
+    """The drive of ``--design``, ``--fluid``, ``--traction-law``, ``--arch`` and the cam
+    options (which need ``--clamp-law cam``)."""
+    design, fluid = open_drive(args.design, args.fluid, getattr(args, "traction_law", None))
+    flags = {key: "--" + opt for opt, key in zip(CAM_OPTIONS, CAM_KEYS)}
+    cam = {
+        key: getattr(args, opt.replace("-", "_"))
+        for opt, key in zip(CAM_OPTIONS, CAM_KEYS)
+        if getattr(args, opt.replace("-", "_"), None) is not None
+    }
+    if cam and getattr(args, "clamp_law", "constant") != "cam":
+        opt = flags[next(iter(cam))]
+        raise InputError(opt, None, "--clamp-law cam", message=f"{opt} needs --clamp-law cam")
+    v = Variator(design, fluid, args.arch)
+    return v.with_cam(cam, flags) if cam else v
+
+
+def law(args) -> dict:
+    """``clamp_force`` or ``clamp_law`` keyword of the Python API from the options."""
+    if args.clamp_law == "constant":
+        return {"clamp_force": PAPER_POINT["clamp"] if args.clamp is None else args.clamp}
+    if args.clamp is not None:
+        raise InputError(
+            "clamp",
+            args.clamp,
+            f"not given with --clamp-law {args.clamp_law}",
+            message=f"--clamp is the constant law's force: not given with "
+            f"--clamp-law {args.clamp_law} (the law sets the force)",
+        )
+    return {"clamp_law": args.clamp_law}
+
+
+def clamp_label(args) -> str:
+    """The clamping of a figure's title."""
+    if args.clamp_law == "constant":
+        force = PAPER_POINT["clamp"] if args.clamp is None else args.clamp
+        return f"$F_{{N0}}$ = {force:g} N"
+    return f"{args.clamp_law} clamping"
+
+
+def show(args) -> bool:
+    """Progress bars: not with ``--quiet``, else when stderr is a terminal."""
+    return False if args.quiet else sys.stderr.isatty()
+
+
+def rpm(speed: float) -> float:
+    """A ``--speed`` value [rpm], checked."""
+    if not speed > 0 or speed == float("inf"):
+        raise InputError("speed", speed, "> 0 rpm and finite")
+    return speed
+
+
+def grid_options(p, *, n_ratio: int, n_torque: int, most: int, torque_max: str) -> None:
+    """The ratio x torque grid of ``map`` and ``table``."""
+    p.add_argument(
+        "--ratio-range",
+        type=number,
+        nargs=2,
+        default=(0.5, 2.0),
+        metavar=("MIN", "MAX"),
+        help="ratio range (default: 0.5 2)",
+    )
+    p.add_argument(
+        "--n-ratio",
+        type=count(2, most),
+        default=n_ratio,
+        help=f"ratios, 2-{most} (default: %(default)s)",
+    )
+    p.add_argument(
+        "--torque-max",
+        type=number,
+        default=None,
+        help=f"largest torque [N m] (default: {torque_max})",
+    )
+    p.add_argument(
+        "--n-torque",
+        type=count(2, most),
+        default=n_torque,
+        help=f"torques, 2-{most} (default: %(default)s)",
+    )

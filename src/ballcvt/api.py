@@ -10,12 +10,12 @@ import numpy as np
 from ._display import html_summary, text_summary
 from .equilibrium.problem import build_problem
 from .errors import ConvergenceError, InputError, TractionLimitError
+from .model.architectures import check_architecture
 from .model.clamping import ConstantClamp
 from .model.clamping import clamp_law as _clamp_law
 from .model.kinematics import ratio_range
 from .model.modes import OperatingMode
 from .model.traction.quadrature import Quadrature
-from .params.feasibility import check_architecture
 from .params.io import load_builtin
 from .params.models import ARCHITECTURES, Design, Fluid
 from .results.planetary import PlanetaryResult, make_planetary_result

@@ -17,6 +17,7 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
+from .. import registry as _registry
 from ..errors import InputError
 from .feasibility import check_design
 
@@ -35,8 +36,11 @@ __all__ = [
     "LAW_FIELDS",
 ]
 
-Architecture = Literal["double", "single"]
-ARCHITECTURES: tuple[str, ...] = ("double", "single")
+#: An architecture's name: one of `ARCHITECTURES`.
+Architecture = str
+#: The idler architectures: the live registry of names (`ballcvt.registry.ARCHITECTURES`;
+#: the built-in ``double`` and ``single`` and any registered from a user's code).
+ARCHITECTURES = _registry.ARCHITECTURES
 
 
 def _f(unit: str, description: str, **constraints: Any) -> Any:

@@ -12,7 +12,7 @@ from ballcvt.equilibrium.problem import ball_mass, build_problem, centrifugal_fo
 from ballcvt.errors import InputError
 from ballcvt.model.modes import MEMBERS, OperatingMode, relative_ratio_coefficients
 from ballcvt.results.planetary import PlanetaryResult
-from ballcvt.solvers.planetary import solve_mode
+from ballcvt.solvers.planetary import ModePoint, solve_mode
 from ballcvt.solvers.point import solve_point
 
 F = 2000.0
@@ -60,8 +60,7 @@ def test_the_default_mode_is_the_paper_drive(v):
 
 def test_carrier_held_through_the_mode_solver_equals_solve(v):
     """The fixed point of the mode solver, with the carrier held, adds nothing."""
-    got = solve_mode(v.design, v.fluid, "double", OperatingMode(), 1.3, 50.0,
-                     2000 * math.pi / 30, F)
+    got = solve_mode(v, OperatingMode(), ModePoint(1.3, 50.0, 2000 * math.pi / 30, F))
     r = v.solve(1.3, 50.0, clamp_force=F, input_speed_rpm=2000)
     assert got.sign == 1.0 and got.speeds["carrier"] == 0.0
     assert np.allclose(got.solution.state.creep, [c.creep for c in r.contacts.values()],
@@ -233,7 +232,7 @@ def test_batch_equals_point_solves(v):
     from ballcvt.solvers.planetary_batch import solve_mode_batch
     mode = OperatingMode("disc0", "carrier")
     ratios = np.array([0.6, 0.95, 1.3])
-    got = solve_mode_batch(v.design, v.fluid, "double", mode, ratios, 20.0, 100.0, F)
+    got = solve_mode_batch(v, mode, ModePoint(ratios, 20.0, 100.0, F))
     assert (got.status == 0).all()
     for i, ratio in enumerate(ratios):
         r = v.solve(ratio, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
@@ -242,15 +241,15 @@ def test_batch_equals_point_solves(v):
             assert got.torques[j, i] == pytest.approx(r.torques[m], rel=1e-8, abs=1e-8)
         assert got.eta[i] == pytest.approx(r.eta, abs=1e-9)
     # speeds out of range are flagged, not raised
-    far = solve_mode_batch(v.design, v.fluid, "double", OperatingMode("disc2", "disc0"),
-                           np.array([0.5, 0.9]), 10.0, 100.0, F)
+    far = solve_mode_batch(v, OperatingMode("disc2", "disc0"),
+                           ModePoint(np.array([0.5, 0.9]), 10.0, 100.0, F))
     assert far.status.tolist() == [0, 3]
 
 
 def test_capacity_per_mode_matches_the_limit_with_the_carrier_held(v):
     from ballcvt.solvers.planetary_batch import limit_load_batch
     ratios = np.array([0.7, 1.5])
-    got = limit_load_batch(v.design, v.fluid, "double", OperatingMode(), ratios, 100.0, F)
+    got = limit_load_batch(v, "carrier_held", ModePoint(ratios, 0.0, 100.0, F))
     for ratio, limit in zip(ratios, got):
         ref = v.limit_torque(ratio, clamp_force=F, input_speed=100.0)
         assert limit == pytest.approx(ref, rel=2e-3) and limit <= ref * (1 + 1e-9)
@@ -267,7 +266,7 @@ def test_carrier_torque_from_its_reactions(v, mode):
     for ratio in (0.6, 1.7):
         if mode.driver == "disc0" and mode.held == "disc2" and ratio > 1:
             continue                          # the carrier would turn too fast
-        got = solve_mode(v.design, v.fluid, "double", mode, ratio, 20.0, 60.0, F)
+        got = solve_mode(v, mode, ModePoint(ratio, 20.0, 60.0, F))
         st, pb = got.solution.state, got.problem
         balance = float(pb.output_torque) - float(st.input_torque)
         assert float(carrier_reaction_torque(pb, st)) == pytest.approx(balance, rel=1e-9,

@@ -14,8 +14,9 @@ from .model.architectures import check_architecture
 from .model.clamping import ConstantClamp
 from .model.clamping import clamp_law as _clamp_law
 from .model.kinematics import ratio_range
-from .model.modes import OperatingMode
+from .model.modes import OperatingMode, resolve_mode
 from .model.traction.quadrature import Quadrature
+from .params.drive import Drive
 from .params.io import load_builtin
 from .params.models import ARCHITECTURES, Design, Fluid
 from .results.planetary import PlanetaryResult, make_planetary_result
@@ -23,7 +24,7 @@ from .results.point import OperatingResult, make_result
 from .solvers.clamped import capacity_basis, pressure_bound_force, solve_clamped
 from .solvers.limit import limit_torque
 from .solvers.optimal_clamp import ClampOptimum, optimal_clamp_force
-from .solvers.planetary import solve_mode
+from .solvers.planetary import ModePoint, solve_mode
 from .solvers.point import SolverOptions, solve_point
 
 __all__ = ["Variator"]
@@ -152,7 +153,7 @@ class Variator:
         input_speed: float | None = None,
         input_speed_rpm: float | None = None,
         check_capacity: bool = True,
-        mode: OperatingMode | None = None,
+        mode: OperatingMode | str | None = None,
     ) -> OperatingResult | PlanetaryResult:
         """Solve the steady operating point.
 
@@ -177,8 +178,9 @@ class Variator:
             ``design.creep_limit``, or has none, raises `TractionLimitError` with the limit;
             so does, under a torque-following law, a force whose peak pressure exceeds
             ``design.max_pressure``.
-        mode : OperatingMode, optional
-            The variator as a planetary (`ballcvt.model.modes.OperatingMode`, docs/model.md
+        mode : OperatingMode or str, optional
+            The variator as a planetary (`ballcvt.model.modes.OperatingMode`, or its name in
+            `ballcvt.registry.OPERATING_MODES`, e.g. ``"disc2_held_carrier_drives"``; docs/model.md
             §13): which member is held and which drives. Then ``output_torque`` is the
             driven member's load torque [N m], ``input_speed`` (or ``input_speed_rpm``) the
             driver's speed (signed), ``ratio`` still ``tau_ID`` relative to the carrier,
@@ -197,7 +199,8 @@ class Variator:
         ConvergenceError
             If no equilibrium is found and ``check_capacity`` is False.
         """
-        if mode is not None and not mode.is_default:
+        mode = resolve_mode(mode)
+        if not mode.is_default:
             return self._solve_mode(
                 mode,
                 ratio,
@@ -251,14 +254,9 @@ class Variator:
                 "and optimal laws are not yet defined with the carrier turning)",
             )
         got = solve_mode(
-            self.design,
-            self.fluid,
-            self.architecture,
+            Drive(self.design, self.fluid, self.architecture),
             mode,
-            float(ratio),
-            float(load_torque),
-            driver_speed,
-            law.force,
+            ModePoint(float(ratio), float(load_torque), driver_speed, law.force),
             self.options,
         )
         creep = max(abs(c) for c in got.solution.state.creep)

@@ -8,7 +8,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ballcvt import Variator, load_builtin
-from ballcvt.equilibrium.problem import ball_mass, build_problem, centrifugal_force, idler_share
+from ballcvt.equilibrium.problem import (CarrierFrame, OperatingInputs, ball_mass, build_problem,
+                                         centrifugal_force, idler_share, make_problem)
+from ballcvt.params import Drive
 from ballcvt.errors import InputError
 from ballcvt.model.modes import MEMBERS, OperatingMode, relative_ratio_coefficients
 from ballcvt.results.planetary import PlanetaryResult
@@ -75,8 +77,8 @@ def test_the_contacts_see_relative_speeds_only(v):
     r = v.solve(1.5, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
     assert r.speeds["carrier"] == 100.0
     rel = r.relative
-    held = build_problem(v.design, v.fluid, "double", 1.5, rel.output_torque, F,
-                         rel.input_speed, signed_torque=True)
+    held = make_problem(v, OperatingInputs(1.5, rel.output_torque, F, rel.input_speed),
+                        CarrierFrame(signed_torque=True))
     sol = solve_point(held)
     assert np.allclose(sol.state.creep, [c.creep for c in rel.contacts.values()],
                        rtol=1e-9, atol=1e-14)
@@ -139,13 +141,15 @@ def test_geared_neutral_is_where_the_kinematics_put_it(v):
 def test_centrifugal_force_unloads_the_idlers_only(v):
     d, fl = load_builtin()
     rest = build_problem(d, fl, "double", 1.2, 20.0, F, 100.0)
-    turning = build_problem(d, fl, "double", 1.2, 20.0, F, 100.0, carrier_speed=120.0)
+    turning = make_problem(Drive(d, fl), OperatingInputs(1.2, 20.0, F, 100.0),
+                           CarrierFrame(carrier_speed=120.0))
     fc = ball_mass(d) * 120.0 ** 2 * d.roller_radius * (1 + d.aspect_ratio)
     assert centrifugal_force(d, 120.0) == pytest.approx(fc)
     assert np.allclose(rest.load - turning.load, fc * idler_share(rest.layout, d))
     assert turning.load[0] == rest.load[0] and turning.load[-1] == rest.load[-1]
     with pytest.raises(InputError, match="carrier_speed"):
-        build_problem(d, fl, "double", 1.2, 20.0, F, 100.0, carrier_speed=400.0)
+        make_problem(Drive(d, fl), OperatingInputs(1.2, 20.0, F, 100.0),
+                     CarrierFrame(carrier_speed=400.0))
 
 
 def test_gyroscopic_moment_loads_the_ball_bearings(v):

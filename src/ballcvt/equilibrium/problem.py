@@ -260,9 +260,9 @@ def build_problem(
     output_torque,
     clamp_force,
     input_speed,
-    **frame,
 ) -> EquilibriumProblem:
-    """`make_problem` with the drive and the operating inputs given one by one.
+    """`make_problem` for the paper's drive (carrier held, output torque given), with the
+    drive and the operating inputs given one by one.
 
     Parameters
     ----------
@@ -272,9 +272,6 @@ def build_problem(
         Idler architecture (`ballcvt.registry.ARCHITECTURES`).
     ratio, output_torque, clamp_force, input_speed : array_like
         The fields of `OperatingInputs`.
-    **frame
-        The fields of `CarrierFrame` (``carrier_speed``, ``torque_weights``,
-        ``centrifugal``, ``gyroscopic``, ``signed_torque``).
 
     Returns
     -------
@@ -283,7 +280,6 @@ def build_problem(
     return make_problem(
         Drive(design, fluid, architecture),
         OperatingInputs(ratio, output_torque, clamp_force, input_speed),
-        CarrierFrame(**frame),
     )
 
 

@@ -8,11 +8,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ballcvt import Variator, load_builtin
-from ballcvt.equilibrium.problem import ball_mass, build_problem, centrifugal_force, idler_share
+from ballcvt.equilibrium.problem import (CarrierFrame, OperatingInputs, ball_mass, build_problem,
+                                         centrifugal_force, idler_share, make_problem)
+from ballcvt.params import Drive
 from ballcvt.errors import InputError
 from ballcvt.model.modes import MEMBERS, OperatingMode, relative_ratio_coefficients
 from ballcvt.results.planetary import PlanetaryResult
-from ballcvt.solvers.planetary import solve_mode
+from ballcvt.solvers.planetary import ModePoint, solve_mode
 from ballcvt.solvers.point import solve_point
 
 F = 2000.0
@@ -60,8 +62,7 @@ def test_the_default_mode_is_the_paper_drive(v):
 
 def test_carrier_held_through_the_mode_solver_equals_solve(v):
     """The fixed point of the mode solver, with the carrier held, adds nothing."""
-    got = solve_mode(v.design, v.fluid, "double", OperatingMode(), 1.3, 50.0,
-                     2000 * math.pi / 30, F)
+    got = solve_mode(v, OperatingMode(), ModePoint(1.3, 50.0, 2000 * math.pi / 30, F))
     r = v.solve(1.3, 50.0, clamp_force=F, input_speed_rpm=2000)
     assert got.sign == 1.0 and got.speeds["carrier"] == 0.0
     assert np.allclose(got.solution.state.creep, [c.creep for c in r.contacts.values()],
@@ -76,8 +77,8 @@ def test_the_contacts_see_relative_speeds_only(v):
     r = v.solve(1.5, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
     assert r.speeds["carrier"] == 100.0
     rel = r.relative
-    held = build_problem(v.design, v.fluid, "double", 1.5, rel.output_torque, F,
-                         rel.input_speed, signed_torque=True)
+    held = make_problem(v, OperatingInputs(1.5, rel.output_torque, F, rel.input_speed),
+                        CarrierFrame(signed_torque=True))
     sol = solve_point(held)
     assert np.allclose(sol.state.creep, [c.creep for c in rel.contacts.values()],
                        rtol=1e-9, atol=1e-14)
@@ -140,13 +141,15 @@ def test_geared_neutral_is_where_the_kinematics_put_it(v):
 def test_centrifugal_force_unloads_the_idlers_only(v):
     d, fl = load_builtin()
     rest = build_problem(d, fl, "double", 1.2, 20.0, F, 100.0)
-    turning = build_problem(d, fl, "double", 1.2, 20.0, F, 100.0, carrier_speed=120.0)
+    turning = make_problem(Drive(d, fl), OperatingInputs(1.2, 20.0, F, 100.0),
+                           CarrierFrame(carrier_speed=120.0))
     fc = ball_mass(d) * 120.0 ** 2 * d.roller_radius * (1 + d.aspect_ratio)
     assert centrifugal_force(d, 120.0) == pytest.approx(fc)
     assert np.allclose(rest.load - turning.load, fc * idler_share(rest.layout, d))
     assert turning.load[0] == rest.load[0] and turning.load[-1] == rest.load[-1]
     with pytest.raises(InputError, match="carrier_speed"):
-        build_problem(d, fl, "double", 1.2, 20.0, F, 100.0, carrier_speed=400.0)
+        make_problem(Drive(d, fl), OperatingInputs(1.2, 20.0, F, 100.0),
+                     CarrierFrame(carrier_speed=400.0))
 
 
 def test_gyroscopic_moment_loads_the_ball_bearings(v):
@@ -233,7 +236,7 @@ def test_batch_equals_point_solves(v):
     from ballcvt.solvers.planetary_batch import solve_mode_batch
     mode = OperatingMode("disc0", "carrier")
     ratios = np.array([0.6, 0.95, 1.3])
-    got = solve_mode_batch(v.design, v.fluid, "double", mode, ratios, 20.0, 100.0, F)
+    got = solve_mode_batch(v, mode, ModePoint(ratios, 20.0, 100.0, F))
     assert (got.status == 0).all()
     for i, ratio in enumerate(ratios):
         r = v.solve(ratio, 20.0, clamp_force=F, input_speed=100.0, mode=mode)
@@ -242,15 +245,15 @@ def test_batch_equals_point_solves(v):
             assert got.torques[j, i] == pytest.approx(r.torques[m], rel=1e-8, abs=1e-8)
         assert got.eta[i] == pytest.approx(r.eta, abs=1e-9)
     # speeds out of range are flagged, not raised
-    far = solve_mode_batch(v.design, v.fluid, "double", OperatingMode("disc2", "disc0"),
-                           np.array([0.5, 0.9]), 10.0, 100.0, F)
+    far = solve_mode_batch(v, OperatingMode("disc2", "disc0"),
+                           ModePoint(np.array([0.5, 0.9]), 10.0, 100.0, F))
     assert far.status.tolist() == [0, 3]
 
 
 def test_capacity_per_mode_matches_the_limit_with_the_carrier_held(v):
     from ballcvt.solvers.planetary_batch import limit_load_batch
     ratios = np.array([0.7, 1.5])
-    got = limit_load_batch(v.design, v.fluid, "double", OperatingMode(), ratios, 100.0, F)
+    got = limit_load_batch(v, "carrier_held", ModePoint(ratios, 0.0, 100.0, F))
     for ratio, limit in zip(ratios, got):
         ref = v.limit_torque(ratio, clamp_force=F, input_speed=100.0)
         assert limit == pytest.approx(ref, rel=2e-3) and limit <= ref * (1 + 1e-9)
@@ -267,7 +270,7 @@ def test_carrier_torque_from_its_reactions(v, mode):
     for ratio in (0.6, 1.7):
         if mode.driver == "disc0" and mode.held == "disc2" and ratio > 1:
             continue                          # the carrier would turn too fast
-        got = solve_mode(v.design, v.fluid, "double", mode, ratio, 20.0, 60.0, F)
+        got = solve_mode(v, mode, ModePoint(ratio, 20.0, 60.0, F))
         st, pb = got.solution.state, got.problem
         balance = float(pb.output_torque) - float(st.input_torque)
         assert float(carrier_reaction_torque(pb, st)) == pytest.approx(balance, rel=1e-9,

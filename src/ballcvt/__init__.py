@@ -63,7 +63,7 @@ from .results.point import ContactResult, OperatingResult
 from .solvers.options import SolverOptions
 
 if TYPE_CHECKING:
-    from .reports import reproduce
+    from .reports.reproduce import reproduce as reproduce
     from .reports.study import study_report
 
 _compat.install()

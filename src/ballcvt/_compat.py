@@ -19,7 +19,7 @@ import warnings
 
 from .errors import BallCVTDeprecationWarning
 
-__all__ = ["MOVED_MODULES", "MOVED_PACKAGES", "install", "warn_renamed"]
+__all__ = ["MOVED_MODULES", "MOVED_PACKAGES", "install", "warn_renamed", "moved_names"]
 
 MOVED_MODULES = {
     "ballcvt.geometry.kinematics": "ballcvt.model.kinematics",
@@ -217,6 +217,19 @@ def warn_renamed(old: str, new: str, stacklevel: int = 3) -> None:
         BallCVTDeprecationWarning,
         stacklevel=stacklevel,
     )
+
+
+def moved_names(module: str, names: dict[str, str]):
+    """A module-level ``__getattr__`` for ``module``: each of ``names`` (name -> the module
+    that now holds it) is answered from its new module, with one warning."""
+
+    def __getattr__(name: str):
+        if name not in names:
+            raise AttributeError(f"module {module!r} has no attribute {name!r}")
+        warn_renamed(f"{module}.{name}", f"{names[name]}.{name}")
+        return getattr(importlib.import_module(names[name]), name)
+
+    return __getattr__
 
 
 class _OldPackage(types.ModuleType):

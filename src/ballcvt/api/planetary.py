@@ -8,9 +8,10 @@ import numpy as np
 
 from ..errors import InputError
 from ..model.modes import OperatingMode
+from ..params.drive import Drive
 from ..results.planetary import PlanetaryResult, make_planetary_result
 from ..results.point import make_result
-from ..solvers.planetary import solve_mode
+from ..solvers.planetary import ModePoint, solve_mode
 from ..solvers.planetary_batch import ModeBatch, limit_load_batch, solve_mode_batch
 
 __all__ = ["solve_in_mode", "planetary_map", "planetary_capacity"]
@@ -37,14 +38,9 @@ def solve_in_mode(
     v = variator
     force = _constant_force(v, clamp.get("clamp_force"), clamp.get("clamp_law"))
     got = solve_mode(
-        v.design,
-        v.fluid,
-        v.architecture,
+        Drive(v.design, v.fluid, v.architecture),
         mode,
-        float(ratio),
-        float(load_torque),
-        driver_speed,
-        force,
+        ModePoint(float(ratio), float(load_torque), driver_speed, force),
         v.options,
     )
     creep = max(abs(c) for c in got.solution.state.creep)
@@ -67,7 +63,10 @@ def planetary_map(variator, mode, ratio, load_torque, driver_speed, clamp_force)
     v = variator
     force = _constant_force(v, clamp_force, None)
     return solve_mode_batch(
-        v.design, v.fluid, v.architecture, mode, ratio, load_torque, driver_speed, force, v.options
+        Drive(v.design, v.fluid, v.architecture),
+        mode,
+        ModePoint(ratio, load_torque, driver_speed, force),
+        v.options,
     )
 
 
@@ -76,5 +75,8 @@ def planetary_capacity(variator, mode, ratio, driver_speed, clamp_force) -> np.n
     v = variator
     force = _constant_force(v, clamp_force, None)
     return limit_load_batch(
-        v.design, v.fluid, v.architecture, mode, ratio, driver_speed, force, v.options
+        Drive(v.design, v.fluid, v.architecture),
+        mode,
+        ModePoint(ratio, np.nan, driver_speed, force),
+        v.options,
     )

@@ -11,11 +11,12 @@ import numpy as np
 from .._display import html_summary, text_summary
 from ..equilibrium.problem import build_problem
 from ..errors import ConvergenceError, InputError, TractionLimitError
+from ..model.architectures import check_architecture
 from ..model.clamping import ConstantClamp
 from ..model.clamping import clamp_law as _clamp_law
 from ..model.kinematics import ratio_range
+from ..model.modes import resolve_mode
 from ..model.traction.quadrature import Quadrature
-from ..params.feasibility import check_architecture
 from ..params.io import load_builtin
 from ..params.models import ARCHITECTURES, Design, Fluid
 from ..results.planetary import PlanetaryResult
@@ -178,8 +179,10 @@ class Variator(BatchMethods):
             ``check_capacity`` (default True): a torque whose equilibrium has a creep above
             ``design.creep_limit``, or has none, raises `TractionLimitError` with the limit;
             so does, under a torque-following law, a force whose peak pressure exceeds
-            ``design.max_pressure``. ``mode`` (`ballcvt.model.modes.OperatingMode`,
-            docs/model.md §13): which member is held and which drives; then
+            ``design.max_pressure``. ``mode`` (`ballcvt.model.modes.OperatingMode`, or its
+            name in `ballcvt.registry.OPERATING_MODES`, e.g.
+            ``"disc2_held_carrier_drives"``; docs/model.md §13): which member is held and
+            which drives; then
             ``output_torque`` is the driven member's load torque [N m], ``input_speed`` (or
             ``input_speed_rpm``) the driver's speed (signed), ``ratio`` still ``tau_ID``
             relative to the carrier, and a `PlanetaryResult` is returned. The default
@@ -200,10 +203,11 @@ class Variator(BatchMethods):
             If no equilibrium is found and ``check_capacity`` is False.
         """
         how = merge_settings(SolveSettings, settings, legacy, "solve")
-        if how.mode is not None and not how.mode.is_default:
+        mode = resolve_mode(how.mode)
+        if not mode.is_default:
             return planetary.solve_in_mode(
                 self,
-                how.mode,
+                mode,
                 ratio,
                 output_torque,
                 {"clamp_force": clamp_force, "clamp_law": clamp_law},

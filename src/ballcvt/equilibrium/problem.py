@@ -7,12 +7,20 @@ every array); the per-contact arrays have the contacts on the last axis.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
 from ..errors import InputError
 from ..model.architectures import ContactLayout, contact_layout
 from ..model.hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
+from ..model.inertia import (
+    ball_mass,
+    centrifugal_force,
+    gyro_factor,
+    idler_share,
+    max_carrier_speed,
+)
 from ..model.kinematics import (
     body_speeds,
     check_ratio,
@@ -20,13 +28,18 @@ from ..model.kinematics import (
     spin_axis_projection,
     tilt_from_ratio,
 )
-from ..model.losses import parasitic_torques
+from ..model.losses import PARASITIC_KINDS, active_terms, parasitic_drags
 from ..model.rheology import roelands_pressure_limit
+from ..params.drive import Drive
 from ..params.models import Design, Fluid
 
 __all__ = [
     "EquilibriumProblem",
+    "OperatingInputs",
+    "CarrierFrame",
+    "make_problem",
     "build_problem",
+    # the inertia of the balls lives in the model layer; named here as before
     "ball_mass",
     "centrifugal_force",
     "idler_share",
@@ -39,18 +52,28 @@ __all__ = [
 #: traction integrals underflow double precision (docs/model.md §10).
 MIN_POSITIVE = 1e-6
 
-#: Fields with the batch shape ``(...)`` and with ``(..., n_c)``.
+#: Fields with the batch shape ``(...)`` and with a trailing axis, ``(..., n_c)`` or
+#: ``(..., n_kinds)``.
 _BATCH = (
     "ratio",
     "tilt",
     "output_torque",
     "clamp_force",
     "input_speed",
-    "ball_drag",
     "carrier_speed",
     "gyro_factor",
 )
-_PER_CONTACT = ("rho", "sz", "load", "ax", "ay", "p_max", "input_drag", "output_drag")
+_PER_CONTACT = (
+    "rho",
+    "sz",
+    "load",
+    "ax",
+    "ay",
+    "p_max",
+    "ball_drag",
+    "input_drag",
+    "output_drag",
+)
 
 
 @dataclass(frozen=True)
@@ -77,11 +100,12 @@ class EquilibriumProblem:
     ax, ay, p_max : ndarray
         Hertz semi-axes [m] and peak pressure [Pa], ``(..., n_c)``.
     ball_drag : ndarray
-        Churning torque on each ball about its spin axis [N m], ``(...)``; zero without
-        ``design.parasitic`` (docs/model.md §12).
+        Parasitic drag torque on each ball about its spin axis by kind (``drag_kinds``)
+        [N m], ``(..., n_kinds)``; zero without ``design.parasitic`` and user loss terms
+        (docs/model.md §12).
     input_drag, output_drag : ndarray
-        Parasitic drag torques on the input and output shafts by kind
-        (``churning, seals, disc_bearings``) [N m], ``(..., 3)``.
+        Parasitic drag torques on the input and output shafts by kind [N m],
+        ``(..., n_kinds)``.
     carrier_speed : ndarray
         Carrier speed ``omega_c`` [rad/s], ``(...)``; zero for the paper's drive. The
         other speeds are relative to the carrier (docs/model.md §13).
@@ -93,6 +117,9 @@ class EquilibriumProblem:
         ``(a, b)`` of the torque condition ``a T_0 + b T_2 = output_torque`` closing the
         last balance; ``(0, 1)`` (the output torque given) by default. Then
         ``output_torque`` is the condition's target and may be negative.
+    drag_kinds : tuple of str
+        The loss kinds of the last axis of the drags (`ballcvt.model.losses.drag_kinds`):
+        ``churning, seals, disc_bearings``, then those of user loss terms.
     """
 
     design: Design
@@ -117,6 +144,7 @@ class EquilibriumProblem:
     carrier_speed: np.ndarray = None  # type: ignore[assignment]
     gyro_factor: np.ndarray = None  # type: ignore[assignment]
     torque_weights: tuple = (0.0, 1.0)
+    drag_kinds: tuple[str, ...] = PARASITIC_KINDS
 
     def __post_init__(self):
         for name in ("carrier_speed", "gyro_factor"):
@@ -177,39 +205,36 @@ class EquilibriumProblem:
         return self.design.n_rollers * self.clamp_force * self.design.roller_radius
 
 
-def build_problem(
-    design: Design,
-    fluid: Fluid,
-    architecture: str,
-    ratio,
-    output_torque,
-    clamp_force,
-    input_speed,
-    *,
-    carrier_speed=0.0,
-    torque_weights=(0.0, 1.0),
-    centrifugal: bool = True,
-    gyroscopic: bool = True,
-    signed_torque: bool = False,
-) -> EquilibriumProblem:
-    """Assemble an `EquilibriumProblem`; the four operating inputs broadcast together.
+@dataclass(frozen=True)
+class OperatingInputs:
+    """The operating inputs of an equilibrium problem (arrays broadcast together).
 
-    Parameters
+    Attributes
     ----------
-    design, fluid : Design, Fluid
-        Parameter sets.
-    architecture : {"double", "single"}
-        Idler architecture.
     ratio : array_like
         Ideal speed ratio ``tau_ID`` within `ratio_range` [-].
     output_torque : array_like
-        Output torque ``T_2`` >= 0 [N m].
+        Output torque ``T_2`` >= 0 [N m] (or the target of `CarrierFrame.torque_weights`).
     clamp_force : array_like
         Input-contact normal load ``F_N0`` > 0 [N].
     input_speed : array_like
         Input speed ``omega_0`` > 0 [rad/s] (relative to the carrier).
+    """
+
+    ratio: Any
+    output_torque: Any
+    clamp_force: Any
+    input_speed: Any
+
+
+@dataclass(frozen=True)
+class CarrierFrame:
+    """How the carrier turns and what closes the last balance (docs/model.md §13).
+
+    Attributes
+    ----------
     carrier_speed : array_like
-        Carrier speed ``omega_c`` [rad/s] (docs/model.md §13); 0: the paper's drive.
+        Carrier speed ``omega_c`` [rad/s]; 0: the paper's drive.
     torque_weights : (float, float)
         ``(a, b)`` of the torque condition ``a T_0 + b T_2 = output_torque``; with the
         default ``(0, 1)`` ``output_torque`` is ``T_2 >= 0``, otherwise any finite target.
@@ -218,50 +243,99 @@ def build_problem(
     signed_torque : bool
         Accept a negative ``output_torque`` (the output disc driving the balls, as a
         planetary mode may have it in the carrier frame).
+    """
+
+    carrier_speed: Any = 0.0
+    torque_weights: tuple = (0.0, 1.0)
+    centrifugal: bool = True
+    gyroscopic: bool = True
+    signed_torque: bool = False
+
+
+def build_problem(
+    design: Design,
+    fluid: Fluid,
+    architecture: str,
+    ratio,
+    output_torque,
+    clamp_force,
+    input_speed,
+) -> EquilibriumProblem:
+    """`make_problem` for the paper's drive (carrier held, output torque given), with the
+    drive and the operating inputs given one by one.
+
+    Parameters
+    ----------
+    design, fluid : Design, Fluid
+        Parameter sets.
+    architecture : str
+        Idler architecture (`ballcvt.registry.ARCHITECTURES`).
+    ratio, output_torque, clamp_force, input_speed : array_like
+        The fields of `OperatingInputs`.
 
     Returns
     -------
     EquilibriumProblem
     """
-    layout = contact_layout(design, architecture)
+    return make_problem(
+        Drive(design, fluid, architecture),
+        OperatingInputs(ratio, output_torque, clamp_force, input_speed),
+    )
+
+
+def make_problem(
+    drive: Drive, point: OperatingInputs, frame: CarrierFrame = CarrierFrame()
+) -> EquilibriumProblem:
+    """Assemble an `EquilibriumProblem`; the operating inputs broadcast together.
+
+    Parameters
+    ----------
+    drive : Drive
+        Design, fluid and architecture (any object with these three attributes).
+    point : OperatingInputs
+        Ratio, output torque, clamping force and input speed.
+    frame : CarrierFrame
+        Carrier speed and torque condition; by default the paper's drive (carrier held,
+        output torque given).
+
+    Returns
+    -------
+    EquilibriumProblem
+    """
+    design, fluid = drive.design, drive.fluid
+    layout = contact_layout(design, drive.architecture)
     ratio, t2, fn0, w0, wc = np.broadcast_arrays(
         *(
             np.asarray(v, dtype=float)
-            for v in (ratio, output_torque, clamp_force, input_speed, carrier_speed)
+            for v in (
+                point.ratio,
+                point.output_torque,
+                point.clamp_force,
+                point.input_speed,
+                frame.carrier_speed,
+            )
         )
     )
-    weights = (float(torque_weights[0]), float(torque_weights[1]))
-    if weights == (0.0, 1.0) and not signed_torque:
-        _check("output_torque", t2, "N m", strict=False)
-    elif not np.all(np.isfinite(t2)):
-        raise InputError("load_torque", float(t2[~np.isfinite(t2)].flat[0]), "finite")
-    if not np.all(np.isfinite(wc)):
-        raise InputError("carrier_speed", float(wc[~np.isfinite(wc)].flat[0]), "finite")
-    _check("clamp_force", fn0, "N", floor=MIN_POSITIVE)
-    _check("input_speed", w0, "rad/s", floor=MIN_POSITIVE)
-    check_ratio(design, ratio)
+    weights = (float(frame.torque_weights[0]), float(frame.torque_weights[1]))
+    _check_inputs(
+        design, weights == (0.0, 1.0) and not frame.signed_torque, (ratio, t2, fn0, w0, wc)
+    )
     tilt = tilt_from_ratio(ratio, design.theta0, design.theta2, design.aspect_ratio)
     rs = design.roller_radius
     rx = rolling_curvature_ratio(layout.radius, design.aspect_ratio) * rs
     ry = transverse_curvature_ratio(layout.groove_ratio) * rs
     load = fn0[..., None] * layout.load_factor
-    turning = np.any(wc != 0.0)
-    if turning and design.parasitic is not None:
-        raise InputError(
-            "design.parasitic",
-            "set",
-            "absent with the carrier turning (the "
-            "shaft drags need the absolute speeds; not modelled yet, "
-            "docs/model.md §13)",
-        )
-    if turning and centrifugal:
+    turning = bool(np.any(wc != 0.0))
+    if turning:
+        _check_no_drags(design)
+    if turning and frame.centrifugal:
         _check_idler_loads(design, layout, fn0, wc)
         load = load - centrifugal_force(design, wc)[..., None] * idler_share(layout, design)
     ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
     _check_pressure(fluid, fn0, p_max)
     # parasitic drags at the creep-free speeds (docs/model.md §12)
     omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
-    ball, drag0, drag2 = parasitic_torques(
+    drags = parasitic_drags(
         design, fluid, w0, omega[..., -1], omega_s, design.n_rollers * fn0 * np.sin(design.theta0)
     )
     return EquilibriumProblem(
@@ -278,68 +352,50 @@ def build_problem(
         load=load,
         radius=layout.radius * rs,
         rx=rx,
-        ax=ax,
         ay=ay,
+        ax=ax,
         p_max=p_max,
-        ball_drag=ball,
-        input_drag=drag0,
-        output_drag=drag2,
+        ball_drag=drags.ball,
+        input_drag=drags.input,
+        output_drag=drags.output,
         carrier_speed=wc,
         gyro_factor=(
-            gyro_factor(design, tilt, wc) if turning and gyroscopic else np.zeros(wc.shape)
+            gyro_factor(design, tilt, wc) if turning and frame.gyroscopic else np.zeros(wc.shape)
         ),
         torque_weights=weights,
+        drag_kinds=drags.kinds,
     )
 
 
-def ball_mass(design: Design) -> float:
-    """Mass of one ball, a solid sphere of the design's material [kg]."""
-    return design.material.density * 4.0 / 3.0 * np.pi * design.roller_radius**3
+def _check_inputs(design: Design, torque_given: bool, inputs) -> None:
+    """Refuse out-of-range operating inputs ``(ratio, T_2, F_N0, omega_0, omega_c)``."""
+    ratio, t2, fn0, w0, wc = inputs
+    if torque_given:
+        _check("output_torque", t2, "N m", strict=False)
+    elif not np.all(np.isfinite(t2)):
+        raise InputError("load_torque", float(t2[~np.isfinite(t2)].flat[0]), "finite")
+    if not np.all(np.isfinite(wc)):
+        raise InputError("carrier_speed", float(wc[~np.isfinite(wc)].flat[0]), "finite")
+    _check("clamp_force", fn0, "N", floor=MIN_POSITIVE)
+    _check("input_speed", w0, "rad/s", floor=MIN_POSITIVE)
+    check_ratio(design, ratio)
 
 
-def centrifugal_force(design: Design, carrier_speed):
-    """Centrifugal force on one ball, ``m omega_c^2 R_c``, ``R_c = r_S (1 + k)`` [N]
-    (docs/model.md §13), along ``+k``."""
-    wc = np.asarray(carrier_speed, dtype=float)
-    return ball_mass(design) * wc**2 * design.roller_radius * (1.0 + design.aspect_ratio)
-
-
-def idler_share(layout: ContactLayout, design: Design) -> np.ndarray:
-    """Normal load each contact loses per newton of outward radial force on the ball
-    (docs/model.md §13): the idler contacts carry the radial balance, ``1 / (2 cos(alpha))``
-    each for the double idler and 1 for the single one; the discs' loads are set by the
-    axial balance and do not change."""
-    n_idler = int(layout.is_idler.sum())
-    per = 1.0 / (2.0 * np.cos(design.alpha)) if n_idler == 2 else 1.0
-    return np.where(layout.is_idler, per, 0.0)
-
-
-def gyro_factor(design: Design, tilt, carrier_speed):
-    """``I omega_c sin(gamma) / r_S`` [kg m/s], ``I = 2 m r_S^2 / 5``.
-
-    With the carrier turning the ball's spin axis ``s`` precesses about ``j``, and its
-    angular momentum ``I (omega_c j + omega_S s)`` changes at ``I omega_c omega_S j x s =
-    -I omega_c omega_S sin(gamma) i``: a moment about ``i`` that only forces along ``u`` at
-    the two axle bearings can supply. They sit ``r_S / 2`` from the centre (the lever arm
-    of Eqs. 19/34), so each carries ``I omega_c omega_S sin(gamma) / r_S`` (docs/model.md
-    §13): this factor times ``omega_S`` [N].
-    """
-    inertia = 0.4 * ball_mass(design) * design.roller_radius**2
-    return inertia * np.asarray(carrier_speed, dtype=float) * np.sin(tilt) / design.roller_radius
-
-
-def max_carrier_speed(design: Design, layout: ContactLayout, clamp_force):
-    """Carrier speed at which the balls' centrifugal force unloads the idler contacts
-    [rad/s] (docs/model.md §13)."""
-    share = idler_share(layout, design)[layout.is_idler]
-    f_max = np.min(
-        np.asarray(clamp_force, dtype=float)[..., None]
-        * layout.load_factor[layout.is_idler]
-        / share,
-        axis=-1,
+def _check_no_drags(design: Design) -> None:
+    """Refuse parasitic losses with the carrier turning (not modelled yet, §13)."""
+    terms = active_terms(design)
+    if not terms:
+        return
+    name, value = (
+        ("design.parasitic", "set")
+        if design.parasitic is not None
+        else ("loss term", terms[0].name)
     )
-    return np.sqrt(
-        f_max / (ball_mass(design) * design.roller_radius * (1.0 + design.aspect_ratio))
+    raise InputError(
+        name,
+        value,
+        "absent with the carrier turning (the shaft drags need the absolute speeds; "
+        "not modelled yet, docs/model.md §13)",
     )
 
 

@@ -129,21 +129,21 @@ def evaluate(
     EquilibriumState
     """
     creep = np.asarray(creep, dtype=float)
-    omega_s, omega, sigma, u_ref, film = _contact_inputs(problem, creep)
+    at = _contact_inputs(problem, creep)
     mu, chi = law_coefficients(
         creep_term(creep),
-        sigma,
+        at.spin,
         problem.ax,
         problem.ay,
         problem.p_max,
         problem.load,
         problem.radius,
-        u_ref,
-        film,
+        at.u_ref,
+        at.film,
         problem.fluid,
         quadrature,
     )
-    return _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi)
+    return _balances(problem, creep, at, mu, chi)
 
 
 def evaluate_with_jacobian(
@@ -180,7 +180,8 @@ def evaluate_with_jacobian(
     # row 0: the creeps themselves; row j + 1: creep j perturbed by h_j (one pass for all)
     pert = creep[..., None, :] + h[..., None, :] * _offsets(nc)  # (..., 1 + n_c, n_c)
     wide = problem.expand()
-    ws, w, sg, u, hf = _contact_inputs(wide, pert)
+    wide_at = _contact_inputs(wide, pert)
+    sg, u, hf = wide_at.spin, wide_at.u_ref, wide_at.film
     c = creep_term(pert)
     at = (slice(None),) * len(problem.shape) + (0,)  # row 0 of the wide axis
     mu, chi, dmu, dchi = law_coefficients(
@@ -205,7 +206,7 @@ def evaluate_with_jacobian(
     mu_p = ex(mu) + (dmu[..., None, :, :] * delta).sum(axis=-1)
     chi_p = ex(chi) + (dchi[..., None, :, :] * delta).sum(axis=-1)
     mu_p[at], chi_p[at] = mu, chi
-    wide_state = _balances(wide, pert, ws, w, sg, u, hf, mu_p, chi_p)
+    wide_state = _balances(wide, pert, wide_at, mu_p, chi_p)
     state = EquilibriumState(
         **{
             name: v[at] if getattr(v, "ndim", 0) >= len(at) else v
@@ -225,7 +226,32 @@ def _offsets(nc: int) -> np.ndarray:
     return out
 
 
-def _contact_inputs(problem: EquilibriumProblem, creep):
+@dataclass(frozen=True)
+class ContactInputs:
+    """What the traction law is evaluated at, from a creep vector (Eqs. 7-14, 56).
+
+    Attributes
+    ----------
+    omega_s : ndarray
+        Ball speed about its axis [rad/s].
+    omega : ndarray
+        Signed body speeds about ``j`` [rad/s].
+    spin : ndarray
+        Spin coefficients [-].
+    u_ref : ndarray
+        Body surface speed [m/s].
+    film : ndarray
+        Central film thickness [m].
+    """
+
+    omega_s: np.ndarray
+    omega: np.ndarray
+    spin: np.ndarray
+    u_ref: np.ndarray
+    film: np.ndarray
+
+
+def _contact_inputs(problem: EquilibriumProblem, creep) -> ContactInputs:
     """Speeds, spins, surface speeds and film thicknesses at the creeps (Eqs. 7-14, 67)."""
     lay, fl = problem.layout, problem.fluid
     omega_s, omega = body_speeds(lay, problem.tilt, creep, problem.input_speed, problem.rho)
@@ -245,7 +271,7 @@ def _contact_inputs(problem: EquilibriumProblem, creep):
         ),
     )
     film = unit * np.abs(u_ref * entrainment_factor(creep)) ** SPEED_EXPONENT
-    return omega_s, omega, sigma, u_ref, film
+    return ContactInputs(omega_s, omega, sigma, u_ref, film)
 
 
 def _balance_constants(problem: EquilibriumProblem) -> dict:
@@ -264,13 +290,15 @@ def _balance_constants(problem: EquilibriumProblem) -> dict:
         ),
         "ball_scale": pb.clamp_force * rs,
         "scale": pb.torque_scale[..., None],
+        "ball_drag": np.sum(pb.ball_drag, axis=-1),
         "input_drag": np.sum(pb.input_drag, axis=-1),
         "output_drag": np.sum(pb.output_drag, axis=-1),
     }
 
 
-def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> EquilibriumState:
+def _balances(problem: EquilibriumProblem, creep, at: ContactInputs, mu, chi) -> EquilibriumState:
     """Forces, moments, bearing torques and residuals from the contact coefficients."""
+    omega_s, omega = at.omega_s, at.omega
     pb, lay, des, fl = problem, problem.layout, problem.design, problem.fluid
     k = pb.memo("balances", lambda: _balance_constants(pb))
     rs, n = des.roller_radius, des.n_rollers
@@ -299,7 +327,7 @@ def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> Eq
     res = np.empty(body.shape)
     # parasitic drags (zero without design.parasitic, docs/model.md §12): churning on the
     # ball's spin like its axle bearings; the output shaft's drag adds to the load torque
-    res[..., 0] = (m_s - np.sign(omega_s) * (t_bls + pb.ball_drag)) / k["ball_scale"]
+    res[..., 0] = (m_s - np.sign(omega_s) * (t_bls + k["ball_drag"])) / k["ball_scale"]
     res[..., 1:-1] = ((body - np.sign(omega) * t_bl) / scale)[..., 1:-1]
     input_drag = k["input_drag"]
     if pb.torque_weights == (0.0, 1.0):
@@ -313,9 +341,9 @@ def _balances(problem, creep, omega_s, omega, sigma, u_ref, film, mu, chi) -> Eq
         creep=creep,
         omega_s=omega_s,
         omega=omega,
-        spin=sigma,
-        u_ref=u_ref,
-        film=film,
+        spin=at.spin,
+        u_ref=at.u_ref,
+        film=at.film,
         mu=mu,
         chi=chi,
         force=force,

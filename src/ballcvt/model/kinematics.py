@@ -7,19 +7,20 @@ vector form, which reproduces Eqs. 11-14 (with the Eq. 7 typo ``omega_1 -> omega
 
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 
 import numpy as np
 
 from ..errors import InputError
-from ..params.feasibility import tilt_limits, usable_tilt_range
 from ..params.models import Design
-from .architectures import ContactLayout
+from .layout import ContactLayout
 
 __all__ = [
     "ideal_ratio",
     "tilt_from_ratio",
     "tilt_limits",
+    "usable_tilt_range",
     "ratio_range",
     "check_ratio",
     "rolling_radius",
@@ -78,6 +79,28 @@ def tilt_from_ratio(ratio, theta0, theta2, k):
     """
     q = np.asarray(ratio, dtype=float) / _tau0(theta0, theta2, k)
     return np.arctan((q * np.cos(theta0) - np.cos(theta2)) / (q * np.sin(theta0) + np.sin(theta2)))
+
+
+def tilt_limits(theta0, theta2) -> tuple[float, float]:
+    """Geometric tilt limits of Eq. 6, where ``tau_ID`` reaches 0 or infinity.
+
+    Parameters
+    ----------
+    theta0, theta2 : float
+        Input and output contact angles [rad].
+
+    Returns
+    -------
+    tuple of float
+        ``(gamma_min, gamma_max)`` [rad].
+    """
+    return max(-theta0, theta2 - math.pi / 2), min(theta2, math.pi / 2 - theta0)
+
+
+def usable_tilt_range(d) -> tuple[float, float]:
+    """Usable tilt range: ``tilt_safety_factor`` times the Eq. 6 limits (Fig. 3) [rad]."""
+    lo, hi = tilt_limits(d.theta0, d.theta2)
+    return d.tilt_safety_factor * lo, d.tilt_safety_factor * hi
 
 
 @lru_cache(maxsize=64)

@@ -20,8 +20,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..registry import OPERATING_MODES
 
-__all__ = ["MEMBERS", "OperatingMode", "relative_ratio_coefficients", "member_torques"]
+__all__ = [
+    "MEMBERS",
+    "OperatingMode",
+    "relative_ratio_coefficients",
+    "member_torques",
+    "resolve_mode",
+    "DEFAULT_MODE",
+]
 
 #: The three shafts of the planetary.
 MEMBERS = ("disc0", "disc2", "carrier")
@@ -201,3 +209,39 @@ def member_torques(input_torque, output_torque) -> dict:
 def _divide(num, den):
     with np.errstate(divide="ignore", invalid="ignore"):
         return num / den
+
+
+def resolve_mode(mode: OperatingMode | str | None) -> OperatingMode:
+    """The `OperatingMode` that ``mode`` names.
+
+    Parameters
+    ----------
+    mode : OperatingMode, str or None
+        A mode, a name of `ballcvt.registry.OPERATING_MODES` (e.g. ``"carrier_held"``,
+        ``"disc2_held_carrier_drives"``), or None for the paper's drive.
+
+    Returns
+    -------
+    OperatingMode
+
+    Raises
+    ------
+    InputError
+        For an unknown name.
+    """
+    if mode is None:
+        return DEFAULT_MODE
+    if isinstance(mode, OperatingMode):
+        return mode
+    return OPERATING_MODES.get(mode)
+
+
+#: The paper's drive: carrier held, disc 0 drives, disc 2 driven.
+DEFAULT_MODE = OPERATING_MODES.register(OperatingMode(), name="carrier_held")
+# every other held/driver pair of the three members, named ``<held>_held_<driver>_drives``
+for _held in MEMBERS:
+    for _driver in MEMBERS:
+        if _driver != _held and (_held, _driver) != ("carrier", "disc0"):
+            OPERATING_MODES.register(
+                OperatingMode(_held, _driver), name=f"{_held}_held_{_driver}_drives"
+            )

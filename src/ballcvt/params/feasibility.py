@@ -3,17 +3,30 @@
 Each check derives from the contact layout of docs/model.md §1 (ball centre at radius
 ``r_S (1 + k)``, contact normals at the angles ``theta_0``, ``theta_2``, ``alpha``) and raises
 `InputError` naming the quantity, its value and the allowed range. `check_design` holds for
-both architectures and runs whenever a `Design` is built or loaded; `check_architecture` adds
-what only one idler layout needs and runs whenever a variator or a contact layout is built.
+every architecture and runs whenever a `Design` is built or loaded; what only one idler
+layout needs (Eqs. F4-F6) is checked by its architecture
+(`ballcvt.model.architectures.Architecture.check`) whenever a variator or a contact layout
+is built, and the tilt limits it reads are in `ballcvt.model.kinematics`.
 """
 
 from __future__ import annotations
 
 import math
 
+from .._compat import moved_names
 from ..errors import InputError
 
-__all__ = ["check_design", "check_architecture", "max_balls", "tilt_limits", "usable_tilt_range"]
+__all__ = ["check_design", "max_balls"]
+
+#: Names that moved to the model layer (answered with a warning).
+__getattr__ = moved_names(
+    __name__,
+    {
+        "check_architecture": "ballcvt.model.architectures",
+        "tilt_limits": "ballcvt.model.kinematics",
+        "usable_tilt_range": "ballcvt.model.kinematics",
+    },
+)
 
 
 def max_balls(aspect_ratio: float, roller_radius: float, min_gap: float) -> int:
@@ -43,7 +56,7 @@ def max_balls(aspect_ratio: float, roller_radius: float, min_gap: float) -> int:
 
 
 def check_design(d) -> None:
-    """Refuse a `Design` that cannot be built (both architectures; Eqs. F1-F3).
+    """Refuse a `Design` that cannot be built (every architecture; Eqs. F1-F3).
 
     Parameters
     ----------
@@ -84,72 +97,3 @@ def check_design(d) -> None:
             d.roller_bearing_diameter,
             f"< 2 r_S = {2 * rs:g} m (the axle bearing sits inside the ball)",
         )
-
-
-def check_architecture(d, architecture: str) -> None:
-    """Refuse a design that cannot be built with ``architecture`` (Eqs. F4-F6).
-
-    Parameters
-    ----------
-    d : Design
-        The design.
-    architecture : {"double", "single"}
-        Idler layout.
-
-    Raises
-    ------
-    InputError
-        On the first violated bound.
-    """
-    rs, g = d.roller_radius, d.min_ball_gap
-    if architecture == "double":
-        sep = 2.0 * rs * math.sin(d.alpha)  # Eq. F5
-        if sep < g:
-            need = math.degrees(math.asin(min(1.0, g / (2.0 * rs))))
-            raise InputError(
-                "alpha_deg",
-                d.alpha_deg,
-                f">= {need:.4g} deg for two idlers (their contacts 2 r_S sin(alpha) "
-                f"apart must be at least min_ball_gap = {g:g} m)",
-            )
-        lo, hi = usable_tilt_range(d)
-        # Eq. F4: the idlers' rolling radii rho = -cos(gamma -/+ alpha) keep their sign over
-        # the usable tilt range (the discs' vanish only at the Eq. 6 limits themselves)
-        if lo <= d.alpha - math.pi / 2 or hi >= math.pi / 2 - d.alpha:
-            raise InputError(
-                "alpha_deg",
-                d.alpha_deg,
-                f"< {90 - math.degrees(max(-lo, hi)):.4g} deg (an idler's rolling "
-                "radius would vanish within the usable tilt range)",
-            )
-        idler_radius = rs * (1.0 + d.aspect_ratio - math.cos(d.alpha))
-    else:
-        idler_radius = rs * d.aspect_ratio
-    if d.idler_bearing_diameter >= 2.0 * idler_radius:  # Eq. F6
-        raise InputError(
-            "idler_bearing_diameter",
-            d.idler_bearing_diameter,
-            f"< {2 * idler_radius:.4g} m, the {architecture} idler's diameter at its contacts",
-        )
-
-
-def tilt_limits(theta0, theta2) -> tuple[float, float]:
-    """Geometric tilt limits of Eq. 6, where ``tau_ID`` reaches 0 or infinity.
-
-    Parameters
-    ----------
-    theta0, theta2 : float
-        Input and output contact angles [rad].
-
-    Returns
-    -------
-    tuple of float
-        ``(gamma_min, gamma_max)`` [rad].
-    """
-    return max(-theta0, theta2 - math.pi / 2), min(theta2, math.pi / 2 - theta0)
-
-
-def usable_tilt_range(d) -> tuple[float, float]:
-    """Usable tilt range: ``tilt_safety_factor`` times the Eq. 6 limits (Fig. 3) [rad]."""
-    lo, hi = tilt_limits(d.theta0, d.theta2)
-    return d.tilt_safety_factor * lo, d.tilt_safety_factor * hi

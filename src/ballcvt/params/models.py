@@ -18,6 +18,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from ..errors import InputError
+from ..registry import ARCHITECTURES as _ARCHITECTURES
 from ..units import rad_s_to_rpm
 from .feasibility import check_design
 
@@ -36,8 +37,11 @@ __all__ = [
     "LAW_FIELDS",
 ]
 
-Architecture = Literal["double", "single"]
-ARCHITECTURES: tuple[str, ...] = ("double", "single")
+#: An architecture's name: one of `ARCHITECTURES`.
+Architecture = str
+#: The idler architectures: the live registry of names (`ballcvt.registry.ARCHITECTURES`;
+#: the built-in ``double`` and ``single`` and any registered from a user's code).
+ARCHITECTURES = _ARCHITECTURES
 
 
 def _f(unit: str, description: str, **constraints: Any) -> Any:

@@ -51,19 +51,33 @@ class PowerLosses:
         ``n T_BLS |omega_S|``, shape ``(...)``.
     idler_bearings : ndarray
         ``T_BL,c |Omega_c|`` per contact (0 at the discs), shape ``(..., n_c)``.
-    churning, seals, disc_bearings : ndarray
-        Parasitic losses (docs/model.md §12; zero without ``design.parasitic``), shape
-        ``(...)``: churning of the balls and discs, the two shaft seals, the discs' thrust
-        bearings.
+    by_kind : dict of ndarray
+        Parasitic losses by kind of loss term (docs/model.md §12; zero without
+        ``design.parasitic`` and user loss terms), shape ``(...)`` each: ``churning`` of
+        the balls and discs, the two shaft ``seals``, the discs' thrust bearings
+        (``disc_bearings``), then each user term's kind (`ballcvt.registry.LOSS_TERMS`).
     """
 
     creep: np.ndarray
     spin: np.ndarray
     roller_bearings: np.ndarray
     idler_bearings: np.ndarray
-    churning: np.ndarray
-    seals: np.ndarray
-    disc_bearings: np.ndarray
+    by_kind: dict
+
+    @property
+    def churning(self) -> np.ndarray:
+        """Churning of the balls and discs [W]."""
+        return self.by_kind["churning"]
+
+    @property
+    def seals(self) -> np.ndarray:
+        """The two shaft seals [W]."""
+        return self.by_kind["seals"]
+
+    @property
+    def disc_bearings(self) -> np.ndarray:
+        """The discs' thrust bearing [W]."""
+        return self.by_kind["disc_bearings"]
 
     @property
     def bearing(self) -> np.ndarray:
@@ -72,8 +86,12 @@ class PowerLosses:
 
     @property
     def parasitic(self) -> np.ndarray:
-        """Churning, seal and disc-bearing losses [W]."""
-        return self.churning + self.seals + self.disc_bearings
+        """Churning, seal and disc-bearing losses and those of user terms [W]."""
+        kinds = iter(self.by_kind.values())
+        total = next(kinds)
+        for value in kinds:
+            total = total + value
+        return total
 
     @property
     def total(self) -> np.ndarray:
@@ -82,16 +100,16 @@ class PowerLosses:
 
 
 def loss_breakdown(losses: PowerLosses) -> dict:
-    """Every kind of `LOSS_KINDS` summed over the contacts [W], shape ``(...)`` each."""
+    """Every kind of `LOSS_KINDS` summed over the contacts [W], shape ``(...)`` each,
+    with the kind of each user loss term after ``disc_bearings`` (its power is also in
+    ``parasitic`` and ``total``)."""
     return {
         "creep": losses.creep.sum(axis=-1),
         "spin": losses.spin.sum(axis=-1),
         "roller_bearings": losses.roller_bearings,
         "idler_bearings": losses.idler_bearings.sum(axis=-1),
         "bearing": losses.bearing,
-        "churning": losses.churning,
-        "seals": losses.seals,
-        "disc_bearings": losses.disc_bearings,
+        **losses.by_kind,
         "parasitic": losses.parasitic,
         "total": losses.total,
     }
@@ -128,19 +146,17 @@ def power_losses(problem: EquilibriumProblem, state: EquilibriumState) -> PowerL
     spin = n * np.abs(state.moment * state.spin * state.omega)
     roller = n * state.roller_bearing_torque * np.abs(state.omega_s)
     idler = state.idler_bearing_torque * np.abs(state.omega)
-    # parasitic drags times the actual speeds (docs/model.md §12)
+    # parasitic drags times the actual speeds, by kind (docs/model.md §12)
     shafts = (
         problem.input_drag * state.omega[..., :1] + problem.output_drag * state.omega[..., -1:]
     )
-    churning = shafts[..., 0] + n * problem.ball_drag * np.abs(state.omega_s)
+    parasitic = shafts + n * problem.ball_drag * np.abs(state.omega_s)[..., None]
     return PowerLosses(
         creep=creep,
         spin=spin,
         roller_bearings=roller,
         idler_bearings=idler,
-        churning=churning,
-        seals=shafts[..., 1],
-        disc_bearings=shafts[..., 2],
+        by_kind={kind: parasitic[..., i] for i, kind in enumerate(problem.drag_kinds)},
     )
 
 

@@ -19,6 +19,7 @@ from ..analysis.sweeps.export import write_table
 from ..model.kinematics import ideal_ratio, ratio_range
 from ..model.modes import MEMBERS, OperatingMode
 from ..plotting.figures import line_panels, save
+from ..solvers.planetary import ModePoint
 from ..solvers.planetary_batch import limit_load_batch, solve_mode_batch
 
 __all__ = ["PlanetaryData", "planetary_section", "MODES", "ALL_MODES", "DRIVER_SPEED", "LOADS"]
@@ -76,20 +77,12 @@ def planetary_section(v, clamp_force: float, out, quick: bool = False) -> Planet
     for mode in MODES:
         # the load brakes the driven member: the sign of its speed at zero load
         brake = solve_mode_batch(
-            d, v.fluid, v.architecture, mode, ratios, 0.0, DRIVER_SPEED, clamp_force, v.options
+            v, mode, ModePoint(ratios, 0.0, DRIVER_SPEED, clamp_force), v.options
         ).braking_direction(mode)
         drn, drv = MEMBERS.index(mode.driven), MEMBERS.index(mode.driver)
         for load in LOADS:
             got = solve_mode_batch(
-                d,
-                v.fluid,
-                v.architecture,
-                mode,
-                ratios,
-                brake * load,
-                DRIVER_SPEED,
-                clamp_force,
-                v.options,
+                v, mode, ModePoint(ratios, brake * load, DRIVER_SPEED, clamp_force), v.options
             )
             with np.errstate(divide="ignore", invalid="ignore"):
                 rows.append(
@@ -113,7 +106,7 @@ def planetary_section(v, clamp_force: float, out, quick: bool = False) -> Planet
             "ratio": ratios,
             **{
                 mode.label: limit_load_batch(
-                    d, v.fluid, v.architecture, mode, ratios, DRIVER_SPEED, clamp_force, v.options
+                    v, mode, ModePoint(ratios, 0.0, DRIVER_SPEED, clamp_force), v.options
                 )
                 for mode in MODES
             },

@@ -17,19 +17,45 @@ two speeds whose product it carries).
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
-from ..equilibrium.problem import EquilibriumProblem, build_problem
+from ..equilibrium.problem import CarrierFrame, EquilibriumProblem, OperatingInputs, make_problem
 from ..equilibrium.residual import balancing_output_torque
 from ..errors import ConvergenceError, InputError
-from ..model.modes import OperatingMode
+from ..model.modes import OperatingMode, resolve_mode
+from ..params.drive import Drive
 from .point import PointSolution, SolverOptions, solve_point
 
-__all__ = ["ModeSolution", "solve_mode", "carrier_frame_problem", "RATIO_TOL"]
+__all__ = ["ModePoint", "ModeSolution", "solve_mode", "carrier_frame_problem", "RATIO_TOL"]
 
 #: Relative tolerance of the fixed point on the actual ratio.
 RATIO_TOL = 1e-13
+
+
+@dataclass(frozen=True)
+class ModePoint:
+    """An operating point of the variator in a planetary mode (arrays broadcast together
+    where a batch is solved).
+
+    Attributes
+    ----------
+    ratio : array_like
+        Ideal ratio relative to the carrier ``tau_ID`` [-].
+    load_torque : array_like
+        Load torque of the driven member (the torque it delivers; applied to it: minus
+        that) [N m].
+    driver_speed : array_like
+        Speed of the driver [rad/s] (signed).
+    clamp_force : float
+        ``F_N0`` [N] (constant clamping).
+    """
+
+    ratio: Any
+    load_torque: Any
+    driver_speed: Any
+    clamp_force: float
 
 
 @dataclass(frozen=True)
@@ -61,14 +87,9 @@ class ModeSolution:
 
 
 def solve_mode(
-    design,
-    fluid,
-    architecture: str,
-    mode: OperatingMode,
-    ratio: float,
-    load_torque: float,
-    driver_speed: float,
-    clamp_force: float,
+    drive: Drive,
+    mode: OperatingMode | str,
+    point: ModePoint,
     options: SolverOptions = SolverOptions(),
     max_passes: int = 30,
 ) -> ModeSolution:
@@ -76,21 +97,12 @@ def solve_mode(
 
     Parameters
     ----------
-    design, fluid : Design, Fluid
-        Parameter sets.
-    architecture : {"double", "single"}
-        Idler architecture.
-    mode : OperatingMode
-        Held, driving and driven members.
-    ratio : float
-        Ideal ratio relative to the carrier ``tau_ID`` [-].
-    load_torque : float
-        Load torque of the driven member (the torque it delivers; applied to it: minus
-        that) [N m].
-    driver_speed : float
-        Speed of the driver [rad/s] (signed).
-    clamp_force : float
-        ``F_N0`` [N] (constant clamping).
+    drive : Drive
+        Design, fluid and architecture (or any object with them, e.g. a `Variator`).
+    mode : OperatingMode or str
+        Held, driving and driven members, or a name of `ballcvt.registry.OPERATING_MODES`.
+    point : ModePoint
+        Ratio, load torque, driver speed and clamping force (scalars).
     options : SolverOptions
         Solver options.
     max_passes : int
@@ -107,20 +119,21 @@ def solve_mode(
     ConvergenceError
         If an equilibrium or the fixed point does not converge.
     """
-    tau, x, sol, pb = float(ratio), None, None, None
+    mode = resolve_mode(mode)
+    ratio, driver_speed = float(point.ratio), float(point.driver_speed)
+    tau, x, sol, pb = ratio, None, None, None
+    fixed = replace(point, load_torque=float(point.load_torque))
     for passes in range(1, max_passes + 1):  # noqa: B007 (the count is returned)
-        speeds = mode.speeds(float(driver_speed), tau)
+        speeds = mode.speeds(driver_speed, tau)
         if not abs(float(speeds["disc0"] - speeds["carrier"])) > 0.0:
             raise InputError(
                 "driver_speed",
-                driver_speed,
+                point.driver_speed,
                 f"!= 0: with {mode.label} at "
                 f"ratio {ratio:g} the discs would not turn relative to the "
                 "carrier",
             )
-        pb, sign = carrier_frame_problem(
-            design, fluid, architecture, mode, ratio, float(load_torque), speeds, clamp_force
-        )
+        pb, sign = carrier_frame_problem(drive, mode, fixed, speeds)
         sign = float(sign)
         sol = solve_point(pb, options, x)
         if not sol.converged:
@@ -135,46 +148,46 @@ def solve_mode(
             f"{mode.label}: the speeds did not settle in {max_passes} "
             f"passes (actual ratio {tau:.15g})"
         )
-    speeds = {m: float(v) for m, v in mode.speeds(float(driver_speed), new).items()}
+    speeds = {m: float(v) for m, v in mode.speeds(driver_speed, new).items()}
     t2 = balancing_output_torque(pb, sol.state)
     standard = replace(pb, output_torque=np.asarray(t2), torque_weights=(0.0, 1.0))
     return ModeSolution(standard, sol, sign, speeds, passes)
 
 
-def carrier_frame_problem(
-    design, fluid, architecture: str, mode: OperatingMode, ratio, load_torque, speeds, clamp_force
-):
+def carrier_frame_problem(drive: Drive, mode: OperatingMode, point: ModePoint, speeds):
     """The point(s) in the carrier frame, mirrored where the relative input speed is
     negative (module docstring).
 
     Parameters
     ----------
+    drive : Drive
+        Design, fluid and architecture.
+    mode : OperatingMode
+        Held, driving and driven members.
+    point : ModePoint
+        Ratio, load torque and clamping force (arrays broadcast; the driver speed is
+        read from ``speeds``).
     speeds : dict of array_like
         Member speeds of `OperatingMode.speeds` [rad/s]; the relative input speed
         ``omega_0 - omega_c`` must not be zero.
-    ratio, load_torque, clamp_force
-        As in `solve_mode` (arrays broadcast).
 
     Returns
     -------
     (EquilibriumProblem, ndarray)
         The problem, and ``sign``: +1, or -1 where mirrored.
     """
-    a, b, target = mode.torque_condition(load_torque)
+    a, b, target = mode.torque_condition(point.load_torque)
     relative = np.asarray(speeds["disc0"] - speeds["carrier"], dtype=float)
     sign = np.where(relative > 0, 1.0, -1.0)
-    pb = build_problem(
-        design,
-        fluid,
-        architecture,
-        ratio,
-        sign * target,
-        clamp_force,
-        np.abs(relative),
-        carrier_speed=sign * speeds["carrier"],
-        torque_weights=(a, b),
-        centrifugal=mode.centrifugal,
-        gyroscopic=mode.gyroscopic,
-        signed_torque=True,
+    pb = make_problem(
+        drive,
+        OperatingInputs(point.ratio, sign * target, point.clamp_force, np.abs(relative)),
+        CarrierFrame(
+            carrier_speed=sign * speeds["carrier"],
+            torque_weights=(a, b),
+            centrifugal=mode.centrifugal,
+            gyroscopic=mode.gyroscopic,
+            signed_torque=True,
+        ),
     )
     return pb, sign

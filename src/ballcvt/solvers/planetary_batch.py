@@ -7,19 +7,21 @@ per mode by bisection on the load.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..equilibrium.problem import build_problem, max_carrier_speed
+from ..equilibrium.problem import OperatingInputs, make_problem
 from ..equilibrium.residual import balancing_output_torque
 from ..model.architectures import contact_layout
-from ..model.modes import MEMBERS, OperatingMode, member_torques
+from ..model.inertia import max_carrier_speed
+from ..model.modes import MEMBERS, OperatingMode, member_torques, resolve_mode
+from ..params.drive import Drive
 from ..performance.efficiency import power_losses
 from .limit import traction_ceiling_torque
 from .newton import initial_creep, solve_batch
 from .options import SolverOptions
-from .planetary import RATIO_TOL, carrier_frame_problem
+from .planetary import RATIO_TOL, ModePoint, carrier_frame_problem
 
 __all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch", "MODE_STATUS"]
 
@@ -71,33 +73,35 @@ class ModeBatch:
 
 
 def solve_mode_batch(
-    design,
-    fluid,
-    architecture: str,
-    mode: OperatingMode,
-    ratio,
-    load_torque,
-    driver_speed,
-    clamp_force: float,
+    drive: Drive,
+    mode: OperatingMode | str,
+    point: ModePoint,
     options: SolverOptions = SolverOptions(),
     max_passes: int = 30,
 ) -> ModeBatch:
     """`solve_mode` on a batch of points, batched through the fast solver.
 
-    ``ratio``, ``load_torque`` and ``driver_speed`` broadcast to ``(n,)``. Every pass of the
+    ``point.ratio``, ``point.load_torque`` and ``point.driver_speed`` broadcast to
+    ``(n,)``; ``mode`` is an `OperatingMode` or a name of
+    `ballcvt.registry.OPERATING_MODES`. Every pass of the
     fixed point on the actual ratio is one `solve_batch` of the points not yet settled;
     a point's figures are taken from the pass in which it settles. Points whose speeds are
     out of range are flagged (status 3), not raised; points whose creeps exceed
     ``design.creep_limit`` are flagged 1.
     """
+    mode = resolve_mode(mode)
+    design, clamp_force = drive.design, point.clamp_force
     ratio, load, w = (
         np.ravel(v)
         for v in np.broadcast_arrays(
-            *(np.asarray(v, dtype=float) for v in (ratio, load_torque, driver_speed))
+            *(
+                np.asarray(v, dtype=float)
+                for v in (point.ratio, point.load_torque, point.driver_speed)
+            )
         )
     )
     n = ratio.size
-    layout = contact_layout(design, architecture)
+    layout = contact_layout(design, drive.architecture)
     w_max = float(max_carrier_speed(design, layout, clamp_force)) if mode.centrifugal else np.inf
     status = np.full(n, 2)
     tau = ratio.copy()
@@ -119,14 +123,10 @@ def solve_mode_batch(
         if todo.size == 0:
             break
         pb, sign = carrier_frame_problem(
-            design,
-            fluid,
-            architecture,
+            drive,
             mode,
-            ratio[todo],
-            load[todo],
+            ModePoint(ratio[todo], load[todo], w[todo], clamp_force),
             {m: v[todo] for m, v in sp.items()},
-            clamp_force,
         )
         sol = solve_batch(pb, options, np.where(np.isnan(x[todo]), initial_creep(pb), x[todo]))
         st = sol.state
@@ -159,18 +159,17 @@ def solve_mode_batch(
 
 
 def limit_load_batch(
-    design,
-    fluid,
-    architecture: str,
-    mode: OperatingMode,
-    ratio,
-    driver_speed,
-    clamp_force: float,
+    drive: Drive,
+    mode: OperatingMode | str,
+    point: ModePoint,
     options: SolverOptions = SolverOptions(),
     rtol: float = 1e-3,
     max_steps: int = 40,
 ) -> np.ndarray:
     """Largest load torque of the driven member with every ``|C| <= creep_limit``.
+
+    ``point.ratio`` and ``point.driver_speed`` are the batch (``point.load_torque`` is
+    not read: the load is what is searched).
 
     The load brakes the driven member: its sign is that of the driven speed at zero load
     (positive at geared neutral). Bracketed by doubling from the carrier-frame traction
@@ -182,24 +181,19 @@ def limit_load_batch(
         ``|L|`` at the limit [N m], ``(n,)``; NaN where even zero load is not admissible or
         the speeds are out of range.
     """
-    ratio = np.ravel(np.asarray(ratio, dtype=float))
+    mode = resolve_mode(mode)
+    ratio = np.ravel(np.asarray(point.ratio, dtype=float))
     n = ratio.size
+    at = replace(point, ratio=ratio)
 
     def admissible(load):
-        return (
-            solve_mode_batch(
-                design, fluid, architecture, mode, ratio, load, driver_speed, clamp_force, options
-            ).status
-            == 0
-        )
+        return solve_mode_batch(drive, mode, replace(at, load_torque=load), options).status == 0
 
-    zero = solve_mode_batch(
-        design, fluid, architecture, mode, ratio, 0.0, driver_speed, clamp_force, options
-    )
+    zero = solve_mode_batch(drive, mode, replace(at, load_torque=0.0), options)
     direction = zero.braking_direction(mode)
     ok0 = zero.status == 0
     hi = traction_ceiling_torque(
-        build_problem(design, fluid, architecture, ratio, 0.0, clamp_force, 1.0)
+        make_problem(drive, OperatingInputs(ratio, 0.0, point.clamp_force, 1.0))
     )
     lo = np.zeros(n)
     for _ in range(12):  # double until beyond the capacity

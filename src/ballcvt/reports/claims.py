@@ -10,8 +10,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..solvers.limit import saturated_traction
-
 __all__ = ["Claim", "paper_claims"]
 
 
@@ -297,10 +295,3 @@ def paper_claims(data, fig11_peak) -> list[Claim]:
         )
     )
     return rows
-
-
-def ceiling_numbers(problem) -> dict:
-    """Traction ceiling of the output contact and the torque its tangential forces carry."""
-    mu_max = float(np.asarray(saturated_traction(problem))[..., -1])
-    force = problem.design.n_rollers * problem.load[..., -1] * problem.radius[-1] * mu_max
-    return {"mu_max": mu_max, "force_bound": float(force)}

@@ -19,10 +19,10 @@ from typing import Any
 
 import numpy as np
 
-from ...analysis.sweeps.curves import limit_search_curves
+from ...analysis import limit_curves
 from ...api import Variator
 from ...errors import BallCVTError
-from ...params.models import Design, Fluid
+from ...params import Design, Fluid
 
 __all__ = ["make_document", "serve", "SLIDERS", "MAP_GRID"]
 
@@ -130,16 +130,11 @@ class _State:
         try:
             # one limit search for the whole map, handed to the sweep; the torque axis
             # reaches past the limits at both ends and in the middle of the ratio range
-            _, search = limit_search_curves(
-                var.design,
-                var.fluid,
-                var.architecture,
+            search = limit_curves(
+                var,
                 ratio,
-                np.full(n, float(v["input_speed_rpm"]) * math.pi / 30.0),
-                np.full(n, kw["clamp_force"]),
-                None,
-                var.options,
-                var.design.creep_limit,
+                clamp_force=kw["clamp_force"],
+                input_speed=float(v["input_speed_rpm"]) * math.pi / 30.0,
             )
             ends = [0, n - 1, n // 2]
             for i in ends:

@@ -30,7 +30,7 @@ from ..files import check_output_dir
 from .claims import paper_claims
 from .figures import FIGURES, FigureData
 from .planetary import planetary_section
-from .report import write_report
+from .report import Findings, RunInfo, write_report
 
 __all__ = ["reproduce", "Reproduction", "GRIDS"]
 
@@ -221,13 +221,8 @@ def reproduce(
     run_time = time.perf_counter() - start
     files += write_report(
         out,
-        data,
-        claims,
-        ceiling,
-        peak,
-        quick=quick,
-        run_time=run_time,
-        inputs=_inputs(design, fluid, quick, workers),
+        Findings(data, claims, ceiling, peak),
+        RunInfo(quick, run_time, _inputs(design, fluid, quick, workers)),
         planetary=planet,
     )
     return Reproduction(out=out, files=files, claims=claims, run_time=run_time)

@@ -156,6 +156,13 @@ def _p_max(arch: str, contact: str) -> Callable[[Runs], float]:
     return get
 
 
+def _limit(ratio: float) -> Callable[[Runs], float]:
+    def get(r: Runs) -> float:
+        return r.lim[ratio]
+
+    return get
+
+
 def _flat(r: Runs) -> tuple[bool, str]:
     spreads = []
     tc, lim = r.tc, r.lim
@@ -272,7 +279,7 @@ CLAIMS: tuple[Number | Check, ...] = (
             f"limiting T_2 at tau_ID = {ratio:g} (|C| <= 0.1)",
             paper,
             Tolerance(0.10, " N m", "{:.1f}", rel=True),
-            lambda r, ratio=ratio: r.lim[ratio],
+            _limit(ratio),
         )
         for ratio, paper in ((0.5, 120.0), (1.0, 120.0), (2.0, 60.0))
     ),

@@ -295,11 +295,11 @@ def make_document(doc, design: Design, fluid: Fluid, architecture: str = "double
     sliders = _sliders(state)
     view = _View()
 
-    def on_point(attr, old, new, name) -> None:
+    def on_point(name: str, new) -> None:
         state.values[name] = new
         view.show_point(state.point())
 
-    def on_map(attr, old, new, name) -> None:
+    def on_map(name: str, new) -> None:
         state.values[name] = new
         if name in DESIGN_SLIDERS:
             state.rebuild()
@@ -308,10 +308,10 @@ def make_document(doc, design: Design, fluid: Fluid, architecture: str = "double
 
     for name, s in sliders.items():
         if name not in DESIGN_SLIDERS:  # the point follows the slider as it moves
-            s.on_change("value", lambda a, o, n, name=name: on_point(a, o, n, name))
+            s.on_change("value", lambda _a, _o, new, name=name: on_point(name, new))
         if name not in ("ratio", "output_torque"):
             # a new design or map on release (value_throttled): half a second per change
-            s.on_change("value_throttled", lambda a, o, n, name=name: on_map(a, o, n, name))
+            s.on_change("value_throttled", lambda _a, _o, new, name=name: on_map(name, new))
     view.show_point(state.point())
     view.show_map(state.map())
     title = Div(

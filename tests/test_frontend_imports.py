@@ -126,7 +126,8 @@ def test_the_checker_catches_a_private_import(line):
 @pytest.mark.parametrize(
     "line",
     [
-        "from ..analysis.sweeps import write_table",
+        "from ..analysis import write_table",
+        "from ..analysis.sweeps import to_netcdf",
         "from ..analysis import limit_curves",
         "from ..api import Variator",
         "from ..params import Design",

@@ -5,6 +5,7 @@ never the public API object."""
 from .capacity import limit_curves, traction_ceiling
 from .kinematics import kinematic_spin, ratio_tilt_curve
 from .planetary import OperatingMode, mode_capacity, mode_curves, mode_kinematics
+from .sweeps.export import write_table
 
 __all__ = [
     "traction_ceiling",
@@ -15,4 +16,5 @@ __all__ = [
     "mode_kinematics",
     "mode_curves",
     "mode_capacity",
+    "write_table",
 ]

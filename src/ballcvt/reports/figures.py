@@ -15,8 +15,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ..analysis import kinematic_spin, ratio_tilt_curve
-from ..analysis.sweeps import write_table
+from ..analysis import kinematic_spin, ratio_tilt_curve, write_table
 from ..params import Design
 from ..plotting import LABELS, efficiency_map, line_panels, ratio_vs_tilt, save
 

@@ -15,8 +15,13 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..analysis import OperatingMode, mode_capacity, mode_curves, mode_kinematics
-from ..analysis.sweeps import write_table
+from ..analysis import (
+    OperatingMode,
+    mode_capacity,
+    mode_curves,
+    mode_kinematics,
+    write_table,
+)
 from ..plotting import line_panels, save
 
 __all__ = ["PlanetaryData", "planetary_section", "MODES", "ALL_MODES", "DRIVER_SPEED", "LOADS"]

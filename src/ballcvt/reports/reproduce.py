@@ -23,8 +23,8 @@ from scipy.optimize import minimize_scalar
 from tqdm.auto import tqdm
 
 from .._version import __version__
-from ..analysis import traction_ceiling
-from ..analysis.sweeps import to_netcdf, write_table
+from ..analysis import traction_ceiling, write_table
+from ..analysis.sweeps import to_netcdf
 from ..api import Variator
 from ..files import check_output_dir
 from .claims import paper_claims

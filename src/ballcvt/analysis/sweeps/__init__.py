@@ -1,7 +1,7 @@
 """Layer 7: sweeps over operating conditions as `xarray.Dataset` objects, and their export."""
 
 from .curves import limit_torques, solve_curves
-from .export import load_dataset, parameters, to_csv, to_frame, to_netcdf, write_table
+from .export import load_dataset, parameters, to_csv, to_frame, to_netcdf
 from .grid import STATUS, sweep
 from .variables import LOSS_KINDS, VARIABLES
 
@@ -14,7 +14,6 @@ __all__ = [
     "LOSS_KINDS",
     "to_netcdf",
     "to_csv",
-    "write_table",
     "to_frame",
     "load_dataset",
     "parameters",

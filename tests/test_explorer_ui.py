@@ -6,6 +6,7 @@ Playwright's Python API pointed at that browser: nothing is downloaded. Without 
 Playwright the test is skipped, and says why.
 """
 
+import html
 import json
 import shutil
 import subprocess
@@ -91,3 +92,40 @@ def test_slider_moves_the_efficiency_to_the_solvers_value(server, browser):
         v.solve(ratio=1.1, output_torque=40.0, clamp_force=2000.0, input_speed_rpm=2000).eta,
         rel=1e-12)
     page.close()
+
+
+def _document():
+    from bokeh.document import Document
+
+    from ballcvt.interfaces.ui import make_document
+
+    doc = Document()
+    v = Variator()
+    make_document(doc, v.design, v.fluid)
+    return doc
+
+
+def _div(doc, css):
+    return next(m for m in doc.models if css in (getattr(m, "css_classes", None) or []))
+
+
+def test_document_without_a_browser_shows_the_solvers_point_and_map():
+    """The page as built in Python (no browser needed): the point shown is
+    `Variator.solve`'s, the map holds the grid, and a slider moved re-solves the point."""
+    pytest.importorskip("bokeh")
+    from ballcvt.interfaces.ui import MAP_GRID
+
+    doc = _document()
+    text = _div(doc, "bcvt-state").text
+    state = json.loads(html.unescape(text.split(">", 1)[1].rsplit("<", 1)[0]))
+    expected = Variator().solve(ratio=1.0, output_torque=40.0, clamp_force=2000.0,
+                                input_speed_rpm=2000.0)
+    assert state["eta"] == pytest.approx(expected.eta, rel=1e-12)
+    image = next(m for m in doc.models if "image" in getattr(m, "data", {}))
+    assert image.data["image"][0].shape == (MAP_GRID[1], MAP_GRID[0])
+    slider = next(m for m in doc.models if getattr(m, "name", None) == "ratio")
+    slider.value = 1.2
+    eta = float(_div(doc, "bcvt-eta").text.split(">")[1].split("<")[0])
+    assert eta == pytest.approx(Variator().solve(ratio=1.2, output_torque=40.0,
+                                                 clamp_force=2000.0,
+                                                 input_speed_rpm=2000.0).eta, abs=5e-5)

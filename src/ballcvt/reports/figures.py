@@ -15,10 +15,8 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ..analysis.sweeps.export import write_table
-from ..model.architectures import contact_layout
-from ..model.kinematics import body_speeds, ideal_ratio, spin, tilt_from_ratio, tilt_limits
-from ..params.models import Design
+from ..analysis import kinematic_spin, ratio_tilt_curve, write_table
+from ..params import Design
 from ..plotting import LABELS, efficiency_map, line_panels, ratio_vs_tilt, save
 
 __all__ = ["FigureData", "FIGURES"]
@@ -63,10 +61,7 @@ def fig3(data: FigureData, out: Path):
     safety = data.design.tilt_safety_factor
     for theta in (30.0, 40.0, 45.0, 50.0, 60.0):
         th = np.radians(theta)
-        lo, hi = tilt_limits(th, th)
-        tilt = np.linspace(lo, hi, 401)[1:-1]
-        ratio = ideal_ratio(tilt, th, th, 1.0)
-        usable = (tilt >= safety * lo) & (tilt <= safety * hi)
+        tilt, ratio, usable = ratio_tilt_curve(th, th, 1.0, points=401, safety_factor=safety)
         curves.append((np.degrees(tilt), ratio, f"theta = {theta:g} deg", usable))
         rows.append(
             pd.DataFrame(
@@ -88,24 +83,17 @@ def fig3(data: FigureData, out: Path):
 
 def fig5(data: FigureData, out: Path):
     """Fig. 5 a-d: kinematic spin coefficients (zero creep) vs ratio, double idler."""
-    d = data.design
-    lay = contact_layout(d, "double")
-    lo, hi = 0.5, 2.0
-    ratio = np.geomspace(lo, hi, 121)
-    tilt = tilt_from_ratio(ratio, d.theta0, d.theta2, d.aspect_ratio)
-    ws, w = body_speeds(lay, tilt, np.zeros((ratio.size, lay.n_contacts)), 1.0)
-    sg = spin(lay, tilt, ws, w)
+    ratio = np.geomspace(0.5, 2.0, 121)
+    sg = kinematic_spin(data.design, "double", ratio)
     panels: list[dict[str, Any]] = [
         {
             "title": f"({'abcd'[i]}) {name} contact",
             "ylabel": LABELS["spin"],
-            "lines": [(ratio, sg[:, i], "", {})],
+            "lines": [(ratio, s, "", {})],
         }
-        for i, name in enumerate(lay.names)
+        for i, (name, s) in enumerate(sg.items())
     ]
-    frame = pd.DataFrame(
-        {"ratio": ratio, **{f"spin_{n}": sg[:, i] for i, n in enumerate(lay.names)}}
-    )
+    frame = pd.DataFrame({"ratio": ratio, **{f"spin_{n}": s for n, s in sg.items()}})
     write_table(frame, out / "fig05.csv", {"ratio": "1"})
     fig = line_panels(
         panels, LABELS["ratio"], "Fig. 5: spin coefficients (zero creep), double idler", ncols=4

@@ -15,12 +15,14 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..analysis.sweeps.export import write_table
-from ..model.kinematics import ideal_ratio, ratio_range
-from ..model.modes import MEMBERS, OperatingMode
-from ..plotting.figures import line_panels, save
-from ..solvers.planetary import ModePoint
-from ..solvers.planetary_batch import limit_load_batch, solve_mode_batch
+from ..analysis import (
+    OperatingMode,
+    mode_capacity,
+    mode_curves,
+    mode_kinematics,
+    write_table,
+)
+from ..plotting import line_panels, save
 
 __all__ = ["PlanetaryData", "planetary_section", "MODES", "ALL_MODES", "DRIVER_SPEED", "LOADS"]
 
@@ -69,48 +71,15 @@ def planetary_section(v, clamp_force: float, out, quick: bool = False) -> Planet
     quick : bool
         Coarse grids.
     """
-    d = v.design
-    lo, hi = ratio_range(d)
+    lo, hi = v.ratio_range
     ratios = np.linspace(max(lo, 0.5), min(hi, 1.9), 8 if quick else 29)
-    kin = _kinematics(d)
-    rows = []
-    for mode in MODES:
-        # the load brakes the driven member: the sign of its speed at zero load
-        brake = solve_mode_batch(
-            v, mode, ModePoint(ratios, 0.0, DRIVER_SPEED, clamp_force), v.options
-        ).braking_direction(mode)
-        drn, drv = MEMBERS.index(mode.driven), MEMBERS.index(mode.driver)
-        for load in LOADS:
-            got = solve_mode_batch(
-                v, mode, ModePoint(ratios, brake * load, DRIVER_SPEED, clamp_force), v.options
-            )
-            with np.errstate(divide="ignore", invalid="ignore"):
-                rows.append(
-                    pd.DataFrame(
-                        {
-                            "mode": mode.label,
-                            "load_torque": load,
-                            "ratio": ratios,
-                            "status": got.status,
-                            "overall_ratio": got.speeds[drn] / got.speeds[drv],
-                            "eta": got.eta,
-                            "circulation": got.circulating_power / got.input_power,
-                            "carrier_speed": got.speeds[MEMBERS.index("carrier")],
-                            "max_creep": got.max_creep,
-                        }
-                    )
-                )
-    curves = pd.concat(rows, ignore_index=True)
+    kin = mode_kinematics(v.design, ALL_MODES, np.linspace(-1.0, 1.0, 201))
+    at = {"driver_speed": DRIVER_SPEED, "clamp_force": clamp_force}
+    curves = pd.concat(
+        [mode_curves(v, mode, ratios, LOADS, **at) for mode in MODES], ignore_index=True
+    )
     capacity = pd.DataFrame(
-        {
-            "ratio": ratios,
-            **{
-                mode.label: limit_load_batch(
-                    v, mode, ModePoint(ratios, 0.0, DRIVER_SPEED, clamp_force), v.options
-                )
-                for mode in MODES
-            },
-        }
+        {"ratio": ratios, **{mode.label: mode_capacity(v, mode, ratios, **at) for mode in MODES}}
     )
     effects = _effects(v, clamp_force)
     files = _figures(kin, curves, capacity, out)
@@ -132,20 +101,6 @@ def planetary_section(v, clamp_force: float, out, quick: bool = False) -> Planet
     ):
         files.append(write_table(frame, out / f"{name}.csv", units))
     return PlanetaryData(kin, curves, capacity, effects, files)
-
-
-def _kinematics(design) -> pd.DataFrame:
-    """Ideal overall ratio (no creep) against the tilt in every mode."""
-    lo, hi = ratio_range(design)
-    tilts = np.linspace(-1.0, 1.0, 201)
-    tau = ideal_ratio(tilts, design.theta0, design.theta2, design.aspect_ratio)
-    keep = (tau >= lo) & (tau <= hi)
-    tilts, tau = tilts[keep], tau[keep]
-    out = {"tilt_deg": np.degrees(tilts), "ratio": tau}
-    for mode in ALL_MODES:
-        sp = mode.speeds(1.0, tau, check=False)
-        out[mode.label] = sp[mode.driven]
-    return pd.DataFrame(out)
 
 
 def _effects(v, clamp_force) -> pd.DataFrame:

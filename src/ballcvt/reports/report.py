@@ -8,14 +8,16 @@ from __future__ import annotations
 
 import base64
 import html
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from ..files import atomic_write_text
 from .figures import FIGURES
 
-__all__ = ["write_report"]
+__all__ = ["write_report", "write_blocks", "Findings", "RunInfo"]
 
 
 def _interp_creep(data, ratio, torque):
@@ -26,8 +28,76 @@ def _interp_creep(data, ratio, torque):
     return float(np.interp(torque, ds.output_torque.values[ok], creep[ok]))
 
 
-def _blocks(data, claims, ceiling, peak, quick, run_time, inputs):
-    b = [("h1", "ballcvt reproduction of Tomaselli et al. (2020), NuVinci drive")]
+@dataclass(frozen=True)
+class Findings:
+    """What the reproduction computed, for the report.
+
+    Attributes
+    ----------
+    data : FigureData
+        The sweeps.
+    claims : list of Claim
+        The claim table.
+    ceiling : dict
+        `ballcvt.analysis.traction_ceiling` of the double idler at tau_ID = 1.
+    peak : tuple of float
+        ``(ratio, eta)`` of the refined efficiency maximum at T_2 = 40 N m.
+    """
+
+    data: Any
+    claims: list
+    ceiling: dict
+    peak: tuple
+
+
+@dataclass(frozen=True)
+class RunInfo:
+    """How the reproduction ran: coarse grids or not, its run time [s], its inputs."""
+
+    quick: bool
+    run_time: float
+    inputs: dict
+
+
+def _blocks(f: Findings, run: RunInfo):
+    b = _intro(run)
+    n_agree = sum(c.verdict == "agrees" for c in f.claims)
+    b.append(("h2", f"The paper's claims ({n_agree} of {len(f.claims)} agree)"))
+    b.append(
+        (
+            "table",
+            ["figure", "claim", "paper", "ballcvt", "difference", "verdict", "criterion"],
+            [
+                [c.figure, c.claim, c.paper, c.ours, c.difference, f"**{c.verdict}**", c.criterion]
+                for c in f.claims
+            ],
+        )
+    )
+    b.append(("h2", "Where the model and the paper differ, and why"))
+    tc = f.data.torque_curves.sel(architecture="double").squeeze(drop=True)
+    lim = {r: float(tc.limit_torque.sel(ratio=r)) for r in (0.5, 1.0, 2.0)}
+    b.append(("p", _limit_text(f, lim)))
+    b.append(("p", _pressure_text(f.data)))
+    b += _other_differences(f, lim)
+    b.append(
+        (
+            "p",
+            (
+                f"**Efficiency maximum.** The maximum at T_2 = 40 N m was refined by a bounded "
+                f"Brent search over the ratio. It is eta = {f.peak[1]:.4f} at tau_ID = "
+                f"{f.peak[0]:.3f}."
+            ),
+        )
+    )
+    b.append(("h2", "Figures"))
+    for name, (_, caption) in FIGURES.items():
+        b.append(("figure", f"{name}.png", caption))
+    return b
+
+
+def _intro(run: RunInfo) -> list[tuple]:
+    """Title, source, quick-mode note and the inputs table."""
+    b: list[tuple] = [("h1", "ballcvt reproduction of Tomaselli et al. (2020), NuVinci drive")]
     b.append(
         (
             "p",
@@ -38,7 +108,7 @@ def _blocks(data, claims, ceiling, peak, quick, run_time, inputs):
             "sweeps are in `data/*.nc`.",
         )
     )
-    if quick:
+    if run.quick:
         b.append(
             (
                 "p",
@@ -51,73 +121,62 @@ def _blocks(data, claims, ceiling, peak, quick, run_time, inputs):
         (
             "table",
             ["input", "value"],
-            [[k, v] for k, v in inputs.items()] + [["run time", f"{run_time:.1f} s"]],
+            [[k, v] for k, v in run.inputs.items()] + [["run time", f"{run.run_time:.1f} s"]],
         )
     )
-    n_agree = sum(c.verdict == "agrees" for c in claims)
-    b.append(("h2", f"The paper's claims ({n_agree} of {len(claims)} agree)"))
-    b.append(
-        (
-            "table",
-            ["figure", "claim", "paper", "ballcvt", "difference", "verdict", "criterion"],
-            [
-                [c.figure, c.claim, c.paper, c.ours, c.difference, f"**{c.verdict}**", c.criterion]
-                for c in claims
-            ],
-        )
-    )
-    b.append(("h2", "Where the model and the paper differ, and why"))
-    tc = data.torque_curves.sel(architecture="double").squeeze(drop=True)
-    lim = {r: float(tc.limit_torque.sel(ratio=r)) for r in (0.5, 1.0, 2.0)}
-    c1 = ceiling  # output contact, tau_ID = 1
+    return b
+
+
+def _limit_text(f: Findings, lim: dict) -> str:
+    """Why our limiting torques exceed the paper's (the traction ceiling)."""
+    c1 = f.ceiling  # output contact, tau_ID = 1
     mu_out = c1["mu_max"]
-    creep_at_paper = _interp_creep(data, 1.0, 120.0)
-    b.append(
-        (
-            "p",
-            (
-                f"**Limiting torque.** We find {lim[0.5]:.0f} / {lim[1.0]:.0f} / {lim[2.0]:.0f} N m at "
-                f"tau_ID = 0.5 / 1 / 2 against the paper's ~120 / ~120 / ~60 N m, about 30 % more; the "
-                f"ratio T_lim(1)/T_lim(2) = {lim[1.0] / lim[2.0]:.2f} agrees with the paper's ~2. The "
-                f"shear law saturates: no contact can transmit more than mu_max = a + tau_L0 A / F_N "
-                f"(A = pi a_x a_y). At the output contact, at F_N0 = 2 kN, this traction ceiling is "
-                f"mu_max = {mu_out:.3f}. The n balls' saturated tangential forces alone would carry "
-                f"n F_N r_2 mu_max = {c1['force_bound']:.0f} N m at tau_ID = 1. With every "
-                f"|C| <= 0.1 we reach {lim[1.0] / c1['force_bound'] * 100:.0f} % of that. At the "
-                f"paper's 120 N m our largest creep is only {creep_at_paper:.3f}, so the "
-                f"paper's limit cannot come from the same shear law with the Table I values and a "
-                f"creep threshold of 0.1. A lower tau_L0 or a, a different contact size (the paper "
-                f"does not give the groove radii, and we calibrate them to its 1.63 GPa), or a "
-                f"stricter creep criterion would each lower it. As our model notes require "
-                f"(docs/model.md §8), we did not retune the Table I values to hide the difference."
-            ),
-        )
+    creep_at_paper = _interp_creep(f.data, 1.0, 120.0)
+    return (
+        f"**Limiting torque.** We find {lim[0.5]:.0f} / {lim[1.0]:.0f} / {lim[2.0]:.0f} N m at "
+        f"tau_ID = 0.5 / 1 / 2 against the paper's ~120 / ~120 / ~60 N m, about 30 % more; the "
+        f"ratio T_lim(1)/T_lim(2) = {lim[1.0] / lim[2.0]:.2f} agrees with the paper's ~2. The "
+        f"shear law saturates: no contact can transmit more than mu_max = a + tau_L0 A / F_N "
+        f"(A = pi a_x a_y). At the output contact, at F_N0 = 2 kN, this traction ceiling is "
+        f"mu_max = {mu_out:.3f}. The n balls' saturated tangential forces alone would carry "
+        f"n F_N r_2 mu_max = {c1['force_bound']:.0f} N m at tau_ID = 1. With every "
+        f"|C| <= 0.1 we reach {lim[1.0] / c1['force_bound'] * 100:.0f} % of that. At the "
+        f"paper's 120 N m our largest creep is only {creep_at_paper:.3f}, so the "
+        f"paper's limit cannot come from the same shear law with the Table I values and a "
+        f"creep threshold of 0.1. A lower tau_L0 or a, a different contact size (the paper "
+        f"does not give the groove radii, and we calibrate them to its 1.63 GPa), or a "
+        f"stricter creep criterion would each lower it. As our model notes require "
+        f"(docs/model.md §8), we did not retune the Table I values to hide the difference."
     )
+
+
+def _pressure_text(data) -> str:
+    """The single idler's peak pressure against the paper's 2.61 GPa."""
     rc = data.ratio_curves
     p_single = float(rc.p_max.sel(architecture="single", contact="idler").max()) / 1e9
-    b.append(
-        (
-            "p",
-            (
-                f"**Single-idler pressure.** The paper states 2.61 GPa at the roller-idler contact of "
-                f"the single idler. It does not give that idler's geometry. We assume a straight "
-                f"cylinder (docs/model.md §1) and get {p_single:.2f} GPa. By Hertz, p_max scales as "
-                f"(F_N (sum of curvatures)^2)^(1/3) at fixed ellipticity. 2.61 GPa would therefore "
-                f"need (2.61 / {p_single:.2f})^3 = {(2.61 / p_single) ** 3:.2f} times our "
-                f"F_N (sum K)^2: for example a crowned idler with "
-                f"{((2.61 / p_single) ** 1.5 - 1) * 100:.0f} % more curvature sum, or a higher load."
-            ),
-        )
+    return (
+        f"**Single-idler pressure.** The paper states 2.61 GPa at the roller-idler contact of "
+        f"the single idler. It does not give that idler's geometry. We assume a straight "
+        f"cylinder (docs/model.md §1) and get {p_single:.2f} GPa. By Hertz, p_max scales as "
+        f"(F_N (sum of curvatures)^2)^(1/3) at fixed ellipticity. 2.61 GPa would therefore "
+        f"need (2.61 / {p_single:.2f})^3 = {(2.61 / p_single) ** 3:.2f} times our "
+        f"F_N (sum K)^2: for example a crowned idler with "
+        f"{((2.61 / p_single) ** 1.5 - 1) * 100:.0f} % more curvature sum, or a higher load."
     )
+
+
+def _other_differences(f: Findings, lim: dict) -> list[tuple]:
+    """A paragraph per other claim that differs, with its cause where known."""
     others = [
         c
-        for c in claims
+        for c in f.claims
         if c.verdict == "differs"
         and "limiting" not in c.claim
         and "p_max" not in c.claim
         and "T_lim" not in c.claim
     ]
-    known = _explanations(data, lim)
+    known = _explanations(f.data, lim)
+    b = []
     for c in others:
         why = next((text for key, text in known.items() if key in c.claim), None)
         b.append(
@@ -133,18 +192,6 @@ def _blocks(data, claims, ceiling, peak, quick, run_time, inputs):
         )
     if not others:
         b.append(("p", "Every other claim agrees within its stated criterion."))
-    b.append(
-        (
-            "p",
-            (
-                f"**Efficiency maximum.** The maximum at T_2 = 40 N m was refined by a bounded "
-                f"Brent search over the ratio. It is eta = {peak[1]:.4f} at tau_ID = {peak[0]:.3f}."
-            ),
-        )
-    )
-    b.append(("h2", "Figures"))
-    for name, (_, caption) in FIGURES.items():
-        b.append(("figure", f"{name}.png", caption))
     return b
 
 
@@ -263,15 +310,13 @@ def write_blocks(out: Path, name: str, blocks, title: str) -> list[Path]:
     return paths
 
 
-def write_report(
-    out: Path, data, claims, ceiling, peak, *, quick, run_time, inputs, planetary=None
-):
+def write_report(out: Path, findings: Findings, run: RunInfo, planetary=None) -> list[Path]:
     """Write ``report.md`` and ``report.html`` in ``out``; returns their paths.
 
-    ``ceiling`` is `ceiling_numbers` of the double idler at tau_ID = 1; ``planetary`` the
-    `ballcvt.reports.planetary.PlanetaryData` of the section beyond the paper, if any.
+    ``planetary`` is the `ballcvt.reports.planetary.PlanetaryData` of the section beyond
+    the paper, if any.
     """
-    blocks = _blocks(data, claims, ceiling, peak, quick, run_time, inputs)
+    blocks = _blocks(findings, run)
     if planetary is not None:
         blocks += _planetary_blocks(planetary)
     md, page = out / "report.md", out / "report.html"

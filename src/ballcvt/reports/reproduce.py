@@ -23,14 +23,14 @@ from scipy.optimize import minimize_scalar
 from tqdm.auto import tqdm
 
 from .._version import __version__
-from ..analysis.sweeps.export import to_netcdf, write_table
+from ..analysis import traction_ceiling, write_table
+from ..analysis.sweeps import to_netcdf
 from ..api import Variator
-from ..equilibrium.problem import build_problem
 from ..files import check_output_dir
-from .claims import ceiling_numbers, paper_claims
+from .claims import paper_claims
 from .figures import FIGURES, FigureData
 from .planetary import planetary_section
-from .report import write_report
+from .report import Findings, RunInfo, write_report
 
 __all__ = ["reproduce", "Reproduction", "GRIDS"]
 
@@ -211,9 +211,7 @@ def reproduce(
     claims = paper_claims(data, peak)
     frame = pd.DataFrame([c.__dict__ for c in claims])
     files.append(write_table(frame, out / "claims.csv", {}))
-    ceiling = ceiling_numbers(
-        build_problem(design, fluid, "double", 1.0, 0.0, CLAMP, RPM * math.pi / 30.0)
-    )
+    ceiling = traction_ceiling(v, 1.0, clamp_force=CLAMP, input_speed=RPM * math.pi / 30.0)
     with tqdm(
         total=1, desc="beyond the paper: planetary modes", unit="section", disable=not show
     ) as bar:
@@ -223,13 +221,8 @@ def reproduce(
     run_time = time.perf_counter() - start
     files += write_report(
         out,
-        data,
-        claims,
-        ceiling,
-        peak,
-        quick=quick,
-        run_time=run_time,
-        inputs=_inputs(design, fluid, quick, workers),
+        Findings(data, claims, ceiling, peak),
+        RunInfo(quick, run_time, _inputs(design, fluid, quick, workers)),
         planetary=planet,
     )
     return Reproduction(out=out, files=files, claims=claims, run_time=run_time)

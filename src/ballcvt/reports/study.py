@@ -7,8 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analysis.studies.spec import OBJECTIVES
+from ..analysis.studies import OBJECTIVES, make_context
 from ..api import Variator
+from ..params import Design
 from ..plotting import maps_figure, parameters_figure, pareto_figure, save
 from .report import write_blocks
 
@@ -102,8 +103,6 @@ def study_report(result, spec, out, quick_maps: bool = False) -> list[Path]:
 
 def _maps(result, spec, out, quick):
     """Efficiency maps of the base and the chosen design."""
-    from ..analysis.studies.evaluate import make_context
-
     ctx = make_context(spec)
     i = result.chosen
     ds = result.dataset
@@ -117,8 +116,6 @@ def _maps(result, spec, out, quick):
         if spec.operating.input_speed_rpm
         else spec.operating.target_input_speed_rpm
     )
-    from ..params.models import Design
-
     base = Variator(Design(**ctx.base), ctx.fluid, spec.study.architecture)
     chosen = Variator(result.chosen_design, ctx.fluid, spec.study.architecture)
     n_r, n_t = (5, 5) if quick else MAP_GRID

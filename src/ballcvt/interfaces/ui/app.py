@@ -19,11 +19,10 @@ from typing import Any
 
 import numpy as np
 
-from ...analysis.sweeps.curves import OperatingRows, limit_search_curves
+from ...analysis import limit_curves
 from ...api import Variator
 from ...errors import BallCVTError
-from ...params.drive import Drive
-from ...params.models import Design, Fluid
+from ...params import Design, Fluid
 
 __all__ = ["make_document", "serve", "SLIDERS", "MAP_GRID"]
 
@@ -131,14 +130,12 @@ class _State:
         try:
             # one limit search for the whole map, handed to the sweep; the torque axis
             # reaches past the limits at both ends and in the middle of the ratio range
-            rows = OperatingRows.of(
-                Drive(var.design, var.fluid, var.architecture),
+            search = limit_curves(
+                var,
                 ratio,
-                np.full(n, float(v["input_speed_rpm"]) * math.pi / 30.0),
-                kw["clamp_force"],
-                options=var.options,
+                clamp_force=kw["clamp_force"],
+                input_speed=float(v["input_speed_rpm"]) * math.pi / 30.0,
             )
-            _, search = limit_search_curves(rows)
             ends = [0, n - 1, n // 2]
             for i in ends:
                 if np.isnan(search.torque[i]):  # no limit: the point's own search says why
@@ -159,49 +156,35 @@ class _State:
         }
 
 
-def make_document(doc, design: Design, fluid: Fluid, architecture: str = "double") -> None:
-    """Fill a Bokeh document with the explorer (one per browser session)."""
-    from bokeh.layouts import column, row
-    from bokeh.models import (
-        ColorBar,
-        ColumnDataSource,
-        DataTable,
-        Div,
-        LinearColorMapper,
-        Slider,
-        TableColumn,
-    )
-    from bokeh.palettes import Viridis256
-    from bokeh.plotting import figure
+#: Loss kinds shown as bars.
+KINDS = ["creep", "spin", "roller_bearings", "idler_bearings", "parasitic"]
 
-    state = _State(design, fluid, architecture)
-    state.rebuild()
+
+def _sliders(state: _State) -> dict:
+    """One Bokeh slider per entry of `SLIDERS`, at the state's values."""
+    from bokeh.models import Slider
+
     sliders = {}
     for name, (title, start, end, step, unit) in SLIDERS.items():
-        value = state.values[name]
-        s = Slider(
+        sliders[name] = Slider(
             title=f"{title} [{unit}]" if unit else title,
             start=start,
             end=end,
             step=step,
-            value=value,
+            value=state.values[name],
             name=name,
             css_classes=[f"bcvt-slider-{name}"],
             width=320,
         )
-        sliders[name] = s
-    eta_div = Div(text="", css_classes=["bcvt-eta"], styles={"font-size": "28px"})
-    msg_div = Div(text="", css_classes=["bcvt-message"], styles={"color": "#a00"}, width=640)
-    state_div = Div(text="", css_classes=["bcvt-state"], visible=False)
-    loss_src = ColumnDataSource({"kind": [], "watts": []})
-    kinds = ["creep", "spin", "roller_bearings", "idler_bearings", "parasitic"]
-    losses = figure(
-        x_range=kinds, height=260, width=420, title="losses [W]", toolbar_location=None
-    )
-    losses.vbar(x="kind", top="watts", source=loss_src, width=0.7)
-    contact_src = ColumnDataSource({"contact": [], "creep": [], "p_max": [], "film": []})
-    table = DataTable(
-        source=contact_src,
+    return sliders
+
+
+def _contact_table(source):
+    """Table of creep, peak pressure and film thickness per contact."""
+    from bokeh.models import DataTable, TableColumn
+
+    return DataTable(
+        source=source,
         columns=[
             TableColumn(field="contact", title="contact"),
             TableColumn(field="creep", title="creep [-]"),
@@ -212,10 +195,15 @@ def make_document(doc, design: Design, fluid: Fluid, architecture: str = "double
         height=150,
         index_position=None,
     )
+
+
+def _map_figure(map_src, limit_src, point_src):
+    """Efficiency map with the limiting-torque curve and the operating point."""
+    from bokeh.models import ColorBar, LinearColorMapper
+    from bokeh.palettes import Viridis256
+    from bokeh.plotting import figure
+
     mapper = LinearColorMapper(palette=Viridis256, low=0.5, high=0.95, nan_color="white")
-    map_src = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []})
-    limit_src = ColumnDataSource({"ratio": [], "limit": []})
-    point_src = ColumnDataSource({"ratio": [], "torque": []})
     emap = figure(
         height=420,
         width=560,
@@ -227,83 +215,116 @@ def make_document(doc, design: Design, fluid: Fluid, architecture: str = "double
     emap.line("ratio", "limit", source=limit_src, color="red", line_width=2, legend_label="limit")
     emap.scatter("ratio", "torque", source=point_src, size=12, color="black", marker="x")
     emap.add_layout(ColorBar(color_mapper=mapper, title="eta"), "right")
+    return emap
 
-    def show_point() -> None:
-        p = state.point()
+
+class _View:
+    """The page's widgets and the data sources they draw from."""
+
+    def __init__(self):
+        from bokeh.models import ColumnDataSource, Div
+        from bokeh.plotting import figure
+
+        self.eta = Div(text="", css_classes=["bcvt-eta"], styles={"font-size": "28px"})
+        self.message = Div(
+            text="", css_classes=["bcvt-message"], styles={"color": "#a00"}, width=640
+        )
+        self.state = Div(text="", css_classes=["bcvt-state"], visible=False)
+        self.loss_src = ColumnDataSource({"kind": [], "watts": []})
+        self.losses = figure(
+            x_range=KINDS, height=260, width=420, title="losses [W]", toolbar_location=None
+        )
+        self.losses.vbar(x="kind", top="watts", source=self.loss_src, width=0.7)
+        self.contact_src = ColumnDataSource({"contact": [], "creep": [], "p_max": [], "film": []})
+        self.table = _contact_table(self.contact_src)
+        self.map_src = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []})
+        self.limit_src = ColumnDataSource({"ratio": [], "limit": []})
+        self.point_src = ColumnDataSource({"ratio": [], "torque": []})
+        self.emap = _map_figure(self.map_src, self.limit_src, self.point_src)
+
+    def show_point(self, p: dict[str, Any]) -> None:
+        """Show an operating point (`_State.point`)."""
         if p["eta"] is None:
-            eta_div.text = "efficiency: <span class='bcvt-value'>n/a</span>"
+            self.eta.text = "efficiency: <span class='bcvt-value'>n/a</span>"
         else:
-            eta_div.text = f"efficiency: <span class='bcvt-value'>{p['eta']:.4f}</span>"
+            self.eta.text = f"efficiency: <span class='bcvt-value'>{p['eta']:.4f}</span>"
             lw = p["losses"]
-            loss_src.data = {
-                "kind": kinds,
-                "watts": [lw.get(k, 0.0) for k in kinds],
-            }
+            self.loss_src.data = {"kind": KINDS, "watts": [lw.get(k, 0.0) for k in KINDS]}
             cs = p["contacts"]
-            contact_src.data = {
+            self.contact_src.data = {
                 "contact": list(cs),
                 "creep": [f"{c['creep']:.3e}" for c in cs.values()],
                 "p_max": [f"{c['p_max'] / 1e9:.3f}" for c in cs.values()],
                 "film": [f"{c['film_thickness'] * 1e6:.3f}" for c in cs.values()],
             }
-        msg_div.text = p["message"] + (
+        self.message.text = p["message"] + (
             " " + " ".join(p.get("warnings", [])) if p.get("warnings") else ""
         )
-        point_src.data = {
+        self.point_src.data = {
             "ratio": [p["inputs"]["ratio"]],
             "torque": [p["inputs"]["output_torque"]],
         }
-        state_div.text = (
+        self.state.text = (
             "<pre class='bcvt-json'>" + html.escape(json.dumps(p, default=float)) + "</pre>"
         )
 
-    def show_map() -> None:
-        m = state.map()
+    def show_map(self, m: dict[str, Any] | None) -> None:
+        """Show an efficiency map (`_State.map`; None clears it)."""
         if m is None:
-            map_src.data = {"image": [], "x": [], "y": [], "dw": [], "dh": []}
-            limit_src.data = {"ratio": [], "limit": []}
+            self.map_src.data = {"image": [], "x": [], "y": [], "dw": [], "dh": []}
+            self.limit_src.data = {"ratio": [], "limit": []}
             return
         r, t = m["ratio"], m["torque"]
-        map_src.data = {
+        self.map_src.data = {
             "image": [m["eta"]],
             "x": [r[0]],
             "y": [t[0]],
             "dw": [r[-1] - r[0]],
             "dh": [t[-1] - t[0]],
         }
-        limit_src.data = {"ratio": list(r), "limit": [float(x) for x in m["limit"]]}
+        self.limit_src.data = {"ratio": list(r), "limit": [float(x) for x in m["limit"]]}
 
-    def on_point(attr, old, new, name) -> None:
+
+def make_document(doc, design: Design, fluid: Fluid, architecture: str = "double") -> None:
+    """Fill a Bokeh document with the explorer (one per browser session)."""
+    from bokeh.layouts import column, row
+    from bokeh.models import Div
+
+    state = _State(design, fluid, architecture)
+    state.rebuild()
+    sliders = _sliders(state)
+    view = _View()
+
+    def on_point(name: str, new) -> None:
         state.values[name] = new
-        show_point()
+        view.show_point(state.point())
 
-    def on_map(attr, old, new, name) -> None:
+    def on_map(name: str, new) -> None:
         state.values[name] = new
         if name in DESIGN_SLIDERS:
             state.rebuild()
-        show_point()
-        show_map()
+        view.show_point(state.point())
+        view.show_map(state.map())
 
     for name, s in sliders.items():
         if name not in DESIGN_SLIDERS:  # the point follows the slider as it moves
-            s.on_change("value", lambda a, o, n, name=name: on_point(a, o, n, name))
+            s.on_change("value", lambda _a, _o, new, name=name: on_point(name, new))
         if name not in ("ratio", "output_torque"):
             # a new design or map on release (value_throttled): half a second per change
-            s.on_change("value_throttled", lambda a, o, n, name=name: on_map(a, o, n, name))
-    show_point()
-    show_map()
+            s.on_change("value_throttled", lambda _a, _o, new, name=name: on_map(name, new))
+    view.show_point(state.point())
+    view.show_map(state.map())
     title = Div(
         text=f"<h2>ballcvt explorer</h2><p>{design.name}; fluid: {fluid.name}; "
         f"{architecture} idler; {fluid.traction_law} traction law</p>",
         width=900,
     )
-    controls = column(*sliders.values())
     doc.add_root(
         column(
             title,
-            row(controls, column(eta_div, losses, table), emap),
-            msg_div,
-            state_div,
+            row(column(*sliders.values()), column(view.eta, view.losses, view.table), view.emap),
+            view.message,
+            view.state,
         )
     )
     doc.title = "ballcvt explorer"

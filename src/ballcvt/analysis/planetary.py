@@ -1,0 +1,127 @@
+"""The drive as a planetary (docs/model.md §13): the ideal overall ratio of each operating
+mode, and batches of points and capacities per mode, as tables."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ..model.kinematics import ideal_ratio, ratio_range
+from ..model.modes import MEMBERS, OperatingMode
+from ..params.drive import Drive
+from ..solvers.options import SolverOptions
+from ..solvers.planetary import ModePoint
+from ..solvers.planetary_batch import limit_load_batch, solve_mode_batch
+
+__all__ = ["OperatingMode", "mode_kinematics", "mode_curves", "mode_capacity"]
+
+
+def _options(drive) -> SolverOptions:
+    return getattr(drive, "options", None) or SolverOptions()
+
+
+def mode_kinematics(design, modes, tilts) -> pd.DataFrame:
+    """Ideal overall ratio (no creep) of each mode against the tilt (Eq. 4, Willis).
+
+    Parameters
+    ----------
+    design : Design
+        Geometry.
+    modes : sequence of OperatingMode
+        The modes (one column each, named by ``mode.label``).
+    tilts : array_like
+        Tilts [rad]; those whose ideal ratio lies outside the usable range are dropped.
+
+    Returns
+    -------
+    DataFrame
+        ``tilt_deg`` [deg], ``ratio`` (``tau_ID``) [-] and, per mode, the driven member's
+        speed over the driver's [-].
+    """
+    lo, hi = ratio_range(design)
+    tilts = np.asarray(tilts, dtype=float)
+    tau = ideal_ratio(tilts, design.theta0, design.theta2, design.aspect_ratio)
+    keep = (tau >= lo) & (tau <= hi)
+    tilts, tau = tilts[keep], tau[keep]
+    out = {"tilt_deg": np.degrees(tilts), "ratio": tau}
+    for mode in modes:
+        out[mode.label] = mode.speeds(1.0, tau, check=False)[mode.driven]
+    return pd.DataFrame(out)
+
+
+def mode_curves(
+    drive, mode: OperatingMode, ratios, loads, *, driver_speed: float, clamp_force: float
+) -> pd.DataFrame:
+    """Points of one mode over the ratio at several load torques that brake the driven member.
+
+    The sign of each load is that of the driven member's speed at zero load.
+
+    Parameters
+    ----------
+    drive : Drive or Variator
+        Design, fluid, idler architecture and (optionally) solver ``options``.
+    mode : OperatingMode
+        Held and driving members.
+    ratios : array_like
+        Ideal ratios ``tau_ID`` relative to the carrier [-].
+    loads : sequence of float
+        Load torques of the driven member [N m] (magnitudes).
+    driver_speed : float
+        Driver speed [rad/s].
+    clamp_force : float
+        ``F_N0`` [N] (constant clamping).
+
+    Returns
+    -------
+    DataFrame
+        One row per (load, ratio): ``mode`` (label), ``load_torque`` [N m], ``ratio``,
+        ``status`` (0 converged), ``overall_ratio`` (driven over driver speed) [-],
+        ``eta`` [-], ``circulation`` (power through the contacts over the input power) [-],
+        ``carrier_speed`` [rad/s], ``max_creep`` [-].
+    """
+    ratios = np.asarray(ratios, dtype=float)
+    here, opts = Drive(drive.design, drive.fluid, drive.architecture), _options(drive)
+
+    def at(load):
+        return solve_mode_batch(
+            here, mode, ModePoint(ratios, load, driver_speed, clamp_force), opts
+        )
+
+    brake = at(0.0).braking_direction(mode)
+    drn, drv = MEMBERS.index(mode.driven), MEMBERS.index(mode.driver)
+    rows = []
+    for load in loads:
+        got = at(brake * load)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rows.append(
+                pd.DataFrame(
+                    {
+                        "mode": mode.label,
+                        "load_torque": load,
+                        "ratio": ratios,
+                        "status": got.status,
+                        "overall_ratio": got.speeds[drn] / got.speeds[drv],
+                        "eta": got.eta,
+                        "circulation": got.circulating_power / got.input_power,
+                        "carrier_speed": got.speeds[MEMBERS.index("carrier")],
+                        "max_creep": got.max_creep,
+                    }
+                )
+            )
+    return pd.concat(rows, ignore_index=True)
+
+
+def mode_capacity(
+    drive, mode: OperatingMode, ratios, *, driver_speed: float, clamp_force: float
+) -> np.ndarray:
+    """Largest load torque of the driven member with every ``|C| <= creep_limit`` [N m].
+
+    Parameters are those of `mode_curves`; NaN where even zero load is not admissible.
+    """
+    ratios = np.asarray(ratios, dtype=float)
+    return limit_load_batch(
+        Drive(drive.design, drive.fluid, drive.architecture),
+        mode,
+        ModePoint(ratios, 0.0, driver_speed, clamp_force),
+        _options(drive),
+    )

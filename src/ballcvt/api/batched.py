@@ -3,7 +3,6 @@ planetary modes, and a cam of other values (``ballcvt map``, ``table``, ``--cam-
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 from typing import Any
 
@@ -12,6 +11,7 @@ import numpy as np
 from ..errors import InputError
 from ..params.models import Design, Fluid
 from ..solvers.options import SolverOptions
+from ..units import rpm_to_rad_s
 from . import grids, planetary
 from .settings import MapGrid, TableGrid
 
@@ -241,4 +241,4 @@ def _speeds(speed, rpm, name: str = "input_speed"):
     """Speeds [rad/s] from exactly one of ``speed`` [rad/s] or ``rpm`` [rpm] (arrays)."""
     if (speed is None) == (rpm is None):
         raise InputError(name, speed, f"exactly one of {name} [rad/s] or {name}_rpm [rpm]")
-    return np.asarray(speed, float) if rpm is None else np.asarray(rpm, float) * math.pi / 30
+    return np.asarray(speed, float) if rpm is None else rpm_to_rad_s(np.asarray(rpm, float))

@@ -4,7 +4,6 @@ range, and is handed to the sweep (docs/model.md §8)."""
 
 from __future__ import annotations
 
-import math
 import sys
 from dataclasses import dataclass
 from typing import Any
@@ -15,6 +14,7 @@ from ..analysis.sweeps.curves import OperatingRows, limit_search_curves
 from ..equilibrium.problem import build_problem
 from ..params.drive import Drive
 from ..solvers.limit import LimitSearch, bisection_steps
+from ..units import rpm_to_rad_s
 from .settings import MapGrid, SweepSettings, TableGrid
 
 __all__ = ["LimitCurve", "limit_curve", "efficiency_map", "lookup_table"]
@@ -88,7 +88,7 @@ def efficiency_map(variator, grid: MapGrid, input_speed_rpm: float, clamp: dict,
     """`Variator.efficiency_map` on ``grid`` at one input speed [rpm]; ``run`` holds
     ``workers`` and ``progress``."""
     ratios = grid.ratios()
-    w = np.full(ratios.size, input_speed_rpm * math.pi / 30)
+    w = np.full(ratios.size, rpm_to_rad_s(input_speed_rpm))
     limits = limit_curve(variator, ratios, w, clamp, None, run["progress"])
     top = 1.02 * _largest(limits) if grid.torque_max is None else grid.torque_max
     return variator.sweep(
@@ -103,7 +103,7 @@ def efficiency_map(variator, grid: MapGrid, input_speed_rpm: float, clamp: dict,
 def lookup_table(variator, grid: TableGrid, clamp: dict, run: dict):
     """`Variator.lookup_table` on ``grid``; ``run`` holds ``workers`` and ``progress``."""
     ratios, rpm = grid.ratios(), grid.speeds_rpm()
-    r_grid, w_grid = (g.ravel() for g in np.meshgrid(ratios, rpm * math.pi / 30))
+    r_grid, w_grid = (g.ravel() for g in np.meshgrid(ratios, rpm_to_rad_s(rpm)))
     limits = limit_curve(variator, r_grid, w_grid, clamp, None, run["progress"])
     top = _largest(limits) if grid.torque_max is None else grid.torque_max
     return variator.sweep(

@@ -17,6 +17,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..model.modes import OperatingMode
+from ..units import rpm_to_rad_s
 
 __all__ = [
     "SolveSettings",
@@ -111,7 +112,7 @@ class CycleSettings:
                 "at most one of target_input_speed [rad/s] or target_input_speed_rpm [rpm]",
             )
         if self.target_input_speed_rpm is not None:
-            return self.target_input_speed_rpm * math.pi / 30.0
+            return rpm_to_rad_s(self.target_input_speed_rpm)
         return self.target_input_speed
 
 

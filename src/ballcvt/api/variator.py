@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -25,6 +24,7 @@ from ..solvers.clamped import capacity_basis, pressure_bound_force, solve_clampe
 from ..solvers.limit import limit_torque
 from ..solvers.optimal_clamp import ClampOptimum, optimal_clamp_force
 from ..solvers.point import SolverOptions, solve_point
+from ..units import rpm_to_rad_s
 from . import grids, planetary
 from .batched import BatchMethods
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
@@ -325,7 +325,7 @@ class Variator(BatchMethods):
         rpm = (
             None if input_speed_rpm is None else np.atleast_1d(np.asarray(input_speed_rpm, float))
         )
-        speed = np.asarray(input_speed, float) if rpm is None else rpm * math.pi / 30.0
+        speed = np.asarray(input_speed, float) if rpm is None else rpm_to_rad_s(rpm)
         return sweep(
             self.design,
             self.fluid,
@@ -430,4 +430,4 @@ def _speed(input_speed, input_speed_rpm) -> float:
             input_speed,
             "exactly one of input_speed [rad/s] or input_speed_rpm [rpm]",
         )
-    return float(input_speed) if input_speed is not None else float(input_speed_rpm) * math.pi / 30
+    return float(input_speed) if input_speed is not None else rpm_to_rad_s(float(input_speed_rpm))

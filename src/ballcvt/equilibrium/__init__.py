@@ -1,6 +1,6 @@
 """Layer 4: the equilibrium problem and its residual (docs/model.md §5)."""
 
 from .problem import EquilibriumProblem, build_problem
-from .residual import EquilibriumState, evaluate, residual
+from .residual import EquilibriumState, evaluate
 
-__all__ = ["EquilibriumProblem", "build_problem", "EquilibriumState", "evaluate", "residual"]
+__all__ = ["EquilibriumProblem", "build_problem", "EquilibriumState", "evaluate"]

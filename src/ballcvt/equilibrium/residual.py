@@ -38,7 +38,6 @@ __all__ = [
     "EquilibriumState",
     "evaluate",
     "evaluate_with_jacobian",
-    "residual",
     "balancing_output_torque",
     "carrier_reaction_torque",
 ]
@@ -355,11 +354,6 @@ def _balances(problem: EquilibriumProblem, creep, at: ContactInputs, mu, chi) ->
         residual=res,
         input_drag=input_drag,
     )
-
-
-def residual(problem: EquilibriumProblem, creep, quadrature: Quadrature = Quadrature()):
-    """Dimensionless residual vector of `evaluate` (shape ``(..., n_c)``)."""
-    return evaluate(problem, creep, quadrature).residual
 
 
 def balancing_output_torque(problem: EquilibriumProblem, state: EquilibriumState):

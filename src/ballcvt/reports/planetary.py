@@ -9,7 +9,6 @@ report does not depend on it.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,6 +22,7 @@ from ..analysis import (
     write_table,
 )
 from ..plotting import line_panels, save
+from ..units import rad_s_to_rpm
 
 __all__ = ["PlanetaryData", "planetary_section", "MODES", "ALL_MODES", "DRIVER_SPEED", "LOADS"]
 
@@ -167,7 +167,7 @@ def _figures(kin, curves, capacity, out) -> list:
         panels,
         "overall ratio, driven / driver [1]",
         f"Planetary modes: efficiency vs overall ratio (driver "
-        f"{DRIVER_SPEED * 30 / math.pi:.0f} rpm; the load brakes the driven "
+        f"{rad_s_to_rpm(DRIVER_SPEED):.0f} rpm; the load brakes the driven "
         "member)",
         ncols=3,
     )

@@ -8,7 +8,6 @@ beyond the paper, the planetary section's ``planet_*.png/.svg/.csv``.
 
 from __future__ import annotations
 
-import math
 import platform
 import sys
 import time
@@ -27,6 +26,7 @@ from ..analysis import traction_ceiling, write_table
 from ..analysis.sweeps import to_netcdf
 from ..api import Variator
 from ..files import check_output_dir
+from ..units import rpm_to_rad_s
 from .claims import paper_claims
 from .figures import FIGURES, FigureData
 from .planetary import planetary_section
@@ -79,7 +79,7 @@ def compute(
     progress bar.
     """
     v = Variator(traction_law=traction_law)
-    speed = RPM * math.pi / 30.0
+    speed = rpm_to_rad_s(RPM)
     torque = _torques(_grid("torque", quick))
     common: dict[str, Any] = {"input_speed": speed, "workers": workers, "progress": progress}
     torque_curves = v.sweep(
@@ -211,7 +211,7 @@ def reproduce(
     claims = paper_claims(data, peak)
     frame = pd.DataFrame([c.__dict__ for c in claims])
     files.append(write_table(frame, out / "claims.csv", {}))
-    ceiling = traction_ceiling(v, 1.0, clamp_force=CLAMP, input_speed=RPM * math.pi / 30.0)
+    ceiling = traction_ceiling(v, 1.0, clamp_force=CLAMP, input_speed=rpm_to_rad_s(RPM))
     with tqdm(
         total=1, desc="beyond the paper: planetary modes", unit="section", disable=not show
     ) as bar:

@@ -13,6 +13,7 @@ from .._display import html_summary, text_summary
 from .._version import __version__
 from ..errors import InputError
 from ..model.modes import MEMBERS, OperatingMode, member_torques
+from ..units import rad_s_to_rpm
 from .point import OperatingResult, _JsonFile, read_result
 
 __all__ = ["PlanetaryResult", "make_planetary_result"]
@@ -70,8 +71,7 @@ class PlanetaryResult:
             rows.append(
                 (
                     m,
-                    f"{self.speeds[m] * 30 / 3.141592653589793:.5g} rpm, "
-                    f"{self.torques[m]:.4g} N m",
+                    f"{rad_s_to_rpm(self.speeds[m]):.5g} rpm, {self.torques[m]:.4g} N m",
                     "",
                 )
             )

@@ -18,28 +18,20 @@ from ..model.inertia import max_carrier_speed
 from ..model.modes import MEMBERS, OperatingMode, member_torques, resolve_mode
 from ..params.drive import Drive
 from ..performance.efficiency import power_losses
+from ..status import Status
 from .limit import traction_ceiling_torque
 from .newton import initial_creep, solve_batch
 from .options import SolverOptions
 from .planetary import RATIO_TOL, ModePoint, carrier_frame_problem
 
-__all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch", "MODE_STATUS"]
-
-
-#: Status codes of `solve_mode_batch` (as in a sweep, plus 3).
-MODE_STATUS = {
-    0: "converged within the traction capacity",
-    1: "beyond the traction capacity",
-    2: "not converged",
-    3: "speeds out of range (infinite, none relative to the "
-    "carrier, or a carrier fast enough to unload the idler)",
-}
+__all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch"]
 
 
 @dataclass(frozen=True)
 class ModeBatch:
     """Outcome of `solve_mode_batch`; arrays ``(n,)`` (speeds and torques ``(3, n)`` in
-    the order of `ballcvt.model.modes.MEMBERS`), NaN where ``status`` is not 0."""
+    the order of `ballcvt.model.modes.MEMBERS`), NaN where ``status`` (a
+    `ballcvt.status.Status` code) is not ``CONVERGED``."""
 
     status: np.ndarray
     speeds: np.ndarray
@@ -86,7 +78,7 @@ def solve_mode_batch(
     `ballcvt.registry.OPERATING_MODES`. Every pass of the
     fixed point on the actual ratio is one `solve_batch` of the points not yet settled;
     a point's figures are taken from the pass in which it settles. Points whose speeds are
-    out of range are flagged (status 3), not raised; points whose creeps exceed
+    out of range are flagged (``Status.OUT_OF_RANGE``), not raised; points whose creeps exceed
     ``design.creep_limit`` are flagged 1.
     """
     mode = resolve_mode(mode)
@@ -103,7 +95,7 @@ def solve_mode_batch(
     n = ratio.size
     layout = contact_layout(design, drive.architecture)
     w_max = float(max_carrier_speed(design, layout, clamp_force)) if mode.centrifugal else np.inf
-    status = np.full(n, 2)
+    status = np.full(n, int(Status.NOT_CONVERGED))
     tau = ratio.copy()
     x = np.full((n, layout.n_contacts), np.nan)
     speeds, torques = np.full((3, n), np.nan), np.full((3, n), np.nan)
@@ -118,7 +110,7 @@ def solve_mode_batch(
             & np.isfinite(sp["carrier"])
             & (np.abs(sp["carrier"]) < w_max)
         )
-        status[~ok & ~settled] = 3
+        status[~ok & ~settled] = Status.OUT_OF_RANGE
         todo = np.flatnonzero(ok & ~settled)
         if todo.size == 0:
             break
@@ -136,7 +128,7 @@ def solve_mode_batch(
         settled[todo[done]] = True
         fin = done & sol.converged
         j = todo[fin]
-        status[j] = 0
+        status[j] = Status.CONVERGED
         members = member_torques(sign * st.input_torque, sign * balancing_output_torque(pb, st))
         for row, m in enumerate(MEMBERS):
             speeds[row, j] = sp[m][todo][fin]
@@ -145,8 +137,8 @@ def solve_mode_batch(
         circ[j] = np.abs(st.input_torque * pb.input_speed)[fin]
         big[j] = np.max(np.abs(st.creep[fin]), axis=-1)
         tau[todo] = np.where(sol.converged, new, tau[todo])
-    status[(status == 0) & (big > design.creep_limit)] = 1
-    keep = status == 0
+    status[(status == Status.CONVERGED) & (big > design.creep_limit)] = Status.BEYOND_LIMIT
+    keep = status == Status.CONVERGED
     return ModeBatch(
         status,
         np.where(keep, speeds, np.nan),
@@ -187,11 +179,14 @@ def limit_load_batch(
     at = replace(point, ratio=ratio)
 
     def admissible(load):
-        return solve_mode_batch(drive, mode, replace(at, load_torque=load), options).status == 0
+        return (
+            solve_mode_batch(drive, mode, replace(at, load_torque=load), options).status
+            == Status.CONVERGED
+        )
 
     zero = solve_mode_batch(drive, mode, replace(at, load_torque=0.0), options)
     direction = zero.braking_direction(mode)
-    ok0 = zero.status == 0
+    ok0 = zero.status == Status.CONVERGED
     hi = traction_ceiling_torque(
         make_problem(drive, OperatingInputs(ratio, 0.0, point.clamp_force, 1.0))
     )

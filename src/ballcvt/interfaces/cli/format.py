@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from ...api import OperatingResult, PlanetaryResult
+from ...units import rad_s_to_rpm
 
 __all__ = ["point_table", "planetary_table", "limit_table", "clamp_table"]
 
@@ -32,7 +33,7 @@ def point_table(r: OperatingResult) -> str:
         f"{r.actual_ratio:.5f}",
         f"input  {r.input_speed_rpm:8.1f} rpm  {r.input_torque:9.3f} N m  "
         f"{r.input_power / 1e3:8.3f} kW",
-        f"output {r.output_speed * 30 / 3.141592653589793:8.1f} rpm  {r.output_torque:9.3f} N m  "
+        f"output {rad_s_to_rpm(r.output_speed):8.1f} rpm  {r.output_torque:9.3f} N m  "
         f"{r.output_power / 1e3:8.3f} kW",
         f"clamp F_N0 {r.clamp_force:.1f} N ({r.clamp_law} law), disc thrust "
         f"{r.axial_force:.1f} N, {r.traction_law} traction law",
@@ -92,7 +93,6 @@ def clamp_table(data: dict) -> str:
 def planetary_table(r: PlanetaryResult) -> str:
     """Readable summary of an operating point in a planetary mode: the members, then the
     carrier-frame point."""
-    rpm = 30 / 3.141592653589793
     m = r.mode
     lines = [
         f"planetary mode: {m.label}"
@@ -119,7 +119,7 @@ def planetary_table(r: PlanetaryResult) -> str:
             m.driven: " driven",
         }[name]
         lines.append(
-            f"{name + tag:<16}{r.speeds[name] * rpm:8.1f}{r.torques[name]:14.3f}"
+            f"{name + tag:<16}{rad_s_to_rpm(r.speeds[name]):8.1f}{r.torques[name]:14.3f}"
             f"{r.powers[name] / 1e3:12.4f}"
         )
     lines += [

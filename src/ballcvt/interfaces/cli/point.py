@@ -6,6 +6,7 @@ import math
 
 from ...api import MEMBERS, OperatingMode, PlanetaryResult, SolveSettings
 from ...errors import InputError
+from ...units import rpm_to_rad_s
 from . import options as o
 from .format import planetary_table, point_table
 
@@ -68,7 +69,7 @@ def run(args) -> int:
         args.driver,
         not args.no_centrifugal,
         not args.no_gyroscopic,
-        args.held_speed * math.pi / 30,
+        rpm_to_rad_s(args.held_speed),
     )
     r = v.solve(
         ratio=args.ratio,

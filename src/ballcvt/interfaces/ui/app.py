@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import html
 import json
-import math
 from typing import Any
 
 import numpy as np
@@ -23,6 +22,7 @@ from ...analysis import limit_curves
 from ...api import Variator
 from ...errors import BallCVTError
 from ...params import Design, Fluid
+from ...units import rpm_to_rad_s
 
 __all__ = ["make_document", "serve", "SLIDERS", "MAP_GRID"]
 
@@ -134,7 +134,7 @@ class _State:
                 var,
                 ratio,
                 clamp_force=kw["clamp_force"],
-                input_speed=float(v["input_speed_rpm"]) * math.pi / 30.0,
+                input_speed=rpm_to_rad_s(float(v["input_speed_rpm"])),
             )
             ends = [0, n - 1, n // 2]
             for i in ends:

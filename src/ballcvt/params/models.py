@@ -13,11 +13,20 @@ from __future__ import annotations
 
 import difflib
 import math
+from collections.abc import Mapping
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationError,
+    model_serializer,
+    model_validator,
+)
 
 from ..errors import InputError
+from ..registry import TRACTION_LAWS
 from .feasibility import check_design
 
 __all__ = [
@@ -56,21 +65,23 @@ def _opt(unit: str, description: str, **constraints: Any) -> Any:
     )
 
 
-#: Shear laws of the film (`ballcvt.model.traction.base`), and the `Fluid` fields each needs.
-TractionLaw = Literal["isothermal", "thermal", "viscoelastic"]
-LAW_FIELDS: dict[str, tuple[str, ...]] = {
-    "isothermal": (),
-    "thermal": (
-        "temperature_viscosity_coefficient",
-        "limiting_shear_temperature_coefficient",
-        "thermal_conductivity",
-        "inlet_temperature",
-        "surface_conductivity",
-        "surface_diffusivity",
-    ),
-    "viscoelastic": ("shear_modulus",),
-}
-TRACTION_LAWS: tuple[str, ...] = tuple(LAW_FIELDS)
+class _LawFields(Mapping):
+    """Traction-law name -> the `Fluid` fields it needs, read from the registry entries
+    (``TRACTION_LAWS.get(name).fields``; a law registered later is in it)."""
+
+    def __getitem__(self, name: str) -> tuple[str, ...]:
+        return tuple(TRACTION_LAWS.get(name).fields)
+
+    def __iter__(self):
+        return iter(TRACTION_LAWS)
+
+    def __len__(self) -> int:
+        return len(TRACTION_LAWS)
+
+
+#: Law name -> `Fluid` fields the law needs (a view of `ballcvt.registry.TRACTION_LAWS`,
+#: whose entries are `ballcvt.model.traction.base.TractionLaw`).
+LAW_FIELDS: Mapping[str, tuple[str, ...]] = _LawFields()
 
 
 _BOUND_TEXT = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
@@ -436,11 +447,18 @@ class Fluid(ParameterModel):
         gt=0,
         lt=math.inf,
     )
-    traction_law: TractionLaw = Field(
+    traction_law: str = Field(
         "isothermal",
-        description="shear law of the film (docs/model.md §14): 'isothermal' "
-        "(the paper's Eq. 53), 'thermal' (shear heating thins the film) or 'viscoelastic' "
-        "(Maxwell elasticity gives the initial slope) [-]",
+        description="shear law of the film (docs/model.md §14), a name in "
+        "ballcvt.registry.TRACTION_LAWS: 'isothermal' (the paper's Eq. 53), 'thermal' "
+        "(shear heating thins the film), 'viscoelastic' (Maxwell elasticity gives the "
+        "initial slope) or a law registered from user code [-]",
+        json_schema_extra={"unit": "-"},
+    )
+    law_parameters: dict[str, float] | None = Field(
+        None,
+        description="parameters of a traction law defined outside the package, by name "
+        "(the law's TractionLaw.parameters; units as the law documents) [-]",
         json_schema_extra={"unit": "-"},
     )
     temperature_viscosity_coefficient: float | None = _opt(
@@ -474,8 +492,36 @@ class Fluid(ParameterModel):
         "Pa", "elastic shear modulus G of the film, viscoelastic law", gt=0, lt=math.inf
     )
 
+    @model_serializer(mode="wrap")
+    def _dump(self, handler) -> dict[str, Any]:
+        """The fields, without ``law_parameters`` when it is not given (so that files and
+        results of the built-in laws are as they were)."""
+        data = handler(self)
+        if isinstance(data, dict) and data.get("law_parameters") is None:
+            data.pop("law_parameters", None)
+        return data
+
+    def __hash__(self) -> int:  # law_parameters is a dict (the solvers cache per fluid)
+        items = tuple(
+            (k, tuple(sorted(v.items())) if isinstance(v, dict) else v)
+            for k, v in self.__dict__.items()
+        )
+        return hash((type(self), items))
+
     @model_validator(mode="after")
     def _law_complete(self) -> Fluid:
+        law = TRACTION_LAWS.get(self.traction_law)  # InputError listing the laws
+        given = self.law_parameters or {}
+        absent = [k for k in getattr(law, "parameters", ()) if k not in given]
+        if absent:
+            raise InputError(
+                f"law_parameters.{absent[0]}",
+                None,
+                "a value",
+                message=f"fluid '{self.name}' has no law_parameters.{absent[0]}, which the "
+                f"{self.traction_law} traction law needs (it needs "
+                f"{', '.join(law.parameters)})",
+            )
         missing = [k for k in LAW_FIELDS[self.traction_law] if getattr(self, k) is None]
         if missing:
             raise InputError(

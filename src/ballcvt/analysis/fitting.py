@@ -35,11 +35,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
-from ..registry import TRACTION_LAWS
 from ..model.traction.contact import contact_coefficients
 from ..model.traction.curve import MachineContact, machine_state
 from ..model.traction.quadrature import Quadrature
 from ..params.models import Fluid
+from ..registry import TRACTION_LAWS
 
 __all__ = [
     "COLUMNS",

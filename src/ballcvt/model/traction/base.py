@@ -96,7 +96,9 @@ class TractionLaw:
 
 def _viscoelastic(state: ContactState, fluid: Fluid, quadrature: Quadrature, derivatives: bool):
     """Eq. 53 with Maxwell elasticity of modulus ``fluid.shear_modulus`` (§14)."""
-    return shear_coefficients(state, fluid, quadrature, derivatives, float(fluid.shear_modulus))
+    modulus = fluid.shear_modulus
+    assert modulus is not None  # a required field of the law (`Fluid` validation)
+    return shear_coefficients(state, fluid, quadrature, derivatives, modulus)
 
 
 _THERMAL_FIELDS = (
@@ -116,8 +118,7 @@ for _law in (
     TractionLaw(
         "thermal",
         thermal_law_coefficients,
-        "Eq. 53 at a film temperature raised by shear heat (Jaeger 1942; Olver and "
-        "Spikes 1998)",
+        "Eq. 53 at a film temperature raised by shear heat (Jaeger 1942; Olver and Spikes 1998)",
         fields=_THERMAL_FIELDS,
         monotone=False,
         fit_parameters=(

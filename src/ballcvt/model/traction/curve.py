@@ -5,8 +5,8 @@ speed ``U``, the spin and a range of slide-to-roll ratios, the contact is the on
 drive (Hertz, Eqs. 45-50; film, Eq. 56) with ``u_ref = U``: the sliding speed is
 ``Delta U = s U`` and the spin adds ``omega_spin (-y, x)`` with
 ``omega_spin = sigma U / R_x``. The coefficients follow from the fluid's traction law
-(`ballcvt.model.traction.base`, `ballcvt.registry.TRACTION_LAWS`): ``mu`` is the traction coefficient, ``chi`` the spin moment over
-``F_N R_x`` (Eq. 31 with ``r_c = R_x``). docs/model.md §14.
+(`ballcvt.model.traction.base`, `ballcvt.registry.TRACTION_LAWS`): ``mu`` is the
+traction coefficient, ``chi`` the spin moment over ``F_N R_x`` (Eq. 31 with ``r_c = R_x``). docs/model.md §14.
 """
 
 from __future__ import annotations

@@ -20,6 +20,7 @@ from ...model.clamping import clamp_law
 from ...model.kinematics import ratio_range
 from ...params.io import resolve_drive
 from ...params.models import Design, Fluid
+from ...registry import CLAMP_LAWS
 from ...solvers.options import SolverOptions
 from ..sweeps.curves import limit_search_curves
 from ..sweeps.points import evaluate_points
@@ -160,7 +161,8 @@ def _evaluate(ctx: Context, values: dict):
             None,
         )
     force = values.get("clamp_force", spec.operating.clamp_force)
-    law = None if spec.operating.clamp_law == "constant" else spec.operating.clamp_law
+    fixed = CLAMP_LAWS.get(spec.operating.clamp_law).fixed_force
+    law = None if fixed else spec.operating.clamp_law
     law_obj = None if law is None else clamp_law(law, design)
     eta = pst = None
     if spec.operating.cycle is None:

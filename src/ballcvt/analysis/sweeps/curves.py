@@ -18,7 +18,7 @@ from ...performance.validity import validity
 from ...solvers.clamped import capacity_basis, solve_clamped, with_clamp
 from ...solvers.limit import LimitSearch, limit_search
 from ...solvers.newton import initial_creep, solve_batch
-from ...solvers.optimal_clamp import optimal_clamp_force
+from ...solvers.optimal_clamp import ClampCase, clamp_optimum
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
 
 __all__ = ["solve_curves", "limit_torques", "derived", "solve_column", "at_optimal_forces"]
@@ -55,7 +55,7 @@ def solve_curves(
     ``(m,)``) with the variables of `ballcvt.analysis.sweeps.variables`; run in worker processes.
     """
     m, nt = ratio.size, torque.size
-    optimal = law is not None and law.name == "optimal"
+    optimal = law is not None and law.optimises
     base, search = limit_search_curves(
         design,
         fluid,
@@ -341,7 +341,7 @@ def solve_column(pb, law, options, x0):
     """Solve the points of one torque under ``law`` -> (problem at the forces used, sol)."""
     if law is None:
         return pb, solve_batch(pb, options, x0)
-    if law.name != "optimal":
+    if not law.optimises:
         return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x), x0)
     pb = at_optimal_forces(pb, law, options)
     return pb, solve_batch(pb, options, x0)
@@ -354,17 +354,15 @@ def at_optimal_forces(pb, law, options):
     forces = np.array(pb.clamp_force, dtype=float)
     for j in range(pb.size):
         try:
-            forces[j] = optimal_clamp_force(
+            case = ClampCase(
                 pb.design,
                 pb.fluid,
                 pb.layout.architecture,
                 float(pb.ratio[j]),
                 float(pb.output_torque[j]),
                 float(pb.input_speed[j]),
-                options,
-                law.creep_limit,
-                law.max_pressure,
-            ).clamp_force
+            )
+            forces[j] = clamp_optimum(case, law, options).clamp_force
         except TractionLimitError:
             pass
     return with_clamp(pb, forces)

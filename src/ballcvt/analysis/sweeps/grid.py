@@ -25,7 +25,9 @@ from ...equilibrium.problem import build_problem
 from ...errors import InputError
 from ...model.architectures import CONTACT_NAMES
 from ...model.clamping import clamp_law as clamp_law_of
+from ...model.clamping.base import DEFAULT_LAW
 from ...params.models import ARCHITECTURES, Design, Fluid
+from ...registry import CLAMP_LAWS
 from ...solvers.limit import LimitSearch, bisection_steps
 from ...solvers.options import SolverOptions
 from .curves import solve_curves
@@ -115,12 +117,12 @@ def sweep(
     if not 0.0 < c_lim < 1.0:
         raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
     law: Any = None
-    if clamp_law is None or clamp_law == "constant":  # the forces are a dimension
-        if clamp_force is None:
-            clamp_law_of(None, design, None)  # raises: says what is missing
+    if clamp_law is None or (isinstance(clamp_law, str) and CLAMP_LAWS.get(clamp_law).fixed_force):
+        if clamp_force is None:  # the forces are a dimension
+            clamp_law_of(clamp_law, design, None)  # raises: says what is missing
     else:
         law = clamp_law_of(clamp_law, design, clamp_force)
-        if law.name == "constant":
+        if law.fixed_force:
             law, clamp_force = None, law.force
     axes = {
         name: _axis(name, value)
@@ -209,7 +211,7 @@ def sweep(
             ("architecture", speed_dim, "ratio", "output_torque"), used, attrs_for("clamp_force")
         )
     ds.attrs.update(
-        clamp_law=law.name if law else "constant",
+        clamp_law=law.name if law else DEFAULT_LAW,
         traction_law=fluid.traction_law,
         title="ballcvt sweep",
         Conventions="CF-1.10",

@@ -76,7 +76,7 @@ def evaluate_points(
     )
     n = ratio.size
     c_lim = design.creep_limit if creep_limit is None else float(creep_limit)
-    optimal = law is not None and law.name == "optimal"
+    optimal = law is not None and law.optimises
     follows = law if law is not None and not optimal else None
     force = (
         np.ones(n)

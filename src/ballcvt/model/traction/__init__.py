@@ -11,7 +11,13 @@ from ..hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature
 from ..rheology import limiting_shear_stress, roelands_viscosity, saturation_factor
 from .base import LAWS, TractionLaw, law_coefficients, traction_law
 from .contact import ContactState, contact_coefficients
-from .isothermal import pole_position, shear_coefficients, traction_coefficients
+from .isothermal import (
+    ShearLaw,
+    pole_position,
+    shear_coefficients,
+    shear_law_coefficients,
+    traction_coefficients,
+)
 from .quadrature import METHODS, REFERENCE, Quadrature, centred_rule, inner_pole_rule
 from .thermal import (
     film_temperature_rise,
@@ -39,6 +45,8 @@ __all__ = [
     "TRACTION_LAWS",
     "contact_coefficients",
     "shear_coefficients",
+    "ShearLaw",
+    "shear_law_coefficients",
     "thermal_law_coefficients",
     "temperature_rise",
     "traction_law",

@@ -18,6 +18,8 @@ Then (Eqs. 57-66, lever arms with their semi-axes, docs/model.md §3)
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -33,7 +35,37 @@ from . import kernels
 from .contact import ContactState, contact_coefficients, legacy_arguments
 from .quadrature import Quadrature, centred_rule, inner_pole_rule, radial_rule
 
-__all__ = ["pole_position", "shear_coefficients", "traction_coefficients"]
+__all__ = [
+    "ShearLaw",
+    "pole_position",
+    "shear_coefficients",
+    "shear_law_coefficients",
+    "traction_coefficients",
+]
+
+
+@dataclass(frozen=True)
+class ShearLaw:
+    """A node-local shear law ``tau = (eta / h) S(a) V`` with ``a = eta |V| / (h tau_L)``.
+
+    Eq. 53 is ``S(a) = (1 - exp(-a)) / a`` (the default); any law whose stress is the
+    limiting shear stress times a function of ``a`` is another ``S`` (``S(0) = 1``: the
+    Newtonian limit). ``eta`` is the Roelands viscosity (Eq. 51), ``tau_L`` the limiting
+    shear stress (Eq. 54), both at the node's Hertz pressure.
+
+    Parameters
+    ----------
+    factor : callable
+        ``S(a)`` of an array ``a >= 0`` [-].
+    slope : callable
+        ``dS/da`` of ``(a, S(a))`` [-] (for Newton's Jacobians).
+    modulus : float
+        Shear modulus ``G`` of a visco-elastic (Maxwell) film [Pa]; 0: none.
+    """
+
+    factor: Callable = saturation_factor
+    slope: Callable = saturation_slope
+    modulus: float = 0.0
 
 
 def pole_position(creep_term, spin, ay, radius):
@@ -95,10 +127,37 @@ def shear_coefficients(
     elif quadrature.engine == "auto" and kernels.AVAILABLE:
         out = _compiled(params, fluid, quadrature, derivatives, modulus)[:n_out]
     else:
-        out = _numpy_rules(params, fluid, quadrature, derivatives, modulus)[:n_out]
+        out = _numpy_rules(params, fluid, quadrature, derivatives, ShearLaw(modulus=modulus))
+    return _shaped(out[:n_out], shape, derivatives)
+
+
+def shear_law_coefficients(
+    state: ContactState,
+    fluid: Fluid,
+    law: ShearLaw,
+    quadrature: Quadrature = Quadrature(),
+    derivatives: bool = False,
+):
+    """``mu, chi`` (and their derivatives) of contacts under the shear law ``law``.
+
+    The same quadrature as `shear_coefficients` (the NumPy path, any `ShearLaw`); for a
+    traction law defined outside the package (examples/extending/traction_law.py).
+    Parameters and returns as in `shear_coefficients`.
+    """
+    shape = state.shape
+    params = state.stacked()
+    n_out = 8 if derivatives else 2
+    out = np.zeros((n_out, 0))
+    if params.shape[1]:
+        out = _numpy_rules(params, fluid, quadrature, derivatives, law)[:n_out]
+    return _shaped(out, shape, derivatives)
+
+
+def _shaped(out, shape, derivatives: bool):
+    """The sums ``(2 or 8, n)`` as ``mu, chi`` (and ``dmu, dchi``) of shape ``shape``."""
     if not derivatives:
         return out[0].reshape(shape), out[1].reshape(shape)
-    out = out.reshape((n_out,) + shape)
+    out = out.reshape((out.shape[0],) + shape)
     last = tuple(range(1, len(shape) + 1)) + (0,)  # the derivatives' axis last
     return out[0], out[1], out[2:5].transpose(last), out[5:8].transpose(last)
 
@@ -133,7 +192,7 @@ def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool, modulus: f
     return out.T
 
 
-def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool, modulus: float):
+def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool, law: ShearLaw):
     """The NumPy reference path's sums ``(8 or 2, n)``: each rule on its contacts, blended
     (the same sums as `_compiled`)."""
     yp = pole_position(params[0], params[1], params[3], params[6])
@@ -156,7 +215,7 @@ def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool, modulus
                 if kind == "pole"
                 else centred_rule(q.n_radial, n_angular, y.shape)
             )
-            values = _integrate(nodes, list(p), fluid, derivatives, modulus)
+            values = _integrate(nodes, list(p), fluid, derivatives, law)
             if derivatives:
                 values = np.concatenate([np.stack(values[:2]), values[2].T, values[3].T])
             out[:, part] += rule_weight[part] * np.stack(values)
@@ -191,11 +250,11 @@ def _pole_weight(abs_yp):
     return t * t * (3.0 - 2.0 * t)
 
 
-def _integrate(nodes, params, fluid: Fluid, derivatives: bool, modulus: float):
+def _integrate(nodes, params, fluid: Fluid, derivatives: bool, law: ShearLaw):
     """Quadrature of Eqs. 57-66 for flat parameter arrays on the given nodes.
 
     Returns ``mu, chi`` and, with ``derivatives``, ``dmu, dchi`` of shape ``(m, 3)``
-    (see `shear_coefficients`); ``modulus``: the film's shear modulus [Pa] (0: rigid).
+    (see `shear_coefficients`) under the node-local shear law ``law``.
     """
     x, y, w = nodes
     c, sg, ax, ay, pm, fn, rc, u, h = params
@@ -209,12 +268,12 @@ def _integrate(nodes, params, fluid: Fluid, derivatives: bool, modulus: float):
     vy = ex(u * sg * ax / rc) * x
     speed = np.hypot(vx, vy)
     arg = eta * speed / (ex(h) * tau_l)
-    sat = saturation_factor(arg)
+    sat = law.factor(arg)
     g = eta / ex(h) * sat  # tau = g V
     corr, lin_extra = 1.0, 0.0
-    if modulus > 0.0:  # Maxwell elasticity (§14)
+    if law.modulus > 0.0:  # Maxwell elasticity (§14)
         t_in = ex(ax) * (x + np.sqrt(np.maximum(1.0 - y * y, 0.0))) / ex(u)
-        theta = modulus * t_in / (ex(h) * g)
+        theta = law.modulus * t_in / (ex(h) * g)
         em = np.exp(-theta)
         f = -np.expm1(-theta)
         corr, lin_extra = f - theta * em, -g * theta * em
@@ -232,7 +291,7 @@ def _integrate(nodes, params, fluid: Fluid, derivatives: bool, modulus: float):
     if not derivatives:
         return mu, chi
     # d tau = g dV + (dg/d|V|) (V.dV / |V|) V; k = (dg/d|V|) / |V| stays finite times V.V
-    k = (eta / ex(h)) ** 2 / tau_l * saturation_slope(arg, sat)
+    k = (eta / ex(h)) ** 2 / tau_l * law.slope(arg, sat)
     k = np.divide(k, speed, out=np.zeros_like(k), where=speed > 0.0) * corr
     dvx_s, dvy_s = -ex(u * ay / rc) * y, ex(u * ax / rc) * x  # dV / d sigma
     d_c = moments(g * ex(u) + k * vx * ex(u) * vx, k * vx * ex(u) * vy)

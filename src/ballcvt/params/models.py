@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import difflib
 import math
-from collections.abc import Mapping
 from typing import Any, Literal
 
 from pydantic import (
@@ -28,6 +27,7 @@ from pydantic import (
 from ..errors import InputError
 from ..registry import TRACTION_LAWS
 from .feasibility import check_design
+from .laws import LAW_FIELDS, check_law
 
 __all__ = [
     "ParameterModel",
@@ -63,25 +63,6 @@ def _opt(unit: str, description: str, **constraints: Any) -> Any:
         json_schema_extra={"unit": unit},
         **constraints,
     )
-
-
-class _LawFields(Mapping):
-    """Traction-law name -> the `Fluid` fields it needs, read from the registry entries
-    (``TRACTION_LAWS.get(name).fields``; a law registered later is in it)."""
-
-    def __getitem__(self, name: str) -> tuple[str, ...]:
-        return tuple(TRACTION_LAWS.get(name).fields)
-
-    def __iter__(self):
-        return iter(TRACTION_LAWS)
-
-    def __len__(self) -> int:
-        return len(TRACTION_LAWS)
-
-
-#: Law name -> `Fluid` fields the law needs (a view of `ballcvt.registry.TRACTION_LAWS`,
-#: whose entries are `ballcvt.model.traction.base.TractionLaw`).
-LAW_FIELDS: Mapping[str, tuple[str, ...]] = _LawFields()
 
 
 _BOUND_TEXT = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
@@ -510,30 +491,7 @@ class Fluid(ParameterModel):
 
     @model_validator(mode="after")
     def _law_complete(self) -> Fluid:
-        law = TRACTION_LAWS.get(self.traction_law)  # InputError listing the laws
-        given = self.law_parameters or {}
-        absent = [k for k in getattr(law, "parameters", ()) if k not in given]
-        if absent:
-            raise InputError(
-                f"law_parameters.{absent[0]}",
-                None,
-                "a value",
-                message=f"fluid '{self.name}' has no law_parameters.{absent[0]}, which the "
-                f"{self.traction_law} traction law needs (it needs "
-                f"{', '.join(law.parameters)})",
-            )
-        missing = [k for k in LAW_FIELDS[self.traction_law] if getattr(self, k) is None]
-        if missing:
-            raise InputError(
-                missing[0],
-                None,
-                "a value",
-                message=(
-                    f"fluid '{self.name}' has no {missing[0]} [{self.unit(missing[0])}], which "
-                    f"the {self.traction_law} traction law needs: add it to [fluid] (the "
-                    f"{self.traction_law} law needs {', '.join(LAW_FIELDS[self.traction_law])})"
-                ),
-            )
+        check_law(self)
         return self
 
     def with_traction_law(self, law: str | None) -> Fluid:

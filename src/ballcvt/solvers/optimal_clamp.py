@@ -102,6 +102,19 @@ def optimal_clamp_force(*args, **kwargs) -> ClampOptimum:
 _SEARCH = ("creep_limit", "max_pressure", "min_force", "grid", "xtol")
 
 
+def _limits(case: ClampCase, law: OptimalClamp) -> tuple[float, float]:
+    """``(C_lim [-], p_lim [Pa])`` of the search, checked with the torque."""
+    c_lim = case.design.creep_limit if law.creep_limit is None else float(law.creep_limit)
+    p_lim = case.design.max_pressure if law.max_pressure is None else float(law.max_pressure)
+    if not case.output_torque > 0:
+        raise InputError("output_torque", case.output_torque, "> 0 N m")
+    if not 0 < c_lim < 1:
+        raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
+    if not p_lim > 0:
+        raise InputError("max_pressure", p_lim, "> 0 Pa")
+    return c_lim, p_lim
+
+
 def clamp_optimum(
     case: ClampCase, law: OptimalClamp = OptimalClamp(), options: SolverOptions = SolverOptions()
 ) -> ClampOptimum:
@@ -132,14 +145,7 @@ def clamp_optimum(
     design, fluid, architecture = case.design, case.fluid, case.architecture
     ratio, output_torque, input_speed = case.ratio, case.output_torque, case.input_speed
     min_force, grid, xtol = law.min_force, law.grid, law.xtol
-    c_lim = design.creep_limit if law.creep_limit is None else float(law.creep_limit)
-    p_lim = design.max_pressure if law.max_pressure is None else float(law.max_pressure)
-    if not output_torque > 0:
-        raise InputError("output_torque", output_torque, "> 0 N m")
-    if not 0 < c_lim < 1:
-        raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
-    if not p_lim > 0:
-        raise InputError("max_pressure", p_lim, "> 0 Pa")
+    c_lim, p_lim = _limits(case, law)
 
     def evaluate(forces, x0=None):
         forces = np.atleast_1d(np.asarray(forces, dtype=float))

@@ -58,24 +58,36 @@ class ContactState:
 
     def values(self) -> tuple:
         """The nine quantities in the order of the attributes."""
-        return tuple(getattr(self, f.name) for f in fields(self))
+        return (
+            self.creep_term,
+            self.spin,
+            self.ax,
+            self.ay,
+            self.p_max,
+            self.load,
+            self.radius,
+            self.u_ref,
+            self.film,
+        )
 
     @property
     def shape(self) -> tuple[int, ...]:
         """The broadcast shape of the quantities (that of the coefficients)."""
         return np.broadcast_shapes(*(np.shape(v) for v in self.values()))
 
-    def stacked(self) -> np.ndarray:
-        """The quantities as rows of a ``(9, n)`` float array (broadcast, flattened)."""
-        shape = self.shape
+    def stacked(self) -> tuple[np.ndarray, tuple[int, ...]]:
+        """The quantities as rows of a ``(9, n)`` float array (broadcast, flattened), and
+        their broadcast shape."""
+        values = self.values()
+        shape = np.broadcast_shapes(*(np.shape(v) for v in values))
         out = np.empty((9,) + shape)
-        for i, value in enumerate(self.values()):
+        for i, value in enumerate(values):
             out[i, ...] = value
-        return out.reshape(9, -1)
+        return out.reshape(9, -1), shape
 
     def flat(self) -> ContactState:
         """The same contacts as flat float arrays of one length."""
-        return ContactState(*self.stacked())
+        return ContactState(*self.stacked()[0])
 
     def replace(self, **changes: Any) -> ContactState:
         """A copy with some quantities changed (e.g. ``film=...``)."""

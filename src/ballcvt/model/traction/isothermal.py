@@ -119,8 +119,7 @@ def shear_coefficients(
         differentiated (it changes the result only by the discretisation error), nor is the
         blend weight: these are Jacobians for Newton's method, not exact gradients.
     """
-    shape = state.shape
-    params = state.stacked()
+    params, shape = state.stacked()
     n_out = 8 if derivatives else 2
     if params.shape[1] == 0:
         out = np.zeros((n_out, 0))
@@ -144,8 +143,7 @@ def shear_law_coefficients(
     traction law defined outside the package (examples/extending/traction_law.py).
     Parameters and returns as in `shear_coefficients`.
     """
-    shape = state.shape
-    params = state.stacked()
+    params, shape = state.stacked()
     n_out = 8 if derivatives else 2
     out = np.zeros((n_out, 0))
     if params.shape[1]:

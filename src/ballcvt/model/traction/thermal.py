@@ -82,7 +82,8 @@ class _Contacts:
     @classmethod
     def from_state(cls, state: ContactState, fluid: Fluid) -> tuple[_Contacts, tuple[int, ...]]:
         """Contacts of ``state`` as flat arrays, and their shape."""
-        return cls(list(state.stacked()), fluid), state.shape
+        params, shape = state.stacked()
+        return cls(list(params), fluid), shape
 
     def take(self, i) -> _Contacts:
         out = object.__new__(_Contacts)

@@ -483,11 +483,11 @@ class Fluid(ParameterModel):
         return data
 
     def __hash__(self) -> int:  # law_parameters is a dict (the solvers cache per fluid)
-        items = tuple(
-            (k, tuple(sorted(v.items())) if isinstance(v, dict) else v)
-            for k, v in self.__dict__.items()
-        )
-        return hash((type(self), items))
+        given = self.law_parameters
+        if given is None:
+            return hash((type(self), tuple(self.__dict__.values())))
+        rest = tuple(v for k, v in self.__dict__.items() if k != "law_parameters")
+        return hash((type(self), rest, tuple(sorted(given.items()))))
 
     @model_validator(mode="after")
     def _law_complete(self) -> Fluid:

@@ -9,8 +9,7 @@ and any law registered from user code alike (docs/model.md §14).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields, replace
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -22,9 +21,10 @@ from .quadrature import Quadrature
 __all__ = ["ContactState", "contact_coefficients", "legacy_arguments"]
 
 
-@dataclass(frozen=True)
-class ContactState:
+class ContactState(NamedTuple):
     """The nine per-contact quantities of a traction law (arrays broadcast together).
+
+    An immutable named tuple (cheap to build: the solvers make one per evaluation).
 
     Attributes
     ----------
@@ -58,17 +58,7 @@ class ContactState:
 
     def values(self) -> tuple:
         """The nine quantities in the order of the attributes."""
-        return (
-            self.creep_term,
-            self.spin,
-            self.ax,
-            self.ay,
-            self.p_max,
-            self.load,
-            self.radius,
-            self.u_ref,
-            self.film,
-        )
+        return tuple(self)
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -78,10 +68,9 @@ class ContactState:
     def stacked(self) -> tuple[np.ndarray, tuple[int, ...]]:
         """The quantities as rows of a ``(9, n)`` float array (broadcast, flattened), and
         their broadcast shape."""
-        values = self.values()
-        shape = np.broadcast_shapes(*(np.shape(v) for v in values))
+        shape = np.broadcast_shapes(*(np.shape(v) for v in self))
         out = np.empty((9,) + shape)
-        for i, value in enumerate(values):
+        for i, value in enumerate(self):
             out[i, ...] = value
         return out.reshape(9, -1), shape
 
@@ -91,7 +80,7 @@ class ContactState:
 
     def replace(self, **changes: Any) -> ContactState:
         """A copy with some quantities changed (e.g. ``film=...``)."""
-        return replace(self, **changes)
+        return self._replace(**changes)
 
 
 def contact_coefficients(
@@ -125,7 +114,7 @@ def contact_coefficients(
     return law.coefficients(state, fluid, quadrature, derivatives)
 
 
-_NAMES = tuple(f.name for f in fields(ContactState))
+_NAMES = ContactState._fields
 
 
 def legacy_arguments(old: str, new: str, args: tuple, kwargs: dict):

@@ -38,7 +38,8 @@ from ballcvt import Quadrature, SolverOptions, __version__, load_builtin
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.equilibrium.residual import _balances, _contact_inputs
 from ballcvt.model.kinematics import creep_term
-from ballcvt.model.traction.reference import traction_coefficients_adaptive
+from ballcvt.model.traction.contact import ContactState
+from ballcvt.model.traction.reference import adaptive_coefficients
 from ballcvt.performance.efficiency import efficiency
 from ballcvt.solvers.limit import limit_torque_batch
 from ballcvt.solvers.newton import initial_creep, solve_batch
@@ -81,9 +82,9 @@ def adaptive_point(problem):
         c = creep_term(x)
         mu, chi = np.zeros(x.size), np.zeros(x.size)
         for i in range(x.size):
-            mu[i], chi[i] = traction_coefficients_adaptive(
+            mu[i], chi[i] = adaptive_coefficients(ContactState(
                 c[i], sg[i], problem.ax[i], problem.ay[i], problem.p_max[i], problem.load[i],
-                problem.radius[i], u[i], h[i], problem.fluid, epsrel=1e-8)
+                problem.radius[i], u[i], h[i]), problem.fluid, epsrel=1e-8)
         return _balances(problem, x, ws, w, sg, u, h, mu, chi).residual
 
     return root(fun, initial_creep(problem), method="hybr", options={"xtol": 1e-12})

@@ -10,9 +10,9 @@ from scipy.special import ellipe, ellipk
 from ballcvt.model.film import central_film_thickness
 from ballcvt.model.hertz import hertz_contact
 from ballcvt.model.rheology import roelands_viscosity, saturation_factor
-from ballcvt.model.traction.isothermal import traction_coefficients
+from ballcvt.model.traction.contact import ContactState, contact_coefficients
 from ballcvt.model.traction.quadrature import REFERENCE, Quadrature, centred_rule, inner_pole_rule
-from ballcvt.model.traction.reference import traction_coefficients_adaptive
+from ballcvt.model.traction.reference import adaptive_coefficients
 
 E_RED = 210e9 / (1 - 0.3**2)
 
@@ -107,8 +107,7 @@ CONTACT = dict(ax=4.75e-4, ay=8.85e-4, p_max=1.63e9, load=1436.0, radius=0.0515,
 
 def _coeffs(yp, sigma, fluid, quadrature, c=None):
     c = yp * sigma * CONTACT["ay"] / CONTACT["radius"] if c is None else c
-    return np.array(traction_coefficients(c, sigma, fluid=fluid, quadrature=quadrature,
-                                          **CONTACT))
+    return np.array(contact_coefficients(ContactState(c, sigma, **CONTACT), fluid, quadrature))
 
 
 @given(yp=st.floats(-3, 3), sigma=st.floats(0.01, 2.0))
@@ -128,7 +127,7 @@ def test_quadrature_converges_to_adaptive(drive, yp):
     """Errors fall as nodes increase; the reference rule matches nested adaptive quad."""
     f, sigma = drive[1], 0.3
     c = yp * sigma * CONTACT["ay"] / CONTACT["radius"]
-    exact = np.array(traction_coefficients_adaptive(c, sigma, fluid=f, epsrel=1e-8, **CONTACT))
+    exact = np.array(adaptive_coefficients(ContactState(c, sigma, **CONTACT), f, epsrel=1e-8))
     errors = [np.max(np.abs(_coeffs(yp, sigma, f, Quadrature("pole", n, n // 2)) / exact - 1))
               for n in (8, 16, 32, 64)]
     assert errors[-1] < 1e-6

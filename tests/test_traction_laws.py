@@ -10,11 +10,15 @@ from hypothesis import strategies as st
 from ballcvt import InputError, Variator, load_builtin
 from ballcvt.analysis.fitting import Curves, fit_fluid, model_mu, read_curves
 from ballcvt.interfaces.cli import main as cli
-from ballcvt.model.traction.base import law_coefficients
+from ballcvt import _compat
+from ballcvt._compat import BallCVTDeprecationWarning
+from ballcvt.model.traction import base as laws
+from ballcvt.model.traction import isothermal, thermal
+from ballcvt.model.traction.contact import ContactState, contact_coefficients
 from ballcvt.model.traction.curve import traction_curve
-from ballcvt.model.traction.isothermal import traction_coefficients
+from ballcvt.model.traction.isothermal import shear_coefficients
 from ballcvt.model.traction.quadrature import Quadrature
-from ballcvt.model.traction.thermal import FLASH_FACTOR, film_temperature_rise, thermal_coefficients
+from ballcvt.model.traction.thermal import FLASH_FACTOR, temperature_rise, thermal_law_coefficients
 from ballcvt.params.io import load_builtin_fluid, load_fluid
 from ballcvt.params.models import LAW_FIELDS, Fluid
 
@@ -22,6 +26,16 @@ DESIGN, FLUID = load_builtin()
 E_RED = DESIGN.material.reduced_modulus
 #: A twin-disc contact: R_x 20 mm, R_y 50 mm, 1.6 GPa.
 DISC = {"rx": 0.02, "ry": 0.05, "p_max": 1.6e9, "reduced_modulus": E_RED}
+
+
+def _of_state(function):
+    """``function(ContactState(*nine arrays), *rest)``: the tests keep the nine arrays."""
+    return lambda *args, **kw: function(ContactState(*args[:9]), *args[9:], **kw)
+
+
+traction_coefficients = _of_state(contact_coefficients)
+thermal_coefficients = _of_state(thermal_law_coefficients)
+film_temperature_rise = _of_state(temperature_rise)
 
 
 def law(name, **changes):
@@ -38,8 +52,31 @@ def test_default_law_is_the_papers_and_dispatch_is_the_integrals():
     assert FLUID.traction_law == "isothermal"
     args = (np.array([0.001, 0.01, 0.05]), 0.3, 4.9e-4, 8.7e-4, 1.6e9, 1422.0, 0.03, 10.0,
             2.5e-7)
-    np.testing.assert_array_equal(law_coefficients(*args, FLUID)[0],
-                                  traction_coefficients(*args, FLUID)[0])
+    np.testing.assert_array_equal(contact_coefficients(ContactState(*args), FLUID)[0],
+                                  shear_coefficients(ContactState(*args), FLUID)[0])
+
+
+def test_old_twelve_argument_functions_warn_and_agree():
+    """The old signatures (nine arrays, then the fluid) answer with one deprecation
+    warning and the same numbers (issue 22)."""
+    args = (np.array([0.001, 0.01]), 0.3, 4.9e-4, 8.7e-4, 1.6e9, 1422.0, 0.03, 10.0, 2.5e-7)
+    hot = law("thermal")
+    for old, fluid, new in (
+        (laws.law_coefficients, FLUID, contact_coefficients),
+        (isothermal.traction_coefficients, FLUID, contact_coefficients),
+        (thermal.thermal_coefficients, hot, thermal_law_coefficients),
+        (thermal.film_temperature_rise, hot, temperature_rise),
+    ):
+        _compat._warned.clear()  # warn_renamed warns once per process
+        with pytest.warns(BallCVTDeprecationWarning, match="ContactState"):
+            got = old(*args, fluid)
+        want = new(ContactState(*args), fluid)
+        for a, b in zip(np.atleast_2d(got), np.atleast_2d(want)):
+            np.testing.assert_array_equal(a, b)
+    _compat._warned.clear()
+    with pytest.warns(BallCVTDeprecationWarning, match="TRACTION_LAWS"):
+        assert laws.MONOTONE["thermal"] is False
+        assert laws.LAWS["isothermal"] is shear_coefficients
 
 
 def test_fluid_without_law_parameters_loads_for_isothermal_only(capsys, tmp_path):

@@ -238,8 +238,8 @@ def run_cycle(drive, cycle: Cycle, settings: CycleRequest | None = None, **keywo
                 here,
                 ratio,
                 w0,
-                clamp_force=law.force if law.name == "constant" else None,
-                law=None if law.name == "constant" else law,
+                clamp_force=law.force if law.fixed_force else None,
+                law=None if law.fixed_force else law,
                 options=coarse if rough else fine,
             )
             return evaluate_points(points, t2, callback=bar.update, executor=pool)

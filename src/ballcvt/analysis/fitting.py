@@ -29,16 +29,18 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import InputError
-from ..model.traction.base import law_coefficients
-from ..model.traction.curve import contact_arguments
+from ..model.traction.contact import contact_coefficients
+from ..model.traction.curve import MachineContact, machine_state
 from ..model.traction.quadrature import Quadrature
 from ..params.models import Fluid
+from ..registry import TRACTION_LAWS
 
 __all__ = [
     "COLUMNS",
@@ -73,16 +75,24 @@ FITTABLE = (
     "thermal_conductivity",
     "shear_modulus",
 )
-#: Parameters fitted by default under each law.
-DEFAULT_PARAMETERS = {
-    "isothermal": ("limiting_shear_stress", "limiting_shear_slope"),
-    "thermal": (
-        "limiting_shear_stress",
-        "limiting_shear_slope",
-        "temperature_viscosity_coefficient",
-    ),
-    "viscoelastic": ("limiting_shear_stress", "limiting_shear_slope", "shear_modulus"),
-}
+
+
+class _DefaultParameters(Mapping):
+    """Law name -> the fields fitted by default under it (its registry entry's
+    ``fit_parameters``; a law registered later is in it)."""
+
+    def __getitem__(self, name: str) -> tuple[str, ...]:
+        return tuple(TRACTION_LAWS.get(name).fit_parameters)
+
+    def __iter__(self):
+        return iter(TRACTION_LAWS)
+
+    def __len__(self) -> int:
+        return len(TRACTION_LAWS)
+
+
+#: Parameters fitted by default under each law (`TractionLaw.fit_parameters`).
+DEFAULT_PARAMETERS: Mapping[str, tuple[str, ...]] = _DefaultParameters()
 #: Identifiability thresholds: relative standard error and |correlation|.
 MAX_RELATIVE_ERROR = 0.5
 MAX_CORRELATION = 0.995
@@ -197,17 +207,10 @@ def model_mu(
     fluid: Fluid, curves: Curves, reduced_modulus: float, quadrature: Quadrature = Quadrature()
 ) -> np.ndarray:
     """Modelled traction coefficient at every point of ``curves`` [-] (one batched call)."""
-    args = contact_arguments(
-        fluid,
-        curves.rx,
-        curves.ry,
-        curves.load,
-        curves.speed,
-        curves.spin,
-        curves.creep,
-        reduced_modulus,
+    machine = MachineContact(
+        curves.rx, curves.ry, curves.speed, curves.load, None, curves.spin, reduced_modulus
     )
-    mu, _ = law_coefficients(*args, fluid, quadrature)
+    mu, _ = contact_coefficients(machine_state(fluid, machine, curves.creep), fluid, quadrature)
     return np.asarray(mu)
 
 

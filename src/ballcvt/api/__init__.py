@@ -15,7 +15,7 @@ from ..analysis.sweeps.export import load_dataset, to_csv, to_frame, to_netcdf
 from ..analysis.tables import read_modelica_tables, table_arrays, write_tables
 from ..model.modes import MEMBERS, OperatingMode
 from ..model.traction.curve import TractionCurve, traction_curve
-from ..params import Design, Fluid, drive_to_toml, load_builtin, load_drive
+from ..params import PAPER_POINT, Design, Drive, Fluid, drive_to_toml, load_builtin, load_drive
 from ..params.io import BUILTIN_DRIVES, BUILTIN_FLUIDS, builtin_text, resolve_drive, resolve_fluid
 from ..results.planetary import PlanetaryResult
 from ..results.point import ContactResult, OperatingResult
@@ -28,6 +28,8 @@ from .tools import contact_fluid, drive_text, open_drive, read_study
 from .variator import Variator
 
 __all__ = [
+    "PAPER_POINT",
+    "Drive",
     "Variator",
     "SolveSettings",
     "SweepSettings",

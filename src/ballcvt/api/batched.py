@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..params.models import Design, Fluid
+from ..registry import CLAMP_LAWS
 from ..solvers.options import SolverOptions
 from ..units import rpm_to_rad_s
 from . import grids, planetary
@@ -229,7 +230,8 @@ CAM_KEYS = ("disc", "preload", "ramp_angle_deg", "mean_radius", "friction")
 
 def _clamp(clamp_force, clamp_law) -> dict:
     """The clamping keywords of `solve` that were given."""
-    if clamp_law is None or clamp_law == "constant":
+    fixed = isinstance(clamp_law, str) and CLAMP_LAWS.get(clamp_law).fixed_force
+    if clamp_law is None or fixed:
         return {"clamp_force": clamp_force}
     return {
         "clamp_law": clamp_law,

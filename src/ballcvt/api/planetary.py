@@ -20,7 +20,7 @@ __all__ = ["solve_in_mode", "planetary_map", "planetary_capacity"]
 def _constant_force(variator, clamp_force, clamp_law) -> float:
     """``F_N0`` [N]: only the constant law is defined with the carrier turning."""
     law = variator.clamp_law(clamp_law, clamp_force)
-    if law.name != "constant":
+    if not law.fixed_force:
         raise InputError(
             "clamp_law",
             law.name,

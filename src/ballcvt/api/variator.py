@@ -11,7 +11,7 @@ from .._display import html_summary, text_summary
 from ..equilibrium.problem import build_problem
 from ..errors import ConvergenceError, InputError, TractionLimitError
 from ..model.architectures import check_architecture
-from ..model.clamping import ConstantClamp
+from ..model.clamping import ConstantClamp, OptimalClamp
 from ..model.clamping import clamp_law as _clamp_law
 from ..model.kinematics import ratio_range
 from ..model.modes import resolve_mode
@@ -22,7 +22,7 @@ from ..results.planetary import PlanetaryResult
 from ..results.point import OperatingResult, make_result
 from ..solvers.clamped import capacity_basis, pressure_bound_force, solve_clamped
 from ..solvers.limit import limit_torque
-from ..solvers.optimal_clamp import ClampOptimum, optimal_clamp_force
+from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum
 from ..solvers.point import SolverOptions, solve_point
 from ..units import rpm_to_rad_s
 from . import grids, planetary
@@ -133,7 +133,7 @@ class Variator(BatchMethods):
     def _resolve(self, ratio, output_torque, clamp_force, clamp_law, input_speed, input_speed_rpm):
         """(force law, law name): the optimal law becomes the constant law at its optimum."""
         law = self.clamp_law(clamp_law, clamp_force)
-        if law.name != "optimal":
+        if not law.optimises:
             return law, law.name
         opt = self.optimal_clamp_force(
             ratio,
@@ -143,7 +143,7 @@ class Variator(BatchMethods):
             creep_limit=law.creep_limit,
             max_pressure=law.max_pressure,
         )
-        return ConstantClamp(opt.clamp_force), "optimal"
+        return ConstantClamp(opt.clamp_force), law.name
 
     def solve(
         self,
@@ -271,7 +271,7 @@ class Variator(BatchMethods):
         if not 0.0 < c_lim < 1.0:
             raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
         law = self.clamp_law(clamp_law, clamp_force)
-        start = ConstantClamp(1.0) if law.name == "optimal" else law
+        start = ConstantClamp(1.0) if law.optimises else law
         problem, law, c_lim = capacity_basis(
             self._problem(ratio, 0.0, start, input_speed, input_speed_rpm), law, c_lim
         )
@@ -359,17 +359,15 @@ class Variator(BatchMethods):
         See `ballcvt.solvers.optimal_clamp.optimal_clamp_force`; limits default to the design's
         ``creep_limit`` and ``max_pressure``.
         """
-        return optimal_clamp_force(
+        case = ClampCase(
             self.design,
             self.fluid,
             self.architecture,
             float(ratio),
             float(output_torque),
             _speed(input_speed, input_speed_rpm),
-            self.options,
-            creep_limit,
-            max_pressure,
         )
+        return clamp_optimum(case, OptimalClamp(creep_limit, max_pressure), self.options)
 
     def run_cycle(
         self,

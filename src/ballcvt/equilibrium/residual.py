@@ -30,7 +30,7 @@ import numpy as np
 from ..model.bearings import load_dependent_torque, speed_dependent_torque
 from ..model.film import SPEED_EXPONENT, central_film_thickness
 from ..model.kinematics import body_speeds, creep_term, entrainment_factor, spin
-from ..model.traction.base import law_coefficients
+from ..model.traction.contact import ContactState, contact_coefficients
 from ..model.traction.quadrature import Quadrature
 from .problem import EquilibriumProblem
 
@@ -129,16 +129,18 @@ def evaluate(
     """
     creep = np.asarray(creep, dtype=float)
     at = _contact_inputs(problem, creep)
-    mu, chi = law_coefficients(
-        creep_term(creep),
-        at.spin,
-        problem.ax,
-        problem.ay,
-        problem.p_max,
-        problem.load,
-        problem.radius,
-        at.u_ref,
-        at.film,
+    mu, chi = contact_coefficients(
+        ContactState(
+            creep_term(creep),
+            at.spin,
+            problem.ax,
+            problem.ay,
+            problem.p_max,
+            problem.load,
+            problem.radius,
+            at.u_ref,
+            at.film,
+        ),
         problem.fluid,
         quadrature,
     )
@@ -151,7 +153,7 @@ def evaluate_with_jacobian(
     """`evaluate` and the Jacobian of its residual with respect to the creeps.
 
     The traction integrals, the costly part, are evaluated once with their analytic
-    derivatives (`law_coefficients` with ``derivatives=True``). The Jacobian then
+    derivatives (`contact_coefficients` with ``derivatives=True``). The Jacobian then
     follows by forward differences of the cheap rest (kinematics, film thickness,
     balances, bearings) with the traction coefficients linearised, all creeps perturbed
     at once along an extra batch axis.
@@ -183,16 +185,18 @@ def evaluate_with_jacobian(
     sg, u, hf = wide_at.spin, wide_at.u_ref, wide_at.film
     c = creep_term(pert)
     at = (slice(None),) * len(problem.shape) + (0,)  # row 0 of the wide axis
-    mu, chi, dmu, dchi = law_coefficients(
-        c[at],
-        sg[at],
-        problem.ax,
-        problem.ay,
-        problem.p_max,
-        problem.load,
-        problem.radius,
-        u[at],
-        hf[at],
+    mu, chi, dmu, dchi = contact_coefficients(
+        ContactState(
+            c[at],
+            sg[at],
+            problem.ax,
+            problem.ay,
+            problem.p_max,
+            problem.load,
+            problem.radius,
+            u[at],
+            hf[at],
+        ),
         problem.fluid,
         quadrature,
         derivatives=True,

@@ -15,12 +15,21 @@ import difflib
 import math
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationError,
+    model_serializer,
+    model_validator,
+)
 
 from ..errors import InputError
 from ..registry import ARCHITECTURES as _ARCHITECTURES
+from ..registry import TRACTION_LAWS
 from ..units import rad_s_to_rpm
 from .feasibility import check_design
+from .laws import LAW_FIELDS, check_law
 
 __all__ = [
     "ParameterModel",
@@ -59,23 +68,6 @@ def _opt(unit: str, description: str, **constraints: Any) -> Any:
         json_schema_extra={"unit": unit},
         **constraints,
     )
-
-
-#: Shear laws of the film (`ballcvt.model.traction.base`), and the `Fluid` fields each needs.
-TractionLaw = Literal["isothermal", "thermal", "viscoelastic"]
-LAW_FIELDS: dict[str, tuple[str, ...]] = {
-    "isothermal": (),
-    "thermal": (
-        "temperature_viscosity_coefficient",
-        "limiting_shear_temperature_coefficient",
-        "thermal_conductivity",
-        "inlet_temperature",
-        "surface_conductivity",
-        "surface_diffusivity",
-    ),
-    "viscoelastic": ("shear_modulus",),
-}
-TRACTION_LAWS: tuple[str, ...] = tuple(LAW_FIELDS)
 
 
 _BOUND_TEXT = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
@@ -441,11 +433,18 @@ class Fluid(ParameterModel):
         gt=0,
         lt=math.inf,
     )
-    traction_law: TractionLaw = Field(
+    traction_law: str = Field(
         "isothermal",
-        description="shear law of the film (docs/model.md §14): 'isothermal' "
-        "(the paper's Eq. 53), 'thermal' (shear heating thins the film) or 'viscoelastic' "
-        "(Maxwell elasticity gives the initial slope) [-]",
+        description="shear law of the film (docs/model.md §14), a name in "
+        "ballcvt.registry.TRACTION_LAWS: 'isothermal' (the paper's Eq. 53), 'thermal' "
+        "(shear heating thins the film), 'viscoelastic' (Maxwell elasticity gives the "
+        "initial slope) or a law registered from user code [-]",
+        json_schema_extra={"unit": "-"},
+    )
+    law_parameters: dict[str, float] | None = Field(
+        None,
+        description="parameters of a traction law defined outside the package, by name "
+        "(the law's TractionLaw.parameters; units as the law documents) [-]",
         json_schema_extra={"unit": "-"},
     )
     temperature_viscosity_coefficient: float | None = _opt(
@@ -479,20 +478,25 @@ class Fluid(ParameterModel):
         "Pa", "elastic shear modulus G of the film, viscoelastic law", gt=0, lt=math.inf
     )
 
+    @model_serializer(mode="wrap")
+    def _dump(self, handler) -> dict[str, Any]:
+        """The fields, without ``law_parameters`` when it is not given (so that files and
+        results of the built-in laws are as they were)."""
+        data = handler(self)
+        if isinstance(data, dict) and data.get("law_parameters") is None:
+            data.pop("law_parameters", None)
+        return data
+
+    def __hash__(self) -> int:  # law_parameters is a dict (the solvers cache per fluid)
+        given = self.law_parameters
+        if given is None:
+            return hash((type(self), tuple(self.__dict__.values())))
+        rest = tuple(v for k, v in self.__dict__.items() if k != "law_parameters")
+        return hash((type(self), rest, tuple(sorted(given.items()))))
+
     @model_validator(mode="after")
     def _law_complete(self) -> Fluid:
-        missing = [k for k in LAW_FIELDS[self.traction_law] if getattr(self, k) is None]
-        if missing:
-            raise InputError(
-                missing[0],
-                None,
-                "a value",
-                message=(
-                    f"fluid '{self.name}' has no {missing[0]} [{self.unit(missing[0])}], which "
-                    f"the {self.traction_law} traction law needs: add it to [fluid] (the "
-                    f"{self.traction_law} law needs {', '.join(LAW_FIELDS[self.traction_law])})"
-                ),
-            )
+        check_law(self)
         return self
 
     def with_traction_law(self, law: str | None) -> Fluid:

@@ -24,7 +24,7 @@ from tqdm.auto import tqdm
 from .._version import __version__
 from ..analysis import traction_ceiling, write_table
 from ..analysis.sweeps import to_netcdf
-from ..api import Variator
+from ..api import PAPER_POINT, Variator
 from ..files import check_output_dir
 from ..units import rpm_to_rad_s
 from .claims import paper_claims
@@ -34,8 +34,9 @@ from .report import Findings, RunInfo, write_report
 
 __all__ = ["reproduce", "Reproduction", "GRIDS"]
 
-RPM = 2000.0
-CLAMP = 2000.0
+#: The paper's operating point of its figures (Sec. 4).
+RPM = PAPER_POINT.input_speed_rpm
+CLAMP = PAPER_POINT.clamp_force
 
 #: Grid sizes: (full, quick).
 GRIDS = {

@@ -71,7 +71,7 @@ def capacity_basis(problem: EquilibriumProblem, law, creep_limit: float):
     design's) ``max_pressure``, with the law's own ``creep_limit`` if it has one
     (docs/model.md §11). Any other law is returned unchanged.
     """
-    if law is None or law.name != "optimal":
+    if law is None or not law.optimises:
         return problem, law, creep_limit
     p_lim = problem.design.max_pressure if law.max_pressure is None else law.max_pressure
     c_lim = creep_limit if law.creep_limit is None else law.creep_limit

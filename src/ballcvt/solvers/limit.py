@@ -227,7 +227,7 @@ def solve_admissible(
 
 def _follows_torque(law) -> bool:
     """Whether ``law`` sets a torque-dependent force (else the problem's force is used)."""
-    return law is not None and getattr(law, "name", "constant") != "constant"
+    return law is not None and not law.fixed_force
 
 
 @dataclass(frozen=True)

@@ -14,18 +14,20 @@ point; the maximum is then refined by bounded Brent search (`scipy.optimize
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
+from .._compat import warn_renamed
 from ..equilibrium.problem import build_problem
 from ..errors import InputError, TractionLimitError
+from ..model.clamping import OptimalClamp
 from ..params.models import Design, Fluid
 from ..performance.efficiency import efficiency
 from .newton import solve_batch
 from .options import SolverOptions
 
-__all__ = ["ClampOptimum", "optimal_clamp_force"]
+__all__ = ["ClampCase", "ClampOptimum", "clamp_optimum", "optimal_clamp_force"]
 
 
 @dataclass(frozen=True)
@@ -56,46 +58,78 @@ class ClampOptimum:
     active: str
 
 
-def optimal_clamp_force(
-    design: Design,
-    fluid: Fluid,
-    architecture: str,
-    ratio: float,
-    output_torque: float,
-    input_speed: float,
-    options: SolverOptions = SolverOptions(),
-    creep_limit: float | None = None,
-    max_pressure: float | None = None,
-    min_force: float = 100.0,
-    grid: int = 24,
-    xtol: float = 1.0,
-) -> ClampOptimum:
-    """Clamping force of maximum efficiency under the creep and pressure limits.
+@dataclass(frozen=True)
+class ClampCase:
+    """One operating point whose clamping force is sought.
 
-    Parameters
+    Attributes
     ----------
     design, fluid : Design, Fluid
         Parameter sets.
-    architecture : {"double", "single"}
-        Idler architecture.
+    architecture : str
+        Idler architecture (``"double"``, ``"single"``).
     ratio : float
         Ideal speed ratio [-].
     output_torque : float
         Output torque ``T_2`` > 0 [N m].
     input_speed : float
         Input speed [rad/s].
+    """
+
+    design: Design
+    fluid: Fluid
+    architecture: str
+    ratio: float
+    output_torque: float
+    input_speed: float
+
+
+def optimal_clamp_force(*args, **kwargs) -> ClampOptimum:
+    """Deprecated: ``optimal_clamp_force(design, fluid, architecture, ratio, output_torque,
+    input_speed, options, creep_limit, max_pressure, min_force, grid, xtol)`` is
+    `clamp_optimum` of a `ClampCase`, the limits and settings in an `OptimalClamp`."""
+    warn_renamed(
+        "optimal_clamp_force(design, fluid, ...)",
+        "clamp_optimum(ClampCase(design, fluid, ...), OptimalClamp(...), options)",
+    )
+    names = tuple(f.name for f in fields(ClampCase)) + ("options",) + _SEARCH
+    kw = {**dict(zip(names, args)), **kwargs}
+    case = ClampCase(*(kw.pop(f.name) for f in fields(ClampCase)))
+    options = kw.pop("options", SolverOptions())
+    return clamp_optimum(case, OptimalClamp(**kw), options)
+
+
+_SEARCH = ("creep_limit", "max_pressure", "min_force", "grid", "xtol")
+
+
+def _limits(case: ClampCase, law: OptimalClamp) -> tuple[float, float]:
+    """``(C_lim [-], p_lim [Pa])`` of the search, checked with the torque."""
+    c_lim = case.design.creep_limit if law.creep_limit is None else float(law.creep_limit)
+    p_lim = case.design.max_pressure if law.max_pressure is None else float(law.max_pressure)
+    if not case.output_torque > 0:
+        raise InputError("output_torque", case.output_torque, "> 0 N m")
+    if not 0 < c_lim < 1:
+        raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
+    if not p_lim > 0:
+        raise InputError("max_pressure", p_lim, "> 0 Pa")
+    return c_lim, p_lim
+
+
+def clamp_optimum(
+    case: ClampCase, law: OptimalClamp = OptimalClamp(), options: SolverOptions = SolverOptions()
+) -> ClampOptimum:
+    """Clamping force of maximum efficiency under the creep and pressure limits.
+
+    Parameters
+    ----------
+    case : ClampCase
+        The operating point (design, fluid, architecture, ratio [-], output torque
+        [N m], input speed [rad/s]).
+    law : OptimalClamp
+        The limits (``creep_limit`` [-], ``max_pressure`` [Pa]: the design's when None)
+        and the search settings (``min_force`` [N], ``grid``, ``xtol`` [N]).
     options : SolverOptions
         Solver options.
-    creep_limit : float, optional
-        ``C_lim`` [-]; ``design.creep_limit`` by default.
-    max_pressure : float, optional
-        ``p_lim`` [Pa]; ``design.max_pressure`` by default.
-    min_force : float
-        Smallest clamping force searched [N].
-    grid : int
-        Clamping forces on the initial geometric grid.
-    xtol : float
-        Absolute tolerance on the optimal force [N].
 
     Returns
     -------
@@ -108,14 +142,10 @@ def optimal_clamp_force(
     TractionLimitError
         If no clamping force up to the pressure bound carries the torque.
     """
-    c_lim = design.creep_limit if creep_limit is None else float(creep_limit)
-    p_lim = design.max_pressure if max_pressure is None else float(max_pressure)
-    if not output_torque > 0:
-        raise InputError("output_torque", output_torque, "> 0 N m")
-    if not 0 < c_lim < 1:
-        raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
-    if not p_lim > 0:
-        raise InputError("max_pressure", p_lim, "> 0 Pa")
+    design, fluid, architecture = case.design, case.fluid, case.architecture
+    ratio, output_torque, input_speed = case.ratio, case.output_torque, case.input_speed
+    min_force, grid, xtol = law.min_force, law.grid, law.xtol
+    c_lim, p_lim = _limits(case, law)
 
     def evaluate(forces, x0=None):
         forces = np.atleast_1d(np.asarray(forces, dtype=float))

@@ -39,6 +39,7 @@ from pydantic import Field, model_validator
 from ...errors import InputError
 from ...params.io import parse_toml, read_text
 from ...params.models import ARCHITECTURES, Design, ParameterModel
+from ...registry import CLAMP_LAWS, TRACTION_LAWS
 
 __all__ = [
     "StudySpec",
@@ -127,7 +128,7 @@ class Operating(ParameterModel):
     input_speed_rpm: list[float] | None = None
     weights: list[float] | None = None
     clamp_force: float | None = Field(None, gt=0, lt=math.inf)
-    clamp_law: Literal["constant", "cam", "optimal"] = "constant"
+    clamp_law: str = Field("constant", description="a name in ballcvt.registry.CLAMP_LAWS")
     cycle: str | None = None
     strategy: Literal["target-input-speed", "max-efficiency"] = "target-input-speed"
     target_input_speed_rpm: float | None = Field(None, gt=0, lt=math.inf)
@@ -218,7 +219,9 @@ class StudySettings(ParameterModel):
     chunk: int = Field(8, ge=1, le=100_000)
     choose: str | None = None
     capacity_ratios: list[float] | None = None
-    traction_law: Literal["isothermal", "thermal", "viscoelastic"] | None = None
+    traction_law: str | None = Field(
+        None, description="a name in ballcvt.registry.TRACTION_LAWS (None: the fluid's)"
+    )
 
 
 class StudySpec(ParameterModel):
@@ -281,11 +284,10 @@ class StudySpec(ParameterModel):
             )
         if self.study.architecture not in ARCHITECTURES:  # pragma: no cover - Literal
             raise InputError("study.architecture", self.study.architecture, str(ARCHITECTURES))
-        if (
-            self.operating.clamp_law == "constant"
-            and self.operating.clamp_force is None
-            and "clamp_force" not in self.parameters
-        ):
+        if self.study.traction_law is not None:
+            TRACTION_LAWS.get(self.study.traction_law)  # InputError listing the laws
+        fixed = CLAMP_LAWS.get(self.operating.clamp_law).fixed_force  # likewise
+        if fixed and self.operating.clamp_force is None and "clamp_force" not in self.parameters:
             raise InputError(
                 "operating.clamp_force",
                 None,
@@ -293,7 +295,7 @@ class StudySpec(ParameterModel):
                 message="[operating] needs clamp_force [N] (or clamp_law cam or "
                 "optimal, or clamp_force in [parameters])",
             )
-        if ("clamp_force" in self.parameters) and self.operating.clamp_law != "constant":
+        if ("clamp_force" in self.parameters) and not fixed:
             raise InputError("parameters.clamp_force", None, "clamp_law constant")
         return self
 

@@ -22,7 +22,7 @@ from ...performance.validity import validity
 from ...solvers.clamped import capacity_basis, solve_clamped, with_clamp
 from ...solvers.limit import LimitSearch, limit_search
 from ...solvers.newton import initial_creep, solve_batch
-from ...solvers.optimal_clamp import optimal_clamp_force
+from ...solvers.optimal_clamp import ClampCase, clamp_optimum
 from ...solvers.options import SolverOptions
 from ...status import Status
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
@@ -94,7 +94,7 @@ class OperatingRows:
     @property
     def optimal(self) -> bool:
         """Whether the clamping force is the efficiency-optimal one (an optimisation)."""
-        return self.law is not None and self.law.name == "optimal"
+        return self.law is not None and self.law.optimises
 
     def take(self, index) -> OperatingRows:
         """The rows ``index``."""
@@ -293,7 +293,7 @@ def solve_column(pb, law, options, x0):
     """Solve the points of one torque under ``law`` -> (problem at the forces used, sol)."""
     if law is None:
         return pb, solve_batch(pb, options, x0)
-    if law.name != "optimal":
+    if not law.optimises:
         return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x), x0)
     pb = at_optimal_forces(pb, law, options)
     return pb, solve_batch(pb, options, x0)
@@ -306,17 +306,15 @@ def at_optimal_forces(pb, law, options):
     forces = np.array(pb.clamp_force, dtype=float)
     for j in range(pb.size):
         try:
-            forces[j] = optimal_clamp_force(
+            case = ClampCase(
                 pb.design,
                 pb.fluid,
                 pb.layout.architecture,
                 float(pb.ratio[j]),
                 float(pb.output_torque[j]),
                 float(pb.input_speed[j]),
-                options,
-                law.creep_limit,
-                law.max_pressure,
-            ).clamp_force
+            )
+            forces[j] = clamp_optimum(case, law, options).clamp_force
         except TractionLimitError:
             pass
     return with_clamp(pb, forces)

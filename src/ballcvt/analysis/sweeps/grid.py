@@ -26,8 +26,10 @@ from ...equilibrium.problem import build_problem
 from ...errors import InputError
 from ...model.architectures import CONTACT_NAMES
 from ...model.clamping import clamp_law as clamp_law_of
+from ...model.clamping.base import DEFAULT_LAW
 from ...params.drive import Drive
 from ...params.models import ARCHITECTURES, Design, Fluid
+from ...registry import CLAMP_LAWS
 from ...solvers.limit import LimitSearch, bisection_steps
 from ...solvers.options import SolverOptions
 from .curves import OperatingRows, solve_curves
@@ -165,7 +167,7 @@ def sweep(
             attrs_for("clamp_force"),
         )
     ds.attrs.update(
-        clamp_law=law.name if law else "constant",
+        clamp_law=law.name if law else DEFAULT_LAW,
         traction_law=fluid.traction_law,
         title="ballcvt sweep",
         Conventions="CF-1.10",
@@ -187,12 +189,13 @@ def sweep(
 
 def _law(design: Design, s: SweepRequest):
     """(clamping law other than constant or None, the constant law's forces)."""
-    if s.clamp_law is None or s.clamp_law == "constant":  # the forces are a dimension
+    fixed = isinstance(s.clamp_law, str) and CLAMP_LAWS.get(s.clamp_law).fixed_force
+    if s.clamp_law is None or fixed:  # the forces are a dimension
         if s.clamp_force is None:
-            clamp_law_of(None, design, None)  # raises: says what is missing
+            clamp_law_of(s.clamp_law, design, None)  # raises: says what is missing
         return None, s.clamp_force
     law = clamp_law_of(s.clamp_law, design, s.clamp_force)
-    if law.name == "constant":
+    if law.fixed_force:
         return None, law.force
     return law, s.clamp_force
 

@@ -14,12 +14,11 @@ import sys
 import textwrap
 from pathlib import Path
 
-from ...api import BUILTIN_FLUIDS, CAM_KEYS, Variator, open_drive
+from ...api import BUILTIN_FLUIDS, CAM_KEYS, PAPER_POINT, Variator, open_drive
 from ...errors import InputError
 from ...registry import ARCHITECTURES, CLAMP_LAWS, TRACTION_LAWS
 
 #: The paper's operating point: the defaults of ``point``, ``limit`` and ``clamp``.
-PAPER_POINT = {"ratio": 1.0, "torque": 40.0, "clamp": 2000.0, "speed": 2000.0}
 #: The drive and fluid options of every command that solves the drive.
 FLUID_OPTIONS = ("design", "fluid", "traction-law")
 #: The clamping-law options.
@@ -92,19 +91,19 @@ def options() -> dict[str, dict]:
         },
         "ratio": {
             "type": number,
-            "default": PAPER_POINT["ratio"],
+            "default": PAPER_POINT.ratio,
             "help": "ideal speed ratio tau_ID [-] (default: %(default)s)",
         },
         "torque": {
             "type": number,
-            "default": PAPER_POINT["torque"],
+            "default": PAPER_POINT.output_torque,
             "help": "output torque T2 [N m] (default: %(default)s)",
         },
         "clamp": {
             "type": number,
             "default": None,
             "help": f"input-contact normal load F_N0 [N] of the constant clamping law "
-            f"(default: {PAPER_POINT['clamp']:g})",
+            f"(default: {PAPER_POINT.clamp_force:g})",
         },
         "clamp-law": {
             "default": "constant",
@@ -124,7 +123,7 @@ def options() -> dict[str, dict]:
         "cam-friction": _cam_option("-", "ramp friction coefficient"),
         "speed": {
             "type": number,
-            "default": PAPER_POINT["speed"],
+            "default": PAPER_POINT.input_speed_rpm,
             "help": "input speed [rpm] (default: %(default)s)",
         },
         "creep-limit": {
@@ -196,7 +195,7 @@ def variator(args) -> Variator:
 def law(args) -> dict:
     """``clamp_force`` or ``clamp_law`` keyword of the Python API from the options."""
     if args.clamp_law == "constant":
-        return {"clamp_force": PAPER_POINT["clamp"] if args.clamp is None else args.clamp}
+        return {"clamp_force": PAPER_POINT.clamp_force if args.clamp is None else args.clamp}
     if args.clamp is not None:
         raise InputError(
             "clamp",
@@ -211,7 +210,7 @@ def law(args) -> dict:
 def clamp_label(args) -> str:
     """The clamping of a figure's title."""
     if args.clamp_law == "constant":
-        force = PAPER_POINT["clamp"] if args.clamp is None else args.clamp
+        force = PAPER_POINT.clamp_force if args.clamp is None else args.clamp
         return f"$F_{{N0}}$ = {force:g} N"
     return f"{args.clamp_law} clamping"
 

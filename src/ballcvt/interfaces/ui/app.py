@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from ...analysis import limit_curves
-from ...api import Variator
+from ...api import PAPER_POINT, Variator
 from ...errors import BallCVTError
 from ...params import Design, Fluid
 from ...units import rpm_to_rad_s
@@ -48,10 +48,10 @@ class _State:
     def __init__(self, design: Design, fluid: Fluid, architecture: str):
         self.base, self.fluid, self.architecture = design, fluid, architecture
         self.values: dict[str, float] = {
-            "ratio": 1.0,
-            "output_torque": 40.0,
-            "clamp_force": 2000.0,
-            "input_speed_rpm": 2000.0,
+            "ratio": PAPER_POINT.ratio,
+            "output_torque": PAPER_POINT.output_torque,
+            "clamp_force": PAPER_POINT.clamp_force,
+            "input_speed_rpm": PAPER_POINT.input_speed_rpm,
             "roller_radius_mm": design.roller_radius * 1e3,
             "aspect_ratio": design.aspect_ratio,
             "n_rollers": design.n_rollers,

@@ -1,12 +1,30 @@
-"""Layer 2: contact mechanics (Hertz, rheology, film, traction integrals; Eqs. 41-66)."""
+"""Layer 2: contact mechanics (Hertz, rheology, film, traction integrals; Eqs. 41-66).
 
+A traction law is a `TractionLaw` in `ballcvt.registry.TRACTION_LAWS` (see
+`ballcvt.model.traction.base`); `contact_coefficients` evaluates the fluid's law at a
+`ContactState`.
+"""
+
+from ...registry import TRACTION_LAWS
 from ..film import central_film_thickness
 from ..hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
 from ..rheology import limiting_shear_stress, roelands_viscosity, saturation_factor
-from .base import LAWS, law_coefficients
-from .isothermal import pole_position, traction_coefficients
+from .base import LAWS, TractionLaw, law_coefficients, traction_law
+from .contact import ContactState, contact_coefficients
+from .isothermal import (
+    ShearLaw,
+    pole_position,
+    shear_coefficients,
+    shear_law_coefficients,
+    traction_coefficients,
+)
 from .quadrature import METHODS, REFERENCE, Quadrature, centred_rule, inner_pole_rule
-from .thermal import film_temperature_rise, thermal_coefficients
+from .thermal import (
+    film_temperature_rise,
+    temperature_rise,
+    thermal_coefficients,
+    thermal_law_coefficients,
+)
 
 __all__ = [
     "central_film_thickness",
@@ -22,6 +40,16 @@ __all__ = [
     "roelands_viscosity",
     "saturation_factor",
     "pole_position",
+    "ContactState",
+    "TractionLaw",
+    "TRACTION_LAWS",
+    "contact_coefficients",
+    "shear_coefficients",
+    "ShearLaw",
+    "shear_law_coefficients",
+    "thermal_law_coefficients",
+    "temperature_rise",
+    "traction_law",
     "traction_coefficients",
     "LAWS",
     "law_coefficients",

@@ -1,11 +1,16 @@
-"""Traction laws: one registry, one dispatcher (docs/model.md §14).
+"""Traction laws: one registry entry each, one dispatcher (docs/model.md §14).
 
-A traction law maps a contact's creep, spin, geometry, load, speed and film to its
-traction and spin-moment coefficients ``mu`` and ``chi`` (and their derivatives), with
-the signature of `ballcvt.model.traction.isothermal.traction_coefficients`. The fluid names its
-law (``Fluid.traction_law``) and carries the law's parameters, so every solver, sweep and
-command uses it without knowing which it is. Adding a law is a function here, its fluid
-fields in `ballcvt.params.models.LAW_FIELDS`, and its tests.
+A traction law maps a contact's creep, spin, geometry, load, speed and film (a
+`ballcvt.model.traction.contact.ContactState`) to its traction and spin-moment
+coefficients ``mu`` and ``chi`` (and their derivatives). The fluid names its law
+(``Fluid.traction_law``) and carries the law's parameters (its own fields, or
+``Fluid.law_parameters`` for a law defined outside the package), so every solver, sweep
+and command uses it without knowing which it is. A law is a `TractionLaw` entry in
+`ballcvt.registry.TRACTION_LAWS`: everything law-specific (the fields it needs, whether
+its traction is monotone in the creep, the parameters a fit adjusts by default, its film
+temperature) is an attribute of the entry, so no code outside this module tests a law's
+name. Adding a law is one ``TRACTION_LAWS.register(TractionLaw(...))`` call (here for a
+built-in law, from user code for another: examples/extending/traction_law.py).
 
 ``isothermal``
     The paper's law (Eq. 53), rigid-plastic, one temperature (the default).
@@ -19,78 +24,162 @@ fields in `ballcvt.params.models.LAW_FIELDS`, and its tests.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from typing import Any
 
-from ...params.models import TRACTION_LAWS, Fluid
-from ...registry import TRACTION_LAWS as REGISTRY
-from .isothermal import traction_coefficients
+from ..._compat import warn_renamed
+from ...params.models import Fluid
+from ...registry import TRACTION_LAWS
+from .contact import ContactState, contact_coefficients, legacy_arguments
+from .isothermal import shear_coefficients
 from .quadrature import Quadrature
-from .thermal import thermal_coefficients
+from .thermal import thermal_law_coefficients, thermal_law_rise
 
-__all__ = ["LAWS", "MONOTONE", "law_coefficients", "traction_rises_with_creep"]
+__all__ = [
+    "TractionLaw",
+    "TRACTION_LAWS",
+    "LAWS",
+    "MONOTONE",
+    "contact_coefficients",
+    "law_coefficients",
+    "traction_law",
+    "traction_rises_with_creep",
+]
 
-#: Law name -> coefficient function (signature of `traction_coefficients`).
-LAWS: dict[str, Callable] = {
-    "isothermal": traction_coefficients,
-    "viscoelastic": traction_coefficients,  # the elastic factor is node-local
-    "thermal": thermal_coefficients,
-}
-#: Whether a law's traction coefficient rises monotonically with the creep. Where it can
-#: fall (the thermal law past its peak), the limiting torque is the peak of the traction
-#: curve when that comes before the creep limit (`ballcvt.solvers.limit`).
-MONOTONE: dict[str, bool] = {"isothermal": True, "viscoelastic": True, "thermal": False}
-assert set(LAWS) == set(TRACTION_LAWS) == set(MONOTONE)
+#: ``(state, fluid, quadrature, derivatives) -> (mu, chi)`` or, with ``derivatives``,
+#: ``(mu, chi, dmu, dchi)`` (`ballcvt.model.traction.contact.contact_coefficients`).
+Coefficients = Callable[[ContactState, Fluid, Quadrature, bool], tuple]
 
 
 @dataclass(frozen=True)
 class TractionLaw:
-    """A registered traction law: its name, coefficient function and monotonicity."""
+    """A traction law: what the registry holds for it (docs/model.md §14).
+
+    Parameters
+    ----------
+    name : str
+        The law's name, the value of ``Fluid.traction_law``.
+    coefficients : callable
+        ``(state, fluid, quadrature, derivatives)`` -> ``mu, chi`` [-] and, with
+        ``derivatives``, ``dmu, dchi`` of shape ``(..., 3)`` (with respect to the creep
+        term, the spin and ``log u_ref``; Newton's Jacobians), as
+        `ballcvt.model.traction.isothermal.shear_coefficients`.
+    description : str
+        One line, with the law's source (shown in the documentation and the CLI).
+    fields : tuple of str
+        `Fluid` fields the law needs (optional fields that must then be given).
+    parameters : tuple of str
+        Keys of ``Fluid.law_parameters`` the law needs (a law defined outside the package
+        keeps its own parameters there).
+    monotone : bool
+        Whether ``mu`` never falls as the creep grows. Where it can fall (the thermal law
+        past its peak), the limiting torque is the peak of the traction curve when that
+        comes before the creep limit (`ballcvt.solvers.limit`).
+    fit_parameters : tuple of str
+        `Fluid` fields `ballcvt.analysis.fitting.fit_fluid` adjusts by default.
+    with_rise : callable, optional
+        ``(state, fluid, quadrature)`` -> ``mu, chi, dT``: the coefficients and the film
+        temperature rise [K] in one solve, for a law that heats the film (traction
+        curves report the rise; zero for a law without it).
+    """
 
     name: str
-    coefficients: Callable
+    coefficients: Coefficients
+    description: str = ""
+    fields: tuple[str, ...] = ()
+    parameters: tuple[str, ...] = ()
     monotone: bool = True
+    fit_parameters: tuple[str, ...] = ("limiting_shear_stress", "limiting_shear_slope")
+    with_rise: Callable[[ContactState, Fluid, Quadrature], tuple] | None = None
 
 
-for _name in LAWS:
-    REGISTRY.register(TractionLaw(_name, LAWS[_name], MONOTONE[_name]))
+def _viscoelastic(state: ContactState, fluid: Fluid, quadrature: Quadrature, derivatives: bool):
+    """Eq. 53 with Maxwell elasticity of modulus ``fluid.shear_modulus`` (§14)."""
+    modulus = fluid.shear_modulus
+    assert modulus is not None  # a required field of the law (`Fluid` validation)
+    return shear_coefficients(state, fluid, quadrature, derivatives, modulus)
+
+
+_THERMAL_FIELDS = (
+    "temperature_viscosity_coefficient",
+    "limiting_shear_temperature_coefficient",
+    "thermal_conductivity",
+    "inlet_temperature",
+    "surface_conductivity",
+    "surface_diffusivity",
+)
+for _law in (
+    TractionLaw(
+        "isothermal",
+        shear_coefficients,
+        "the paper's rigid-plastic law, Eq. 53 (Tomaselli et al. 2020)",
+    ),
+    TractionLaw(
+        "thermal",
+        thermal_law_coefficients,
+        "Eq. 53 at a film temperature raised by shear heat (Jaeger 1942; Olver and Spikes 1998)",
+        fields=_THERMAL_FIELDS,
+        monotone=False,
+        fit_parameters=(
+            "limiting_shear_stress",
+            "limiting_shear_slope",
+            "temperature_viscosity_coefficient",
+        ),
+        with_rise=thermal_law_rise,
+    ),
+    TractionLaw(
+        "viscoelastic",
+        _viscoelastic,
+        "Eq. 53 with Maxwell elasticity (Johnson and Tevaarwerk 1977)",
+        fields=("shear_modulus",),
+        fit_parameters=("limiting_shear_stress", "limiting_shear_slope", "shear_modulus"),
+    ),
+):
+    TRACTION_LAWS.register(_law)
+
+
+def traction_law(fluid: Fluid) -> TractionLaw:
+    """The registered law ``fluid`` names (`InputError` listing the laws if none)."""
+    return TRACTION_LAWS.get(fluid.traction_law)
 
 
 def traction_rises_with_creep(fluid: Fluid) -> bool:
     """Whether ``fluid``'s traction law gives a traction that never falls with the creep."""
-    return MONOTONE[fluid.traction_law]
+    return traction_law(fluid).monotone
 
 
-def law_coefficients(
-    creep_term,
-    spin,
-    ax,
-    ay,
-    p_max,
-    load,
-    radius,
-    u_ref,
-    film,
-    fluid: Fluid,
-    quadrature: Quadrature = Quadrature(),
-    derivatives: bool = False,
-):
-    """``mu, chi`` (and with ``derivatives`` their derivatives) under ``fluid``'s law.
+class _View(Mapping):
+    """Law name -> one attribute of its entry, read from the registry when asked (so that
+    a law registered later is in it)."""
 
-    Parameters, units and returns as in
-    `ballcvt.model.traction.isothermal.traction_coefficients`.
-    """
-    return LAWS[fluid.traction_law](
-        creep_term,
-        spin,
-        ax,
-        ay,
-        p_max,
-        load,
-        radius,
-        u_ref,
-        film,
-        fluid,
-        quadrature,
-        derivatives=derivatives,
+    def __init__(self, attribute: str, old: str) -> None:
+        self._attribute, self._old = attribute, old
+
+    def __getitem__(self, name: str) -> Any:
+        warn_renamed(self._old, f"TRACTION_LAWS.get(name).{self._attribute}")
+        return getattr(TRACTION_LAWS.get(name), self._attribute)
+
+    def __iter__(self):
+        return iter(TRACTION_LAWS)
+
+    def __len__(self) -> int:
+        return len(TRACTION_LAWS)
+
+
+#: Deprecated: law name -> coefficient function (now ``TRACTION_LAWS.get(name).coefficients``).
+LAWS: Mapping[str, Coefficients] = _View("coefficients", "ballcvt.model.traction.base.LAWS")
+#: Deprecated: law name -> monotone (now ``TRACTION_LAWS.get(name).monotone``).
+MONOTONE: Mapping[str, bool] = _View("monotone", "ballcvt.model.traction.base.MONOTONE")
+
+
+def law_coefficients(*args, **kwargs):
+    """Deprecated: the nine contact arrays, then ``fluid, quadrature, derivatives``; use
+    `contact_coefficients` of a `ContactState`."""
+    state, rest, kw = legacy_arguments(
+        "law_coefficients(creep_term, ..., film, fluid)",
+        "contact_coefficients(ContactState(creep_term, ..., film), fluid)",
+        args,
+        kwargs,
     )
+    return contact_coefficients(state, *rest, **kw)

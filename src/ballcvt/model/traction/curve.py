@@ -5,26 +5,34 @@ speed ``U``, the spin and a range of slide-to-roll ratios, the contact is the on
 drive (Hertz, Eqs. 45-50; film, Eq. 56) with ``u_ref = U``: the sliding speed is
 ``Delta U = s U`` and the spin adds ``omega_spin (-y, x)`` with
 ``omega_spin = sigma U / R_x``. The coefficients follow from the fluid's traction law
-(`ballcvt.model.traction.base`): ``mu`` is the traction coefficient, ``chi`` the spin moment over
-``F_N R_x`` (Eq. 31 with ``r_c = R_x``). docs/model.md §14.
+(`ballcvt.model.traction.base`, `ballcvt.registry.TRACTION_LAWS`): ``mu`` is the
+traction coefficient, ``chi`` the spin moment over ``F_N R_x`` (Eq. 31 with ``r_c = R_x``). docs/model.md §14.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 
+from ..._compat import warn_renamed
 from ...errors import InputError
 from ...params.models import Fluid
+from ...registry import TRACTION_LAWS
 from ..film import central_film_thickness
 from ..hertz import hertz_contact
-from .base import law_coefficients
+from .contact import ContactState
 from .quadrature import Quadrature
-from .thermal import thermal_coefficients_and_rise
 
-__all__ = ["TractionCurve", "traction_curve", "load_for_pressure", "contact_arguments"]
+__all__ = [
+    "MachineContact",
+    "TractionCurve",
+    "traction_curve",
+    "load_for_pressure",
+    "machine_state",
+    "contact_arguments",
+]
 
 
 @dataclass(frozen=True)
@@ -73,43 +81,93 @@ def load_for_pressure(p_max, rx, ry, reduced_modulus):
     return (np.asarray(p_max, dtype=float) / p_unit) ** 3
 
 
-#: ``(creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)`` of a traction law.
-ContactArguments = tuple[Any, Any, Any, Any, Any, Any, Any, Any, Any]
+#: ``E' = E / (1 - nu^2)`` of the steel of Table I [Pa], the default of a test pair.
+STEEL_MODULUS = 210e9 / (1.0 - 0.3**2)
 
 
-def contact_arguments(
-    fluid: Fluid, rx, ry, load, speed, spin, creep, reduced_modulus
-) -> ContactArguments:
-    """The arguments of a traction law (`ballcvt.model.traction.base.law_coefficients`, up to the
-    fluid) for contacts given as on a traction machine: radii ``rx, ry`` [m], ``load``
-    [N], rolling speed [m/s], spin-to-roll ratio [-], slide-to-roll ratio [-] and ``E'``
-    [Pa] (arrays broadcast). Hertz semi-axes and pressure (Eqs. 45-50), the film at the
-    rolling speed (Eq. 56), ``u_ref`` the rolling speed and ``r_c = R_x``."""
-    ax, ay, p_max, _ = hertz_contact(load, rx, ry, reduced_modulus)
+@dataclass(frozen=True)
+class MachineContact:
+    """A contact as on a traction machine (twin-disc or ball-on-disc).
+
+    Parameters
+    ----------
+    rx, ry : float or array_like
+        Equivalent radii of curvature along and across the rolling direction [m].
+    speed : float or array_like
+        Rolling (entrainment) speed ``U`` [m/s], > 0.
+    load, p_max : float, optional
+        Normal load [N] or Hertz peak pressure [Pa] (Eq. 50): exactly one.
+    spin : float or array_like
+        Spin-to-roll ratio ``sigma = omega_spin R_x / U`` [-].
+    reduced_modulus : float
+        ``E' = E / (1 - nu^2)`` of the pair [Pa] (default: the steel of Table I).
+    """
+
+    rx: Any
+    ry: Any
+    speed: Any
+    load: Any = None
+    p_max: Any = None
+    spin: Any = 0.0
+    reduced_modulus: float = STEEL_MODULUS
+
+    def checked(self) -> MachineContact:
+        """This contact of one condition, checked, with its load (`InputError` if not)."""
+        for name, value in (("rx", self.rx), ("ry", self.ry), ("speed", self.speed)):
+            if not np.isfinite(value) or value <= 0.0:
+                raise InputError(name, value, "> 0 and finite")
+        if (self.load is None) == (self.p_max is None):
+            raise InputError("load", self.load, "exactly one of load and p_max")
+        load = self.load
+        if load is None:
+            if not np.isfinite(self.p_max) or self.p_max <= 0:
+                raise InputError("p_max", self.p_max, "> 0 Pa and finite")
+            load = float(load_for_pressure(self.p_max, self.rx, self.ry, self.reduced_modulus))
+        if not np.isfinite(load) or load <= 0:
+            raise InputError("load", load, "> 0 N and finite")
+        if not np.isfinite(self.spin) or abs(self.spin) > 10:
+            raise InputError("spin", self.spin, "|spin| <= 10")
+        return replace(self, load=load, p_max=None)
+
+
+def machine_state(fluid: Fluid, machine: MachineContact, creep) -> ContactState:
+    """The `ContactState` of contacts given as on a traction machine (``machine``, its
+    ``load`` given) at the slide-to-roll ratios ``creep`` [-] (arrays broadcast): Hertz
+    semi-axes and pressure (Eqs. 45-50), the film at the rolling speed (Eq. 56), ``u_ref``
+    the rolling speed and ``r_c = R_x``."""
+    m = machine
+    ax, ay, p_max, _ = hertz_contact(m.load, m.rx, m.ry, m.reduced_modulus)
     film = central_film_thickness(
         fluid.viscosity,
         fluid.pressure_viscosity_coefficient,
-        reduced_modulus,
-        rx,
-        speed,
-        load,
+        m.reduced_modulus,
+        m.rx,
+        m.speed,
+        m.load,
         ay / ax,
     )
-    return (creep, spin, ax, ay, p_max, load, rx, speed, film)
+    return ContactState(creep, m.spin, ax, ay, p_max, m.load, m.rx, m.speed, film)
+
+
+def contact_arguments(fluid: Fluid, *args, **kwargs) -> tuple:
+    """Deprecated: ``contact_arguments(fluid, rx, ry, load, speed, spin, creep,
+    reduced_modulus)``, the nine arrays of `machine_state`."""
+    warn_renamed(
+        "contact_arguments(fluid, rx, ...)", "machine_state(fluid, MachineContact(rx, ...), creep)"
+    )
+    names = ("rx", "ry", "load", "speed", "spin", "creep", "reduced_modulus")
+    kw = {**dict(zip(names, args)), **kwargs}
+    creep = kw.pop("creep")
+    return machine_state(fluid, MachineContact(**kw), creep).values()
 
 
 def traction_curve(
     fluid: Fluid,
+    machine: MachineContact | None = None,
     *,
-    rx: float,
-    ry: float,
-    speed: float,
     creep,
-    load: float | None = None,
-    p_max: float | None = None,
-    spin: float = 0.0,
-    reduced_modulus: float = 210e9 / (1.0 - 0.3**2),
     quadrature: Quadrature = Quadrature(),
+    **conditions: Any,
 ) -> TractionCurve:
     """Traction curve of one elliptical contact under ``fluid``'s traction law.
 
@@ -117,18 +175,12 @@ def traction_curve(
     ----------
     fluid : Fluid
         Fluid, with its ``traction_law`` and that law's parameters.
-    rx, ry : float
-        Equivalent radii of curvature along and across the rolling direction [m].
-    speed : float
-        Rolling (entrainment) speed ``U`` [m/s], > 0.
+    machine : MachineContact, optional
+        The contact (radii [m], speed [m/s], load [N] or peak pressure [Pa], spin [-],
+        ``E'`` [Pa]); else given by ``conditions``, its attributes as keywords
+        (``rx=..., ry=..., speed=..., load=...``).
     creep : array_like
         Slide-to-roll ratios ``s`` [-], ``|s| < 2``.
-    load, p_max : float
-        Normal load [N] or Hertz peak pressure [Pa]: exactly one.
-    spin : float
-        Spin-to-roll ratio ``sigma = omega_spin R_x / U`` [-].
-    reduced_modulus : float
-        ``E' = E / (1 - nu^2)`` of the pair [Pa] (default: the steel of Table I).
     quadrature : Quadrature
         Rule for the traction integrals.
 
@@ -136,41 +188,28 @@ def traction_curve(
     -------
     TractionCurve
     """
-    for name, value, low in (("rx", rx, 0.0), ("ry", ry, 0.0), ("speed", speed, 0.0)):
-        if not np.isfinite(value) or value <= low:
-            raise InputError(name, value, f"> {low:g} and finite")
-    if (load is None) == (p_max is None):
-        raise InputError("load", load, "exactly one of load and p_max")
-    if load is None:
-        assert p_max is not None
-        if not np.isfinite(p_max) or p_max <= 0:
-            raise InputError("p_max", p_max, "> 0 Pa and finite")
-        load = float(load_for_pressure(p_max, rx, ry, reduced_modulus))
-    if not np.isfinite(load) or load <= 0:
-        raise InputError("load", load, "> 0 N and finite")
-    if not np.isfinite(spin) or abs(spin) > 10:
-        raise InputError("spin", spin, "|spin| <= 10")
+    m = (machine if machine is not None else MachineContact(**conditions)).checked()
     s = np.asarray(creep, dtype=float)
     if s.size == 0 or not np.all(np.isfinite(s)) or np.any(np.abs(s) >= 2.0):
         raise InputError("creep", s.tolist() if s.size < 5 else "...", "|creep| < 2")
-    args = contact_arguments(fluid, rx, ry, load, speed, spin, s, reduced_modulus)
-    ax, ay, pm, film = (float(v) for v in (args[2], args[3], args[4], args[8]))
-    if fluid.traction_law == "thermal":  # one solve of the film temperature for both
-        mu, chi, rise = thermal_coefficients_and_rise(*args, fluid, quadrature)
+    state = machine_state(fluid, m, s)
+    law = TRACTION_LAWS.get(fluid.traction_law)
+    if law.with_rise is not None:  # one solve of the film temperature for both
+        mu, chi, rise = law.with_rise(state, fluid, quadrature)
     else:
-        (mu, chi), rise = law_coefficients(*args, fluid, quadrature), np.zeros_like(s)
+        (mu, chi), rise = law.coefficients(state, fluid, quadrature, False), np.zeros_like(s)
     conditions = {
         "fluid": fluid.name,
-        "rx": rx,
-        "ry": ry,
-        "load": load,
-        "speed": speed,
-        "spin": spin,
-        "p_max": pm,
-        "ax": ax,
-        "ay": ay,
-        "film": film,
-        "reduced_modulus": reduced_modulus,
+        "rx": m.rx,
+        "ry": m.ry,
+        "load": m.load,
+        "speed": m.speed,
+        "spin": m.spin,
+        "p_max": float(state.p_max),
+        "ax": float(state.ax),
+        "ay": float(state.ay),
+        "film": float(state.film),
+        "reduced_modulus": m.reduced_modulus,
     }
     return TractionCurve(
         s, np.asarray(mu), np.asarray(chi), np.asarray(rise), fluid.traction_law, conditions

@@ -18,6 +18,8 @@ Then (Eqs. 57-66, lever arms with their semi-axes, docs/model.md §3)
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -30,9 +32,40 @@ from ..rheology import (
     saturation_slope,
 )
 from . import kernels
+from .contact import ContactState, contact_coefficients, legacy_arguments
 from .quadrature import Quadrature, centred_rule, inner_pole_rule, radial_rule
 
-__all__ = ["pole_position", "traction_coefficients"]
+__all__ = [
+    "ShearLaw",
+    "pole_position",
+    "shear_coefficients",
+    "shear_law_coefficients",
+    "traction_coefficients",
+]
+
+
+@dataclass(frozen=True)
+class ShearLaw:
+    """A node-local shear law ``tau = (eta / h) S(a) V`` with ``a = eta |V| / (h tau_L)``.
+
+    Eq. 53 is ``S(a) = (1 - exp(-a)) / a`` (the default); any law whose stress is the
+    limiting shear stress times a function of ``a`` is another ``S`` (``S(0) = 1``: the
+    Newtonian limit). ``eta`` is the Roelands viscosity (Eq. 51), ``tau_L`` the limiting
+    shear stress (Eq. 54), both at the node's Hertz pressure.
+
+    Parameters
+    ----------
+    factor : callable
+        ``S(a)`` of an array ``a >= 0`` [-].
+    slope : callable
+        ``dS/da`` of ``(a, S(a))`` [-] (for Newton's Jacobians).
+    modulus : float
+        Shear modulus ``G`` of a visco-elastic (Maxwell) film [Pa]; 0: none.
+    """
+
+    factor: Callable = saturation_factor
+    slope: Callable = saturation_slope
+    modulus: float = 0.0
 
 
 def pole_position(creep_term, spin, ay, radius):
@@ -47,53 +80,32 @@ def pole_position(creep_term, spin, ay, radius):
     return np.divide(c, sy, out=np.full(c.shape, np.inf), where=np.abs(sy) > 1e-300)
 
 
-def traction_coefficients(
-    creep_term,
-    spin,
-    ax,
-    ay,
-    p_max,
-    load,
-    radius,
-    u_ref,
-    film,
+def shear_coefficients(
+    state: ContactState,
     fluid: Fluid,
     quadrature: Quadrature = Quadrature(),
     derivatives: bool = False,
+    modulus: float = 0.0,
 ):
     """Traction coefficient ``mu`` and spin-moment coefficient ``chi`` of contacts.
 
-    The shear law is node-local: the isothermal law of Eq. 53 or, with a fluid whose
-    ``traction_law`` is ``"viscoelastic"``, that law with Maxwell elasticity
-    (docs/model.md §14). The thermal law wraps this function
-    (`ballcvt.model.traction.thermal`); `ballcvt.model.traction.base.law_coefficients` dispatches.
-
-    All array arguments broadcast together to the shape ``(...)`` of the result.
+    The shear law is node-local: the isothermal law of Eq. 53 or, with a film shear
+    ``modulus`` > 0, that law with Maxwell elasticity (docs/model.md §14). The thermal law
+    wraps this function (`ballcvt.model.traction.thermal`);
+    `ballcvt.model.traction.contact.contact_coefficients` dispatches to the fluid's law.
 
     Parameters
     ----------
-    creep_term : array_like
-        Gross sliding over ``u_ref``: ``C_0`` at the input, ``C/(1-C)`` elsewhere [-].
-    spin : array_like
-        Spin coefficient ``sigma`` (Eqs. 11-14) [-].
-    ax, ay : array_like
-        Hertz semi-axes along rolling and transverse directions [m].
-    p_max : array_like
-        Hertz peak pressure [Pa].
-    load : array_like
-        Normal load ``F_N`` [N].
-    radius : array_like
-        Radial position of the contact ``r_c`` [m].
-    u_ref : array_like
-        Body surface speed ``|Omega_c| r_c`` [m/s].
-    film : array_like
-        Central film thickness ``h`` [m].
+    state : ContactState
+        The contacts; their arrays broadcast together to the shape ``(...)`` of the result.
     fluid : Fluid
-        Traction fluid.
+        Traction fluid (Roelands and limiting-shear parameters, Eqs. 51, 54).
     quadrature : Quadrature
         Rule and node counts (see `ballcvt.model.traction.quadrature`).
     derivatives : bool
         Also return the derivatives of ``mu`` and ``chi``, computed in the same pass.
+    modulus : float
+        Shear modulus ``G`` of a visco-elastic film [Pa]; 0: rigid-plastic (Eq. 53).
 
     Returns
     -------
@@ -107,37 +119,66 @@ def traction_coefficients(
         differentiated (it changes the result only by the discretisation error), nor is the
         blend weight: these are Jacobians for Newton's method, not exact gradients.
     """
-    if fluid.traction_law == "thermal":
-        raise ValueError(
-            "the thermal law's coefficients are "
-            "ballcvt.model.traction.thermal.thermal_coefficients (or dispatch with "
-            "ballcvt.model.traction.base.law_coefficients)"
-        )
-    values = (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film)
-    shape = np.broadcast_shapes(*(np.shape(v) for v in values))
-    params = np.empty((9,) + shape)
-    for i, value in enumerate(values):
-        params[i, ...] = value
-    params = params.reshape(9, -1)
+    params, shape = state.stacked()
     n_out = 8 if derivatives else 2
     if params.shape[1] == 0:
         out = np.zeros((n_out, 0))
     elif quadrature.engine == "auto" and kernels.AVAILABLE:
-        out = _compiled(params, fluid, quadrature, derivatives)[:n_out]
+        out = _compiled(params, fluid, quadrature, derivatives, modulus)[:n_out]
     else:
-        out = _numpy_rules(params, fluid, quadrature, derivatives)[:n_out]
+        out = _numpy_rules(params, fluid, quadrature, derivatives, ShearLaw(modulus=modulus))
+    return _shaped(out[:n_out], shape, derivatives)
+
+
+def shear_law_coefficients(
+    state: ContactState,
+    fluid: Fluid,
+    law: ShearLaw,
+    quadrature: Quadrature = Quadrature(),
+    derivatives: bool = False,
+):
+    """``mu, chi`` (and their derivatives) of contacts under the shear law ``law``.
+
+    The same quadrature as `shear_coefficients` (the NumPy path, any `ShearLaw`); for a
+    traction law defined outside the package (examples/extending/traction_law.py).
+    Parameters and returns as in `shear_coefficients`.
+    """
+    params, shape = state.stacked()
+    n_out = 8 if derivatives else 2
+    out = np.zeros((n_out, 0))
+    if params.shape[1]:
+        out = _numpy_rules(params, fluid, quadrature, derivatives, law)[:n_out]
+    return _shaped(out, shape, derivatives)
+
+
+def _shaped(out, shape, derivatives: bool):
+    """The sums ``(2 or 8, n)`` as ``mu, chi`` (and ``dmu, dchi``) of shape ``shape``."""
     if not derivatives:
         return out[0].reshape(shape), out[1].reshape(shape)
-    out = out.reshape((n_out,) + shape)
+    out = out.reshape((out.shape[0],) + shape)
     last = tuple(range(1, len(shape) + 1)) + (0,)  # the derivatives' axis last
     return out[0], out[1], out[2:5].transpose(last), out[5:8].transpose(last)
 
 
-def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool) -> np.ndarray:
+def traction_coefficients(*args, **kwargs):
+    """Deprecated: ``traction_coefficients(creep_term, spin, ax, ay, p_max, load, radius,
+    u_ref, film, fluid, quadrature, derivatives)`` is
+    `ballcvt.model.traction.contact.contact_coefficients` of a `ContactState` (the fluid's
+    law, as before for the isothermal and visco-elastic laws)."""
+    state, rest, kw = legacy_arguments(
+        "traction_coefficients(creep_term, ..., film, fluid)",
+        "contact_coefficients(ContactState(creep_term, ..., film), fluid)",
+        args,
+        kwargs,
+    )
+    return contact_coefficients(state, *rest, **kw)
+
+
+def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool, modulus: float):
     """The compiled kernels' sums ``(8, n)``: both rules and their blend in one call."""
     out = np.empty((params.shape[1], kernels.N_OUT))
     par = np.ascontiguousarray(params)
-    fl, tab = _viscosity_table(fluid, float(par[4].max()))
+    fl, tab = _viscosity_table(fluid, float(par[4].max()), modulus)
     r01, wr, sin_phi, cos_phi = _ray_nodes(q.n_radial, q.n_angular)
     rays = (sin_phi, cos_phi, 2.0 * np.pi / q.n_angular)
     if q.method == "centred":
@@ -145,11 +186,11 @@ def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool) -> np.ndar
     else:
         _, _, sin_c, cos_c = _ray_nodes(q.n_radial, q.n_centred)
         centred, blend = (sin_c, cos_c, 2.0 * np.pi / q.n_centred), BLEND
-    kernels.traction_kernel(par, r01, wr, rays, centred, blend, fl, tab, derivatives, out)
+    kernels.traction_kernel(par, (r01, wr, rays, centred, blend), (fl, tab), derivatives, out)
     return out.T
 
 
-def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool) -> np.ndarray:
+def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool, law: ShearLaw):
     """The NumPy reference path's sums ``(8 or 2, n)``: each rule on its contacts, blended
     (the same sums as `_compiled`)."""
     yp = pole_position(params[0], params[1], params[3], params[6])
@@ -172,7 +213,7 @@ def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool) -> np.n
                 if kind == "pole"
                 else centred_rule(q.n_radial, n_angular, y.shape)
             )
-            values = _integrate(nodes, list(p), fluid, derivatives)
+            values = _integrate(nodes, list(p), fluid, derivatives, law)
             if derivatives:
                 values = np.concatenate([np.stack(values[:2]), values[2].T, values[3].T])
             out[:, part] += rule_weight[part] * np.stack(values)
@@ -180,10 +221,10 @@ def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool) -> np.n
 
 
 @lru_cache(maxsize=32)
-def _viscosity_table(fluid: Fluid, p_max: float):
+def _viscosity_table(fluid: Fluid, p_max: float, modulus: float):
     """`kernels.viscosity_table`, kept for the iterations of a solve (same fluid and
     pressure range: the same table, so caching changes no result)."""
-    return kernels.viscosity_table(fluid, p_max)
+    return kernels.viscosity_table(fluid, p_max, modulus=modulus)
 
 
 @lru_cache(maxsize=16)
@@ -207,11 +248,11 @@ def _pole_weight(abs_yp):
     return t * t * (3.0 - 2.0 * t)
 
 
-def _integrate(nodes, params, fluid: Fluid, derivatives: bool = False):
+def _integrate(nodes, params, fluid: Fluid, derivatives: bool, law: ShearLaw):
     """Quadrature of Eqs. 57-66 for flat parameter arrays on the given nodes.
 
     Returns ``mu, chi`` and, with ``derivatives``, ``dmu, dchi`` of shape ``(m, 3)``
-    (see `traction_coefficients`).
+    (see `shear_coefficients`) under the node-local shear law ``law``.
     """
     x, y, w = nodes
     c, sg, ax, ay, pm, fn, rc, u, h = params
@@ -225,12 +266,12 @@ def _integrate(nodes, params, fluid: Fluid, derivatives: bool = False):
     vy = ex(u * sg * ax / rc) * x
     speed = np.hypot(vx, vy)
     arg = eta * speed / (ex(h) * tau_l)
-    sat = saturation_factor(arg)
+    sat = law.factor(arg)
     g = eta / ex(h) * sat  # tau = g V
     corr, lin_extra = 1.0, 0.0
-    if fluid.traction_law == "viscoelastic":  # Maxwell elasticity (§14)
+    if law.modulus > 0.0:  # Maxwell elasticity (§14)
         t_in = ex(ax) * (x + np.sqrt(np.maximum(1.0 - y * y, 0.0))) / ex(u)
-        theta = fluid.shear_modulus * t_in / (ex(h) * g)
+        theta = law.modulus * t_in / (ex(h) * g)
         em = np.exp(-theta)
         f = -np.expm1(-theta)
         corr, lin_extra = f - theta * em, -g * theta * em
@@ -248,7 +289,7 @@ def _integrate(nodes, params, fluid: Fluid, derivatives: bool = False):
     if not derivatives:
         return mu, chi
     # d tau = g dV + (dg/d|V|) (V.dV / |V|) V; k = (dg/d|V|) / |V| stays finite times V.V
-    k = (eta / ex(h)) ** 2 / tau_l * saturation_slope(arg, sat)
+    k = (eta / ex(h)) ** 2 / tau_l * law.slope(arg, sat)
     k = np.divide(k, speed, out=np.zeros_like(k), where=speed > 0.0) * corr
     dvx_s, dvy_s = -ex(u * ay / rc) * y, ex(u * ax / rc) * x  # dV / d sigma
     d_c = moments(g * ex(u) + k * vx * ex(u) * vx, k * vx * ex(u) * vy)

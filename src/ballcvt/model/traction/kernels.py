@@ -53,7 +53,9 @@ _FAST = {"nsz", "arcp", "contract", "afn", "reassoc"}
 N_OUT = 8
 
 
-def viscosity_table(fluid, p_max: float, intervals: int = 2048, log_step: float = 0.01):
+def viscosity_table(
+    fluid, p_max: float, intervals: int = 2048, log_step: float = 0.01, modulus: float = 0.0
+):
     """Hermite table of ``E = eta / tau_L`` over the pressure on ``[0, p_max]``.
 
     ``eta`` is the Roelands viscosity (Eq. 51) and ``tau_L = tau_L0 + a p`` the limiting
@@ -72,6 +74,9 @@ def viscosity_table(fluid, p_max: float, intervals: int = 2048, log_step: float 
     log_step : float
         Largest change of ``log E`` over one interval [-] (0.01: interpolation error
         ``(0.01)^4 / 384``, about 3e-11 relative).
+    modulus : float
+        Shear modulus ``G`` of a visco-elastic film [Pa] (the law's, e.g.
+        ``fluid.shear_modulus`` under the visco-elastic law); 0: rigid-plastic.
 
     Returns
     -------
@@ -99,8 +104,7 @@ def viscosity_table(fluid, p_max: float, intervals: int = 2048, log_step: float 
         z * np.log1p(p / cp)
     )
     e = np.exp(log_e)
-    modulus = fluid.shear_modulus if fluid.traction_law == "viscoelastic" else 0.0
-    fl = np.array([tl0, slope_tl, n / top, modulus])
+    fl = np.array([tl0, slope_tl, n / top, float(modulus)])
     return fl, np.column_stack([e, e * log_slope(p) * (top / n)])
 
 
@@ -154,6 +158,9 @@ if AVAILABLE:
             out[i] = _exp_neg(a[i], _POW2)
         return out
 
+    # _ray and _contact keep scalar arguments (15 and 14): they are inlined into the
+    # contact loop, where numba keeps scalars in registers; a tuple of them would be
+    # rebuilt per ray, and the node loop must see plain scalars to vectorise.
     @njit(cache=True, fastmath=_FAST, inline="always")
     def _ray(pole, y0, v0, reach, sm, cm, r01, wr, dphi, c, fl, tab, pow2, deriv, ve):
         """Sums of the nodes on one ray from ``(0, y0)`` in the direction ``(cm, sm)``.
@@ -271,13 +278,15 @@ if AVAILABLE:
         return a0, a1, a2, a3, a4, a5, a6, a7
 
     @njit(cache=True, fastmath=_FAST, inline="always")
-    def _blended(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, deriv, ve, out):
+    def _blended(par, rule, fl, tab, deriv, ve, out):
         """Every contact's scaled sums (rows of ``out``): the pole-centred rule while the
         pole is well inside, the centred rule once it is outside, blended in between with
         the weight ``w = t^2 (3 - 2 t)``, ``t = (blend[1] - |Y_p|) / (blend[1] - blend[0])``
         clipped to [0, 1] (`ballcvt.model.traction.isothermal`); ``blend[1] <= blend[0]``: the
-        centred rule alone. A NaN pole gives NaN sums."""
+        centred rule alone. A NaN pole gives NaN sums. ``rule``: ``(r01, wr, pole_rays,
+        centred_rays, blend)`` (`traction_kernel`)."""
         pow2 = _POW2
+        r01, wr, pole_rays, centred_rays, blend = rule
         sp, cp, dp = pole_rays
         sc, cc, dc = centred_rays
         lo, hi = blend
@@ -328,20 +337,20 @@ if AVAILABLE:
 
     # the four specialisations (derivatives, visco-elastic): flags fixed at compile time
     @njit(cache=True, fastmath=_FAST)
-    def _blended_plain(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, out):
-        _blended(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, False, False, out)
+    def _blended_plain(par, rule, fl, tab, out):
+        _blended(par, rule, fl, tab, False, False, out)
 
     @njit(cache=True, fastmath=_FAST)
-    def _blended_deriv(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, out):
-        _blended(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, True, False, out)
+    def _blended_deriv(par, rule, fl, tab, out):
+        _blended(par, rule, fl, tab, True, False, out)
 
     @njit(cache=True, fastmath=_FAST)
-    def _blended_ve(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, out):
-        _blended(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, False, True, out)
+    def _blended_ve(par, rule, fl, tab, out):
+        _blended(par, rule, fl, tab, False, True, out)
 
     @njit(cache=True, fastmath=_FAST)
-    def _blended_ve_deriv(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, out):
-        _blended(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, True, True, out)
+    def _blended_ve_deriv(par, rule, fl, tab, out):
+        _blended(par, rule, fl, tab, True, True, out)
 
     _SPECIALISED = {
         (False, False): _blended_plain,
@@ -350,18 +359,20 @@ if AVAILABLE:
         (True, True): _blended_ve_deriv,
     }
 
-    def traction_kernel(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, deriv, out):
+    def traction_kernel(par, rule, table, deriv, out):
         """The traction sums of every contact (rows of ``out``, ``(n, 8)``).
 
         ``par``: the contacts' ``(c, sigma, a_x, a_y, p_max, F_N, r_c, u, h)`` as rows
-        ``(9, n)``; ``r01, wr``: radial nodes on [0, 1] and weights (`radial_rule`);
-        ``pole_rays``, ``centred_rays``: ``(sin phi, cos phi, dphi)`` of each rule's rays;
-        ``blend``: the ``|Y_p|`` range over which the pole-centred rule hands over to the
-        centred one (``(0, 0)``: the centred rule alone); ``fl, tab``: from
-        `viscosity_table`; ``deriv``: also the derivatives.
+        ``(9, n)`` (`ContactState.stacked`); ``rule``: ``(r01, wr, pole_rays,
+        centred_rays, blend)``, the radial nodes on [0, 1] and weights (`radial_rule`),
+        each rule's rays ``(sin phi, cos phi, dphi)`` and the ``|Y_p|`` range over which the
+        pole-centred rule hands over to the centred one (``(0, 0)``: the centred rule
+        alone); ``table``: ``(fl, tab)`` from `viscosity_table`; ``deriv``: also the
+        derivatives.
         """
+        fl, tab = table
         kernel = _SPECIALISED[_kernel_flags(deriv, fl)]
-        kernel(par, r01, wr, pole_rays, centred_rays, blend, fl, tab, out)
+        kernel(par, rule, fl, tab, out)
 
 
 else:  # pragma: no cover

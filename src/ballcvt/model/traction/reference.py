@@ -13,24 +13,29 @@ from scipy.integrate import quad
 
 from ...params.models import Fluid
 from ..rheology import limiting_shear_stress, roelands_viscosity, saturation_factor
+from .contact import ContactState, legacy_arguments
 from .isothermal import pole_position
 
-__all__ = ["traction_coefficients_adaptive"]
+__all__ = ["adaptive_coefficients", "traction_coefficients_adaptive"]
 
 
-def traction_coefficients_adaptive(
-    creep_term, spin, ax, ay, p_max, load, radius, u_ref, film, fluid: Fluid, epsrel: float = 1e-9
-):
-    """``mu`` and ``chi`` of one contact by nested adaptive quadrature.
+def adaptive_coefficients(state: ContactState, fluid: Fluid, epsrel: float = 1e-9):
+    """``mu`` and ``chi`` of one contact by nested adaptive quadrature (Eqs. 53, 57-66).
 
-    Parameters are scalars with the meaning and units of
-    `ballcvt.model.traction.isothermal.traction_coefficients`; ``epsrel`` is the relative
-    tolerance of each `quad` call.
+    Parameters
+    ----------
+    state : ContactState
+        One contact (scalars, units of `ContactState`).
+    fluid : Fluid
+        Traction fluid (the isothermal law of Eq. 53).
+    epsrel : float
+        Relative tolerance of each `quad` call [-].
 
     Returns
     -------
     mu, chi : float
     """
+    creep_term, spin, ax, ay, p_max, load, radius, u_ref, film = state.values()
     yp = float(pole_position(creep_term, spin, ay, radius))
 
     def stress(x, y):
@@ -68,3 +73,15 @@ def traction_coefficients_adaptive(
     moment = integral(lambda x, y: ax * x * stress(x, y)[1] - ay * y * stress(x, y)[0])
     area = ax * ay
     return area / load * tx, area / (load * radius) * moment
+
+
+def traction_coefficients_adaptive(*args, **kwargs):
+    """Deprecated: the nine contact scalars, then ``fluid, epsrel``; use
+    `adaptive_coefficients` of a `ContactState`."""
+    state, rest, kw = legacy_arguments(
+        "traction_coefficients_adaptive(creep_term, ..., film, fluid)",
+        "adaptive_coefficients(ContactState(creep_term, ..., film), fluid)",
+        args,
+        kwargs,
+    )
+    return adaptive_coefficients(state, *rest, **kw)

@@ -30,15 +30,17 @@ on the cheap `TEMPERATURE_RULE`, then one Newton step on the requested rule.
 
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
 
 from ...params.models import Fluid
-from .isothermal import traction_coefficients
+from .contact import ContactState, legacy_arguments
+from .isothermal import shear_coefficients
 from .quadrature import Quadrature
 
 __all__ = [
+    "thermal_law_coefficients",
+    "thermal_law_rise",
+    "temperature_rise",
     "thermal_coefficients",
     "thermal_coefficients_and_rise",
     "film_temperature_rise",
@@ -54,18 +56,12 @@ TEMPERATURE_RULE = Quadrature("pole", 8, 8, 8)
 FLASH_FACTOR = 4.0 / 3.0 * np.sqrt(2.0 / np.pi)
 
 
-@lru_cache(maxsize=16)
-def _isothermal(fluid: Fluid) -> Fluid:
-    """The same fluid under the isothermal law (the quadrature of Eq. 53)."""
-    return fluid.model_copy(update={"traction_law": "isothermal"})
-
-
 class _Contacts:
     """Flat contact arrays and the temperature-independent parts of the heat balance."""
 
     def __init__(self, args, fluid: Fluid):
         (self.c, self.s, self.ax, self.ay, self.pm, self.fn, self.rc, self.u, self.h) = args
-        self.fluid = _isothermal(fluid)
+        self.fluid = fluid
         values = (
             fluid.temperature_viscosity_coefficient,
             fluid.limiting_shear_temperature_coefficient,
@@ -84,10 +80,10 @@ class _Contacts:
         self.resistance = self.r_flash + self.h / (8.0 * k_f)
 
     @classmethod
-    def from_args(cls, values, fluid: Fluid) -> tuple[_Contacts, tuple[int, ...]]:
-        """Contacts from the broadcast arguments of `thermal_coefficients`, and their shape."""
-        args = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
-        return cls([a.ravel() for a in args], fluid), args[0].shape
+    def from_state(cls, state: ContactState, fluid: Fluid) -> tuple[_Contacts, tuple[int, ...]]:
+        """Contacts of ``state`` as flat arrays, and their shape."""
+        params, shape = state.stacked()
+        return cls(list(params), fluid), shape
 
     def take(self, i) -> _Contacts:
         out = object.__new__(_Contacts)
@@ -99,19 +95,11 @@ class _Contacts:
     def at(self, dt, quadrature: Quadrature):
         """``mu, chi`` and their partials ``(c, sigma, log u, dT)`` at the rises ``dt``."""
         f_t = np.exp(-self.beta_l * dt)
-        mu, chi, dmu, dchi = traction_coefficients(
-            self.c,
-            self.s,
-            self.ax,
-            self.ay,
-            self.pm,
-            self.fn,
-            self.rc,
-            self.u,
-            self.h * np.exp(self.b * dt),
-            self.fluid,
-            quadrature,
-            derivatives=True,
+        state = ContactState(
+            self.c, self.s, self.ax, self.ay, self.pm, self.fn, self.rc, self.u, self.h
+        )
+        mu, chi, dmu, dchi = shear_coefficients(
+            state.replace(film=self.h * np.exp(self.b * dt)), self.fluid, quadrature, True
         )
         mu, chi, dmu, dchi = f_t * mu, f_t * chi, f_t[:, None] * dmu, f_t[:, None] * dchi
         d_t = lambda v, dv: -self.beta_l * v - self.b * dv[:, 2]  # noqa: E731
@@ -173,60 +161,26 @@ def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature):
     return dt + step, mu + dmu[:, 3] * step, chi + dchi[:, 3] * step, dmu, dchi
 
 
-def film_temperature_rise(
-    creep_term,
-    spin,
-    ax,
-    ay,
-    p_max,
-    load,
-    radius,
-    u_ref,
-    film,
-    fluid: Fluid,
-    quadrature: Quadrature = Quadrature(),
-):
+def temperature_rise(
+    state: ContactState, fluid: Fluid, quadrature: Quadrature = Quadrature()
+) -> np.ndarray:
     """Film temperature rise ``dT`` above the inlet of contacts under the thermal law [K].
 
-    Parameters are those of `thermal_coefficients` (same units).
+    Parameters are those of `thermal_law_coefficients` (same units).
     """
-    return thermal_coefficients_and_rise(
-        creep_term, spin, ax, ay, p_max, load, radius, u_ref, film, fluid, quadrature
-    )[2]
+    return thermal_law_rise(state, fluid, quadrature)[2]
 
 
-def thermal_coefficients_and_rise(
-    creep_term,
-    spin,
-    ax,
-    ay,
-    p_max,
-    load,
-    radius,
-    u_ref,
-    film,
-    fluid: Fluid,
-    quadrature: Quadrature = Quadrature(),
-):
+def thermal_law_rise(state: ContactState, fluid: Fluid, quadrature: Quadrature = Quadrature()):
     """``mu``, ``chi`` [-] and the film temperature rise ``dT`` [K] from one solve of the
-    film temperature (parameters as in `thermal_coefficients`)."""
-    con, shape = _Contacts.from_args(
-        (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film), fluid
-    )
+    film temperature (parameters as in `thermal_law_coefficients`)."""
+    con, shape = _Contacts.from_state(state, fluid)
     dt, mu, chi, _, _ = _rise_and_coefficients(con, quadrature)
     return mu.reshape(shape), chi.reshape(shape), dt.reshape(shape)
 
 
-def thermal_coefficients(
-    creep_term,
-    spin,
-    ax,
-    ay,
-    p_max,
-    load,
-    radius,
-    u_ref,
-    film,
+def thermal_law_coefficients(
+    state: ContactState,
     fluid: Fluid,
     quadrature: Quadrature = Quadrature(),
     derivatives: bool = False,
@@ -234,17 +188,15 @@ def thermal_coefficients(
     """``mu`` and ``chi`` of contacts under the thermal law (module docstring).
 
     Parameters and returns are those of
-    `ballcvt.model.traction.isothermal.traction_coefficients`: ``creep_term`` [-], ``spin`` [-],
-    ``ax, ay`` [m], ``p_max`` [Pa], ``load`` [N], ``radius`` [m], ``u_ref`` [m/s],
-    ``film`` [m]. The fluid needs the thermal fields (`ballcvt.params.Fluid`). The
-    derivatives include the film temperature's response (implicit function theorem);
-    the one with respect to ``log u`` is at fixed ``film`` (the identity with
-    ``-d/dlog h`` of the isothermal law does not hold with heating; Newton's Jacobians
-    only use it).
+    `ballcvt.model.traction.isothermal.shear_coefficients`: the contacts' ``state``
+    (`ContactState`: ``creep_term`` [-], ``spin`` [-], ``ax, ay`` [m], ``p_max`` [Pa],
+    ``load`` [N], ``radius`` [m], ``u_ref`` [m/s], ``film`` [m]). The fluid needs the
+    thermal fields (`ballcvt.params.Fluid`). The derivatives include the film
+    temperature's response (implicit function theorem); the one with respect to ``log u``
+    is at fixed ``film`` (the identity with ``-d/dlog h`` of the isothermal law does not
+    hold with heating; Newton's Jacobians only use it).
     """
-    con, shape = _Contacts.from_args(
-        (creep_term, spin, ax, ay, p_max, load, radius, u_ref, film), fluid
-    )
+    con, shape = _Contacts.from_state(state, fluid)
     _, mu, chi, dmu, dchi = _rise_and_coefficients(con, quadrature)
     if not derivatives:
         return mu.reshape(shape), chi.reshape(shape)
@@ -264,3 +216,39 @@ def thermal_coefficients(
         dmu_total.reshape(shape + (3,)),
         dchi_total.reshape(shape + (3,)),
     )
+
+
+def film_temperature_rise(*args, **kwargs):
+    """Deprecated: the nine contact arrays, then ``fluid, quadrature``; use
+    `temperature_rise` of a `ContactState`."""
+    state, rest, kw = legacy_arguments(
+        "film_temperature_rise(creep_term, ..., film, fluid)",
+        "temperature_rise(ContactState(creep_term, ..., film), fluid)",
+        args,
+        kwargs,
+    )
+    return temperature_rise(state, *rest, **kw)
+
+
+def thermal_coefficients_and_rise(*args, **kwargs):
+    """Deprecated: the nine contact arrays, then ``fluid, quadrature``; use
+    `thermal_law_rise` of a `ContactState`."""
+    state, rest, kw = legacy_arguments(
+        "thermal_coefficients_and_rise(creep_term, ..., film, fluid)",
+        "thermal_law_rise(ContactState(creep_term, ..., film), fluid)",
+        args,
+        kwargs,
+    )
+    return thermal_law_rise(state, *rest, **kw)
+
+
+def thermal_coefficients(*args, **kwargs):
+    """Deprecated: the nine contact arrays, then ``fluid, quadrature, derivatives``; use
+    `thermal_law_coefficients` of a `ContactState`."""
+    state, rest, kw = legacy_arguments(
+        "thermal_coefficients(creep_term, ..., film, fluid)",
+        "thermal_law_coefficients(ContactState(creep_term, ..., film), fluid)",
+        args,
+        kwargs,
+    )
+    return thermal_law_coefficients(state, *rest, **kw)

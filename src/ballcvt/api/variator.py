@@ -145,6 +145,8 @@ class Variator(BatchMethods):
         )
         return ConstantClamp(opt.clamp_force), law.name
 
+    # many parameters: what is computed, in the user's quantities (ratio, torque, force
+    # or law, speed in rad/s or rpm), then one settings object; **legacy: old keywords.
     def solve(
         self,
         ratio: float,
@@ -277,6 +279,8 @@ class Variator(BatchMethods):
         )
         return limit_torque(problem, c_lim, self.options, law=law)
 
+    # many parameters: what is computed, in the user's quantities (ratio, torque, force
+    # or law, speed in rad/s or rpm), then one settings object; **legacy: old keywords.
     def sweep(
         self,
         *,

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..params.models import BearingModel
+from ..units import rad_s_to_rpm
 
 __all__ = ["speed_dependent_torque", "load_dependent_torque"]
 
@@ -39,7 +40,8 @@ def speed_dependent_torque(speed, diameter, kinematic_viscosity, model: BearingM
         Friction torque magnitude [N m].
     """
     # the scalar factors first: two array operations fewer (this runs at every iteration)
-    nu_n = (kinematic_viscosity * 1e6 * 30.0 / np.pi) * np.abs(np.asarray(speed, dtype=float))
+    # nu [mm^2/s] times n [rpm] (Eq. 15): the speed's conversion applied to nu, first
+    nu_n = rad_s_to_rpm(kinematic_viscosity * 1e6) * np.abs(np.asarray(speed, dtype=float))
     scale = 1e-10 * model.f0 * (diameter * 1e3) ** 3
     return scale * np.maximum(model.low_speed_factor, nu_n**model.speed_exponent)
 

@@ -158,9 +158,9 @@ if AVAILABLE:
             out[i] = _exp_neg(a[i], _POW2)
         return out
 
-    # _ray and _contact keep scalar arguments (15 and 14): they are inlined into the
-    # contact loop, where numba keeps scalars in registers; a tuple of them would be
-    # rebuilt per ray, and the node loop must see plain scalars to vectorise.
+    # many parameters: _ray and _contact keep scalar arguments (15 and 14): they are
+    # inlined into the contact loop, where numba keeps scalars in registers; a tuple of
+    # them would be rebuilt per ray, and the node loop must see plain scalars to vectorise.
     @njit(cache=True, fastmath=_FAST, inline="always")
     def _ray(pole, y0, v0, reach, sm, cm, r01, wr, dphi, c, fl, tab, pow2, deriv, ve):
         """Sums of the nodes on one ray from ``(0, y0)`` in the direction ``(cm, sm)``.
@@ -175,8 +175,7 @@ if AVAILABLE:
         c3, c4, u, ih, pm, ax, ay = c[2], c[3], c[4], c[5], c[6], c[7], c[8]
         tl0, tl1, scale, modulus = fl[0], fl[1], fl[2], fl[3]
         last = tab.shape[0] - 2
-        dx = -c[0] * sm
-        dy = c[1] * cm
+        dx, dy = -c[0] * sm, c[1] * cm
         ray_speed = math.sqrt(dx * dx + dy * dy)  # |V| / rho on a ray from the pole
         s0 = s1 = s2 = s3 = s4 = s5 = s6 = s7 = 0.0
         for j in range(r01.shape[0]):
@@ -220,10 +219,8 @@ if AVAILABLE:
                 corr = f - theta * e_theta
                 lin_extra = -g * theta * e_theta
                 g = g * f
-            wx = w * ax * x
-            wy = w * ay * y
-            tx = g * vx
-            ty = g * vy
+            wx, wy = w * ax * x, w * ay * y
+            tx, ty = g * vx, g * vy
             s0 += w * tx
             s1 += wx * ty - wy * tx
             if deriv:
@@ -255,6 +252,7 @@ if AVAILABLE:
                 s7 += lin * (wx * vy - wy * vx)
         return s0, s1, s2, s3, s4, s5, s6, s7
 
+    # many parameters: see _ray (inlined, scalars kept in registers).
     @njit(cache=True, fastmath=_FAST, inline="always")
     def _contact(pole, y0, v0, c, r01, wr, sin_phi, cos_phi, dphi, fl, tab, pow2, deriv, ve):
         """One contact's 8 sums on the rays from its pole (``pole``) or from the centre."""

@@ -67,7 +67,7 @@ def draw_design(rng, wide):
             disc_groove_ratio=groove(), idler_groove_ratio=groove(),
             single_idler_groove_ratio=groove(), tilt_safety_factor=rng.uniform(0.05, 1.0),
             creep_limit=log_uniform(rng, 1e-2, 0.9),
-            min_ball_gap=rs * log_uniform(rng, 1e-4, 0.5))
+            min_roller_gap=rs * log_uniform(rng, 1e-4, 0.5))
     f = lambda: log_uniform(rng, 0.3, 3.0)  # noqa: E731
     rs = BASE_DESIGN.roller_radius * f()
     return dict(
@@ -78,7 +78,7 @@ def draw_design(rng, wide):
         disc_groove_ratio=1.0 + 1.4548 * f(), idler_groove_ratio=1.0 + 1.4548 * f(),
         single_idler_groove_ratio=math.inf if rng.random() < 0.5 else 1.0 + 10 * f(),
         tilt_safety_factor=rng.uniform(0.5, 0.95), creep_limit=rng.uniform(0.05, 0.2),
-        min_ball_gap=0.001 * f())
+        min_roller_gap=0.001 * f())
 
 
 def feasible_design(rng, refused, wide):
@@ -86,7 +86,7 @@ def feasible_design(rng, refused, wide):
     while True:
         fields = draw_design(rng, wide)
         if rng.random() < 0.5:   # bias half the draws towards designs that fit
-            k, rs, g = fields["aspect_ratio"], fields["roller_radius"], fields["min_ball_gap"]
+            k, rs, g = fields["aspect_ratio"], fields["roller_radius"], fields["min_roller_gap"]
             s = min(0.999, (1 + g / (2 * rs)) / (1 + k))
             fields["n_rollers"] = int(rng.integers(3, max(4, int(math.pi / math.asin(s)) + 1)))
         try:

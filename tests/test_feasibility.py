@@ -7,7 +7,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ballcvt import InputError, Variator, load_builtin
-from ballcvt.params.feasibility import max_balls
+from ballcvt.params.feasibility import max_rollers
 from ballcvt.params.io import builtin_text, parse_drive
 
 DESIGN, FLUID = load_builtin()
@@ -16,10 +16,10 @@ DESIGN, FLUID = load_builtin()
 def test_largest_number_of_balls_by_hand():
     # Table I: centres on a circle of 2.7 r_S; sin(pi/8) = 0.3827 >= 1.0167/2.7 = 0.3765
     # but sin(pi/9) = 0.3420 < 0.3765
-    assert max_balls(1.7, 0.03, 0.001) == 8
-    assert max_balls(0.2, 0.03, 0.001) == 3          # the example
-    assert max_balls(1.7, 0.03, 0.0) == 8
-    assert max_balls(3.0, 0.03, 0.0) == 12            # sin(pi/12) = 0.2588 >= 1/4
+    assert max_rollers(1.7, 0.03, 0.001) == 8
+    assert max_rollers(0.2, 0.03, 0.001) == 3          # the example
+    assert max_rollers(1.7, 0.03, 0.0) == 8
+    assert max_rollers(3.0, 0.03, 0.0) == 12            # sin(pi/12) = 0.2588 >= 1/4
     assert DESIGN.replace(n_rollers=8).n_rollers == 8
     with pytest.raises(InputError, match=r"n_rollers = 9 is out of range: allowed <= 8"):
         DESIGN.replace(n_rollers=9)
@@ -31,9 +31,9 @@ def test_largest_number_of_balls_by_hand():
 
 def test_ball_gap_bound_on_each_side():
     gap = 2 * 0.03 * 2.7 * math.sin(math.pi / 8) - 0.06      # 1.99 mm between 8 balls
-    assert DESIGN.replace(min_ball_gap=gap * (1 - 1e-9)).n_rollers == 8
+    assert DESIGN.replace(min_roller_gap=gap * (1 - 1e-9)).n_rollers == 8
     with pytest.raises(InputError, match="n_rollers = 8"):
-        DESIGN.replace(min_ball_gap=gap * (1 + 1e-6))
+        DESIGN.replace(min_roller_gap=gap * (1 + 1e-6))
 
 
 def test_disc_contacts_apart():

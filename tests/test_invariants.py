@@ -6,7 +6,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from ballcvt import Variator, load_builtin
-from ballcvt.params.feasibility import max_balls
+from ballcvt.params.feasibility import max_rollers
 
 BASE_DESIGN, BASE_FLUID = load_builtin()
 
@@ -14,7 +14,7 @@ BASE_DESIGN, BASE_FLUID = load_builtin()
 @st.composite
 def cases(draw):
     k, rs = draw(st.floats(1.0, 2.5)), draw(st.floats(0.015, 0.05))
-    n_max = min(12, max_balls(k, rs, BASE_DESIGN.min_ball_gap))     # feasible designs only
+    n_max = min(12, max_rollers(k, rs, BASE_DESIGN.min_roller_gap))     # feasible designs only
     design = BASE_DESIGN.replace(
         aspect_ratio=k,
         roller_radius=rs,

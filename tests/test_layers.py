@@ -98,3 +98,35 @@ def test_the_checker_catches_a_cycle_and_a_leaf_import(planted):
     graph = _rename(import_graph(planted), "pkg")
     assert import_cycles(graph) == [["ballcvt.params.io", "ballcvt.params.models"]]
     assert "leaf ballcvt.errors imports ballcvt.model.traction" in upward_imports(graph)
+
+
+def test_old_paths_and_names_still_work_with_one_warning():
+    """A restructure keeps users working: old module paths, dissolved packages' names and
+    renamed names answer with a BallCVTDeprecationWarning naming the new one."""
+    import importlib
+    import sys
+    import warnings
+
+    from ballcvt import _compat
+    from ballcvt.errors import BallCVTDeprecationWarning
+
+    cases = [
+        ("ballcvt.contact.traction", None, "ballcvt.model.traction.isothermal"),
+        ("ballcvt.solver", "SolverOptions", "ballcvt.solvers"),
+        ("ballcvt.geometry", "ideal_ratio", "ballcvt.model.kinematics.ideal_ratio"),
+        ("ballcvt.cli.main", "main", "ballcvt.interfaces.cli.main"),
+        ("ballcvt.params.feasibility", "max_balls", "max_rollers"),
+        ("ballcvt.equilibrium.problem", "ball_mass", "roller_mass"),
+    ]
+    for module, name, new in cases:
+        _compat._warned.clear()
+        if module in _compat.MOVED_MODULES or module in _compat.MOVED_PACKAGES:
+            sys.modules.pop(module, None)  # answered afresh, as on first import
+        with warnings.catch_warnings(record=True) as got:
+            warnings.simplefilter("always")
+            obj = importlib.import_module(module)
+            if name is not None:
+                obj = getattr(obj, name)
+        assert obj is not None
+        messages = [str(w.message) for w in got if w.category is BallCVTDeprecationWarning]
+        assert len(messages) >= 1 and any(new in m for m in messages), (module, messages)

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ballcvt import Variator, load_builtin
-from ballcvt.equilibrium.problem import (CarrierFrame, OperatingInputs, ball_mass, build_problem,
+from ballcvt.equilibrium.problem import (CarrierFrame, OperatingInputs, roller_mass, build_problem,
                                          centrifugal_force, idler_share, make_problem)
 from ballcvt.params import Drive
 from ballcvt.errors import InputError
@@ -143,7 +143,7 @@ def test_centrifugal_force_unloads_the_idlers_only(v):
     rest = build_problem(d, fl, "double", 1.2, 20.0, F, 100.0)
     turning = make_problem(Drive(d, fl), OperatingInputs(1.2, 20.0, F, 100.0),
                            CarrierFrame(carrier_speed=120.0))
-    fc = ball_mass(d) * 120.0 ** 2 * d.roller_radius * (1 + d.aspect_ratio)
+    fc = roller_mass(d) * 120.0 ** 2 * d.roller_radius * (1 + d.aspect_ratio)
     assert centrifugal_force(d, 120.0) == pytest.approx(fc)
     assert np.allclose(rest.load - turning.load, fc * idler_share(rest.layout, d))
     assert turning.load[0] == rest.load[0] and turning.load[-1] == rest.load[-1]

@@ -21,13 +21,13 @@ F = 2000.0
 @pytest.fixture
 def ball_drag_term():
     """A constant 1 mN m drag on every ball, registered for one test."""
-    term = LOSS_TERMS.register(LossTerm("test_ball_drag", "balls", lambda at: 1e-3))
+    term = LOSS_TERMS.register(LossTerm("test_roller_drag", "rollers", lambda at: 1e-3))
     yield term
     LOSS_TERMS.unregister(term.name)
 
 
 def test_builtin_loss_terms_in_order():
-    assert LOSS_TERMS.names() == ("ball_churning", "disc_churning", "seals", "disc_bearing")
+    assert LOSS_TERMS.names() == ("roller_churning", "disc_churning", "seals", "disc_bearing")
     assert drag_kinds() == ("churning", "seals", "disc_bearings")
     for _, term in LOSS_TERMS.items():
         assert term.parameters.startswith("design.parasitic")
@@ -47,9 +47,9 @@ def test_user_term_enters_the_balances_and_the_breakdown(ball_drag_term):
     assert ball == 1e-3 and d0.shape == (4,) and not d0.any() and not d2.any()
     r = Variator().solve(1.0, 20.0, clamp_force=F, input_speed_rpm=2000)
     ls = r.losses
-    assert ls["test_ball_drag"] > 0 and ls["parasitic"] == ls["test_ball_drag"]
+    assert ls["test_roller_drag"] > 0 and ls["parasitic"] == ls["test_roller_drag"]
     # n balls, each braked by 1 mN m at its spin speed
-    assert ls["test_ball_drag"] == pytest.approx(design.n_rollers * 1e-3 * abs(r.roller_speed),
+    assert ls["test_roller_drag"] == pytest.approx(design.n_rollers * 1e-3 * abs(r.roller_speed),
                                                  rel=1e-12)
     assert r.eta == pytest.approx(r.eta_loss, abs=1e-9)
     with pytest.raises(InputError, match="loss term"):

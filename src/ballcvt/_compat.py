@@ -221,13 +221,15 @@ def warn_renamed(old: str, new: str, stacklevel: int = 3) -> None:
 
 def moved_names(module: str, names: dict[str, str]):
     """A module-level ``__getattr__`` for ``module``: each of ``names`` (name -> the module
-    that now holds it) is answered from its new module, with one warning."""
+    that now holds it, or ``"module:new_name"`` if it was renamed too) is answered from
+    there, with one warning."""
 
     def __getattr__(name: str):
         if name not in names:
             raise AttributeError(f"module {module!r} has no attribute {name!r}")
-        warn_renamed(f"{module}.{name}", f"{names[name]}.{name}")
-        return getattr(importlib.import_module(names[name]), name)
+        where, _, new = names[name].partition(":")  # "module" or "module:new_name"
+        warn_renamed(f"{module}.{name}", f"{where}.{new or name}")
+        return getattr(importlib.import_module(where), new or name)
 
     return __getattr__
 

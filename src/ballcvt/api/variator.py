@@ -90,7 +90,7 @@ class Variator(BatchMethods):
             ("design", d.name, ""),
             ("fluid", self.fluid.name, ""),
             ("architecture", f"{self.architecture} idler", ""),
-            ("balls", f"{d.n_rollers} x r_S {d.roller_radius * 1e3:.4g}", "mm"),
+            ("rollers", f"{d.n_rollers} x r_S {d.roller_radius * 1e3:.4g}", "mm"),
             ("aspect ratio k", d.aspect_ratio, "-"),
             ("contact angles", f"{d.theta0_deg:g} / {d.theta2_deg:g}", "deg"),
             ("ratio range", f"{lo:.3f} - {hi:.3f}", "-"),

@@ -11,15 +11,16 @@ from typing import Any
 
 import numpy as np
 
+from .._compat import moved_names
 from ..errors import InputError
 from ..model.architectures import ContactLayout, contact_layout
 from ..model.hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
 from ..model.inertia import (
-    ball_mass,
     centrifugal_force,
     gyro_factor,
     idler_share,
     max_carrier_speed,
+    roller_mass,
 )
 from ..model.kinematics import (
     body_speeds,
@@ -40,12 +41,15 @@ __all__ = [
     "make_problem",
     "build_problem",
     # the inertia of the balls lives in the model layer; named here as before
-    "ball_mass",
+    "roller_mass",
     "centrifugal_force",
     "idler_share",
     "gyro_factor",
     "max_carrier_speed",
 ]
+
+#: Renamed (one name per body: the paper's "roller"); answered with a warning.
+__getattr__ = moved_names(__name__, {"ball_mass": "ballcvt.model.inertia:roller_mass"})
 
 #: Smallest clamping force [N] and input speed [rad/s] accepted: far below any physical
 #: use (one revolution in 72 days), and above the range where the film thickness and the
@@ -70,7 +74,7 @@ _PER_CONTACT = (
     "ax",
     "ay",
     "p_max",
-    "ball_drag",
+    "roller_drag",
     "input_drag",
     "output_drag",
 )
@@ -99,7 +103,7 @@ class EquilibriumProblem:
         Equivalent rolling-direction radii ``R_x`` [m], ``(n_c,)``.
     ax, ay, p_max : ndarray
         Hertz semi-axes [m] and peak pressure [Pa], ``(..., n_c)``.
-    ball_drag : ndarray
+    roller_drag : ndarray
         Parasitic drag torque on each ball about its spin axis by kind (``drag_kinds``)
         [N m], ``(..., n_kinds)``; zero without ``design.parasitic`` and user loss terms
         (docs/model.md §12).
@@ -138,7 +142,7 @@ class EquilibriumProblem:
     ax: np.ndarray
     ay: np.ndarray
     p_max: np.ndarray
-    ball_drag: np.ndarray
+    roller_drag: np.ndarray
     input_drag: np.ndarray
     output_drag: np.ndarray
     carrier_speed: np.ndarray = None  # type: ignore[assignment]
@@ -355,7 +359,7 @@ def make_problem(
         ay=ay,
         ax=ax,
         p_max=p_max,
-        ball_drag=drags.ball,
+        roller_drag=drags.roller,
         input_drag=drags.input,
         output_drag=drags.output,
         carrier_speed=wc,

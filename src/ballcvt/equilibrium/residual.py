@@ -291,9 +291,9 @@ def _balance_constants(problem: EquilibriumProblem) -> dict:
         "idler_load_torque": np.where(
             lay.is_idler, load_dependent_torque(idler_thrust, des.idler_bearing_diameter, bm), 0.0
         ),
-        "ball_scale": pb.clamp_force * rs,
+        "roller_scale": pb.clamp_force * rs,
         "scale": pb.torque_scale[..., None],
-        "ball_drag": np.sum(pb.ball_drag, axis=-1),
+        "roller_drag": np.sum(pb.roller_drag, axis=-1),
         "input_drag": np.sum(pb.input_drag, axis=-1),
         "output_drag": np.sum(pb.output_drag, axis=-1),
     }
@@ -330,7 +330,7 @@ def _balances(problem: EquilibriumProblem, creep, at: ContactInputs, mu, chi) ->
     res = np.empty(body.shape)
     # parasitic drags (zero without design.parasitic, docs/model.md §12): churning on the
     # ball's spin like its axle bearings; the output shaft's drag adds to the load torque
-    res[..., 0] = (m_s - np.sign(omega_s) * (t_bls + k["ball_drag"])) / k["ball_scale"]
+    res[..., 0] = (m_s - np.sign(omega_s) * (t_bls + k["roller_drag"])) / k["roller_scale"]
     res[..., 1:-1] = ((body - np.sign(omega) * t_bl) / scale)[..., 1:-1]
     input_drag = k["input_drag"]
     if pb.torque_weights == (0.0, 1.0):

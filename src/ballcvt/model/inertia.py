@@ -11,10 +11,10 @@ import numpy as np
 from ..params.models import Design
 from .layout import ContactLayout
 
-__all__ = ["ball_mass", "centrifugal_force", "idler_share", "gyro_factor", "max_carrier_speed"]
+__all__ = ["roller_mass", "centrifugal_force", "idler_share", "gyro_factor", "max_carrier_speed"]
 
 
-def ball_mass(design: Design) -> float:
+def roller_mass(design: Design) -> float:
     """Mass of one ball, a solid sphere of the design's material [kg]."""
     return design.material.density * 4.0 / 3.0 * np.pi * design.roller_radius**3
 
@@ -23,7 +23,7 @@ def centrifugal_force(design: Design, carrier_speed):
     """Centrifugal force on one ball, ``m omega_c^2 R_c``, ``R_c = r_S (1 + k)`` [N]
     (docs/model.md §13), along ``+k``."""
     wc = np.asarray(carrier_speed, dtype=float)
-    return ball_mass(design) * wc**2 * design.roller_radius * (1.0 + design.aspect_ratio)
+    return roller_mass(design) * wc**2 * design.roller_radius * (1.0 + design.aspect_ratio)
 
 
 def idler_share(layout: ContactLayout, design: Design) -> np.ndarray:
@@ -45,7 +45,7 @@ def gyro_factor(design: Design, tilt, carrier_speed):
     of Eqs. 19/34), so each carries ``I omega_c omega_S sin(gamma) / r_S`` (docs/model.md
     §13): this factor times ``omega_S`` [N].
     """
-    inertia = 0.4 * ball_mass(design) * design.roller_radius**2
+    inertia = 0.4 * roller_mass(design) * design.roller_radius**2
     return inertia * np.asarray(carrier_speed, dtype=float) * np.sin(tilt) / design.roller_radius
 
 
@@ -60,5 +60,5 @@ def max_carrier_speed(design: Design, layout: ContactLayout, clamp_force):
         axis=-1,
     )
     return np.sqrt(
-        f_max / (ball_mass(design) * design.roller_radius * (1.0 + design.aspect_ratio))
+        f_max / (roller_mass(design) * design.roller_radius * (1.0 + design.aspect_ratio))
     )

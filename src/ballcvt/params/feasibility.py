@@ -16,7 +16,7 @@ import math
 from .._compat import moved_names
 from ..errors import InputError
 
-__all__ = ["check_design", "max_balls"]
+__all__ = ["check_design", "max_rollers"]
 
 #: Names that moved to the model layer (answered with a warning).
 __getattr__ = moved_names(
@@ -25,11 +25,12 @@ __getattr__ = moved_names(
         "check_architecture": "ballcvt.model.architectures",
         "tilt_limits": "ballcvt.model.kinematics",
         "usable_tilt_range": "ballcvt.model.kinematics",
+        "max_balls": "ballcvt.params.feasibility:max_rollers",
     },
 )
 
 
-def max_balls(aspect_ratio: float, roller_radius: float, min_gap: float) -> int:
+def max_rollers(aspect_ratio: float, roller_radius: float, min_gap: float) -> int:
     """Largest number of balls that fit around the carrier (docs/model.md §10, Eq. F1).
 
     Neighbouring ball centres sit ``2 r_S (1 + k) sin(pi / n)`` apart; they must be at least
@@ -68,14 +69,14 @@ def check_design(d) -> None:
     InputError
         On the first violated bound.
     """
-    rs, g = d.roller_radius, d.min_ball_gap
-    n_max = max_balls(d.aspect_ratio, rs, g)
+    rs, g = d.roller_radius, d.min_roller_gap
+    n_max = max_rollers(d.aspect_ratio, rs, g)
     if d.n_rollers > n_max:  # Eq. F1
         raise InputError(
             "n_rollers",
             d.n_rollers,
             f"<= {n_max} (balls of radius {rs:g} m on a circle of radius "
-            f"{rs * (1 + d.aspect_ratio):g} m with gaps >= min_ball_gap = {g:g} m)",
+            f"{rs * (1 + d.aspect_ratio):g} m with gaps >= min_roller_gap = {g:g} m)",
         )
     if d.n_rollers < 3:
         raise InputError(
@@ -88,7 +89,7 @@ def check_design(d) -> None:
         raise InputError(
             "theta0_deg + theta2_deg",
             f"{d.theta0_deg:g} + {d.theta2_deg:g}",
-            f"disc contacts at least min_ball_gap = {g:g} m apart along the axis "
+            f"disc contacts at least min_roller_gap = {g:g} m apart along the axis "
             f"(r_S (sin theta0 + sin theta2) = {sep:.3g} m)",
         )
     if d.roller_bearing_diameter >= 2.0 * rs:  # Eq. F3

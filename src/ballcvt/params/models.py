@@ -200,7 +200,7 @@ class Design(ParameterModel):
         "largest admissible Hertz peak pressure (clamping-force optimisation, validity warning)",
         gt=0,
     )
-    min_ball_gap: float = _f(
+    min_roller_gap: float = _f(
         "m",
         "smallest clearance between neighbouring balls, idler "
         "contacts and disc contacts (feasibility, docs/model.md §10)",
@@ -225,10 +225,30 @@ class Design(ParameterModel):
         None, description="churning, seal and disc bearing losses (optional: none without it)"
     )
 
+    @model_validator(mode="before")
+    @classmethod
+    def _renamed_keys(cls, data: Any) -> Any:
+        """``min_ball_gap`` (before one name per body) reads as ``min_roller_gap``."""
+        if isinstance(data, dict) and "min_ball_gap" in data:
+            from .._compat import warn_renamed
+
+            warn_renamed("[design] min_ball_gap", "min_roller_gap", stacklevel=4)
+            data = dict(data)
+            data.setdefault("min_roller_gap", data.pop("min_ball_gap"))
+        return data
+
     @model_validator(mode="after")
     def _buildable(self) -> Design:
         check_design(self)
         return self
+
+    @property
+    def min_ball_gap(self) -> float:
+        """Renamed `min_roller_gap` [m] (warns)."""
+        from .._compat import warn_renamed
+
+        warn_renamed("Design.min_ball_gap", "Design.min_roller_gap")
+        return self.min_roller_gap
 
     @property
     def theta0(self) -> float:

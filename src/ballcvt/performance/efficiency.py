@@ -150,7 +150,7 @@ def power_losses(problem: EquilibriumProblem, state: EquilibriumState) -> PowerL
     shafts = (
         problem.input_drag * state.omega[..., :1] + problem.output_drag * state.omega[..., -1:]
     )
-    parasitic = shafts + n * problem.ball_drag * np.abs(state.omega_s)[..., None]
+    parasitic = shafts + n * problem.roller_drag * np.abs(state.omega_s)[..., None]
     return PowerLosses(
         creep=creep,
         spin=spin,

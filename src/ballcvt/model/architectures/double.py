@@ -66,7 +66,7 @@ class DoubleIdler(Architecture):
         InputError
             On the first violated bound.
         """
-        rs, g = design.roller_radius, design.min_ball_gap
+        rs, g = design.roller_radius, design.min_roller_gap
         sep = 2.0 * rs * math.sin(design.alpha)  # Eq. F5
         if sep < g:
             need = math.degrees(math.asin(min(1.0, g / (2.0 * rs))))
@@ -74,7 +74,7 @@ class DoubleIdler(Architecture):
                 "alpha_deg",
                 design.alpha_deg,
                 f">= {need:.4g} deg for two idlers (their contacts 2 r_S sin(alpha) "
-                f"apart must be at least min_ball_gap = {g:g} m)",
+                f"apart must be at least min_roller_gap = {g:g} m)",
             )
         lo, hi = usable_tilt_range(design)
         # Eq. F4: the idlers' rolling radii rho = -cos(gamma -/+ alpha) keep their sign over

@@ -35,7 +35,7 @@ __all__ = [
 #: speed), one shaft, or between the two discs (a term of their relative speed that brakes
 #: the faster disc and drives the slower one, like the thrust bearing closing the clamping
 #: loop).
-ACTS_ON = ("balls", "shafts", "input", "output", "between_discs")
+ACTS_ON = ("rollers", "shafts", "input", "output", "between_discs")
 
 
 @dataclass(frozen=True)
@@ -81,7 +81,7 @@ class LossTerm:
         One of `ACTS_ON`.
     torque : callable
         ``torque(inputs: DragInputs) -> array_like``: the torque magnitude [N m] opposing
-        the member's motion (per ball for ``"balls"``); a pure function, broadcasting over
+        the member's motion (per ball for ``"rollers"``); a pure function, broadcasting over
         ``inputs.speed``.
     kind : str
         Key of the loss breakdown the term's power adds to (default: ``name``); built-in
@@ -115,15 +115,15 @@ class ParasiticDrags:
     ----------
     kinds : tuple of str
         Loss kinds, in order of first registration (`drag_kinds`).
-    ball : ndarray
-        On each ball about its spin axis [N m], ``(..., n_kinds)``.
+    roller : ndarray
+        On each roller (ball) about its spin axis [N m], ``(..., n_kinds)``.
     input, output : ndarray
         On the input and output shafts [N m], ``(..., n_kinds)``: positive where they
         oppose the shaft's (positive) rotation.
     """
 
     kinds: tuple[str, ...]
-    ball: np.ndarray
+    roller: np.ndarray
     input: np.ndarray
     output: np.ndarray
 
@@ -139,7 +139,7 @@ def active_terms(design: Design) -> tuple[LossTerm, ...]:
 
 
 def parasitic_drags(
-    design: Design, fluid: Fluid, input_speed, output_speed, ball_speed, thrust
+    design: Design, fluid: Fluid, input_speed, output_speed, roller_speed, thrust
 ) -> ParasiticDrags:
     """Sum the registered loss terms at given speeds, by kind (docs/model.md §12).
 
@@ -149,7 +149,7 @@ def parasitic_drags(
         The drive; a term that does not apply to it contributes zeros.
     input_speed, output_speed : array_like
         Disc speeds ``omega_0``, ``omega_2`` [rad/s].
-    ball_speed : array_like
+    roller_speed : array_like
         Ball spin speed ``omega_S`` [rad/s].
     thrust : array_like
         Disc axial thrust ``F_ax`` [N].
@@ -159,26 +159,26 @@ def parasitic_drags(
     ParasiticDrags
     """
     w0, w2, ws, fax = (
-        np.asarray(v, dtype=float) for v in (input_speed, output_speed, ball_speed, thrust)
+        np.asarray(v, dtype=float) for v in (input_speed, output_speed, roller_speed, thrust)
     )
     shape = np.broadcast_shapes(w0.shape, w2.shape, ws.shape, fax.shape)
     kinds = drag_kinds()
-    out = {m: np.zeros(shape + (len(kinds),)) for m in ("ball", "input", "output")}
+    out = {m: np.zeros(shape + (len(kinds),)) for m in ("roller", "input", "output")}
     for term in active_terms(design):
         col = kinds.index(term.kind)
         for member, value in _acting(term, DragInputs(design, fluid, w0, fax), w2, ws):
             out[member][..., col] += value
-    return ParasiticDrags(kinds, out["ball"], out["input"], out["output"])
+    return ParasiticDrags(kinds, out["roller"], out["input"], out["output"])
 
 
-def _acting(term: LossTerm, at: DragInputs, output_speed, ball_speed):
+def _acting(term: LossTerm, at: DragInputs, output_speed, roller_speed):
     """``(member, signed torque)`` pairs of ``term`` (``at.speed`` is the input speed)."""
 
     def torque(speed):
         return np.asarray(term.torque(DragInputs(at.design, at.fluid, speed, at.thrust)))
 
-    if term.acts_on == "balls":
-        return [("ball", torque(ball_speed))]
+    if term.acts_on == "rollers":
+        return [("roller", torque(roller_speed))]
     if term.acts_on == "between_discs":
         relative = at.speed - output_speed
         m = np.sign(relative) * torque(relative)
@@ -188,7 +188,9 @@ def _acting(term: LossTerm, at: DragInputs, output_speed, ball_speed):
     return [(m, torque(shafts[m])) for m in members]
 
 
-def parasitic_torques(design: Design, fluid: Fluid, input_speed, output_speed, ball_speed, thrust):
+def parasitic_torques(
+    design: Design, fluid: Fluid, input_speed, output_speed, roller_speed, thrust
+):
     """Drag torques of the parasitic losses at given speeds (docs/model.md §12).
 
     Parameters
@@ -198,7 +200,7 @@ def parasitic_torques(design: Design, fluid: Fluid, input_speed, output_speed, b
         model).
     input_speed, output_speed : array_like
         Disc speeds ``omega_0``, ``omega_2`` [rad/s].
-    ball_speed : array_like
+    roller_speed : array_like
         Ball spin speed ``omega_S`` [rad/s].
     thrust : array_like
         Disc axial thrust ``F_ax`` [N].
@@ -213,5 +215,5 @@ def parasitic_torques(design: Design, fluid: Fluid, input_speed, output_speed, b
         positive where they oppose the shaft's rotation. The disc thrust bearing's torque
         has opposite signs on the two shafts; its power is ``M |omega_0 - omega_2|``.
     """
-    drags = parasitic_drags(design, fluid, input_speed, output_speed, ball_speed, thrust)
-    return np.sum(drags.ball, axis=-1), drags.input, drags.output
+    drags = parasitic_drags(design, fluid, input_speed, output_speed, roller_speed, thrust)
+    return np.sum(drags.roller, axis=-1), drags.input, drags.output

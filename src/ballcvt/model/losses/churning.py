@@ -1,6 +1,6 @@
 """Churning: the drag of the oil-air mixture on the spinning balls and discs (docs/model.md §12).
 
-Two built-in loss terms of kind ``churning``: ``ball_churning`` on each ball about its spin
+Two built-in loss terms of kind ``churning``: ``roller_churning`` on each ball about its spin
 axis and ``disc_churning`` on each disc shaft, both read from ``design.parasitic``.
 """
 
@@ -71,7 +71,7 @@ def windage_torque(speed, radius, density, kinematic_viscosity, factor=1.0):
     return np.where(w > 0, m, 0.0)
 
 
-def _ball_churning(at: DragInputs):
+def _roller_churning(at: DragInputs):
     """Churning torque on one ball, radius ``r_S`` (`windage_torque`) [N m]."""
     par, fl = at.design.parasitic, at.fluid
     assert par is not None
@@ -93,7 +93,7 @@ def _disc_churning(at: DragInputs):
 
 _SOURCE = "design.parasitic: oil_fraction, churning_factor (balls); and disc_radius (discs)"
 BALL_CHURNING = LOSS_TERMS.register(
-    LossTerm("ball_churning", "balls", _ball_churning, "churning", _SOURCE, has_parasitic)
+    LossTerm("roller_churning", "rollers", _roller_churning, "churning", _SOURCE, has_parasitic)
 )
 DISC_CHURNING = LOSS_TERMS.register(
     LossTerm("disc_churning", "shafts", _disc_churning, "churning", _SOURCE, has_parasitic)

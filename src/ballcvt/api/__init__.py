@@ -1,4 +1,4 @@
-"""Layer 10, the public API: `Variator` and every function the front ends use.
+"""The api layer, the public API: `Variator` and every function the front ends use.
 
 Everything the command line does is reachable from here (and from ``ballcvt``'s top-level
 names): points, limits and limit curves, optimal clamping, sweeps, efficiency maps and

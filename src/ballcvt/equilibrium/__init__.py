@@ -1,4 +1,4 @@
-"""Layer 4: the equilibrium problem and its residual (docs/model.md §5)."""
+"""The equilibrium layer: the problem and its residual (docs/model.md §5)."""
 
 from .problem import EquilibriumProblem, build_problem
 from .residual import EquilibriumState, evaluate

@@ -1,4 +1,4 @@
-"""Layer 0: parameter sets (design, material, bearings, fluid, operating point)."""
+"""The params layer: parameter sets (design, material, bearings, fluid, drive, operating point)."""
 
 from .drive import PAPER_POINT, Drive
 from .io import BUILTIN_DRIVES, builtin_text, drive_to_toml, load_builtin, load_drive, parse_drive

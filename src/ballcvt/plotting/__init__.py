@@ -1,4 +1,4 @@
-"""Layer 10: figures (matplotlib). Never imported by the physics layers.
+"""A leaf: figures (matplotlib). Never imported by the physics layers.
 
 Importing this package does not change matplotlib's backend.
 """

@@ -1,4 +1,4 @@
-"""Layer 11: the reproduction of the paper (figures, claims, report)."""
+"""The reports layer: the reproduction of the paper (figures, claims, report)."""
 
 from .reproduce import GRIDS, Reproduction, reproduce
 

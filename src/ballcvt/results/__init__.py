@@ -1,4 +1,4 @@
-"""Layer 7: result objects (and, later, sweeps)."""
+"""The results layer: immutable result objects, saved and loaded."""
 
 from .point import ContactResult, OperatingResult, make_result
 

@@ -1,4 +1,4 @@
-"""Layer 5: solvers of the equilibrium and the limiting torque (docs/model.md §5, §8)."""
+"""The solvers layer: the equilibrium, the limiting torque and the clamping force (docs/model.md §5, §8)."""
 
 from .limit import limit_torque, limit_torque_batch, traction_ceiling_torque
 from .newton import BatchSolution, solve_batch

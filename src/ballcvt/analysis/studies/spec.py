@@ -210,7 +210,7 @@ class StudySettings(ParameterModel):
 
     name: str
     drive: str = "table1"
-    architecture: Literal["double", "single"] = "double"
+    architecture: str = Field("double", description="a name in ballcvt.registry.ARCHITECTURES")
     method: Literal["sobol", "lhs", "nsga2"] = "sobol"
     samples: int = Field(64, ge=1, le=10_000_000)
     population: int = Field(16, ge=4, le=100_000)
@@ -282,8 +282,12 @@ class StudySpec(ParameterModel):
                 self.study.choose,
                 "one of the objectives: " + ", ".join(self.objectives),
             )
-        if self.study.architecture not in ARCHITECTURES:  # pragma: no cover - Literal
-            raise InputError("study.architecture", self.study.architecture, str(ARCHITECTURES))
+        if self.study.architecture not in ARCHITECTURES:
+            raise InputError(
+                "study.architecture",
+                self.study.architecture,
+                "one of: " + ", ".join(ARCHITECTURES),
+            )
         if self.study.traction_law is not None:
             TRACTION_LAWS.get(self.study.traction_law)  # InputError listing the laws
         fixed = CLAMP_LAWS.get(self.operating.clamp_law).fixed_force  # likewise

@@ -1,4 +1,4 @@
-"""Layer 7: sweeps over operating conditions as `xarray.Dataset` objects, and their export."""
+"""The analysis layer: sweeps over operating conditions as `xarray.Dataset` objects, and their export."""
 
 from .curves import OperatingRows, limit_search_curves, solve_curves
 from .export import load_dataset, parameters, to_csv, to_frame, to_netcdf

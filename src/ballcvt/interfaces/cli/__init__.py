@@ -1,1 +1,1 @@
-"""Layer 8: the command-line interface."""
+"""The interfaces layer: the command-line interface (one module per command)."""

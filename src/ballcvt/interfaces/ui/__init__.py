@@ -1,4 +1,4 @@
-"""Layer 12: the interactive explorer in the browser (Bokeh server, ``ballcvt explore-ui``)."""
+"""The interfaces layer: the interactive explorer in the browser (Bokeh server, ``ballcvt explore-ui``)."""
 
 from .app import MAP_GRID, SLIDERS, make_document, serve
 

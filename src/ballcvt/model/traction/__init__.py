@@ -1,4 +1,4 @@
-"""Layer 2: contact mechanics (Hertz, rheology, film, traction integrals; Eqs. 41-66).
+"""The model layer's traction laws: quadrature, kernels, the isothermal, thermal and viscoelastic laws (Eqs. 53-66).
 
 A traction law is a `TractionLaw` in `ballcvt.registry.TRACTION_LAWS` (see
 `ballcvt.model.traction.base`); `contact_coefficients` evaluates the fluid's law at a

@@ -273,7 +273,8 @@ def ratio_vs_tilt(curves, title=r"Fig. 3: ideal speed ratio vs tilt ($k$ = 1)") 
 
     Parameters
     ----------
-    curves : list of (tilt_deg, ratio, label, usable_mask)
+    curves : list of tuple
+        ``(tilt_deg, ratio, label, usable_mask)`` per curve.
         Tilt [deg], ratio [-], legend label, and the part inside the safety factor.
     """
     fig = Figure(figsize=(6.0, 4.2), layout="constrained")

@@ -18,6 +18,9 @@ Map: ratio 0.5-2 x output torque 5 N m to 90 % of the limiting torque, F_N0 = 2 
   compiled kernels), point by point; and (b) a
   plain SciPy implementation with nested adaptive ``quad`` for the traction integrals and
   ``root`` on the equilibrium, on one point, as a user without ballcvt would write it.
+
+It imports internals below the public API on purpose (the equilibrium, the kernels and the
+solvers): it times them one by one.
 """
 
 from __future__ import annotations

@@ -3,6 +3,9 @@
 Runs the example e-bike commute, repeated to N steps (default 10,000), on the built-in
 ``hub`` drive with its cam, by both strategies on 1 and 2 worker processes, and prints the
 time and steps per second.
+
+It calls the analysis layer's `run_cycle` directly (what `Variator.run_cycle` calls), to time
+the cycle alone.
 """
 
 import argparse

@@ -20,6 +20,9 @@ Jacobian) point by point with the traction integrals in NumPy on the fixed centr
 grid (no compiled kernels), each limit a 15-step bisection on the output torque from the
 traction ceiling, each solve started from the last admissible one; a sweep's points below
 their limit solved in torque order from the point below, into plain arrays.
+
+Besides the public API it imports internals on purpose (the problem, the batched solver): the
+SciPy baseline is built from them.
 """
 
 from __future__ import annotations

@@ -14,6 +14,9 @@ of balls, near Table I; a 10 x 10 grid of ratios 0.6-1.6 and torques 5-45 N m at
 and printed: designs and points per second, the scaling from 1 to 2 workers, and Dask's
 overhead on 1 worker against the plain batched solve (target: under 15 %), with and without
 the cluster's start-up.
+
+It imports the studies' internals on purpose (`local_client`, `parse_study`): it times the
+Dask machinery against the in-process loop.
 """
 
 from __future__ import annotations

@@ -16,26 +16,21 @@ Everything the command line does is a public name here (docs/api.md).
 
 from typing import TYPE_CHECKING, Any
 
-from . import _compat
+from . import _compat, api
 from ._version import __version__
 from .api import (
     BUILTIN_DRIVES,
     BUILTIN_FLUIDS,
     MEMBERS,
     STRATEGIES,
-    Curves,
     Cycle,
-    CycleResult,
     CycleSettings,
-    FluidFit,
     LimitCurve,
     MapGrid,
     ModeBatch,
     OperatingMode,
     PlanetaryResult,
     SolveSettings,
-    StudyResult,
-    StudySpec,
     SweepSettings,
     TableGrid,
     TractionCurve,
@@ -43,18 +38,10 @@ from .api import (
     contact_fluid,
     cycle_from_arrays,
     drive_text,
-    fit_fluid,
-    load_dataset,
     open_drive,
-    read_curves,
     read_cycle,
-    read_modelica_tables,
     read_study,
-    run_study,
-    to_csv,
-    to_netcdf,
     traction_curve,
-    write_tables,
 )
 from .errors import BallCVTError, ConvergenceError, InputError, TractionLimitError
 from .model.traction.quadrature import REFERENCE, Quadrature
@@ -73,10 +60,12 @@ _REPORTS = {"reproduce": "ballcvt.reports", "study_report": "ballcvt.reports.stu
 
 
 def __getattr__(name: str) -> Any:
-    if name in _REPORTS:
-        import importlib
+    import importlib
 
+    if name in _REPORTS:
         return getattr(importlib.import_module(_REPORTS[name]), name)
+    if name in api._LAZY:  # sweeps' files, tables, cycles' results, fitting, studies
+        return getattr(api, name)
     raise AttributeError(f"module 'ballcvt' has no attribute {name!r}")
 
 

@@ -2,10 +2,21 @@
 fluid fitting and the reproduction of the paper. They take a drive and solver options,
 never the public API object."""
 
-from .capacity import limit_curves, traction_ceiling
-from .kinematics import kinematic_spin, ratio_tilt_curve
-from .planetary import OperatingMode, mode_capacity, mode_curves, mode_kinematics
-from .sweeps.export import write_table
+from .._lazy import lazy_exports
+
+#: Public name -> the submodule that defines it (loaded on first use: `ballcvt._lazy`).
+_EXPORTS = {
+    "limit_curves": ".capacity",
+    "traction_ceiling": ".capacity",
+    "kinematic_spin": ".kinematics",
+    "ratio_tilt_curve": ".kinematics",
+    "OperatingMode": ".planetary",
+    "mode_capacity": ".planetary",
+    "mode_curves": ".planetary",
+    "mode_kinematics": ".planetary",
+    "write_table": ".sweeps.export",
+}
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
 
 __all__ = [
     "traction_ceiling",

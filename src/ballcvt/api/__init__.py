@@ -7,12 +7,8 @@ studies and drive files. The front ends (`ballcvt.interfaces`) import only this 
 the leaves and the reports (tests/test_public_api.py).
 """
 
+from .._lazy import lazy_exports
 from ..analysis.cycle_files import STRATEGIES, Cycle, cycle_from_arrays, read_cycle
-from ..analysis.cycles import CycleResult
-from ..analysis.fitting import Curves, FluidFit, fit_fluid, read_curves
-from ..analysis.studies import StudyResult, StudySpec, run_study
-from ..analysis.sweeps.export import load_dataset, to_csv, to_frame, to_netcdf
-from ..analysis.tables import read_modelica_tables, table_arrays, write_tables
 from ..model.modes import MEMBERS, OperatingMode
 from ..model.traction.curve import TractionCurve, traction_curve
 from ..params import PAPER_POINT, Design, Drive, Fluid, drive_to_toml, load_builtin, load_drive
@@ -26,6 +22,26 @@ from .grids import LimitCurve
 from .settings import CycleSettings, MapGrid, SolveSettings, SweepSettings, TableGrid
 from .tools import contact_fluid, drive_text, open_drive, read_study
 from .variator import Variator
+
+#: Names whose modules load xarray, pandas or Dask: imported on first use (`ballcvt._lazy`).
+_LAZY = {
+    "CycleResult": "..analysis.cycles",
+    "Curves": "..analysis.fitting",
+    "FluidFit": "..analysis.fitting",
+    "fit_fluid": "..analysis.fitting",
+    "read_curves": "..analysis.fitting",
+    "StudyResult": "..analysis.studies",
+    "StudySpec": "..analysis.studies",
+    "run_study": "..analysis.studies",
+    "load_dataset": "..analysis.sweeps.export",
+    "to_csv": "..analysis.sweeps.export",
+    "to_frame": "..analysis.sweeps.export",
+    "to_netcdf": "..analysis.sweeps.export",
+    "read_modelica_tables": "..analysis.tables",
+    "table_arrays": "..analysis.tables",
+    "write_tables": "..analysis.tables",
+}
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
 __all__ = [
     "PAPER_POINT",

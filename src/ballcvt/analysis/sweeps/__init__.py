@@ -1,9 +1,21 @@
 """The analysis layer: sweeps over operating conditions as `xarray.Dataset` objects, and their export."""
 
-from .curves import OperatingRows, limit_search_curves, solve_curves
-from .export import load_dataset, parameters, to_csv, to_frame, to_netcdf
-from .grid import sweep
-from .variables import LOSS_KINDS, VARIABLES
+from ..._lazy import lazy_exports
+
+#: Public name -> the submodule that defines it (loaded on first use: `ballcvt._lazy`).
+_EXPORTS = {
+    "OperatingRows": ".curves",
+    "limit_search_curves": ".curves",
+    "solve_curves": ".curves",
+    "load_dataset": ".export",
+    "parameters": ".export",
+    "to_csv": ".export",
+    "to_frame": ".export",
+    "to_netcdf": ".export",
+    "sweep": ".grid",
+    "LOSS_KINDS": ".variables",
+    "VARIABLES": ".variables",
+}
 
 __all__ = [
     "sweep",
@@ -20,7 +32,7 @@ __all__ = [
 ]
 
 
-def __getattr__(name):
+def _renamed(name):
     if name == "STATUS":  # the old name -> code table of a sweep's status
         from ..._compat import warn_renamed
         from .variables import SWEEP_CODES
@@ -28,3 +40,6 @@ def __getattr__(name):
         warn_renamed("ballcvt.analysis.sweeps.STATUS", "ballcvt.status.Status")
         return {s.label: int(s) for s in SWEEP_CODES}
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, _renamed)

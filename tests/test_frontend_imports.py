@@ -128,7 +128,7 @@ def test_the_checker_catches_a_private_import(line):
     [
         "from ..analysis import write_table",
         "from ..analysis.sweeps import to_netcdf",
-        "from ..analysis import limit_curves",
+        "from ..analysis import traction_ceiling",
         "from ..api import Variator",
         "from ..params import Design",
         "from .._version import __version__",

@@ -6,7 +6,6 @@ from .._lazy import lazy_exports
 
 #: Public name -> the submodule that defines it (loaded on first use: `ballcvt._lazy`).
 _EXPORTS = {
-    "limit_curves": ".capacity",
     "traction_ceiling": ".capacity",
     "kinematic_spin": ".kinematics",
     "ratio_tilt_curve": ".kinematics",
@@ -20,7 +19,6 @@ __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
 
 __all__ = [
     "traction_ceiling",
-    "limit_curves",
     "ratio_tilt_curve",
     "kinematic_spin",
     "OperatingMode",

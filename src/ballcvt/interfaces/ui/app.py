@@ -18,11 +18,9 @@ from typing import Any
 
 import numpy as np
 
-from ...analysis import limit_curves
 from ...api import PAPER_POINT, Variator
 from ...errors import BallCVTError
 from ...params import Design, Fluid
-from ...units import rpm_to_rad_s
 
 __all__ = ["make_document", "serve", "SLIDERS", "MAP_GRID"]
 
@@ -130,11 +128,11 @@ class _State:
         try:
             # one limit search for the whole map, handed to the sweep; the torque axis
             # reaches past the limits at both ends and in the middle of the ratio range
-            search = limit_curves(
-                var,
+            search = var.limit_curve(
                 ratio,
+                input_speed_rpm=float(v["input_speed_rpm"]),
                 clamp_force=kw["clamp_force"],
-                input_speed=rpm_to_rad_s(float(v["input_speed_rpm"])),
+                progress=False,
             )
             ends = [0, n - 1, n // 2]
             for i in ends:

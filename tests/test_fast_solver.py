@@ -10,7 +10,7 @@ from test_invariants import cases
 from ballcvt import Quadrature, SolverOptions
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.equilibrium.residual import evaluate, evaluate_with_jacobian
-from ballcvt.model.traction.isothermal import traction_coefficients
+from ballcvt.model.traction.contact import ContactState, contact_coefficients
 from ballcvt.performance.efficiency import efficiency
 from ballcvt.solvers.limit import limit_search, limit_torque_batch
 from ballcvt.solvers.newton import solve_batch
@@ -84,9 +84,10 @@ def test_numba_kernels_equal_numpy_path(drive):
     args = (rng.uniform(-0.05, 0.05, n) * rng.choice([1.0, 1e-3], n), rng.uniform(-0.2, 0.2, n),
             1.2e-3, 0.45e-3, rng.uniform(0.8e9, 2.5e9, n), 2000.0, 0.03, 15.0, 1.5e-7, fluid)
     for method in ("pole", "centred"):
-        fast = traction_coefficients(*args, Quadrature(method), derivatives=True)
-        slow = traction_coefficients(*args, Quadrature(method, engine="numpy"),
-                                     derivatives=True)
+        state = ContactState(*args[:-1])
+        fast = contact_coefficients(state, args[-1], Quadrature(method), derivatives=True)
+        slow = contact_coefficients(state, args[-1], Quadrature(method, engine="numpy"),
+                                    derivatives=True)
         for a, b in zip(fast[:2], slow[:2]):                      # mu, chi
             assert np.allclose(a, b, rtol=1e-9, atol=1e-12 * np.max(np.abs(b)))
         # derivatives (Newton only): g + k |V|^2 cancels in the saturated regime
@@ -221,8 +222,9 @@ def test_kernels_propagate_nan_and_match_without_derivatives(drive):
         fluid,
     )
     for method in ("pole", "centred"):
-        fast = traction_coefficients(*args, Quadrature(method))
-        slow = traction_coefficients(*args, Quadrature(method, engine="numpy"))
+        state = ContactState(*args[:-1])
+        fast = contact_coefficients(state, args[-1], Quadrature(method))
+        slow = contact_coefficients(state, args[-1], Quadrature(method, engine="numpy"))
         for a, b in zip(fast, slow):
             assert np.isnan(a[3]) and np.isnan(b[3])
             ok = np.isfinite(b)

@@ -3,8 +3,6 @@ pressure limits."""
 
 from __future__ import annotations
 
-import json
-
 from ..._version import __version__
 from . import options as o
 from .format import clamp_table
@@ -24,7 +22,7 @@ def add_parser(subparsers) -> None:
     o.add(p, "arch", "ratio", "torque", "speed", "creep-limit", *o.FLUID_OPTIONS, "json")
     p.add_argument(
         "--max-pressure",
-        type=o.number,
+        type=o.quantity("max_pressure", "Pa", most=o.MOST_PRESSURE),
         default=None,
         help="largest admissible Hertz peak pressure [Pa] (default: the design's)",
     )
@@ -54,5 +52,5 @@ def run(args) -> int:
         "design": v.design.name,
         "version": __version__,
     }
-    print(json.dumps(data, indent=2) if args.json else clamp_table(data))
+    o.emit_json(data) if args.json else o.emit(clamp_table(data))
     return 0

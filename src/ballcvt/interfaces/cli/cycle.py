@@ -2,9 +2,6 @@
 
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 from ...api import STRATEGIES, CycleSettings, read_cycle
 from ...files import check_output_dir
 from . import options as o
@@ -25,7 +22,7 @@ def add_parser(subparsers) -> None:
         "ballcvt cycle examples/cycles/ebike_commute.csv --design hub --clamp-law cam "
         "--strategy target-input-speed --target-speed 180 --out commute",
     )
-    p.add_argument("cycle_file", type=Path, metavar="CYCLE.csv", help="the duty cycle")
+    p.add_argument("cycle_file", type=o.input_file, metavar="CYCLE.csv", help="the duty cycle")
     o.add(p, "arch", *o.CLAMP_OPTIONS, *o.FLUID_OPTIONS)
     p.add_argument(
         "--strategy",
@@ -35,7 +32,7 @@ def add_parser(subparsers) -> None:
     )
     p.add_argument(
         "--target-speed",
-        type=o.number,
+        type=o.quantity("target_speed", "rpm", most=o.MOST_RPM),
         default=None,
         help="input speed held by target-input-speed [rpm] (required by it)",
     )
@@ -82,10 +79,10 @@ def run(args) -> int:
     title = f"{cycle.name}: {v.design.name}, {s['strategy']}, {o.clamp_label(args)}"
     save(cycle_figure(result.steps, title), out, "cycle")
     if args.json:
-        print(json.dumps(s, indent=2))
+        o.emit_json(s)
     elif not args.quiet:
         eff = "n/a" if s["efficiency"] is None else f"{s['efficiency']:.4f}"
-        print(
+        o.emit(
             f"wrote {out}/steps.csv, summary.json, cycle.png, cycle.svg: {s['steps']} steps "
             f"({s['duration_s']:.0f} s), energy in {s['energy_in_J'] / 3.6e3:.2f} Wh, out "
             f"{s['energy_out_J'] / 3.6e3:.2f} Wh, efficiency {eff}; {s['steps_flagged']} "

@@ -51,5 +51,5 @@ def run(args) -> int:
         atomic_write_text(args.path, text)
         print(f"wrote {args.path}", file=sys.stderr)
     else:
-        sys.stdout.write(text)
+        o.emit(text.removesuffix("\n"))
     return 0

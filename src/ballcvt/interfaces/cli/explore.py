@@ -8,6 +8,7 @@ from ... import api
 from ...errors import InputError
 from ...registry import TRACTION_LAWS
 from . import options as o
+from .network import check_scheduler
 
 
 def add_parser(subparsers) -> None:
@@ -23,7 +24,7 @@ def add_parser(subparsers) -> None:
         "report in --out.",
         "ballcvt explore examples/studies/study_quick.toml --out study --workers 2",
     )
-    p.add_argument("study_file", type=Path, metavar="STUDY.toml", help="the study")
+    p.add_argument("study_file", type=o.input_file, metavar="STUDY.toml", help="the study")
     o.out(p, "ballcvt-study")
     p.add_argument(
         "--workers",
@@ -67,6 +68,8 @@ def run(args) -> int:
     spec = api.read_study(args.study_file, traction_law=args.traction_law)
     if args.scheduler is not None and args.in_process:
         raise InputError("scheduler", args.scheduler, "not with --in-process")
+    if args.scheduler is not None:
+        check_scheduler(args.scheduler)  # one line within seconds, before --out is made
     result = api.run_study(
         spec,
         args.out,
@@ -78,9 +81,9 @@ def run(args) -> int:
     )
     files = result.files + study_report(result, spec, args.out)
     if args.json:
-        print((Path(args.out) / "summary.json").read_text())
+        o.emit_json_text((Path(args.out) / "summary.json").read_text())
     elif not args.quiet:
-        print(_summary(result, files, Path(args.out)))
+        o.emit(_summary(result, files, Path(args.out)))
     return 0
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from . import options as o
+from .network import check_bind_address
 
 
 def add_parser(subparsers) -> None:
@@ -37,13 +38,14 @@ def run(args) -> int:
     """Serve the explorer until interrupted."""
     from ..ui import serve
 
+    address = check_bind_address(args.address)  # bad input: before the server starts
     v = o.variator(args)
     serve(
         v.design,
         v.fluid,
         architecture=v.architecture,
         port=args.port,
-        address=args.address,
+        address=address,
         show=args.show,
     )
     return 0

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import json
 import sys
-from pathlib import Path
 
 from ...api import Fluid, contact_fluid, fit_fluid, read_curves
 from ...files import check_output_dir
@@ -25,7 +23,9 @@ def add_parser(subparsers) -> None:
         "fitted fluid as fluid.toml, which every command loads with --fluid.",
         "ballcvt fit-fluid examples/traction/curves.csv --law thermal --out fit",
     )
-    p.add_argument("curves_file", type=Path, metavar="CURVES.csv", help="measured traction curves")
+    p.add_argument(
+        "curves_file", type=o.input_file, metavar="CURVES.csv", help="measured traction curves"
+    )
     p.add_argument(
         "--law",
         "--traction-law",
@@ -66,12 +66,14 @@ def run(args) -> int:
     for w in fit.warnings:
         print(f"ballcvt: warning: {w}", file=sys.stderr)
     if args.json:
-        print(json.dumps(fit.as_dict(), indent=2))
+        o.emit_json(fit.as_dict())
         return 0
-    print(
+    o.emit(
         f"wrote {out}/fluid.toml, fit.json, fit.csv, fit_residuals.png/.svg: rms "
         f"residual {fit.rms:.3e} over {fit.model.size} points"
     )
     for n in fit.parameters:
-        print(f"  {n} = {fit.estimates[n]:.6g} +/- {fit.standard_errors[n]:.3g} [{Fluid.unit(n)}]")
+        o.emit(
+            f"  {n} = {fit.estimates[n]:.6g} +/- {fit.standard_errors[n]:.3g} [{Fluid.unit(n)}]"
+        )
     return 0

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-
 from ..._version import __version__
 from . import options as o
 from .format import limit_table
@@ -42,5 +40,5 @@ def run(args) -> int:
         "design": v.design.name,
         "version": __version__,
     }
-    print(json.dumps(data, indent=2) if args.json else limit_table(data))
+    o.emit_json(data) if args.json else o.emit(limit_table(data))
     return 0

@@ -3,19 +3,31 @@
 Every subcommand has only the options it uses, a description and an example
 (``ballcvt SUBCOMMAND --help``); each lives in its own module of this package (its
 ``add_parser`` and ``run``), on the public API (`ballcvt.api`). Output locations are checked
-before any computing starts.
+before any computing starts. Options are never abbreviated (``--rat`` is not ``--ratio``).
 
-Exit status: 0 success; 2 bad input, a torque beyond the traction capacity, no equilibrium,
-or an output location that cannot be written (one line on stderr naming the quantity, its
-value and the allowed range or the cause); 1 a bug (one line; set ``BALLCVT_DEBUG=1`` for a
-traceback).
+Exit status (docs/cli.md, "Exit codes"), always with one line on stderr:
+
+- 0 success;
+- 1 a failure of the environment: an output stream that cannot be written (a full disk), a
+  Dask scheduler that cannot be reached, an address that cannot be bound, any other
+  operating-system error; also a bug ("internal error"; ``BALLCVT_DEBUG=1`` gives the
+  traceback);
+- 2 bad input, a torque beyond the traction capacity, no equilibrium, or an output
+  location that cannot be written (naming the quantity, its value and the allowed range or
+  the cause);
+- 141 (quietly, 128 + SIGPIPE) when the reader of standard output went away (``| head``).
+
+Numerical RuntimeWarnings never reach the user: a result that went non-finite is reported
+by its status or refused with exit 2.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import sys
+import warnings
 
 from ..._version import __version__
 from ...errors import BallCVTError
@@ -57,6 +69,9 @@ COMMANDS = {
 class _Parser(argparse.ArgumentParser):
     """argparse that reports usage errors in one line with exit status 2."""
 
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **{"allow_abbrev": False, **kwargs})
+
     def error(self, message: str):  # noqa: D102
         self.exit(2, f"{self.prog}: error: {message}\n")
 
@@ -78,23 +93,84 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     args = build_parser().parse_args(argv)
+    with _open_stdout():
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                code = COMMANDS[args.command].run(args)
+            return _flushed(code)
+        except BrokenPipeError:  # the reader went away (| head): quiet, as Unix tools are
+            _discard_stdout()
+            return 141
+        except BallCVTError as exc:  # bad input, beyond capacity, no equilibrium: exit 2
+            return _say(f"error: {exc}", 2)
+        except KeyboardInterrupt:
+            return _say("interrupted", 130)
+        except OSError as exc:  # the environment: a full disk, a network, a device
+            if exc.filename is None:  # a stream (standard output): drop what it holds
+                _discard_stdout()
+            return _say(f"error: {_environment(exc)}", 1)
+        except Exception as exc:  # a bug: say so in one line unless debugging
+            if os.environ.get("BALLCVT_DEBUG"):
+                raise
+            return _say(
+                f"internal error: {type(exc).__name__}: {exc} "
+                "(set BALLCVT_DEBUG=1 for a traceback)",
+                1,
+            )
+
+
+def _say(message: str, code: int) -> int:
+    """One line ``ballcvt: MESSAGE`` on stderr (if there is a stderr); returns ``code``."""
+    print(f"ballcvt: {message}", file=sys.stderr)
+    return code
+
+
+def _flushed(code: int) -> int:
+    """Flush standard output now, so that a broken pipe or a full disk shows here (one line,
+    or quiet for a pipe) rather than as a traceback at the interpreter's exit."""
     try:
-        return COMMANDS[args.command].run(args)
-    except BallCVTError as exc:  # bad input, beyond capacity, no equilibrium: exit 2
-        print(f"ballcvt: error: {exc}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print("ballcvt: interrupted", file=sys.stderr)
-        return 130
-    except Exception as exc:  # a bug: say so in one line unless debugging
-        if os.environ.get("BALLCVT_DEBUG"):
-            raise
-        print(
-            f"ballcvt: internal error: {type(exc).__name__}: {exc} "
-            "(set BALLCVT_DEBUG=1 for a traceback)",
-            file=sys.stderr,
-        )
-        return 1
+        sys.stdout.flush()
+    except BrokenPipeError:
+        raise
+    except OSError as exc:
+        _discard_stdout()
+        return _say(f"error: cannot write to standard output: {_environment(exc)}", 1)
+    return code
+
+
+def _environment(exc: OSError) -> str:
+    """One line naming an operating-system failure and the file it concerns."""
+    cause = exc.strerror or str(exc) or type(exc).__name__
+    where = f": {exc.filename}" if exc.filename else ""
+    return f"{cause}{where}"
+
+
+def _discard_stdout() -> None:
+    """Point standard output at the null device, so that nothing more (not even the
+    interpreter's flush at exit) writes to a stream that failed."""
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):  # not a real file (a test's capture)
+        return
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, fd)
+    os.close(devnull)
+
+
+@contextlib.contextmanager
+def _open_stdout():
+    """A closed standard output (``>&-``) writes to the null device: the command still
+    runs and writes its files, and prints nothing."""
+    if sys.stdout is not None:
+        yield
+        return
+    with open(os.devnull, "w") as sink:
+        sys.stdout = sink
+        try:
+            yield
+        finally:
+            sys.stdout = None  # type: ignore[assignment]
 
 
 if __name__ == "__main__":  # pragma: no cover

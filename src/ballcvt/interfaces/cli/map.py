@@ -46,7 +46,7 @@ def run(args) -> int:
     if args.quiet:
         return 0
     st = ds.status.values
-    print(
+    o.emit(
         f"wrote {out}/map.png, map.svg, map.nc, map.csv ({v.design.name}): "
         f"{int((st == 0).sum())} of {st.size} points converged within the limit, "
         f"{int((st == 1).sum())} beyond the limiting torque, {int((st == 2).sum())} not "

@@ -9,10 +9,12 @@ The choices of ``--arch``, ``--clamp-law`` and ``--traction-law`` are read from
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import sys
 import textwrap
 from pathlib import Path
+from typing import Any
 
 from ...api import BUILTIN_FLUIDS, CAM_KEYS, PAPER_POINT, Variator, open_drive
 from ...errors import InputError
@@ -46,6 +48,81 @@ def number(text: str) -> float:
     return value
 
 
+def quantity(name: str, unit: str, *, above: float | None = None, most: float | None = None):
+    """A finite number ``above < value <= most`` [``unit``]: an absurd value (``1e308`` N)
+    is refused by argparse with the flag, the value, its unit and the allowed range, before
+    it can overflow a computation. A bound left None is checked by the API (with its
+    message naming the quantity)."""
+
+    def parse(text: str) -> float:
+        value = number(text)
+        if (above is not None and not value > above) or (most is not None and value > most):
+            lo = f"{above:g} < " if above is not None else ""
+            hi = f" <= {most:g}" if most is not None else ""
+            raise argparse.ArgumentTypeError(
+                f"{name} = {value:g} {unit} is out of range: allowed {lo}{name}{hi} {unit}"
+            )
+        return value
+
+    return parse
+
+
+#: The largest force, torque, speed and pressure the command line accepts: far beyond any
+#: ball CVT, and well inside the range where the contact mechanics stays finite.
+MOST_FORCE = 1e6  # [N]
+MOST_TORQUE = 1e6  # [N m]
+MOST_RPM = 1e5  # [rpm]
+MOST_PRESSURE = 1e10  # [Pa]
+
+
+def input_file(text: str) -> Path:
+    """An input file that exists and is not a folder (checked before any output is made)."""
+    path = Path(text)
+    if path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text} is a folder: allowed a file")
+    if not path.exists():
+        raise argparse.ArgumentTypeError(f"{text}: no such file")
+    return path
+
+
+class OutputStreamError(OSError):
+    """Standard output cannot be written (a full disk, a failing device): exit status 1."""
+
+
+def emit(text: str) -> None:
+    """Print ``text`` on standard output; a failure to write it is an `OutputStreamError`
+    (a broken pipe stays a `BrokenPipeError`: `ballcvt.interfaces.cli.main` exits quietly)."""
+    try:
+        print(text)
+    except BrokenPipeError:
+        raise
+    except OSError as exc:
+        raise OutputStreamError(
+            exc.errno, f"cannot write to standard output: {exc.strerror or exc}"
+        ) from None
+
+
+def emit_json(data: Any) -> None:
+    """Print ``data`` as strict JSON (RFC 8259): a non-finite number is written ``null``,
+    never ``NaN`` or ``Infinity``."""
+    emit(json.dumps(_finite(data), indent=2, allow_nan=False))
+
+
+def emit_json_text(text: str) -> None:
+    """Print JSON text (a result's ``to_json``, a saved summary) as strict JSON."""
+    emit_json(json.loads(text))
+
+
+def _finite(value: Any) -> Any:
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_finite(v) for v in value]
+    return value
+
+
 def count(lo: int, hi: int):
     """A whole number in ``lo``-``hi``."""
 
@@ -65,6 +142,7 @@ def sub(subparsers, name: str, summary: str, description: str, example: str):
     """A subcommand's parser with its summary, description and example."""
     return subparsers.add_parser(
         name,
+        allow_abbrev=False,
         help=summary,
         description=textwrap.fill(description, 88),
         epilog="example:\n  " + example + "\n",
@@ -95,12 +173,12 @@ def options() -> dict[str, dict]:
             "help": "ideal speed ratio tau_ID [-] (default: %(default)s)",
         },
         "torque": {
-            "type": number,
+            "type": quantity("output_torque", "N m", most=MOST_TORQUE),
             "default": PAPER_POINT.output_torque,
             "help": "output torque T2 [N m] (default: %(default)s)",
         },
         "clamp": {
-            "type": number,
+            "type": quantity("clamp_force", "N", most=MOST_FORCE),
             "default": None,
             "help": f"input-contact normal load F_N0 [N] of the constant clamping law "
             f"(default: {PAPER_POINT.clamp_force:g})",
@@ -117,12 +195,15 @@ def options() -> dict[str, dict]:
             "default": None,
             "help": "disc whose torque the cam senses (default: the design's)",
         },
-        "cam-preload": _cam_option("N", "spring preload"),
+        "cam-preload": {
+            **_cam_option("N", "spring preload"),
+            "type": quantity("cam preload", "N", most=MOST_FORCE),
+        },
         "cam-angle": _cam_option("deg", "ramp angle"),
         "cam-radius": _cam_option("m", "mean radius"),
         "cam-friction": _cam_option("-", "ramp friction coefficient"),
         "speed": {
-            "type": number,
+            "type": quantity("speed", "rpm", most=MOST_RPM),
             "default": PAPER_POINT.input_speed_rpm,
             "help": "input speed [rpm] (default: %(default)s)",
         },
@@ -245,7 +326,7 @@ def grid_options(p, *, n_ratio: int, n_torque: int, most: int, torque_max: str) 
     )
     p.add_argument(
         "--torque-max",
-        type=number,
+        type=quantity("torque_max", "N m", most=MOST_TORQUE),
         default=None,
         help=f"largest torque [N m] (default: {torque_max})",
     )

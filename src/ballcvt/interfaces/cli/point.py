@@ -41,7 +41,7 @@ def add_parser(subparsers) -> None:
     )
     p.add_argument(
         "--held-speed",
-        type=o.number,
+        type=o.quantity("held_speed", "rpm", above=-o.MOST_RPM, most=o.MOST_RPM),
         default=0.0,
         metavar="RPM",
         help="speed of the --held member [rpm] (default 0: held); another value "
@@ -79,7 +79,7 @@ def run(args) -> int:
         settings=SolveSettings(mode=mode),
     )
     if args.json:
-        print(r.to_json(indent=2))
+        o.emit_json_text(r.to_json())
     else:
-        print(planetary_table(r) if isinstance(r, PlanetaryResult) else point_table(r))
+        o.emit(planetary_table(r) if isinstance(r, PlanetaryResult) else point_table(r))
     return 0

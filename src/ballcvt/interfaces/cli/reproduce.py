@@ -38,7 +38,7 @@ def run(args) -> int:
     )
     n_agree = sum(c.verdict == "agrees" for c in r.claims)
     if not args.quiet:
-        print(
+        o.emit(
             f"wrote {len(r.files)} files to {r.out} (report: {r.out / 'report.html'}); "
             f"{n_agree} of {len(r.claims)} claims agree; run time {r.run_time:.1f} s on "
             f"{args.workers} worker(s)"

@@ -32,7 +32,7 @@ def add_parser(subparsers) -> None:
     )
     p.add_argument(
         "--speed-range",
-        type=o.number,
+        type=o.quantity("speed", "rpm", most=o.MOST_RPM),
         nargs=2,
         default=(500.0, 4000.0),
         metavar=("MIN", "MAX"),
@@ -65,7 +65,7 @@ def run(args) -> int:
     write_tables(ds, out)
     if not args.quiet:
         st = ds.status.values
-        print(
+        o.emit(
             f"wrote {out}/table.csv, table.mat, table_modelica.txt, table.nc "
             f"({grid.n_ratio} ratios x {grid.n_speed} speeds x {args.n_torque} torques, "
             f"{v.design.name}, {args.clamp_law} clamping): {int((st == 0).sum())} points "

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 
 from ...api import contact_fluid, traction_curve
@@ -36,17 +34,27 @@ def add_parser(subparsers) -> None:
     for flag, what in (("--rx", "along"), ("--ry", "across")):
         p.add_argument(
             flag,
-            type=o.number,
+            type=o.quantity(flag[2:], "m", above=1e-6, most=1e3),
             required=True,
             metavar="M",
             help=f"equivalent radius {what} the rolling direction [m]",
         )
     group = p.add_mutually_exclusive_group(required=True)
-    group.add_argument("--load", type=o.number, metavar="N", help="normal load [N]")
-    group.add_argument("--pmax", type=o.number, metavar="PA", help="Hertz peak pressure [Pa]")
+    group.add_argument(
+        "--load",
+        type=o.quantity("load", "N", most=o.MOST_FORCE),
+        metavar="N",
+        help="normal load [N]",
+    )
+    group.add_argument(
+        "--pmax",
+        type=o.quantity("p_max", "Pa", most=o.MOST_PRESSURE),
+        metavar="PA",
+        help="Hertz peak pressure [Pa]",
+    )
     p.add_argument(
         "--speed",
-        type=o.number,
+        type=o.quantity("speed", "m/s", most=1e3),
         required=True,
         metavar="M_PER_S",
         help="rolling (entrainment) speed [m/s]",
@@ -93,7 +101,7 @@ def run(args) -> int:
         reduced_modulus=modulus,
     )
     if args.json:
-        print(json.dumps(curve.as_dict(), indent=2))
+        o.emit_json(curve.as_dict())
         return 0
     out = check_output_dir(args.out)
     import pandas as pd
@@ -104,7 +112,7 @@ def run(args) -> int:
     c = curve.conditions
     _figure(curve, out, f"{fluid.name}: {curve.law} law, p_max {c['p_max'] / 1e9:.2f} GPa, ")
     peak = int(np.argmax(curve.mu))
-    print(
+    o.emit(
         f"wrote {out}/traction_curve.csv, .png, .svg: {curve.law} law, p_max "
         f"{c['p_max'] / 1e9:.3f} GPa, film {c['film'] * 1e6:.3f} um; mu peaks at "
         f"{curve.mu[peak]:.4f} at slide-to-roll {curve.creep[peak]:.4f}"

@@ -8,10 +8,12 @@ the value and the allowed range; an unknown key suggests the nearest known one.
 from __future__ import annotations
 
 import difflib
+import json
 import math
-from typing import Any
+import types
+from typing import Annotated, Any, Union, get_args, get_origin
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError, model_validator
 
 from ..errors import InputError
 
@@ -48,6 +50,40 @@ class ParameterModel(BaseModel):
             super().__init__(**data)
         except ValidationError as exc:
             raise _as_input_error(type(self), exc) from None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _strict_numbers(cls, data: Any) -> Any:
+        """Refuse a boolean or a string where a number is expected (``true`` is not 1,
+        ``"32"`` is not 32), which pydantic's lax mode would silently convert."""
+        if isinstance(data, dict):
+            for name, value in data.items():
+                field = cls.model_fields.get(name)
+                if field is not None:
+                    _check_number(name, field.annotation, value, cls.unit(name))
+        return data
+
+    @classmethod
+    def check_field(cls, name: str, value: Any) -> None:
+        """Check ``value`` against field ``name``'s type and bounds alone (not against the
+        other fields), e.g. a study's fixed value before any design is built.
+
+        Raises
+        ------
+        InputError
+            Naming the field, the value and the allowed range.
+        """
+        field = cls.model_fields[name]
+        _check_number(name, field.annotation, value, cls.unit(name))
+        try:
+            kind = (
+                Annotated[field.annotation, *field.metadata]
+                if field.metadata
+                else field.annotation
+            )
+            TypeAdapter(kind).validate_python(value)
+        except ValidationError as exc:
+            raise _field_error(name, field, exc.errors()[0]) from None
 
     def _summary(self) -> tuple[str, list]:
         rows = []
@@ -91,6 +127,37 @@ class ParameterModel(BaseModel):
                 base = str(data["name"]).split(" (edited: ")[0]
                 changes = {**changes, "name": f"{base} (edited: {', '.join(changed)})"}
         return type(self)(**{**data, **changes})
+
+
+def _check_number(name: str, annotation: Any, value: Any, unit: str) -> None:
+    """`InputError` if ``value`` (or an item of it) is a boolean or a string where
+    ``annotation`` expects a number."""
+    misfit = _misfit(annotation, value)
+    if misfit is not None:
+        what = "a boolean" if isinstance(misfit, bool) else "a string"
+        units = f" [{unit}]" if unit not in ("", "-") else ""
+        raise InputError(
+            name,
+            misfit,
+            f"a number{units}",
+            message=f"{name} = {json.dumps(misfit)} is {what}: allowed a number{units}",
+        )
+
+
+def _misfit(annotation: Any, value: Any) -> Any:
+    """The boolean or string in ``value`` that lax validation would turn into a number of
+    ``annotation`` (``float``, ``int``, optional or in a list or dict), else None."""
+    origin, args = get_origin(annotation), get_args(annotation)
+    if origin in (Union, types.UnionType):
+        kinds = [a for a in args if a is not type(None)]
+        return _misfit(kinds[0], value) if len(kinds) == 1 else None
+    if annotation in (int, float):
+        return value if isinstance(value, bool | str) else None
+    if origin is list and isinstance(value, list) and args:
+        return next((m for v in value if (m := _misfit(args[0], v)) is not None), None)
+    if origin is dict and isinstance(value, dict) and len(args) == 2:
+        return next((m for v in value.values() if (m := _misfit(args[1], v)) is not None), None)
+    return None
 
 
 def _changed_keys(data: dict, changes: dict, prefix: str = "") -> list[str]:
@@ -140,7 +207,20 @@ def _as_input_error(model: type[BaseModel], exc: ValidationError) -> InputError:
             "known keys only",
             message=f"{model.__name__}: unknown key '{name}'{hint}",
         )
-    field = _field(model, loc)
+    return _field_error(name, _field(model, loc), err)
+
+
+def _field_error(name: str, field: Any, err: Any) -> InputError:
+    """The `InputError` of a field's error ``err``: its bounds and unit, else pydantic's
+    wording of what is expected."""
+    inner = (err.get("ctx") or {}).get("error")
+    if isinstance(inner, InputError):
+        return InputError(
+            f"{name}.{inner.quantity}",
+            inner.value,
+            inner.allowed,
+            message=str(inner).replace(inner.quantity, f"{name}.{inner.quantity}", 1),
+        )
     bounds = []
     for meta in field.metadata if field is not None else ():
         for attr, text in _BOUND_TEXT.items():

@@ -138,8 +138,10 @@ def read_text(path: str | Path, what: str) -> str:
 
 
 def parse_toml(text: str, source: str) -> dict:
+    """The tables of TOML ``text`` (a leading UTF-8 byte-order mark, as some editors on
+    Windows write, is ignored); `InputError` naming ``source`` if it is not TOML."""
     try:
-        return tomllib.loads(text)
+        return tomllib.loads(text.removeprefix("\ufeff"))
     except tomllib.TOMLDecodeError as exc:
         raise InputError(
             source,

@@ -259,6 +259,7 @@ class StudySpec(ParameterModel):
                 )
             if name in self.parameters:
                 raise InputError(f"fixed.{name}", name, "not also varied")
+            _check_fixed(name, self.fixed[name])
         if not self.objectives:
             raise InputError("objectives", None, "at least one objective")
         for name in self.objectives:
@@ -307,6 +308,20 @@ class StudySpec(ParameterModel):
     def names(self) -> tuple[str, ...]:
         """Varied parameters, in file order."""
         return tuple(self.parameters)
+
+
+def _check_fixed(name: str, value: Any) -> None:
+    """A ``[fixed]`` value within its design field's own type and range, checked up front
+    (not discovered at the end of a study in which no design could be built)."""
+    try:
+        Design.check_field(name, value)
+    except InputError as exc:
+        raise InputError(
+            f"fixed.{exc.quantity}",
+            exc.value,
+            exc.allowed,
+            message=f"[fixed] {str(exc)}",
+        ) from None
 
 
 def parse_study(text: str, source: str = "study file", base: Path | None = None) -> StudySpec:

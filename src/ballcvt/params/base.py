@@ -76,7 +76,7 @@ class ParameterModel(BaseModel):
         field = cls.model_fields[name]
         _check_number(name, field.annotation, value, cls.unit(name))
         try:
-            kind = (
+            kind: Any = (
                 Annotated[field.annotation, *field.metadata]
                 if field.metadata
                 else field.annotation

@@ -207,7 +207,8 @@ def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> 
     str
     """
     try:
-        doc = tomlkit.parse(template if template is not None else builtin_text())
+        text = template if template is not None else builtin_text()
+        doc = tomlkit.parse(text.removeprefix("\ufeff"))  # a byte-order mark is not TOML
     except tomlkit.exceptions.ParseError as exc:
         raise InputError(
             "template", None, "valid TOML", message=f"design template is not valid TOML: {exc}"

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from ...api import STRATEGIES, CycleSettings, read_cycle
 from ...files import check_output_dir
 from . import options as o
@@ -22,7 +24,7 @@ def add_parser(subparsers) -> None:
         "ballcvt cycle examples/cycles/ebike_commute.csv --design hub --clamp-law cam "
         "--strategy target-input-speed --target-speed 180 --out commute",
     )
-    p.add_argument("cycle_file", type=o.input_file, metavar="CYCLE.csv", help="the duty cycle")
+    p.add_argument("cycle_file", type=Path, metavar="CYCLE.csv", help="the duty cycle")
     o.add(p, "arch", *o.CLAMP_OPTIONS, *o.FLUID_OPTIONS)
     p.add_argument(
         "--strategy",
@@ -57,6 +59,7 @@ def add_parser(subparsers) -> None:
 
 def run(args) -> int:
     """Run the cycle; write steps.csv, summary.json and the figure; print a summary."""
+    o.input_file(args.cycle_file, "cycle file")
     out = check_output_dir(args.out)
     cycle = read_cycle(args.cycle_file)
     v = o.variator(args)

@@ -24,7 +24,7 @@ def add_parser(subparsers) -> None:
         "report in --out.",
         "ballcvt explore examples/studies/study_quick.toml --out study --workers 2",
     )
-    p.add_argument("study_file", type=o.input_file, metavar="STUDY.toml", help="the study")
+    p.add_argument("study_file", type=Path, metavar="STUDY.toml", help="the study")
     o.out(p, "ballcvt-study")
     p.add_argument(
         "--workers",
@@ -65,6 +65,7 @@ def run(args) -> int:
     matplotlib.use("Agg")
     from ...reports.study import study_report
 
+    o.input_file(args.study_file, "study file")
     spec = api.read_study(args.study_file, traction_law=args.traction_law)
     if args.scheduler is not None and args.in_process:
         raise InputError("scheduler", args.scheduler, "not with --in-process")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 from ...api import Fluid, contact_fluid, fit_fluid, read_curves
 from ...files import check_output_dir
@@ -23,9 +24,7 @@ def add_parser(subparsers) -> None:
         "fitted fluid as fluid.toml, which every command loads with --fluid.",
         "ballcvt fit-fluid examples/traction/curves.csv --law thermal --out fit",
     )
-    p.add_argument(
-        "curves_file", type=o.input_file, metavar="CURVES.csv", help="measured traction curves"
-    )
+    p.add_argument("curves_file", type=Path, metavar="CURVES.csv", help="measured traction curves")
     p.add_argument(
         "--law",
         "--traction-law",
@@ -49,6 +48,7 @@ def add_parser(subparsers) -> None:
 
 def run(args) -> int:
     """Fit; write fluid.toml, fit.json, fit.csv and the residual plots; print a summary."""
+    o.input_file(args.curves_file, "curves file")
     fluid, modulus = contact_fluid(args.design, args.fluid, args.traction_law)
     curves = read_curves(args.curves_file)
     params = (

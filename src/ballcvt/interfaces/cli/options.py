@@ -75,13 +75,15 @@ MOST_RPM = 1e5  # [rpm]
 MOST_PRESSURE = 1e10  # [Pa]
 
 
-def input_file(text: str) -> Path:
-    """An input file that exists and is not a folder (checked before any output is made)."""
-    path = Path(text)
+def input_file(path: Path, what: str) -> Path:
+    """``path``, an input file that exists and is not a folder (`InputError` otherwise);
+    checked first, before any output is made."""
     if path.is_dir():
-        raise argparse.ArgumentTypeError(f"{text} is a folder: allowed a file")
+        raise InputError(
+            what, str(path), "a file", message=f"{what} {path} is a folder: allowed a file"
+        )
     if not path.exists():
-        raise argparse.ArgumentTypeError(f"{text}: no such file")
+        raise InputError(what, str(path), "a file", message=f"{what} {path}: not found")
     return path
 
 

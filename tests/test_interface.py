@@ -218,6 +218,8 @@ def test_explore_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
     import ballcvt.reports.study
     monkeypatch.setattr(ballcvt.api, "run_study", fake)
     monkeypatch.setattr(ballcvt.reports.study, "study_report", lambda *a, **k: [])
+    import ballcvt.interfaces.cli.explore  # no scheduler runs here: skip its reachability probe
+    monkeypatch.setattr(ballcvt.interfaces.cli.explore, "check_scheduler", lambda address: None)
     assert _options(_subcommands()["explore"]) == {"--out", "--workers", "--scheduler",
                                                    "--in-process", "--resume", "--quiet",
                                                    "--json", "--traction-law"}

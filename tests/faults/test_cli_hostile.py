@@ -4,8 +4,8 @@
 from __future__ import annotations
 
 import pytest
+from test_cli_support import TINY_CURVES, TINY_CYCLE, TINY_STUDY, one_line, run
 
-from _cli import TINY_CURVES, TINY_CYCLE, TINY_STUDY, one_line, run
 from ballcvt.interfaces.cli.main import build_parser
 from ballcvt.params.io import builtin_text
 

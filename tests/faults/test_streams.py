@@ -10,8 +10,7 @@ import sys
 import time
 
 import pytest
-
-from _cli import TINY_STUDY, one_line, run, spawn
+from test_cli_support import TINY_STUDY, one_line, run, spawn
 
 
 def test_broken_pipe_is_a_quiet_exit():

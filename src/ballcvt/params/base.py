@@ -38,6 +38,8 @@ def _opt(unit: str, description: str, **constraints: Any) -> Any:
 
 
 _BOUND_TEXT = {"gt": ">", "ge": ">=", "lt": "<", "le": "<="}
+#: The strings a saved result's JSON holds for infinite values (strict JSON has none).
+_INFINITIES = ("inf", "-inf")
 
 
 class ParameterModel(BaseModel):
@@ -151,6 +153,8 @@ def _misfit(annotation: Any, value: Any) -> Any:
     if origin in (Union, types.UnionType):
         kinds = [a for a in args if a is not type(None)]
         return _misfit(kinds[0], value) if len(kinds) == 1 else None
+    if annotation is float and value in _INFINITIES:
+        return None  # how a saved result writes an infinite value (ballcvt.results)
     if annotation in (int, float):
         return value if isinstance(value, bool | str) else None
     if origin is list and isinstance(value, list) and args:

@@ -1,4 +1,5 @@
-"""Running the command line in-process and in a subprocess, for the fault tests."""
+"""Running the command line in-process and in a subprocess, for the fault tests (helpers
+only: no tests here)."""
 
 from __future__ import annotations
 

@@ -178,3 +178,13 @@ def test_limit_torque_flag_is_refused_not_read_as_zero(double):
     with pytest.raises(InputError, match="limit_torque = False"):
         double.sweep(ratio=[1.0], output_torque=[30.0], clamp_force=2000.0,
                      input_speed_rpm=2000, limit_torque=False)
+
+
+def test_a_map_with_too_few_solved_points_is_refused_in_one_line(tmp_path):
+    """Two torques above the limit leave no solved point to contour: one line, exit 2
+    (it was "internal error: ValueError: x and y arrays must have a length of at least 3")."""
+    from ballcvt.interfaces.cli.main import main
+
+    code = main(["map", "--n-ratio", "2", "--n-torque", "2", "--torque-max", "1e4",
+                 "--out", str(tmp_path / "m"), "--quiet"])
+    assert code == 2

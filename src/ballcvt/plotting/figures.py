@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..errors import InputError
 from ..files import atomic_path
 
 __all__ = [
@@ -148,6 +149,7 @@ def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True, limit_eta=
         y = np.concatenate([t.ravel(), limit])
         z = np.concatenate([eta.ravel(), np.asarray(limit_eta, float)])
         keep = np.isfinite(x) & np.isfinite(y) & np.isfinite(z)
+        _enough_to_contour(x[keep], y[keep])
         tri = _triangulation(x[keep], y[keep], ratio, limit)
         filled = ax.tricontourf(tri, z[keep], levels=levels, cmap="viridis")
         lines = ax.tricontour(tri, z[keep], levels=line_levels, colors="k", linewidths=0.5)
@@ -166,6 +168,21 @@ def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True, limit_eta=
         "limit": limit_line,
         "colorbar": bar,
     }
+
+
+def _enough_to_contour(x, y) -> None:
+    """Refuse, in one line, points that span no triangle (fewer than 3, or all on a line)."""
+    pts = np.column_stack([x, y])
+    flat = pts.shape[0] < 3 or np.linalg.matrix_rank(pts[1:] - pts[0], tol=1e-12) < 2
+    if flat:
+        raise InputError(
+            "map grid",
+            pts.shape[0],
+            "at least 3 points, not all on one line",
+            message=f"an efficiency map needs at least 3 solved points, not all on one "
+            f"line, at or below the limiting torque; this grid has {pts.shape[0]}: use more "
+            "ratios or torques, or a lower torque range",
+        )
 
 
 def _triangulation(x, y, ratio, limit):

@@ -4,9 +4,9 @@ Zarr format 2 (its fixed-length text and every dtype here have a published speci
 so any Zarr library reads the store).
 
 **Commits.** An append writes the chunk's arrays (Zarr replaces every file it writes by
-renaming a complete temporary file) and then commits: the manifest ``ballcvt-commit.json``
-in the store names how many design rows are committed and the study's content hash, and
-is itself replaced atomically (temporary file, ``os.replace``). A process killed at any
+renaming a complete temporary file) and then commits: the manifest ``designs.commit.json``
+beside the store names how many design rows are committed, the study and its content
+hash, and is itself replaced atomically (temporary file, ``os.replace``). A process killed at any
 instant leaves either the old or the new manifest; rows beyond the manifest (an append cut
 short, arrays of different lengths) are cut off when the store is opened again, so a kill
 loses at most the designs being evaluated. A store written before manifests existed is
@@ -41,8 +41,8 @@ __all__ = [
 ]
 
 STORE = "designs.zarr"
-#: The commit record inside the store: committed design rows and the study's hash.
-MANIFEST = "ballcvt-commit.json"
+#: The commit record beside the store: committed design rows, the study and its hash.
+MANIFEST = "designs.commit.json"
 #: Keys of the study that do not change its designs (left out of its hash).
 _NOT_HASHED = (("study", "chunk"),)
 
@@ -130,7 +130,8 @@ class DesignStore:
 
     @property
     def manifest(self) -> Path:
-        return self.path / MANIFEST
+        """The commit record beside the store (``designs.commit.json``)."""
+        return self.path.with_name(MANIFEST)
 
     def open(self) -> set[int]:
         """Read the committed designs, repairing what an interrupted append left.
@@ -144,8 +145,6 @@ class DesignStore:
             lengths) or is not a study store.
         """
         self.rows, self.record = 0, None
-        for tmp in self.path.parent.glob(f"{self.path.name}.new-*"):
-            shutil.rmtree(tmp, ignore_errors=True)  # a first chunk killed before its commit
         if not self.path.exists():
             return set()
         try:
@@ -155,8 +154,12 @@ class DesignStore:
             return self._adopt()
         except (ValueError, KeyError, TypeError):
             raise self._refuse("its commit record cannot be read") from None
-        self._repair(rows)
+        for tmp in self.path.parent.glob(f".{MANIFEST}.*.partial"):
+            tmp.unlink(missing_ok=True)  # a commit killed before its rename
+        if rows == 0:  # the first chunk was killed before its commit
+            return set()
         self.rows, self.record = rows, record
+        self._repair(rows)
         return set(int(i) for i in self._dataset()["design"].values)
 
     def _adopt(self) -> set[int]:
@@ -183,6 +186,9 @@ class DesignStore:
 
     def _repair(self, rows: int) -> None:
         """Cut every design array to the committed ``rows``; remove partial files."""
+        for tmp in self.path.rglob("*.partial"):
+            with contextlib.suppress(OSError):
+                tmp.unlink()
         group = _open_group(self.path)
         for _, arr in group.arrays():
             dims = arr.attrs.get("_ARRAY_DIMENSIONS", [])
@@ -190,17 +196,13 @@ class DesignStore:
                 raise self._refuse(f"{arr.name} holds fewer designs than committed")
             if dims[:1] == ["design"] and arr.shape[0] > rows:
                 arr.resize((rows,) + tuple(arr.shape[1:]))
-        for tmp in self.path.rglob("*.partial"):
-            with contextlib.suppress(OSError):
-                tmp.unlink()
 
     def _dataset(self) -> xr.Dataset:
         ds = xr.open_zarr(self.path, consolidated=False)
         return ds.isel(design=slice(0, self.rows)) if self.rows else ds
 
-    def _commit(self, store: Path | None = None) -> None:
+    def _commit(self) -> None:
         """Replace the manifest atomically: it names the committed rows and the study."""
-        store = store or self.path
         record = self.record
         text = json.dumps(
             {
@@ -210,29 +212,24 @@ class DesignStore:
                 "spec": record,
             }
         )
-        tmp = store / f".{MANIFEST}.{os.getpid()}.partial"
+        tmp = self.manifest.with_name(f".{MANIFEST}.{os.getpid()}.partial")
         tmp.write_text(text)
-        os.replace(tmp, store / MANIFEST)
+        os.replace(tmp, self.manifest)
 
     def append(self, ds: xr.Dataset, attrs: dict) -> None:
-        """Append ``ds`` (the store created with ``attrs`` if new), then commit its rows.
-
-        A new store is written beside its place and renamed into it once committed."""
+        """Append ``ds`` (the store created with ``attrs`` if new), then commit its rows."""
         record = json.loads(attrs["spec"])
         ds.attrs.update(attrs, study_hash=study_hash(record))  # an append replaces them
+        if self.record is None:  # a new store, or an adopted one of an older ballcvt
+            self.record = record
         if self.rows == 0:
-            new = self.path.with_name(f"{self.path.name}.new-{os.getpid()}")
-            ds.to_zarr(new, mode="w", consolidated=False, zarr_format=2)
-            self.rows, self.record = int(ds.sizes["design"]), record
-            self._commit(new)
+            self._commit()  # zero rows: whatever the store holds is not committed
             if self.path.exists():
                 shutil.rmtree(self.path)
-            os.rename(new, self.path)
-            return
-        ds.to_zarr(self.path, append_dim="design", consolidated=False, zarr_format=2)
+            ds.to_zarr(self.path, mode="w", consolidated=False, zarr_format=2)
+        else:
+            ds.to_zarr(self.path, append_dim="design", consolidated=False, zarr_format=2)
         self.rows += int(ds.sizes["design"])
-        if self.record is None:  # an adopted store of an older ballcvt
-            self.record = record
         self._commit()
 
     def load(self) -> xr.Dataset:

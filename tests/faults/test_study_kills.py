@@ -4,9 +4,10 @@ gives exactly the uninterrupted result, resume checks the study, one run per fol
 A tiny study (tests/data/study_tiny.toml, one design per append) runs in a subprocess that
 is killed with SIGKILL at seeded random instants, then resumed, a few times over; the
 finished folder must equal an uninterrupted run's (the same designs, each once, the same
-numbers, the same tables and chosen design). The default suite kills 12 in-process runs and
-6 on a one-worker local Dask cluster; ``-m slow`` kills 60 and 12 (two workers) more. Deterministic tests
-tear an append in the middle (after some arrays have grown and others not).
+numbers, the same tables and chosen design). The default suite kills about 12 in-process
+runs and 6 on a one-worker local Dask cluster; ``-m slow`` about 60 more in process and 12
+on two workers (a run that finishes before its instant is counted, not killed).
+Deterministic tests tear an append in the middle (some arrays grown, others not).
 """
 
 import json

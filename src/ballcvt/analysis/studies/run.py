@@ -1,8 +1,11 @@
 """Run a study: sample or optimise designs, evaluate them on Dask, keep every result.
 
 Designs are evaluated in chunks (`StudySettings.chunk` designs per task); each finished
-chunk is appended to the Zarr store at once, so an interrupted study resumes where it
-stopped (``resume=True``): designs already in the store are never evaluated again. Sampled
+chunk is appended to the Zarr store and committed at once (`store.DesignStore`), so an
+interrupted study, even one killed in the middle of an append, resumes where it stopped
+(``resume=True``): designs already in the store are never evaluated again, and a
+different study is refused. A run holds its folder (`lock.folder_lock`): a second run into
+it is refused. Sampled
 designs are numbered by their position in the (seeded) sequence; the optimiser's designs
 are looked up by their parameter vector, so a resumed NSGA-II run (same seed, the same
 populations) finds its earlier designs in the store.
@@ -253,6 +256,12 @@ def run_study(
     Returns
     -------
     StudyResult
+
+    Raises
+    ------
+    InputError
+        If ``out`` holds a study and ``resume`` is false, holds another study (the message
+        names the keys that changed), or another running process holds ``out``.
     """
     compute = replace(compute or Compute(), **keywords)
     start = time.perf_counter()

@@ -33,6 +33,7 @@ _LAZY = {
     "StudyResult": "..analysis.studies",
     "StudySpec": "..analysis.studies",
     "run_study": "..analysis.studies",
+    "folder_lock": "..analysis.studies",
     "load_dataset": "..analysis.sweeps.export",
     "to_csv": "..analysis.sweeps.export",
     "to_frame": "..analysis.sweeps.export",
@@ -44,6 +45,7 @@ _LAZY = {
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
 __all__ = [
+    "folder_lock",
     "PAPER_POINT",
     "Drive",
     "Variator",

@@ -4,6 +4,7 @@ from ..._lazy import lazy_exports
 
 #: Public name -> the submodule that defines it (loaded on first use: `ballcvt._lazy`).
 _EXPORTS = {
+    "folder_lock": ".lock",
     "DESIGN_CODES": ".evaluate",
     "envelope_diameter": ".evaluate",
     "evaluate_chunk": ".evaluate",
@@ -23,6 +24,7 @@ _EXPORTS = {
 }
 
 __all__ = [
+    "folder_lock",
     "DESIGN_CODES",
     "envelope_diameter",
     "evaluate_chunk",

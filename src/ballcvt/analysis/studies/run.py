@@ -1,8 +1,11 @@
 """Run a study: sample or optimise designs, evaluate them on Dask, keep every result.
 
 Designs are evaluated in chunks (`StudySettings.chunk` designs per task); each finished
-chunk is appended to the Zarr store at once, so an interrupted study resumes where it
-stopped (``resume=True``): designs already in the store are never evaluated again. Sampled
+chunk is appended to the Zarr store and committed at once (`store.DesignStore`), so an
+interrupted study, even one killed in the middle of an append, resumes where it stopped
+(``resume=True``): designs already in the store are never evaluated again, and a
+different study is refused. A run holds its folder (`lock.folder_lock`): a second run into
+it is refused. Sampled
 designs are numbered by their position in the (seeded) sequence; the optimiser's designs
 are looked up by their parameter vector, so a resumed NSGA-II run (same seed, the same
 populations) finds its earlier designs in the store.
@@ -33,9 +36,10 @@ from ...files import atomic_write_text, check_output_dir
 from ...params.io import drive_to_toml
 from ...params.models import Design
 from .evaluate import DESIGN_CODES, Context, _design, evaluate_chunk, make_context
+from .lock import folder_lock
 from .pareto import choose, pareto_mask
 from .spec import OBJECTIVES, StudySpec
-from .store import STORE, append, chunk_dataset, evaluated, load
+from .store import STORE, DesignStore, chunk_dataset, study_changes, study_hash, study_record
 
 __all__ = ["StudyResult", "Compute", "run_study", "design_vectors", "local_client"]
 
@@ -154,7 +158,7 @@ def local_client(workers: int):
 class _Evaluator:
     """Evaluates chunks in process or on a Dask client; appends each to the store."""
 
-    def __init__(self, ctx: Context, store: Path, client, attrs, progress):
+    def __init__(self, ctx: Context, store: DesignStore, client, attrs, progress):
         self.ctx, self.store, self.client, self.attrs = ctx, store, client, attrs
         self.progress = progress
         self.count = 0
@@ -194,7 +198,7 @@ class _Evaluator:
                     self._save(index[p], x[p], fut.result(), bar)
 
     def _save(self, index, x, result, bar) -> None:
-        append(self.store, chunk_dataset(self.ctx.spec, self.ctx, x, result), self.attrs)
+        self.store.append(chunk_dataset(self.ctx.spec, self.ctx, x, result), self.attrs)
         self.remember(result["design"], result["status"], result)
         self.count += index.size
         bar.update(index.size)
@@ -252,12 +256,49 @@ def run_study(
     Returns
     -------
     StudyResult
+
+    Raises
+    ------
+    InputError
+        If ``out`` holds a study and ``resume`` is false, holds another study (the message
+        names the keys that changed), or another running process holds ``out``.
     """
     compute = replace(compute or Compute(), **keywords)
     start = time.perf_counter()
     out = check_output_dir(out)
-    store = out / STORE
-    done = evaluated(store)
+    with folder_lock(out):
+        store = DesignStore(out / STORE)
+        done = store.open()
+        _check_resume(spec, store, done, resume)
+        ctx = make_context(spec)
+        attrs = {
+            "study": spec.study.name,
+            "ballcvt_version": __version__,
+            "spec": json.dumps(study_record(spec)),
+            "Conventions": "CF-1.10",
+            "title": f"ballcvt design study: {spec.study.name}",
+        }
+        client, own, execution = _connect(compute)
+        try:
+            ev = _Evaluator(ctx, store, client, attrs, compute.progress)
+            if spec.study.method == "nsga2":
+                _optimise(spec, ev, done)
+            else:
+                x = design_vectors(spec)
+                todo = np.array([i for i in range(len(x)) if i not in done], dtype=np.int64)
+                ev.run(todo, x[todo], f"study {spec.study.name}")
+        finally:
+            if own is not None:
+                cluster = getattr(own, "cluster", None)
+                own.close()
+                if cluster is not None:
+                    cluster.close()
+        return _finish(spec, ctx, out, store, ev.count, time.perf_counter() - start, execution)
+
+
+def _check_resume(spec: StudySpec, store: DesignStore, done: set, resume: bool) -> None:
+    """Refuse a folder holding a study unless resuming it, and resuming another study."""
+    out = store.path.parent
     if done and not resume:
         raise InputError(
             "out",
@@ -266,30 +307,19 @@ def run_study(
             message=f"{out} already holds a study ({len(done)} designs): "
             "resume it with --resume, or choose another --out",
         )
-    ctx = make_context(spec)
-    attrs = {
-        "study": spec.study.name,
-        "ballcvt_version": __version__,
-        "spec": json.dumps(spec.model_dump(mode="json")),
-        "Conventions": "CF-1.10",
-        "title": f"ballcvt design study: {spec.study.name}",
-    }
-    client, own, execution = _connect(compute)
-    try:
-        ev = _Evaluator(ctx, store, client, attrs, compute.progress)
-        if spec.study.method == "nsga2":
-            _optimise(spec, ev, done)
-        else:
-            x = design_vectors(spec)
-            todo = np.array([i for i in range(len(x)) if i not in done], dtype=np.int64)
-            ev.run(todo, x[todo], f"study {spec.study.name}")
-    finally:
-        if own is not None:
-            cluster = getattr(own, "cluster", None)
-            own.close()
-            if cluster is not None:
-                cluster.close()
-    return _finish(spec, ctx, out, store, ev.count, time.perf_counter() - start, execution)
+    record = study_record(spec)
+    if done and store.record is not None and study_hash(store.record) != study_hash(record):
+        changed = study_changes(store.record, record)
+        shown = ", ".join(changed[:8]) + (
+            f" and {len(changed) - 8} more" if len(changed) > 8 else ""
+        )
+        raise InputError(
+            "study",
+            str(out),
+            "the study the folder holds",
+            message=f"--resume: {out} holds another study ({len(done)} designs); changed: "
+            f"{shown}. Resume it with the same study file, or choose another --out",
+        )
 
 
 def _connect(compute: Compute):
@@ -322,7 +352,7 @@ def _optimise(spec: StudySpec, ev: _Evaluator, done: set) -> None:
     senses = [spec.objectives[o] for o in spec.objectives]
     known: dict[bytes, int] = {}
     if done:  # the designs of the interrupted run: looked up, never evaluated again
-        ds = load(ev.store)
+        ds = ev.store.load()
         for i, row in zip(ds["design"].values, np.column_stack([ds[n].values for n in names])):
             known[np.round(row, 12).tobytes()] = int(i)
         ev.remember(
@@ -369,9 +399,9 @@ def _optimise(spec: StudySpec, ev: _Evaluator, done: set) -> None:
 
 
 def _finish(
-    spec, ctx, out: Path, store: Path, count: int, run_time: float, execution: str
+    spec, ctx, out: Path, store: DesignStore, count: int, run_time: float, execution: str
 ) -> StudyResult:
-    ds = load(store)
+    ds = store.load()
     objectives = list(spec.objectives)
     senses = [spec.objectives[o] for o in objectives]
     values = np.column_stack([ds[o].values for o in objectives])

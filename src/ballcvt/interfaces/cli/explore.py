@@ -71,16 +71,18 @@ def run(args) -> int:
         raise InputError("scheduler", args.scheduler, "not with --in-process")
     if args.scheduler is not None:
         check_scheduler(args.scheduler)  # one line within seconds, before --out is made
-    result = api.run_study(
-        spec,
-        args.out,
-        workers=args.workers,
-        scheduler=args.scheduler,
-        in_process=args.in_process,
-        resume=args.resume,
-        progress=o.show(args),
-    )
-    files = result.files + study_report(result, spec, args.out)
+    Path(args.out).mkdir(parents=True, exist_ok=True)
+    with api.folder_lock(args.out):  # the run and its report: one run per --out
+        result = api.run_study(
+            spec,
+            args.out,
+            workers=args.workers,
+            scheduler=args.scheduler,
+            in_process=args.in_process,
+            resume=args.resume,
+            progress=o.show(args),
+        )
+        files = result.files + study_report(result, spec, args.out)
     if args.json:
         o.emit_json_text((Path(args.out) / "summary.json").read_text())
     elif not args.quiet:

@@ -12,6 +12,7 @@ __all__ = [
     "TractionLimitError",
     "ConvergenceError",
     "NoEquilibriumError",
+    "ResultChecksumWarning",
 ]
 
 
@@ -80,3 +81,16 @@ class BallCVTDeprecationWarning(FutureWarning):
     A `FutureWarning` so that users see it by default (Python hides a plain
     `DeprecationWarning` outside ``__main__``).
     """
+
+
+class ResultChecksumWarning(UserWarning):
+    """A saved result no longer matches the checksum ballcvt stored with it.
+
+    Its numbers were edited (or damaged) after ballcvt computed them: they load, but are not
+    what ballcvt computed. Also issued, with ``modified`` false, for a file saved before
+    results carried a checksum (its numbers cannot be checked).
+    """
+
+    def __init__(self, message: str, modified: bool = True):
+        super().__init__(message)
+        self.modified = modified

@@ -14,36 +14,35 @@ units are listed in `UNITS`. Values are converted to SI on reading.
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import InputError
-from ..units import RAD_S_PER_RPM
+from ..units import QUANTITY_UNITS, parse_header, unit_factor
 
 __all__ = ["Cycle", "read_cycle", "cycle_from_arrays", "UNITS", "KINDS", "STRATEGIES"]
 
 #: How a duty-cycle run picks the ratio (`ballcvt.analysis.cycles.run_cycle`).
 STRATEGIES = ("target-input-speed", "max-efficiency")
 
-#: Accepted units per column: unit -> factor to SI.
-UNITS = {
-    "time": {"s": 1.0, "min": 60.0, "h": 3600.0},
-    "output_speed": {"rpm": RAD_S_PER_RPM, "rad/s": 1.0},
-    "input_speed": {"rpm": RAD_S_PER_RPM, "rad/s": 1.0},
-    "output_torque": {"N m": 1.0, "Nm": 1.0},
-    "input_power": {"W": 1.0, "kW": 1e3},
-    "ratio": {"1": 1.0, "-": 1.0},
+#: The quantity of each column (its accepted units: `ballcvt.units.QUANTITY_UNITS`).
+QUANTITIES = {
+    "time": "time",
+    "output_speed": "angular_speed",
+    "input_speed": "angular_speed",
+    "output_torque": "torque",
+    "input_power": "power",
+    "ratio": "dimensionless",
 }
+#: Accepted units per column: unit -> factor to SI.
+UNITS = {column: dict(QUANTITY_UNITS[q]) for column, q in QUANTITIES.items()}
 #: The column sets of the two kinds of cycle (``ratio`` is optional on the input side).
 KINDS = {
     "output": ("time", "output_speed", "output_torque"),
     "input": ("time", "input_speed", "input_power"),
 }
-
-_HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[([^\]]*)\])?\s*$")
 
 
 @dataclass(frozen=True)
@@ -171,8 +170,7 @@ def read_cycle(path: str | Path) -> Cycle:
         ) from None
     columns = {}
     for header in frame.columns:
-        m = _HEADER.match(str(header))
-        name, unit = (m.group(1), (m.group(2) or "").strip()) if m else (str(header), "")
+        name, unit = parse_header(header)
         if name not in UNITS:
             raise InputError(
                 "cycle column",
@@ -182,14 +180,15 @@ def read_cycle(path: str | Path) -> Cycle:
                 + ", ".join(UNITS)
                 + ", each with its unit in brackets)",
             )
-        if unit not in UNITS[name]:
+        if not unit:
             raise InputError(
                 f"{name} unit",
-                unit or "(none)",
+                "(none)",
                 " or ".join(UNITS[name]),
                 message=f"cycle file {path}: column '{header}' needs its unit "
                 f"in brackets, one of: " + ", ".join(UNITS[name]),
             )
+        factor = unit_factor(unit, QUANTITIES[name], str(header), f"cycle file {path}")
         if name in columns:
             raise InputError(
                 "cycle column",
@@ -206,5 +205,5 @@ def read_cycle(path: str | Path) -> Cycle:
                 "a number",
                 message=f"cycle file {path}: '{header}' at data row {bad[0] + 1} is not a number",
             )
-        columns[name] = values * UNITS[name][unit]
+        columns[name] = values * factor
     return cycle_from_arrays(name=path.name, **columns)

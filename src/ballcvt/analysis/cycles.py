@@ -27,7 +27,6 @@ summary reports as the energy the drive could not deliver (docs/cycles.md).
 
 from __future__ import annotations
 
-import json
 import time as _time
 from concurrent.futures import ProcessPoolExecutor
 from contextlib import nullcontext
@@ -40,7 +39,7 @@ import numpy as np
 from .._display import html_summary, text_summary
 from .._version import __version__
 from ..errors import InputError
-from ..files import atomic_write_text
+from ..files import write_json
 from ..model.clamping import clamp_law as resolve_law
 from ..model.kinematics import ratio_range as usable_ratio_range
 from ..params.drive import Drive
@@ -127,7 +126,7 @@ class CycleResult:
         }
         files = [
             write_table(self.steps, out / "steps.csv", units),
-            atomic_write_text(out / "summary.json", json.dumps(self.summary, indent=2)),
+            write_json(out / "summary.json", self.summary),
         ]
         return files
 

@@ -1,6 +1,8 @@
 """Fit a fluid's traction parameters to measured traction curves (docs/model.md §14).
 
-Measured curves come as one CSV file (`read_curves`), one row per measured point:
+Measured curves come as one CSV file (`read_curves`), one row per measured point, each
+column's unit in brackets in its header (``load [kN]``: converted to SI on reading; an
+unknown unit is refused; a header without brackets is in the unit below):
 
 =============  =====  =======================================================
 column         unit   meaning
@@ -41,6 +43,7 @@ from ..model.traction.curve import MachineContact, machine_state
 from ..model.traction.quadrature import Quadrature
 from ..params.models import Fluid
 from ..registry import TRACTION_LAWS
+from ..units import parse_header, unit_factor
 
 __all__ = [
     "COLUMNS",
@@ -142,7 +145,7 @@ def read_curves(path) -> Curves:
             "CSV",
             message=f"curves file {path}: not a CSV table ({str(exc).splitlines()[0]})",
         ) from None
-    frame.columns = [str(c).split("[")[0].strip() for c in frame.columns]
+    frame, factors = _to_si(frame, f"curves file {path}")
     missing = [c for c in COLUMNS if c not in frame.columns]
     if missing:
         raise InputError(
@@ -176,7 +179,7 @@ def read_curves(path) -> Curves:
                     "is not a finite number"
                 ),
             )
-        data[name] = values
+        data[name] = values * factors[name]
     for name in ("rx", "ry", "load", "speed"):
         bad = np.flatnonzero(data[name] <= 0)
         if bad.size:
@@ -201,6 +204,33 @@ def read_curves(path) -> Curves:
             ),
         )
     return Curves(**data)
+
+
+#: The quantity of each curves column (its accepted units: `ballcvt.units.QUANTITY_UNITS`).
+QUANTITIES = {
+    "rx": "length",
+    "ry": "length",
+    "load": "force",
+    "speed": "speed",
+    "spin": "dimensionless",
+    "creep": "dimensionless",
+    "mu": "dimensionless",
+}
+
+
+def _to_si(frame, source: str) -> tuple:
+    """``(frame, factors)``: the curves table with plain column names, and the factor that
+    converts each numeric column to SI: a header's unit in brackets is read (``load [kN]``),
+    a header without one is in the unit of `COLUMNS`, an unknown unit is an `InputError`."""
+    names, factors = [], {}
+    for header in frame.columns:
+        name, unit = parse_header(header)
+        names.append(name)
+        if name in QUANTITIES:
+            factors[name] = (
+                1.0 if unit is None else unit_factor(unit, QUANTITIES[name], str(header), source)
+            )
+    return frame.set_axis(names, axis=1), factors
 
 
 def model_mu(
@@ -296,11 +326,9 @@ class FluidFit:
         list of Path
             The files written.
         """
-        import json
-
         import pandas as pd
 
-        from ..files import atomic_write_text
+        from ..files import atomic_write_text, write_json
 
         out = Path(out)
         frame = pd.DataFrame(
@@ -314,7 +342,7 @@ class FluidFit:
         )
         files = [out / "fluid.toml", out / "fit.json", out / "fit.csv"]
         atomic_write_text(files[0], self.to_toml(source))
-        atomic_write_text(files[1], json.dumps(self.as_dict(), indent=2))
+        write_json(files[1], self.as_dict())
         atomic_write_text(files[2], frame.to_csv(index=False))
         return files
 

@@ -14,7 +14,8 @@ from .._version import __version__
 from ..errors import InputError
 from ..model.modes import MEMBERS, OperatingMode, member_torques
 from ..units import rad_s_to_rpm
-from .point import OperatingResult, _JsonFile, read_result
+from .io import JsonFile, read_result
+from .point import OperatingResult
 
 __all__ = ["PlanetaryResult", "make_planetary_result"]
 
@@ -188,8 +189,8 @@ class PlanetaryResult:
         )
         return out
 
-    to_json = _JsonFile.to_json
-    save = _JsonFile.save
+    to_json = JsonFile.to_json
+    save = JsonFile.save
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], source: str = "result") -> PlanetaryResult:

@@ -6,7 +6,6 @@
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, fields
@@ -21,7 +20,6 @@ from .._display import html_summary, text_summary
 from .._version import __version__
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import InputError
-from ..files import atomic_write_text
 from ..model.clamping import axial_force
 from ..model.traction.quadrature import Quadrature
 from ..params.models import Design, Fluid
@@ -29,6 +27,7 @@ from ..performance.efficiency import efficiency, loss_breakdown, power_losses
 from ..performance.validity import validity, warning_messages
 from ..solvers.point import PointSolution
 from ..units import rad_s_to_rpm
+from .io import JsonFile, read_result
 
 __all__ = ["ContactResult", "OperatingResult", "make_result"]
 
@@ -85,37 +84,6 @@ CONTACT_UNITS = {
     "spin_moment": "N m", "body_speed": "rad/s", "creep_loss": "W", "spin_loss": "W",
     "lambda_ratio": "-",
 }  # fmt: skip
-
-
-class _JsonFile:
-    """JSON output shared by the result classes (each has ``to_dict``)."""
-
-    def to_json(self: Any, **kwargs: Any) -> str:
-        """JSON text of `to_dict` (non-finite numbers are written as ``null``)."""
-        return json.dumps(_finite(self.to_dict()), **kwargs)  # type: ignore[attr-defined]
-
-    def save(self: Any, path: str | Path) -> None:
-        """Write the result as JSON (atomically: never a truncated file)."""
-        atomic_write_text(path, self.to_json(indent=2))
-
-
-def read_result(path: str | Path, keep=("design", "fluid", "mode")):
-    """``(data, source)`` of a result file written by ``save``: its JSON object with
-    ``null`` and ``"inf"`` restored to floats outside the ``keep`` tables (parameter sets
-    keep ``null``: an absent table)."""
-    source = f"result file {path}"
-    try:
-        data = json.loads(Path(path).read_text(), parse_constant=float)
-    except (OSError, UnicodeDecodeError, ValueError) as exc:
-        raise InputError(
-            "result file",
-            str(path),
-            "a readable JSON result",
-            message=f"{source}: cannot be read ({exc})",
-        ) from None
-    if isinstance(data, dict):
-        data = {k: v if k in keep else _unfinite(v) for k, v in data.items()}
-    return data, source
 
 
 @dataclass(frozen=True)
@@ -344,8 +312,8 @@ class OperatingResult:
         _check_consistent(result, source)
         return result
 
-    to_json = _JsonFile.to_json
-    save = _JsonFile.save
+    to_json = JsonFile.to_json
+    save = JsonFile.save
 
     @classmethod
     def load(cls, path: str | Path) -> OperatingResult:
@@ -401,29 +369,6 @@ def _check_consistent(r: OperatingResult, source: str) -> None:
                 f"{what} = {expected:.12g}: the file was edited or is "
                 "corrupt",
             )
-
-
-def _unfinite(obj: Any) -> Any:
-    """Inverse of `_finite`: ``"inf"``/``"-inf"`` strings back to floats, ``null`` to NaN."""
-    if obj is None:
-        return math.nan
-    if obj in ("inf", "-inf"):
-        return float(obj)
-    if isinstance(obj, dict):
-        return {k: _unfinite(v) for k, v in obj.items()}
-    if isinstance(obj, list):
-        return [_unfinite(v) for v in obj]
-    return obj
-
-
-def _finite(obj: Any) -> Any:
-    if isinstance(obj, float):
-        return obj if math.isfinite(obj) else (str(obj) if math.isinf(obj) else None)
-    if isinstance(obj, dict):
-        return {k: _finite(v) for k, v in obj.items()}
-    if isinstance(obj, list):
-        return [_finite(v) for v in obj]
-    return obj
 
 
 def make_result(

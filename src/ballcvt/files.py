@@ -112,7 +112,7 @@ def remove_stale_parts(folder: str | os.PathLike) -> list[Path]:
     processes, are left alone."""
     removed = []
     with contextlib.suppress(OSError):
-        for entry in os.scandir(folder):
+        for entry in os.scandir(os.fspath(folder)):
             m = _PART.match(entry.name)
             if m and entry.is_file(follow_symlinks=False) and not _alive(int(m.group(1))):
                 with contextlib.suppress(OSError):

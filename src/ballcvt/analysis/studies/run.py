@@ -32,7 +32,7 @@ import xarray as xr
 from ..._display import html_summary, text_summary
 from ..._version import __version__
 from ...errors import InputError
-from ...files import atomic_write_text, check_output_dir
+from ...files import atomic_write_text, check_output_dir, write_json
 from ...params.io import drive_to_toml
 from ...params.models import Design
 from .evaluate import DESIGN_CODES, Context, _design, evaluate_chunk, make_context
@@ -456,6 +456,6 @@ def _finish(
         "run_time_s": run_time,
         "ballcvt_version": __version__,
     }
-    atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
+    write_json(out / "summary.json", summary)  # strict JSON: non-finite values as null
     files.append(out / "summary.json")
     return result

@@ -6,6 +6,7 @@ from pathlib import Path
 
 from ... import api
 from ...errors import InputError
+from ...files import check_output_dir
 from ...registry import TRACTION_LAWS
 from . import options as o
 from .network import check_scheduler
@@ -71,7 +72,7 @@ def run(args) -> int:
         raise InputError("scheduler", args.scheduler, "not with --in-process")
     if args.scheduler is not None:
         check_scheduler(args.scheduler)  # one line within seconds, before --out is made
-    Path(args.out).mkdir(parents=True, exist_ok=True)
+    check_output_dir(args.out)  # a folder (made if new); anything else is refused
     with api.folder_lock(args.out):  # the run and its report: one run per --out
         result = api.run_study(
             spec,

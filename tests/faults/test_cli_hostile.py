@@ -55,14 +55,16 @@ def test_the_examples_of_the_issue_are_among_the_abbreviations():
 
 
 @pytest.mark.parametrize("command, short, flag", ABBREVIATIONS)
-def test_abbreviated_options_are_refused(capsys, command, short, flag):
+def test_abbreviated_options_are_refused(capsys, tmp_path, monkeypatch, command, short, flag):
+    monkeypatch.chdir(tmp_path)  # were one accepted (``--ou 1``), it would write ./1 here
     code, out, err = run(capsys, command, *REQUIRED.get(command, []), short, "1")
     assert code == 2 and out == "" and one_line(err), err
     assert f"unrecognized arguments: {short}" in err
 
 
 @pytest.mark.parametrize("argv", [["point", "--rat", "1"], ["map", "--torque", "30"]])
-def test_the_issue_s_abbreviations(capsys, argv):
+def test_the_issue_s_abbreviations(capsys, tmp_path, monkeypatch, argv):
+    monkeypatch.chdir(tmp_path)
     code, _, err = run(capsys, *argv)
     assert code == 2 and one_line(err) and "unrecognized arguments" in err
 

@@ -9,8 +9,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from ..model.clamping.base import names_fixed_force
 from ..params.models import Design, Fluid
-from ..registry import CLAMP_LAWS
 from ..solvers.options import SolverOptions
 from ..units import rpm_to_rad_s
 from . import grids, planetary
@@ -230,8 +230,7 @@ CAM_KEYS = ("disc", "preload", "ramp_angle_deg", "mean_radius", "friction")
 
 def _clamp(clamp_force, clamp_law) -> dict:
     """The clamping keywords of `solve` that were given."""
-    fixed = isinstance(clamp_law, str) and CLAMP_LAWS.get(clamp_law).fixed_force
-    if clamp_law is None or fixed:
+    if names_fixed_force(clamp_law):
         return {"clamp_force": clamp_force}
     return {
         "clamp_law": clamp_law,

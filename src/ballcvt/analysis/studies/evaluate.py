@@ -17,11 +17,11 @@ import numpy as np
 from ...errors import BallCVTError
 from ...model.architectures import contact_layout
 from ...model.clamping import clamp_law
+from ...model.clamping.base import names_fixed_force
 from ...model.kinematics import ratio_range
 from ...params.drive import PAPER_POINT, Drive
 from ...params.io import resolve_drive
 from ...params.models import Design, Fluid
-from ...registry import CLAMP_LAWS
 from ...status import Status
 from ...units import rpm_to_rad_s
 from ..sweeps.curves import OperatingRows, limit_search_curves
@@ -172,8 +172,7 @@ def _evaluate(ctx: Context, values: dict):
     if violated:
         return Status.CONSTRAINT_VIOLATED, violated, metrics, None, None
     force = values.get("clamp_force", spec.operating.clamp_force)
-    fixed = CLAMP_LAWS.get(spec.operating.clamp_law).fixed_force
-    law = None if fixed else spec.operating.clamp_law
+    law = None if names_fixed_force(spec.operating.clamp_law) else spec.operating.clamp_law
     law_obj = None if law is None else clamp_law(law, design)
     eta = pst = None
     if spec.operating.cycle is None:

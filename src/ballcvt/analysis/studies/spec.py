@@ -37,9 +37,10 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from ...errors import InputError
+from ...model.clamping.base import names_fixed_force
 from ...params.io import parse_toml, read_text
 from ...params.models import ARCHITECTURES, Design, ParameterModel
-from ...registry import CLAMP_LAWS, TRACTION_LAWS
+from ...registry import TRACTION_LAWS
 
 __all__ = [
     "StudySpec",
@@ -291,7 +292,7 @@ class StudySpec(ParameterModel):
             )
         if self.study.traction_law is not None:
             TRACTION_LAWS.get(self.study.traction_law)  # InputError listing the laws
-        fixed = CLAMP_LAWS.get(self.operating.clamp_law).fixed_force  # likewise
+        fixed = names_fixed_force(self.operating.clamp_law)  # unknown: InputError too
         if fixed and self.operating.clamp_force is None and "clamp_force" not in self.parameters:
             raise InputError(
                 "operating.clamp_force",

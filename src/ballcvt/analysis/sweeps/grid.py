@@ -26,10 +26,9 @@ from ...equilibrium.problem import build_problem
 from ...errors import InputError
 from ...model.architectures import CONTACT_NAMES
 from ...model.clamping import clamp_law as clamp_law_of
-from ...model.clamping.base import DEFAULT_LAW
+from ...model.clamping.base import DEFAULT_LAW, names_fixed_force
 from ...params.drive import Drive
 from ...params.models import ARCHITECTURES, Design, Fluid
-from ...registry import CLAMP_LAWS
 from ...solvers.limit import LimitSearch, bisection_steps
 from ...solvers.options import SolverOptions
 from .curves import OperatingRows, solve_curves
@@ -189,8 +188,7 @@ def sweep(
 
 def _law(design: Design, s: SweepRequest):
     """(clamping law other than constant or None, the constant law's forces)."""
-    fixed = isinstance(s.clamp_law, str) and CLAMP_LAWS.get(s.clamp_law).fixed_force
-    if s.clamp_law is None or fixed:  # the forces are a dimension
+    if names_fixed_force(s.clamp_law):  # the forces are a dimension
         if s.clamp_force is None:
             clamp_law_of(s.clamp_law, design, None)  # raises: says what is missing
         return None, s.clamp_force

@@ -7,7 +7,6 @@ from pathlib import Path
 
 from ...api import Fluid, contact_fluid, fit_fluid, read_curves
 from ...files import check_output_dir
-from ...registry import TRACTION_LAWS
 from . import options as o
 
 
@@ -25,14 +24,7 @@ def add_parser(subparsers) -> None:
         "ballcvt fit-fluid examples/traction/curves.csv --law thermal --out fit",
     )
     p.add_argument("curves_file", type=Path, metavar="CURVES.csv", help="measured traction curves")
-    p.add_argument(
-        "--law",
-        "--traction-law",
-        dest="traction_law",
-        choices=TRACTION_LAWS.names(),
-        default=None,
-        help="traction law to fit (default: the start fluid's own)",
-    )
+    o.law_option(p, "traction law to fit (default: the start fluid's own)")
     p.add_argument(
         "--params",
         default=None,

@@ -243,6 +243,19 @@ def add(p, *names: str) -> None:
         p.add_argument(f"--{name}", **table[name])
 
 
+def law_option(p, help: str) -> None:
+    """``--law`` (or ``--traction-law``): a traction law of the registry, for the
+    single-contact commands."""
+    p.add_argument(
+        "--law",
+        "--traction-law",
+        dest="traction_law",
+        choices=TRACTION_LAWS.names(),
+        default=None,
+        help=help,
+    )
+
+
 def out(p, default: str) -> None:
     """The ``--out`` folder option."""
     p.add_argument(

@@ -7,7 +7,6 @@ import numpy as np
 from ...api import contact_fluid, traction_curve
 from ...errors import InputError
 from ...files import atomic_write_text, check_output_dir
-from ...registry import TRACTION_LAWS
 from . import options as o
 
 
@@ -23,14 +22,7 @@ def add_parser(subparsers) -> None:
         "ballcvt traction-curve --law thermal --rx 0.02 --ry 0.05 --load 1400 "
         "--speed 10 --spin 0 --creep-max 0.08",
     )
-    p.add_argument(
-        "--law",
-        "--traction-law",
-        dest="traction_law",
-        choices=TRACTION_LAWS.names(),
-        default=None,
-        help="traction law (default: the fluid's own)",
-    )
+    o.law_option(p, "traction law (default: the fluid's own)")
     for flag, what in (("--rx", "along"), ("--ry", "across")):
         p.add_argument(
             flag,

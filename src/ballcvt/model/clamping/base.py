@@ -30,10 +30,24 @@ from ...errors import InputError
 from ...params.models import Design
 from ...registry import CLAMP_LAWS
 
-__all__ = ["ClampLaw", "CLAMP_LAWS", "DEFAULT_LAW", "axial_force", "clamp_law", "refuse_force"]
+__all__ = [
+    "ClampLaw",
+    "CLAMP_LAWS",
+    "DEFAULT_LAW",
+    "axial_force",
+    "clamp_law",
+    "names_fixed_force",
+    "refuse_force",
+]
 
 #: The law a missing ``clamp_law`` stands for (the paper's fixed clamping force).
 DEFAULT_LAW = "constant"
+
+
+def names_fixed_force(law) -> bool:
+    """Whether ``law`` as given (None, a registered name or a law object) is the fixed-force
+    law by default or by name; an unknown name is an `InputError` listing the laws."""
+    return law is None or (isinstance(law, str) and CLAMP_LAWS.get(law).fixed_force)
 
 
 def axial_force(design: Design, clamp_force):

@@ -47,14 +47,20 @@ class InputError(BallCVTError, ValueError):
 class TractionLimitError(InputError):
     """The requested output torque exceeds the traction capacity of the drive."""
 
-    def __init__(self, value: float, limit: float, context: str = ""):
+    def __init__(self, value: float, limit: float, context: str = "", allowed: str = ""):
+        # allowed: the admissible torques as text when they are not 0 to ``limit``
         self.limit_torque = limit
         BallCVTError.__init__(
             self,
-            f"output_torque = {_fmt(value)} N m exceeds the traction capacity "
-            f"{limit:.4g} N m{context}: allowed 0 <= output_torque <= {limit:.4g} N m",
+            f"output_torque = {_fmt(value)} N m exceeds the traction capacity"
+            + (
+                f" {limit:.4g} N m{context}: allowed 0 <= output_torque <= {limit:.4g} N m"
+                if not allowed
+                else f"{context}: allowed output_torque {allowed}"
+            ),
         )
-        self.quantity, self.value, self.allowed = "output_torque", value, f"<= {limit:.4g} N m"
+        self.quantity, self.value = "output_torque", value
+        self.allowed = allowed or f"<= {limit:.4g} N m"
 
 
 class ConvergenceError(BallCVTError, RuntimeError):

@@ -1,14 +1,64 @@
-"""Traction capacity of a drive: the traction ceiling of its output contact and the limiting
-torques of a set of curves (docs/model.md §8)."""
+"""Traction capacity of a drive: the traction ceiling of its output contact and the
+admissible output torques at an operating point (docs/model.md §8, §11)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from ..equilibrium.problem import build_problem
-from ..solvers.limit import saturated_traction
+from ..solvers.capacity import Capacity
+from ..solvers.clamped import capacity_basis
+from ..solvers.limit import limit_search, saturated_traction
+from ..solvers.options import SolverOptions
 
-__all__ = ["traction_ceiling"]
+__all__ = ["traction_ceiling", "capacity", "Capacity"]
+
+
+def capacity(
+    drive,
+    ratio: float,
+    law,
+    input_speed: float,
+    creep_limit: float | None = None,
+    options: SolverOptions = SolverOptions(),
+) -> Capacity:
+    """Admissible output torques of an operating point, as intervals.
+
+    The torques whose equilibrium converges with every ``|C| <= creep_limit`` (and, under
+    a torque-following law, every peak pressure within ``design.max_pressure``;
+    docs/model.md §8, §11). Under a constant force they run from zero to the limiting
+    torque; under a loading cam with a small preload they may start above zero, or form
+    two ranges (`ballcvt.solvers.capacity`).
+
+    Parameters
+    ----------
+    drive : Drive or Variator
+        Design, fluid and idler architecture.
+    ratio : float
+        Ideal ratio ``tau_ID`` [-].
+    law : clamping law
+        `ballcvt.model.clamping` law object (constant, cam, optimal).
+    input_speed : float
+        ``omega_0`` [rad/s].
+    creep_limit : float, optional
+        ``C_lim`` [-]; ``design.creep_limit`` by default.
+    options : SolverOptions
+        Solver options.
+
+    Returns
+    -------
+    Capacity
+        Empty when no torque is admissible.
+    """
+    design = drive.design
+    c_lim = design.creep_limit if creep_limit is None else float(creep_limit)
+    start = 1.0 if law.optimises else law.clamp_force(design, 0.0, 0.0)
+    zero = build_problem(
+        design, drive.fluid, drive.architecture, float(ratio), 0.0, start, float(input_speed)
+    )
+    problem, follows, c_lim = capacity_basis(zero, law, c_lim)
+    search = limit_search(problem, c_lim, options, law=follows)
+    return Capacity.from_array(search.spans())
 
 
 def traction_ceiling(drive, ratio: float, *, clamp_force: float, input_speed: float) -> dict:

@@ -20,10 +20,11 @@ from ..params.io import load_builtin
 from ..params.models import ARCHITECTURES, Design, Fluid
 from ..results.planetary import PlanetaryResult
 from ..results.point import OperatingResult, make_result
-from ..solvers.clamped import capacity_basis, pressure_bound_force, solve_clamped
+from ..solvers.clamped import capacity_basis, solve_clamped
 from ..solvers.limit import limit_torque
 from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum
 from ..solvers.point import SolverOptions, solve_point
+from ..solvers.refusal import beyond_capacity, point_capacity
 from ..units import rpm_to_rad_s
 from . import grids, planetary
 from .batched import BatchMethods
@@ -227,21 +228,20 @@ class Variator(BatchMethods):
             )
         else:
             sol = solve_point(problem, self.options)
-        over = sol.converged and float(np.abs(sol.state.creep).max()) > self.design.creep_limit
-        if follows:
-            over = over or float(problem.clamp_force) > float(
-                pressure_bound_force(problem, self.design.max_pressure)
-            ) * (1 + 1e-12)
-        if how.check_capacity and (over or not sol.converged):
-            lim = limit_torque(problem, self.design.creep_limit, self.options, law=law)
-            if output_torque > lim:
+        why = beyond_capacity(problem, sol, follows)
+        if how.check_capacity and (why or not sol.converged):
+            cap = point_capacity(problem, self.design.creep_limit, self.options, law)
+            if why or not cap.admits(float(output_torque)):
                 where = (
                     f"clamp {float(problem.clamp_force):g} N"
                     if not follows
                     else f"{name} clamping law"
                 )
                 raise TractionLimitError(
-                    float(output_torque), lim, f" at ratio {ratio:g}, {where}"
+                    float(output_torque),
+                    cap.largest,
+                    f" at ratio {ratio:g}, {where}: {why or 'no equilibrium within it'}",
+                    "" if cap.intervals and cap.limit == cap.largest else cap.describe(),
                 )
         if not sol.converged:
             raise ConvergenceError(sol.message)

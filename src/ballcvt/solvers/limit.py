@@ -18,6 +18,7 @@ import numpy as np
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import NoEquilibriumError
 from ..model.traction.base import traction_rises_with_creep
+from .capacity import interval_search
 from .clamped import pressure_bound_force, solve_clamped, with_clamp
 from .newton import initial_creep, solve_batch, solve_pinned
 from .peak import peak_limits
@@ -245,22 +246,47 @@ class LimitSearch:
     creep_zero : ndarray
         Creeps at zero output torque, ``(..., n_c)`` [-], where they were solved for
         (points that needed the bisection or have no limit; NaN elsewhere).
+    intervals : ndarray, optional
+        The admissible torques, ``(..., k, 2)`` rows ``(lo, hi)`` [N m], NaN-padded
+        (`ballcvt.solvers.capacity.Capacity`); None: ``(0, torque)`` where ``torque`` is
+        finite. ``torque`` is the largest ``hi``.
     """
 
     torque: np.ndarray
     creep: np.ndarray
     creep_zero: np.ndarray
+    intervals: np.ndarray | None = None
+
+    def spans(self) -> np.ndarray:
+        """``intervals``, or ``(0, torque)`` rows where it is None: ``(..., k, 2)``."""
+        if self.intervals is not None:
+            return self.intervals
+        lo = np.where(np.isnan(self.torque), np.nan, 0.0)
+        return np.stack([lo, self.torque], axis=-1)[..., None, :]
+
+    def admits(self, torque) -> np.ndarray:
+        """Whether each torque of ``torque`` ``(n_T,)`` [N m] lies in an admissible
+        interval of each point: ``(..., n_T)``."""
+        s = self.spans()[..., None, :, :]
+        t = np.asarray(torque, dtype=float)[:, None]
+        with np.errstate(invalid="ignore"):
+            return np.any((s[..., 0] <= t) & (t <= s[..., 1]), axis=-1)
 
     def flat(self) -> LimitSearch:
         """The same points as a 1-D batch (C order)."""
-        nc = self.creep.shape[-1]
+        nc, k = self.creep.shape[-1], self.spans().shape[-2]
         return LimitSearch(
-            self.torque.reshape(-1), self.creep.reshape(-1, nc), self.creep_zero.reshape(-1, nc)
+            self.torque.reshape(-1),
+            self.creep.reshape(-1, nc),
+            self.creep_zero.reshape(-1, nc),
+            self.spans().reshape(-1, k, 2),
         )
 
     def take(self, index) -> LimitSearch:
         """The points ``index`` of a 1-D batch."""
-        return LimitSearch(self.torque[index], self.creep[index], self.creep_zero[index])
+        return LimitSearch(
+            self.torque[index], self.creep[index], self.creep_zero[index], self.spans()[index]
+        )
 
 
 def limit_torque_batch(
@@ -342,9 +368,23 @@ def limit_search(
     torque = np.full(flat.size, np.nan)
     creep = np.full((flat.size, nc), np.nan)
     x_zero = np.full((flat.size, nc), np.nan)
-    if law is None:
-        torque, creep = _pinned_limits(flat, creep_limit, options, initial_creep(flat))
-        tick()
+    shape = problem.shape
+    if law is not None:
+        spans, creep, x_zero = interval_search(
+            flat,
+            lambda pb, x: solve_admissible(pb, creep_limit, options, law, x),
+            _law_bound(flat, law),
+            rtol,
+        )
+        tick(bisection_steps(rtol))
+        return LimitSearch(
+            np.fmax.reduce(spans[..., 1], axis=-1).reshape(shape),
+            creep.reshape(shape + (nc,)),
+            x_zero.reshape(shape + (nc,)),
+            spans.reshape(shape + spans.shape[-2:]),
+        )
+    torque, creep = _pinned_limits(flat, creep_limit, options, initial_creep(flat))
+    tick()
     rest = np.flatnonzero(np.isnan(torque))
     if rest.size:
         zero = solve_admissible(
@@ -353,7 +393,7 @@ def limit_search(
         tick()
         x_zero[rest] = np.where(zero.converged[:, None], zero.creep, np.nan)
         todo = rest[zero.ok]
-        if law is None and todo.size:  # once more, from the T_2 = 0 creeps
+        if todo.size:  # once more, from the T_2 = 0 creeps
             torque[todo], creep[todo] = _pinned_limits(
                 flat.take(todo), creep_limit, options, x_zero[todo]
             )
@@ -363,7 +403,6 @@ def limit_search(
                 flat.take(todo), creep_limit, options, rtol, tick, law, x_zero[todo]
             )
     tick(bisection_steps(rtol))
-    shape = problem.shape
     return LimitSearch(
         torque.reshape(shape), creep.reshape(shape + (nc,)), x_zero.reshape(shape + (nc,))
     )
@@ -400,6 +439,17 @@ def _pinned_limits(flat, creep_limit, options, x_zero):
     return torque, creep
 
 
+def _law_bound(flat: EquilibriumProblem, law) -> np.ndarray:
+    """Upper bound on the admissible ``T_2`` under a torque-following ``law`` [N m]: the
+    torque whose force reaches the pressure limit, and the traction ceiling at that
+    force."""
+    f_cap = pressure_bound_force(flat, flat.design.max_pressure)
+    return np.minimum(
+        law.output_torque_bound(flat.design, f_cap, flat.ratio),
+        traction_ceiling_torque(with_clamp(flat, f_cap)),
+    )
+
+
 def limit_torque_bisection(
     flat: EquilibriumProblem,
     creep_limit: float,
@@ -422,14 +472,7 @@ def limit_torque_bisection(
     creep : ndarray
         The creeps there.
     """
-    if law is not None:
-        f_cap = pressure_bound_force(flat, flat.design.max_pressure)
-        hi = np.minimum(
-            law.output_torque_bound(flat.design, f_cap, flat.ratio),
-            traction_ceiling_torque(with_clamp(flat, f_cap)),
-        )
-    else:
-        hi = traction_ceiling_torque(flat)
+    hi = traction_ceiling_torque(flat) if law is None else _law_bound(flat, law)
     best = np.array(x_zero, dtype=float)
     lo = np.zeros(flat.size)
     # bisect until every bracket is narrow: a loose ceiling (extreme designs) needs more

@@ -1,0 +1,158 @@
+"""The traction capacity as intervals of output torque (docs/model.md §8, §11).
+
+Under a constant clamping force the creeps grow with the torque, so the admissible torques
+run from zero to the limiting torque. Under a law whose force follows the torque (a
+loading cam) they need not: with a small preload the force at low torque may not carry
+the drive's own drag while the force the cam adds at higher torque does, so the
+admissible torques form a range that does not start at zero, or several ranges. Such
+points are scanned (`interval_search`): every point is tried at about ``SCAN_POINTS``
+torques from zero to an upper bound on its capacity, and every change between admissible
+and inadmissible neighbours is bisected to ``rtol``. The result is a `Capacity` per point.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem
+
+__all__ = ["Capacity", "interval_search", "SCAN_POINTS"]
+
+#: Torque steps of the scan of `interval_search` from zero to the capacity bound.
+SCAN_POINTS = 48
+#: Smallest nonzero scan torque, as a share of the bound [-].
+SCAN_POINTS_FLOOR = 1e-4
+
+
+@dataclass(frozen=True)
+class Capacity:
+    """Admissible output torques of one operating point (docs/model.md §8, §11).
+
+    Attributes
+    ----------
+    intervals : tuple of (float, float)
+        Disjoint, increasing closed intervals ``(lo, hi)`` [N m] of output torque whose
+        equilibria converge with every ``|C| <= creep_limit`` (and, under a
+        torque-following law, every peak pressure within ``design.max_pressure``); empty
+        when no torque is admissible.
+    """
+
+    intervals: tuple[tuple[float, float], ...]
+
+    @classmethod
+    def from_array(cls, bounds) -> Capacity:
+        """From a ``(k, 2)`` array of ``(lo, hi)`` rows [N m], NaN rows ignored."""
+        rows = np.asarray(bounds, dtype=float).reshape(-1, 2)
+        return cls(tuple((float(a), float(b)) for a, b in rows if np.isfinite(a)))
+
+    @property
+    def limit(self) -> float:
+        """The limiting torque [N m] when the only interval starts at zero, else NaN."""
+        if len(self.intervals) == 1 and self.intervals[0][0] == 0.0:
+            return self.intervals[0][1]
+        return float("nan")
+
+    @property
+    def largest(self) -> float:
+        """The largest admissible output torque [N m] (NaN when there is none)."""
+        return self.intervals[-1][1] if self.intervals else float("nan")
+
+    def admits(self, torque: float, rtol: float = 0.0) -> bool:
+        """Whether ``torque`` [N m] lies in an interval (each widened by ``rtol`` of its
+        upper end)."""
+        return any(lo - rtol * hi <= torque <= hi * (1 + rtol) for lo, hi in self.intervals)
+
+    def describe(self) -> str:
+        """The intervals as text, e.g. ``"0 to 41.2 N m"`` or ``"3.1 to 8 N m or 12 to
+        40 N m"``; ``"none"`` when empty."""
+        if not self.intervals:
+            return "none"
+        return " or ".join(f"{lo:.4g} to {hi:.4g} N m" for lo, hi in self.intervals)
+
+
+def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float):
+    """Admissible torque intervals of a 1-D batch by a scan and bisections.
+
+    Parameters
+    ----------
+    flat : EquilibriumProblem
+        Operating points, 1-D batch ``(n,)`` (their ``output_torque`` is ignored).
+    admissible : callable
+        ``admissible(problem, x0) -> Admissibility`` (`ballcvt.solvers.limit.
+        solve_admissible` with the creep limit, options and law bound).
+    top : ndarray
+        An upper bound on each point's admissible torques [N m], ``(n,)``.
+    rtol : float
+        Width of the final brackets relative to ``top`` [-].
+
+    Returns
+    -------
+    intervals : ndarray
+        ``(n, k, 2)`` rows ``(lo, hi)`` [N m], NaN-padded (``k >= 1``).
+    creep : ndarray
+        ``(n, n_c)`` creeps at the largest admissible torque (NaN where there is none).
+    creep_zero : ndarray
+        ``(n, n_c)`` creeps at zero torque (NaN where that did not converge).
+    """
+    n, nc = flat.size, flat.layout.n_contacts
+    grid = _scan_shares()[None, :] * top[:, None]
+    rows = np.repeat(np.arange(n), grid.shape[1])
+    scan = admissible(replace(flat.take(rows), output_torque=grid.ravel()), None)
+    ok = scan.ok.reshape(grid.shape)
+    creep = scan.creep.reshape(grid.shape + (nc,))
+    # every change between neighbours: its admissible and its inadmissible end
+    i, j = np.nonzero(ok[:, :-1] != ok[:, 1:])
+    good = np.where(ok[i, j], j, j + 1)
+    bad = np.where(ok[i, j], j + 1, j)
+    a, b, x = grid[i, good], grid[i, bad], creep[i, good]
+    steps = int(np.ceil(np.log2(np.max(np.diff(_scan_shares())) / rtol))) if i.size else 0
+    for _ in range(steps):
+        mid = 0.5 * (a + b)
+        got = admissible(replace(flat.take(i), output_torque=mid), x)
+        a, b = np.where(got.ok, mid, a), np.where(got.ok, b, mid)
+        x = np.where(got.ok[:, None], got.creep, x)
+    edge = np.full(grid.shape, np.nan)
+    edge[i, j] = a
+    zero = np.where(scan.converged.reshape(grid.shape)[:, :1], creep[:, 0], np.nan)
+    return _assemble(ok, grid, edge), _top_creep(ok, creep, (i, j, x)), zero
+
+
+def _scan_shares() -> np.ndarray:
+    """Scan torques as shares of the bound: ``SCAN_POINTS // 2`` steps of equal width, and
+    as many in geometric progression from ``1e-4`` (a range beyond the capacity at low
+    torque, where the preload still sets the force, is narrow)."""
+    even = np.linspace(0.0, 1.0, SCAN_POINTS // 2 + 1)
+    return np.union1d(even, np.geomspace(SCAN_POINTS_FLOOR, 1.0, SCAN_POINTS // 2 + 1))
+
+
+def _assemble(ok, grid, edge):
+    """Intervals ``(n, k, 2)`` from the scan (``ok``, ``grid``) and the refined ends
+    ``edge[i, j]`` of the change between scan points ``j`` and ``j + 1``."""
+    n = ok.shape[0]
+    found: list[list[tuple[float, float]]] = [[] for _ in range(n)]
+    for r in range(n):
+        start = 0.0 if ok[r, 0] else None
+        for j in range(ok.shape[1] - 1):
+            if ok[r, j] and not ok[r, j + 1]:
+                found[r].append((start, edge[r, j]))
+            elif not ok[r, j] and ok[r, j + 1]:
+                start = edge[r, j]
+        if ok[r, -1]:
+            found[r].append((start, grid[r, -1]))
+    out = np.full((n, max([1, *map(len, found)]), 2), np.nan)
+    for r, spans in enumerate(found):
+        out[r, : len(spans)] = spans
+    return out
+
+
+def _top_creep(ok, creep, ends):
+    """Creeps at each point's largest admissible torque: the refined end of its last
+    admissible-to-inadmissible change, or its top scan point when admissible there."""
+    out = np.where(ok[:, -1, None], creep[:, -1], np.nan)
+    i, j, x = ends
+    for k in np.argsort(j, kind="stable"):  # later changes overwrite earlier ones
+        if ok[i[k], j[k]] and not ok[i[k], -1]:
+            out[i[k]] = x[k]
+    return out

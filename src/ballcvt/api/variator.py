@@ -231,6 +231,8 @@ class Variator(BatchMethods):
         why = beyond_capacity(problem, sol, follows)
         if how.check_capacity and (why or not sol.converged):
             cap = point_capacity(problem, self.design.creep_limit, self.options, law)
+            if not cap.intervals:  # none at all: NoEquilibriumError says why
+                limit_torque(problem, self.design.creep_limit, self.options, law=law)
             if why or not cap.admits(float(output_torque)):
                 where = (
                     f"clamp {float(problem.clamp_force):g} N"

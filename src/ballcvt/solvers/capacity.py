@@ -22,6 +22,8 @@ __all__ = ["Capacity", "interval_search", "SCAN_POINTS"]
 
 #: Torque steps of the scan of `interval_search` from zero to the capacity bound.
 SCAN_POINTS = 48
+#: Most bisection steps on one change between admissible and inadmissible torques.
+MAX_STEPS = 60
 #: Smallest nonzero scan torque, as a share of the bound [-].
 SCAN_POINTS_FLOOR = 1e-4
 
@@ -85,7 +87,7 @@ def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float):
     top : ndarray
         An upper bound on each point's admissible torques [N m], ``(n,)``.
     rtol : float
-        Width of the final brackets relative to ``top`` [-].
+        Width of the final brackets relative to the ends they bracket [-].
 
     Returns
     -------
@@ -107,12 +109,14 @@ def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float):
     good = np.where(ok[i, j], j, j + 1)
     bad = np.where(ok[i, j], j + 1, j)
     a, b, x = grid[i, good], grid[i, bad], creep[i, good]
-    steps = int(np.ceil(np.log2(np.max(np.diff(_scan_shares())) / rtol))) if i.size else 0
-    for _ in range(steps):
-        mid = 0.5 * (a + b)
-        got = admissible(replace(flat.take(i), output_torque=mid), x)
-        a, b = np.where(got.ok, mid, a), np.where(got.ok, b, mid)
-        x = np.where(got.ok[:, None], got.creep, x)
+    for _ in range(MAX_STEPS):  # to rtol of the end itself (an end may lie near zero)
+        act = np.flatnonzero(np.abs(b - a) > rtol * np.maximum(a, b))
+        if act.size == 0:
+            break
+        mid = 0.5 * (a[act] + b[act])
+        got = admissible(replace(flat.take(i[act]), output_torque=mid), x[act])
+        a[act], b[act] = np.where(got.ok, mid, a[act]), np.where(got.ok, b[act], mid)
+        x[act] = np.where(got.ok[:, None], got.creep, x[act])
     edge = np.full(grid.shape, np.nan)
     edge[i, j] = a
     zero = np.where(scan.converged.reshape(grid.shape)[:, :1], creep[:, 0], np.nan)
@@ -143,7 +147,8 @@ def _assemble(ok, grid, edge):
             found[r].append((start, grid[r, -1]))
     out = np.full((n, max([1, *map(len, found)]), 2), np.nan)
     for r, spans in enumerate(found):
-        out[r, : len(spans)] = spans
+        if spans:
+            out[r, : len(spans)] = spans
     return out
 
 

@@ -31,7 +31,7 @@ __all__ = [
 #: solver meets its residual tolerance (``SolverOptions.tol``, 1e-11 on dimensionless
 #: torques), which leaves ``T_0`` uncertain to some 1e-10 of itself: a tighter tolerance
 #: let the fixed point wander in that noise and fail points that had converged.
-CLAMP_RTOL = 1e-9
+CLAMP_RTOL = 1e-10
 #: Fixed-point iterations allowed for a law that senses the input torque.
 MAX_CLAMP_ITERATIONS = 30
 

@@ -108,11 +108,13 @@ def limit_torque(
     Returns
     -------
     float
+        The largest admissible torque. Under a torque-following law the admissible
+        torques need not start at zero (`ballcvt.solvers.capacity.Capacity`).
 
     Raises
     ------
     NoEquilibriumError
-        If no admissible equilibrium exists even at zero output torque.
+        If no admissible equilibrium exists (even at zero output torque).
     """
     torque = float(limit_torque_batch(problem, creep_limit, options, rtol, law=law))
     if not np.isnan(torque):
@@ -129,7 +131,8 @@ def limit_torque(
     else:
         best = solve_point(zero, options)
     where = (
-        f"ratio {float(problem.ratio):g}, clamp_force {float(problem.clamp_force):g} N, "
+        f"ratio {float(problem.ratio):g}, clamp_force {float(zero.clamp_force):g} N"
+        f"{f' by the {law.name} law at zero torque' if _follows_torque(law) else ''}, "
         f"input speed {float(problem.input_speed):g} rad/s"
     )
     if best.converged:

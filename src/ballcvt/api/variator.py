@@ -20,6 +20,7 @@ from ..params.io import load_builtin
 from ..params.models import ARCHITECTURES, Design, Fluid
 from ..results.planetary import PlanetaryResult
 from ..results.point import OperatingResult, make_result
+from ..solvers.capacity import Capacity
 from ..solvers.clamped import capacity_basis, solve_clamped
 from ..solvers.limit import limit_torque
 from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum
@@ -271,15 +272,48 @@ class Variator(BatchMethods):
         creep_limit : float, optional
             Largest admissible ``|C|``; ``design.creep_limit`` by default.
         """
+        problem, law, c_lim = self._capacity_basis(
+            ratio, clamp_force, clamp_law, (input_speed, input_speed_rpm), creep_limit
+        )
+        return limit_torque(problem, c_lim, self.options, law=law)
+
+    def capacity(
+        self,
+        ratio: float,
+        *,
+        clamp_force: float | None = None,
+        clamp_law=None,
+        input_speed: float | None = None,
+        input_speed_rpm: float | None = None,
+        creep_limit: float | None = None,
+    ) -> Capacity:
+        """The admissible output torques as intervals (docs/model.md §8, §11).
+
+        Parameters as in `limit_torque`. Under a constant force the one interval runs from
+        zero to `limit_torque`; under a loading cam with a small preload the admissible
+        torques may start above zero, or form two intervals. Empty when none is
+        admissible (`limit_torque` then says why).
+
+        Returns
+        -------
+        Capacity
+            ``intervals`` ``((lo, hi), ...)`` [N m]; ``limit`` the limiting torque when the
+            only interval starts at zero.
+        """
+        problem, law, c_lim = self._capacity_basis(
+            ratio, clamp_force, clamp_law, (input_speed, input_speed_rpm), creep_limit
+        )
+        return point_capacity(problem, c_lim, self.options, law=law)
+
+    def _capacity_basis(self, ratio, clamp_force, clamp_law, speeds, creep_limit):
+        """(problem at zero torque, force-following law or None, creep limit) of the
+        capacity at a point (`ballcvt.solvers.clamped.capacity_basis`)."""
         c_lim = self.design.creep_limit if creep_limit is None else float(creep_limit)
         if not 0.0 < c_lim < 1.0:
             raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
         law = self.clamp_law(clamp_law, clamp_force)
         start = ConstantClamp(1.0) if law.optimises else law
-        problem, law, c_lim = capacity_basis(
-            self._problem(ratio, 0.0, start, input_speed, input_speed_rpm), law, c_lim
-        )
-        return limit_torque(problem, c_lim, self.options, law=law)
+        return capacity_basis(self._problem(ratio, 0.0, start, *speeds), law, c_lim)
 
     # many parameters: what is computed, in the user's quantities (ratio, torque, force
     # or law, speed in rad/s or rpm), then one settings object; **legacy: old keywords.

@@ -125,6 +125,9 @@ def solve_curves(curves: OperatingRows, torque, limit=None, callback=None) -> di
     than constant the force the law sets at each point is returned as ``clamp_force``,
     ``(m, n_T)``.
 
+    A point is beyond the capacity (status 1) when its torque lies outside every admissible
+    interval of its curve (`LimitSearch.admits`; bare limits: above the limit).
+
     When the limit search ran here (or was handed over), every point within the limits is
     solved in one batch, each started from the creeps interpolated in torque between the
     curve's solution at its limit and the creeps at zero torque (or the solver's cold
@@ -137,8 +140,10 @@ def solve_curves(curves: OperatingRows, torque, limit=None, callback=None) -> di
     """
     m, nt = curves.size, torque.size
     base, search = limit_search_curves(curves, callback, limit)
-    limit = search.torque if search is not None else limit
-    within = torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None]
+    if search is not None:  # within an admissible interval (a cam's need not start at 0)
+        limit, within = search.torque, search.admits(torque)
+    else:
+        within = torque[None, :] <= np.nan_to_num(limit, nan=-1.0)[:, None]
     state = {
         "creep": np.full((m, nt, base.layout.n_contacts), np.nan),
         "force": np.broadcast_to(base.clamp_force[:, None], (m, nt)).copy(),

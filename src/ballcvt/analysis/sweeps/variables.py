@@ -31,9 +31,13 @@ VARIABLES = {
     "axial_force": ("N", "axial thrust on each disc n F_N0 sin(theta_0)"),
     "input_speed": ("rad/s", "input speed omega_0"),
     "input_speed_rpm": ("rpm", "input speed omega_0"),
-    "limit_torque": ("N m", "limiting output torque (all |creep| <= creep_limit)"),
+    "limit_torque": (
+        "N m",
+        "largest admissible output torque (all |creep| <= creep_limit; status 1 marks "
+        "the torques beyond the capacity, also below it under a cam with a small preload)",
+    ),
     "eta_at_limit": ("1", "overall efficiency (Eq. 38) at the limiting output torque"),
-    "status": ("1", "point status: 0 converged, 1 beyond limiting torque, 2 not converged"),
+    "status": ("1", "point status: 0 converged, 1 beyond the traction capacity, 2 not converged"),
     "iterations": ("1", "solver iterations (residual-and-Jacobian evaluations)"),
     "residual_norm": ("1", "max |residual| of the equilibrium at the solution"),
     "eta": ("1", "overall efficiency (Eq. 38)"),

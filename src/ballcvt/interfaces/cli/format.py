@@ -71,8 +71,15 @@ def limit_table(data: dict) -> str:
         if data["clamp_law"] == "constant"
         else f"{data['clamp_law']} clamping law"
     )
+    spans = data.get("capacity_intervals") or [[0.0, data["limit_torque"]]]
+    head = (
+        f"limiting output torque {data['limit_torque']:.2f} N m"
+        if len(spans) == 1 and spans[0][0] == 0.0
+        else "admissible output torques "
+        + " or ".join(f"{lo:.2f} to {hi:.2f} N m" for lo, hi in spans)
+    )
     return (
-        f"limiting output torque {data['limit_torque']:.2f} N m  ({data['architecture']} "
+        f"{head}  ({data['architecture']} "
         f"idler, ratio {data['ratio']:g}, {clamp}, "
         f"{data['input_speed_rpm']:g} rpm, |creep| <= {data['creep_limit']:g})"
     )

@@ -15,7 +15,9 @@ def add_parser(subparsers) -> None:
         "limiting output torque at a ratio, clamp and speed",
         "The largest output torque with a converged equilibrium and every abs(creep) <= "
         "the creep limit (docs/model.md section 8); under the cam law also every peak "
-        "pressure <= the design's max_pressure (section 11).",
+        "pressure <= the design's max_pressure (section 11). Where the admissible torques "
+        "do not run from zero to it (a cam with a small preload) they are shown as "
+        "intervals (JSON: capacity_intervals, [[lo, hi], ...] in N m).",
         "ballcvt limit --arch single --ratio 2 --clamp 2000 --speed 2000",
     )
     o.add(p, "arch", "ratio", *o.CLAMP_OPTIONS, "speed", "creep-limit", *o.FLUID_OPTIONS, "json")
@@ -26,11 +28,13 @@ def run(args) -> int:
     v = o.variator(args)
     c_lim = v.design.creep_limit if args.creep_limit is None else args.creep_limit
     law = o.law(args)
-    t = v.limit_torque(
-        ratio=args.ratio, **law, input_speed_rpm=o.rpm(args.speed), creep_limit=c_lim
-    )
+    where = {"input_speed_rpm": o.rpm(args.speed), "creep_limit": c_lim}
+    cap = v.capacity(args.ratio, **law, **where)
+    if not cap.intervals:  # none admissible: the limit search says why
+        v.limit_torque(args.ratio, **law, **where)
     data = {
-        "limit_torque": t,
+        "limit_torque": cap.largest,
+        "capacity_intervals": [list(span) for span in cap.intervals],
         "architecture": args.arch,
         "ratio": args.ratio,
         "clamp_law": args.clamp_law,

@@ -17,8 +17,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
+from ..errors import NoEquilibriumError
+from .clamped import pressure_bound_force, solve_clamped
+from .point import SolverOptions, solve_point
 
-__all__ = ["Capacity", "interval_search", "SCAN_POINTS"]
+__all__ = ["Capacity", "interval_search", "no_equilibrium_error", "SCAN_POINTS"]
 
 #: Torque steps of the scan of `interval_search` from zero to the capacity bound.
 SCAN_POINTS = 48
@@ -161,3 +164,68 @@ def _top_creep(ok, creep, ends):
         if ok[i[k], j[k]] and not ok[i[k], -1]:
             out[i[k]] = x[k]
     return out
+
+
+def no_equilibrium_error(
+    problem: EquilibriumProblem, creep_limit: float, options: SolverOptions, law=None
+) -> NoEquilibriumError:
+    """Why no output torque of ``problem`` is admissible, as the error to raise.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        One operating point (its ``output_torque`` is ignored).
+    creep_limit : float
+        ``C_lim`` [-].
+    options : SolverOptions
+        Solver options.
+    law : clamping law, optional
+        A torque-following law; by default the problem's constant ``clamp_force``.
+
+    Returns
+    -------
+    NoEquilibriumError
+        Naming the point, its force at zero torque and what failed there.
+    """
+    zero = replace(problem, output_torque=np.asarray(0.0))
+    if law is not None:
+        zero, best = solve_clamped(zero, law, lambda p, x: solve_point(p, options, x))
+    else:
+        best = solve_point(zero, options)
+    force = float(zero.clamp_force)
+    where = (
+        f"ratio {float(problem.ratio):g}, clamp_force {force:g} N"
+        f"{f' by the {law.name} law at zero torque' if law is not None else ''}, "
+        f"input speed {float(problem.input_speed):g} rad/s"
+    )
+    if law is not None and force > float(pressure_bound_force(zero, zero.design.max_pressure)):
+        why = (
+            f"the {law.name} law's clamping force {force:.4g} N already exceeds the "
+            f"pressure limit max_pressure = {zero.design.max_pressure:g} Pa"
+        )
+    elif best.converged and law is None:
+        why = (
+            f"its creep {float(np.max(np.abs(best.state.creep))):.3g} already exceeds "
+            f"creep_limit {creep_limit:g}: the drive's own spin and bearing drag use up "
+            "its traction"
+        )
+    elif law is None:
+        why = (
+            "the traction this clamping force can transmit at this speed does not carry "
+            f"the drive's own drag; raise clamp_force ({best.message})"
+        )
+    else:
+        at_zero = (
+            f"at zero torque its creep is {float(np.max(np.abs(best.state.creep))):.3g}"
+            if best.converged
+            else f"at zero torque: {best.message}"
+        )
+        return NoEquilibriumError(
+            f"no admissible equilibrium at any output torque ({where}): the {law.name} "
+            f"law's force does not carry the torque within creep_limit {creep_limit:g} "
+            f"({at_zero}); a law that clamps harder (a cam: a larger preload or a smaller "
+            "ramp angle) would"
+        )
+    return NoEquilibriumError(
+        f"no admissible equilibrium even at zero output torque ({where}): {why}"
+    )

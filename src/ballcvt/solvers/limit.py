@@ -16,13 +16,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
-from ..errors import NoEquilibriumError
 from ..model.traction.base import traction_rises_with_creep
-from .capacity import interval_search
+from .capacity import interval_search, no_equilibrium_error
 from .clamped import pressure_bound_force, solve_clamped, with_clamp
 from .newton import initial_creep, solve_batch, solve_pinned
 from .peak import peak_limits
-from .point import SolverOptions, solve_point
+from .point import SolverOptions
 
 __all__ = [
     "limit_torque",
@@ -119,35 +118,8 @@ def limit_torque(
     torque = float(limit_torque_batch(problem, creep_limit, options, rtol, law=law))
     if not np.isnan(torque):
         return torque
-    zero = replace(problem, output_torque=np.asarray(0.0))
-    if _follows_torque(law):
-        zero, best = solve_clamped(zero, law, lambda p, x: solve_point(p, options, x))
-        if float(zero.clamp_force) > float(pressure_bound_force(zero, zero.design.max_pressure)):
-            raise NoEquilibriumError(
-                f"no admissible equilibrium even at zero output torque: the {law.name} law's "
-                f"clamping force {float(zero.clamp_force):.4g} N already exceeds the pressure "
-                f"limit max_pressure = {zero.design.max_pressure:g} Pa"
-            )
-    else:
-        best = solve_point(zero, options)
-    where = (
-        f"ratio {float(problem.ratio):g}, clamp_force {float(zero.clamp_force):g} N"
-        f"{f' by the {law.name} law at zero torque' if _follows_torque(law) else ''}, "
-        f"input speed {float(problem.input_speed):g} rad/s"
-    )
-    if best.converged:
-        why = (
-            f"its creep {float(np.max(np.abs(best.state.creep))):.3g} already exceeds "
-            f"creep_limit {creep_limit:g}: the drive's own spin and bearing drag use up "
-            "its traction"
-        )
-    else:
-        why = (
-            "the traction this clamping force can transmit at this speed does not carry "
-            f"the drive's own drag; raise clamp_force ({best.message})"
-        )
-    raise NoEquilibriumError(
-        f"no admissible equilibrium even at zero output torque ({where}): {why}"
+    raise no_equilibrium_error(
+        problem, creep_limit, options, law if _follows_torque(law) else None
     )
 
 

@@ -218,9 +218,20 @@ class Variator(BatchMethods):
                 _speed(input_speed, input_speed_rpm),
                 how.check_capacity,
             )
-        law, name = self._resolve(
-            ratio, output_torque, clamp_force, clamp_law, input_speed, input_speed_rpm
-        )
+        try:
+            law, name = self._resolve(
+                ratio, output_torque, clamp_force, clamp_law, input_speed, input_speed_rpm
+            )
+        except TractionLimitError:  # the optimiser found no force: say the capacity
+            speeds = {"input_speed": input_speed, "input_speed_rpm": input_speed_rpm}
+            cap = self.capacity(ratio, clamp_force=clamp_force, clamp_law=clamp_law, **speeds)
+            raise TractionLimitError(
+                float(output_torque),
+                cap.largest,
+                f" at ratio {ratio:g}, optimal clamping law: no clamping force up to the "
+                "pressure limit keeps every creep within creep_limit",
+                "" if cap.limit == cap.largest else cap.describe(),
+            ) from None
         problem = self._problem(ratio, output_torque, law, input_speed, input_speed_rpm)
         follows = not isinstance(law, ConstantClamp)
         if follows:

@@ -7,7 +7,7 @@ from .._lazy import lazy_exports
 #: Public name -> the submodule that defines it (loaded on first use: `ballcvt._lazy`).
 _EXPORTS = {
     "traction_ceiling": ".capacity",
-    "capacity": ".capacity",
+    "torque_capacity": ".capacity",
     "Capacity": ".capacity",
     "kinematic_spin": ".kinematics",
     "ratio_tilt_curve": ".kinematics",
@@ -21,7 +21,7 @@ __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
 
 __all__ = [
     "traction_ceiling",
-    "capacity",
+    "torque_capacity",
     "Capacity",
     "ratio_tilt_curve",
     "kinematic_spin",

@@ -11,10 +11,10 @@ from ..solvers.clamped import capacity_basis
 from ..solvers.limit import limit_search, saturated_traction
 from ..solvers.options import SolverOptions
 
-__all__ = ["traction_ceiling", "capacity", "Capacity"]
+__all__ = ["traction_ceiling", "torque_capacity", "Capacity"]
 
 
-def capacity(
+def torque_capacity(
     drive,
     ratio: float,
     law,

@@ -18,7 +18,7 @@ beyond the traction capacity (``status`` 1) hold the value at the last admissibl
 of their ratio and speed (constant extrapolation along the torque axis); ``status`` and
 ``limit_torque`` say where that is, and a system model should saturate the torque there.
 Under a loading cam with a small preload the admissible torques may start above zero or
-leave a gap (`ballcvt.analysis.capacity`): only the points outside every admissible
+leave a gap (`ballcvt.analysis.torque_capacity`): only the points outside every admissible
 interval have ``status`` 1; below the first one the value at its start is held, and across
 a gap the values are interpolated. The CSV keeps NaN.
 """

@@ -181,9 +181,11 @@ class Variator(BatchMethods):
             Input speed ``omega_0`` [rad/s]; or give ``input_speed_rpm`` [rpm].
         settings : SolveSettings, optional
             ``check_capacity`` (default True): a torque whose equilibrium has a creep above
-            ``design.creep_limit``, or has none, raises `TractionLimitError` with the limit;
-            so does, under a torque-following law, a force whose peak pressure exceeds
-            ``design.max_pressure``. ``mode`` (`ballcvt.model.modes.OperatingMode`, or its
+            ``design.creep_limit`` raises `TractionLimitError` naming the contact and its
+            creep, with the admissible torques (`capacity`); so does, under a
+            torque-following law, a force whose peak pressure exceeds
+            ``design.max_pressure``, and a torque with no equilibrium outside them.
+            ``mode`` (`ballcvt.model.modes.OperatingMode`, or its
             name in `ballcvt.registry.OPERATING_MODES`, e.g.
             ``"disc2_held_carrier_drives"``; docs/model.md §13): which member is held and
             which drives; then
@@ -272,6 +274,9 @@ class Variator(BatchMethods):
         creep_limit: float | None = None,
     ) -> float:
         """Largest admissible output torque (docs/model.md §8, §11) [N m].
+
+        Under a loading cam with a small preload the admissible torques need not run from
+        zero to it: `capacity` gives them as intervals.
 
         Parameters
         ----------

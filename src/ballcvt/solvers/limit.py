@@ -4,9 +4,11 @@ The traction law saturates (``mu -> a + tau_L0 A / F_N``), so creep runs away ov
 narrow torque band instead of stopping at a sharp maximum. The limiting torque is the
 largest ``T_2`` with a converged equilibrium and every ``|C| <= C_lim``. Under a constant
 clamping force it is found directly, by holding a disc creep at ``C_lim`` and solving for
-the output torque (`limit_search`, `ballcvt.solvers.newton.solve_pinned`); otherwise, and as
-the fallback, by bisection on ``T_2``, each trial started from the solution at the highest
-torque known to be admissible (continuation).
+the output torque (`limit_search`, `ballcvt.solvers.newton.solve_pinned`); as the
+fallback, by bisection on ``T_2``, each trial started from the solution at the highest
+torque known to be admissible (continuation). Under a torque-following clamping law the
+admissible torques are found as intervals (`ballcvt.solvers.capacity`), and the limit is
+the largest of them.
 """
 
 from __future__ import annotations
@@ -296,7 +298,10 @@ def limit_search(
     the other one for the points where that answer is inadmissible (the other disc's creep
     beyond the limit). The creeps grow with the torque, so a non-negative torque found so,
     with every creep within the limit, is the largest admissible one, exact to the solver
-    tolerance. The other points, and every point under a torque-following law, are solved
+    tolerance. Under a torque-following law the admissible torques need not start at zero
+    nor be one range (a cam with a small preload): they are scanned and their ends
+    bisected (`ballcvt.solvers.capacity.interval_search`), ``torque`` is the largest and
+    ``intervals`` holds them all. The other points of a constant force are solved
     at ``T_2 = 0``: inadmissible there, they have no limit (NaN); otherwise the pinned
     solve is tried again from those creeps and, failing that (a non-monotone creep, a
     failed solve), the bisection on ``T_2`` of `limit_torque_bisection` decides. The two

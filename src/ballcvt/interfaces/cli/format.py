@@ -23,8 +23,9 @@ _ROWS = [  # (label, attribute, unit, scale, format)
 ]
 
 
-def point_table(r: OperatingResult) -> str:
-    """Readable summary of an operating point."""
+def point_table(r: OperatingResult, efficiency: str = "") -> str:
+    """Readable summary of an operating point; ``efficiency`` replaces its efficiency
+    line (a planetary point's carrier frame, by the way its power flows)."""
     names = list(r.contacts)
     w = 12
     lines = [
@@ -55,7 +56,8 @@ def point_table(r: OperatingResult) -> str:
             else ""
         )
         + f"  total {ls['total']:.2f}",
-        f"efficiency  overall {r.eta:.5f} (Eq. 38)  {r.eta_loss:.5f} (Eq. 39)  "
+        efficiency
+        or f"efficiency  overall {r.eta:.5f} (Eq. 38)  {r.eta_loss:.5f} (Eq. 39)  "
         f"speed {r.eta_speed:.5f}  torque {r.eta_torque:.5f}",
         f"solver      {'converged' if r.converged else 'NOT CONVERGED'}, max|residual| "
         f"{r.residual_norm:.1e}, {r.iterations} evaluations, quadrature {r.quadrature}",
@@ -127,7 +129,8 @@ def planetary_table(r: PlanetaryResult) -> str:
         f"{r.torque_ratio:+.4f}",
         (
             f"efficiency  power out / power in {r.eta:.5f}   1 - losses / power in "
-            f"{r.eta_loss:.5f}"
+            f"{r.eta_loss:.5f}   (in through {r.input_member}, out through "
+            f"{r.output_member})"
             if not r.geared_neutral
             else "geared neutral: the driven member is at rest, so the efficiency says nothing; "
             f"read the torque ratio ({r.torque_ratio:+.4f})"
@@ -138,6 +141,15 @@ def planetary_table(r: PlanetaryResult) -> str:
         "in the carrier frame"
         + (" (mirrored: speeds and torques negated)" if r.sign < 0 else "")
         + ":",
-        point_table(r.relative),
+        point_table(r.relative, _variator_line(r)),
     ]
     return "\n".join(lines)
+
+
+def _variator_line(r: PlanetaryResult) -> str:
+    """The carrier-frame efficiency line of a planetary point, by its power flow."""
+    var = r.variator_efficiency
+    return (
+        f"efficiency  variator {var['eta']:.5f} ({r.power_flow.split(' (')[0]})  "
+        f"speed {var['speed']:.5f}  torque {var['torque']:.5f}"
+    )

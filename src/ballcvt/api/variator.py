@@ -256,6 +256,7 @@ class Variator(BatchMethods):
         input_speed: float | None = None,
         input_speed_rpm: float | None = None,
         creep_limit: float | None = None,
+        mode=None,
     ) -> float:
         """Largest admissible output torque (docs/model.md §8, §11) [N m].
 
@@ -268,10 +269,24 @@ class Variator(BatchMethods):
             it).
         creep_limit : float, optional
             Largest admissible ``|C|``; ``design.creep_limit`` by default.
+        mode : OperatingMode or str, optional
+            As in `solve`: in a planetary mode, the largest load torque ``|L|`` of the
+            driven member braking it, to 1e-3 relative, the speed that of the driver
+            (`ballcvt.api.planetary.limit_in_mode`; NaN where even zero load is not
+            admissible).
         """
         c_lim = self.design.creep_limit if creep_limit is None else float(creep_limit)
         if not 0.0 < c_lim < 1.0:
             raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
+        if not resolve_mode(mode).is_default:
+            return planetary.limit_in_mode(
+                self,
+                resolve_mode(mode),
+                ratio,
+                {"clamp_force": clamp_force, "clamp_law": clamp_law},
+                _speed(input_speed, input_speed_rpm),
+                c_lim,
+            )
         law = self.clamp_law(clamp_law, clamp_force)
         start = ConstantClamp(1.0) if law.optimises else law
         problem, law, c_lim = capacity_basis(

@@ -158,14 +158,16 @@ def limit_load_batch(
     rtol: float = 1e-3,
     max_steps: int = 40,
 ) -> np.ndarray:
-    """Largest load torque of the driven member with every ``|C| <= creep_limit``.
+    """Largest load torque of the driven member with every ``|C| <= creep_limit``
+    (``drive.design.creep_limit``).
 
-    ``point.ratio`` and ``point.driver_speed`` are the batch (``point.load_torque`` is
-    not read: the load is what is searched).
+    ``point.ratio`` and ``point.driver_speed`` are the batch; ``point.load_torque`` only
+    gives the direction of the load searched, by its sign where it is finite and non-zero
+    (an overhauling load, negative to the driven member's speed, has its own capacity).
 
-    The load brakes the driven member: its sign is that of the driven speed at zero load
-    (positive at geared neutral). Bracketed by doubling from the carrier-frame traction
-    ceiling, then bisected to ``rtol`` on all ratios at once (`solve_mode_batch`).
+    Elsewhere the load brakes the driven member: its sign is that of the driven speed at
+    zero load (positive at geared neutral). Bracketed by doubling from the carrier-frame
+    traction ceiling, then bisected to ``rtol`` on all ratios at once (`solve_mode_batch`).
 
     Returns
     -------
@@ -174,9 +176,17 @@ def limit_load_batch(
         the speeds are out of range.
     """
     mode = resolve_mode(mode)
-    ratio = np.ravel(np.asarray(point.ratio, dtype=float))
+    ratio, given, w = (
+        np.ravel(v)
+        for v in np.broadcast_arrays(
+            *(
+                np.asarray(v, dtype=float)
+                for v in (point.ratio, point.load_torque, point.driver_speed)
+            )
+        )
+    )
     n = ratio.size
-    at = replace(point, ratio=ratio)
+    at = replace(point, ratio=ratio, driver_speed=w)
 
     def admissible(load):
         return (
@@ -185,7 +195,10 @@ def limit_load_batch(
         )
 
     zero = solve_mode_batch(drive, mode, replace(at, load_torque=0.0), options)
-    direction = zero.braking_direction(mode)
+    chosen = np.isfinite(given) & (given != 0.0)
+    direction = np.where(
+        chosen, np.sign(np.where(chosen, given, 1.0)), zero.braking_direction(mode)
+    )
     ok0 = zero.status == Status.CONVERGED
     hi = traction_ceiling_torque(
         make_problem(drive, OperatingInputs(ratio, 0.0, point.clamp_force, 1.0))

@@ -73,10 +73,17 @@ def limit_table(data: dict) -> str:
         if data["clamp_law"] == "constant"
         else f"{data['clamp_law']} clamping law"
     )
+    mode = data.get("mode")
+    what = (
+        "limiting output torque"
+        if mode is None
+        else f"limiting load torque of the {mode['driven']} ({mode['label']})"
+    )
     return (
-        f"limiting output torque {data['limit_torque']:.2f} N m  ({data['architecture']} "
+        f"{what} {data['limit_torque']:.2f} N m  ({data['architecture']} "
         f"idler, ratio {data['ratio']:g}, {clamp}, "
-        f"{data['input_speed_rpm']:g} rpm, |creep| <= {data['creep_limit']:g})"
+        f"{data['input_speed_rpm']:g} rpm{'' if mode is None else ' driver'}, "
+        f"|creep| <= {data['creep_limit']:g})"
     )
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..._version import __version__
 from . import options as o
 from .format import limit_table
+from .modes import add_mode_options, mode_of
 
 
 def add_parser(subparsers) -> None:
@@ -19,6 +20,7 @@ def add_parser(subparsers) -> None:
         "ballcvt limit --arch single --ratio 2 --clamp 2000 --speed 2000",
     )
     o.add(p, "arch", "ratio", *o.CLAMP_OPTIONS, "speed", "creep-limit", *o.FLUID_OPTIONS, "json")
+    add_mode_options(p, "the limit is the driven member's largest load torque")
 
 
 def run(args) -> int:
@@ -26,8 +28,9 @@ def run(args) -> int:
     v = o.variator(args)
     c_lim = v.design.creep_limit if args.creep_limit is None else args.creep_limit
     law = o.law(args)
+    mode = mode_of(args)
     t = v.limit_torque(
-        ratio=args.ratio, **law, input_speed_rpm=o.rpm(args.speed), creep_limit=c_lim
+        ratio=args.ratio, **law, input_speed_rpm=o.rpm(args.speed), creep_limit=c_lim, mode=mode
     )
     data = {
         "limit_torque": t,
@@ -40,5 +43,7 @@ def run(args) -> int:
         "design": v.design.name,
         "version": __version__,
     }
+    if not mode.is_default:  # the limit is the driven member's load torque
+        data["mode"] = {"label": mode.label, "driven": mode.driven}
     o.emit_json(data) if args.json else o.emit(limit_table(data))
     return 0

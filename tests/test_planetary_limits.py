@@ -82,3 +82,35 @@ def test_cli_limit_and_map_take_the_mode(capsys, tmp_path):
     assert main(["map", "--held", "disc0", "--driver", "carrier", "--speed", "600",
                  "--n-ratio", "4", "--n-torque", "3", "--out", str(out), "--quiet"]) == 0
     assert {p.name for p in out.iterdir()} >= {"map.nc", "map.csv", "map.png"}
+
+
+def test_cycle_in_a_mode(v, tmp_path):
+    """A duty cycle with disc 2 held and the carrier driving at 600 rpm: every step that
+    runs meets the driven speed after the creep correction, equals a point solve, and the
+    energy adds up; overloads are flagged beyond the capacity; the CLI takes the mode."""
+    from ballcvt.api import cycle_from_arrays
+    from ballcvt.units import rpm_to_rad_s
+    w = rpm_to_rad_s(np.array([0.0, 50.0, 120.0, 200.0, 200.0]))
+    load = np.array([0.0, 20.0, 40.0, 60.0, 400.0])
+    c = cycle_from_arrays(time=np.arange(5.0), output_speed=w, output_torque=load)
+    res = v.run_cycle(c, clamp_force=F, target_input_speed_rpm=600, mode=CARRIER_DRIVES)
+    st = res.steps
+    assert st.flag.tolist() == ["idle", "ok", "ok", "ok", "beyond_capacity"]
+    ok = st.flag == "ok"
+    assert np.allclose(rpm_to_rad_s(st.disc0_speed_rpm[ok]), w[ok], rtol=1e-6)
+    r = v.solve(float(st.ratio[2]), 40.0, clamp_force=F, input_speed_rpm=600,
+                mode=CARRIER_DRIVES)
+    assert st.eta[2] == pytest.approx(r.eta, abs=1e-9)
+    assert st.input_power[2] == pytest.approx(r.input_power, rel=1e-9)
+    s = res.summary
+    dt = st.duration[ok]
+    assert s["energy_in_J"] == pytest.approx(float((st.input_power[ok] * dt).sum()))
+    assert 0 < s["efficiency"] < 1
+    assert s["energy_in_J"] - s["energy_out_J"] == pytest.approx(s["losses_J"]["total"],
+                                                                 rel=1e-8)
+    path = tmp_path / "c.csv"
+    path.write_text("time [s],output_speed [rpm],output_torque [N m]\n0,0,0\n1,50,20\n"
+                    "2,120,40\n")
+    assert main(["cycle", str(path), "--held", "disc2", "--driver", "carrier",
+                 "--target-speed", "600", "--out", str(tmp_path / "o"), "--quiet"]) == 0
+    assert (tmp_path / "o" / "steps.csv").exists()

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis.planetary import mode_map
+from ..analysis.planetary_cycles import ModeCycle, mode_cycle
 from ..errors import ConvergenceError, InputError, NoEquilibriumError, TractionLimitError
 from ..model.architectures import CONTACT_NAMES
 from ..model.modes import OperatingMode
@@ -24,6 +25,7 @@ __all__ = [
     "planetary_capacity",
     "limit_in_mode",
     "map_in_mode",
+    "cycle_in_mode",
 ]
 
 
@@ -164,3 +166,16 @@ def map_in_mode(variator, mode: OperatingMode, grid, driver_speed, clamp: dict):
     return mode_map(
         variator, mode, grid.ratios(), loads, driver_speed=driver_speed, clamp_force=force
     )
+
+
+def cycle_in_mode(variator, mode: OperatingMode, cycle, how, clamp: dict):
+    """`Variator.run_cycle` in a planetary mode (`ballcvt.analysis.planetary_cycles`):
+    the driver held at the target input speed of ``how`` (a `CycleSettings`); ``clamp``
+    holds ``clamp_force`` and ``clamp_law``."""
+    if how.strategy != "target-input-speed":
+        raise InputError("strategy", how.strategy, "target-input-speed in a planetary mode")
+    driver_speed = how.target()
+    if driver_speed is None:
+        raise InputError("target_input_speed", None, "a speed for the driver in a planetary mode")
+    force = _constant_force(variator, clamp.get("clamp_force"), clamp.get("clamp_law"))
+    return mode_cycle(variator, cycle, ModeCycle(mode, float(driver_speed), force))

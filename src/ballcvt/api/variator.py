@@ -395,6 +395,7 @@ class Variator(BatchMethods):
         clamp_force: float | None = None,
         clamp_law=None,
         settings: CycleSettings | None = None,
+        mode=None,
         **legacy: Any,
     ):
         """Run this drive over a duty cycle (see `ballcvt.analysis.cycles.run_cycle`).
@@ -409,6 +410,10 @@ class Variator(BatchMethods):
             Strategy (``"target-input-speed"`` or ``"max-efficiency"``), the target input
             speed [rad/s] or [rpm], candidate ratios per step, the ratio range [-], progress
             bar and workers.
+        mode : OperatingMode or str, optional
+            As in `solve`: in a planetary mode the cycle's output is the driven member
+            and the driver turns at the target input speed
+            (`ballcvt.api.planetary.cycle_in_mode`; output-side cycles, constant clamping).
         **legacy
             The fields of `CycleSettings` as keywords (``strategy=...``), as before it.
 
@@ -422,6 +427,9 @@ class Variator(BatchMethods):
         how = merge_settings(CycleSettings, settings, legacy, "run_cycle")
         if not isinstance(cycle, Cycle):
             cycle = read_cycle(cycle)
+        if not resolve_mode(mode).is_default:
+            clamp = {"clamp_force": clamp_force, "clamp_law": clamp_law}
+            return planetary.cycle_in_mode(self, resolve_mode(mode), cycle, how, clamp)
         return run_cycle(
             self,
             cycle,

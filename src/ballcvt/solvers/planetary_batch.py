@@ -17,7 +17,7 @@ from ..model.architectures import contact_layout
 from ..model.inertia import max_carrier_speed
 from ..model.modes import MEMBERS, OperatingMode, member_torques, resolve_mode
 from ..params.drive import Drive
-from ..performance.efficiency import power_losses
+from ..performance.efficiency import LOSS_KINDS, loss_breakdown, power_losses
 from ..status import Status
 from .limit import traction_ceiling_torque
 from .newton import initial_creep, solve_batch
@@ -31,7 +31,8 @@ __all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch"]
 class ModeBatch:
     """Outcome of `solve_mode_batch`; arrays ``(n,)`` (speeds and torques ``(3, n)`` in
     the order of `ballcvt.model.modes.MEMBERS`), NaN where ``status`` (a
-    `ballcvt.status.Status` code) is not ``CONVERGED``."""
+    `ballcvt.status.Status` code) is not ``CONVERGED``; ``losses`` [W] is ``(k, n)``, one
+    row per kind of `ballcvt.performance.efficiency.LOSS_KINDS` (``loss`` is its total)."""
 
     status: np.ndarray
     speeds: np.ndarray
@@ -40,6 +41,7 @@ class ModeBatch:
     actual_ratio: np.ndarray
     max_creep: np.ndarray
     circulating_power: np.ndarray
+    losses: np.ndarray
 
     @property
     def powers(self) -> np.ndarray:
@@ -100,6 +102,7 @@ def solve_mode_batch(
     x = np.full((n, layout.n_contacts), np.nan)
     speeds, torques = np.full((3, n), np.nan), np.full((3, n), np.nan)
     loss, circ, big = (np.full(n, np.nan) for _ in range(3))
+    kinds = np.full((len(LOSS_KINDS), n), np.nan)
     settled = np.zeros(n, dtype=bool)
     for _ in range(max_passes):
         sp = mode.speeds(w, tau, check=False)
@@ -133,7 +136,10 @@ def solve_mode_batch(
         for row, m in enumerate(MEMBERS):
             speeds[row, j] = sp[m][todo][fin]
             torques[row, j] = members[m][fin]
-        loss[j] = power_losses(pb, st).total[fin]
+        by_kind = loss_breakdown(power_losses(pb, st))
+        loss[j] = by_kind["total"][fin]
+        for row, kind in enumerate(LOSS_KINDS):
+            kinds[row, j] = by_kind[kind][fin]
         circ[j] = np.abs(st.input_torque * pb.input_speed)[fin]
         big[j] = np.max(np.abs(st.creep[fin]), axis=-1)
         tau[todo] = np.where(sol.converged, new, tau[todo])
@@ -147,6 +153,7 @@ def solve_mode_batch(
         np.where(keep, tau, np.nan),
         np.where(keep, big, np.nan),
         np.where(keep, circ, np.nan),
+        np.where(keep, kinds, np.nan),
     )
 
 

@@ -1,4 +1,4 @@
-"""The planetary-mode options shared by ``point``, ``limit`` and ``map`` (docs/model.md §13):
+"""The planetary-mode options shared by ``point``, ``limit``, ``map`` and ``cycle`` (docs/model.md §13):
 ``--held``, ``--driver``, ``--held-speed`` and the carrier effects."""
 
 from __future__ import annotations
@@ -13,22 +13,25 @@ from . import options as o
 __all__ = ["add_mode_options", "mode_of"]
 
 
-def add_mode_options(p, what: str = "--torque is the driven member's load torque") -> None:
+def add_mode_options(
+    p, what: str = "--torque is the driven member's load torque", speed: str = "--speed"
+) -> None:
     """Add ``--held``, ``--driver``, ``--held-speed``, ``--no-centrifugal`` and
-    ``--no-gyroscopic`` to the parser ``p``; ``what`` says what the torque means then."""
+    ``--no-gyroscopic`` to the parser ``p``; ``what`` says what the torque means then, and
+    ``speed`` names the option that gives the driver's speed."""
     p.add_argument(
         "--held",
         choices=MEMBERS,
         default="carrier",
         help="member held at zero speed (default: carrier, the paper's drive); "
         f"with another, {what} and "
-        "--speed the driver's speed (docs/model.md section 13)",
+        f"{speed} the driver's speed (docs/model.md section 13)",
     )
     p.add_argument(
         "--driver",
         choices=MEMBERS,
         default="disc0",
-        help="member whose speed --speed gives (default: disc0); the third member is driven",
+        help=f"member whose speed {speed} gives (default: disc0); the third member is driven",
     )
     p.add_argument(
         "--held-speed",

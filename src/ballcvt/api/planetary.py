@@ -140,7 +140,9 @@ def limit_in_mode(variator, mode: OperatingMode, ratio, clamp: dict, driver_spee
     """`Variator.limit_torque` in a planetary mode: the largest load torque ``|L|`` of the
     driven member [N m] with every ``|C| <= creep_limit``, to 1e-3 relative, braking the
     driven member (`limit_load_batch`). ``clamp`` holds ``clamp_force`` and ``clamp_law``,
-    ``driver_speed`` is in [rad/s]; NaN where even zero load is not admissible."""
+    ``driver_speed`` is in [rad/s]. Where even zero load is not admissible: NaN at
+    that ratio of an array, and for a single ratio the zero-load point's error (e.g. an
+    `InputError` for a carrier too fast, `NoEquilibriumError`)."""
     v = variator
     force = _constant_force(v, clamp.get("clamp_force"), clamp.get("clamp_law"))
     design = v.design if creep_limit is None else v.design.replace(creep_limit=creep_limit)
@@ -150,6 +152,8 @@ def limit_in_mode(variator, mode: OperatingMode, ratio, clamp: dict, driver_spee
         ModePoint(np.atleast_1d(np.asarray(ratio, dtype=float)), np.nan, driver_speed, force),
         v.options,
     )
+    if np.ndim(ratio) == 0 and np.isnan(got[0]):  # say why: the zero-load point's error
+        solve_in_mode(v, mode, ratio, 0.0, clamp, driver_speed, True)
     return float(got[0]) if np.ndim(ratio) == 0 else got
 
 

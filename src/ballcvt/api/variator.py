@@ -272,8 +272,8 @@ class Variator(BatchMethods):
         mode : OperatingMode or str, optional
             As in `solve`: in a planetary mode, the largest load torque ``|L|`` of the
             driven member braking it, to 1e-3 relative, the speed that of the driver
-            (`ballcvt.api.planetary.limit_in_mode`; NaN where even zero load is not
-            admissible).
+            (`ballcvt.api.planetary.limit_in_mode`; where even zero load is not
+            admissible, the error of the zero-load point).
         """
         c_lim = self.design.creep_limit if creep_limit is None else float(creep_limit)
         if not 0.0 < c_lim < 1.0:

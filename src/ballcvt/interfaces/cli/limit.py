@@ -44,6 +44,14 @@ def run(args) -> int:
         "version": __version__,
     }
     if not mode.is_default:  # the limit is the driven member's load torque
-        data["mode"] = {"label": mode.label, "driven": mode.driven}
+        data["mode"] = {
+            "label": mode.label,
+            "held": mode.held,
+            "driver": mode.driver,
+            "driven": mode.driven,
+            "held_speed_rpm": args.held_speed,
+            "centrifugal": mode.centrifugal,
+            "gyroscopic": mode.gyroscopic,
+        }
     o.emit_json(data) if args.json else o.emit(limit_table(data))
     return 0

@@ -130,7 +130,18 @@ def _variants(design, tmp):
         "--params": ["--params", "limiting_shear_slope"],
         "--fluid": ["--fluid", "mineral-oil"], "--design": ["--design", str(soft)],
         "--out": ["--out", str(tmp / "f1")], "--json": None})
-    return {"traction-curve": curve, "traction-curve:pmax": curve_p, "fit-fluid": fit,
+    # the planetary-mode options of limit, map and cycle (issue 23)
+    modes = {"--held": ["--held", "disc0"], "--driver": ["--driver", "disc0"],
+             "--no-centrifugal": ["--no-centrifugal"], "--no-gyroscopic": ["--no-gyroscopic"],
+             "--held-speed": ["--held-speed", "30"]}
+    in_mode = ["--held", "disc2", "--driver", "carrier"]
+    limit_mode = (["limit", "--json", *in_mode, "--ratio", "1.5", "--speed", "300"], modes)
+    map_mode = (["map", "--out", str(tmp / "m2"), *small, *in_mode, "--speed", "300"], modes)
+    cycle_mode = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c4"), "--json",
+                   *in_mode], modes)
+    return {"limit:planetary": limit_mode, "map:planetary": map_mode,
+            "cycle:planetary": cycle_mode,
+            "traction-curve": curve, "traction-curve:pmax": curve_p, "fit-fluid": fit,
             "point": point, "point:planetary": planetary, "limit": limit, "clamp": clamp, "map": mapping,
             "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam,
             "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table}

@@ -12,8 +12,9 @@ from ..params.drive import Drive
 from ..solvers.options import SolverOptions
 from ..solvers.planetary import ModePoint
 from ..solvers.planetary_batch import limit_load_batch, solve_mode_batch
+from ..status import Status
 
-__all__ = ["OperatingMode", "mode_kinematics", "mode_curves", "mode_capacity"]
+__all__ = ["OperatingMode", "mode_kinematics", "mode_curves", "mode_capacity", "mode_map"]
 
 
 def _options(drive) -> SolverOptions:
@@ -125,3 +126,97 @@ def mode_capacity(
         ModePoint(ratios, 0.0, driver_speed, clamp_force),
         _options(drive),
     )
+
+
+def mode_map(
+    drive, mode: OperatingMode, ratios, loads, *, driver_speed: float, clamp_force: float
+):
+    """Efficiency map of one mode over ideal ratio x load torque, with its capacity curve.
+
+    The batched counterpart of the carrier-held efficiency map (``ballcvt map``): one
+    `solve_mode_batch` over the whole grid, the capacity by `limit_load_batch`. The loads
+    brake the driven member (sign as in `mode_curves`).
+
+    Parameters
+    ----------
+    drive : Drive or Variator
+        Design (its ``creep_limit`` bounds the capacity), fluid, idler architecture and
+        (optionally) solver ``options``.
+    mode : OperatingMode
+        Held and driving members.
+    ratios : array_like
+        Ideal ratios ``tau_ID`` relative to the carrier [-].
+    loads : array_like or int
+        Load torques of the driven member [N m] (magnitudes), or their number, evenly
+        spaced up to 1.02 x the largest capacity (as the carrier-held map).
+    driver_speed : float
+        Driver speed [rad/s].
+    clamp_force : float
+        ``F_N0`` [N] (constant clamping).
+
+    Returns
+    -------
+    xarray.Dataset
+        On ``ratio`` x ``output_torque`` (the load torque magnitude [N m]): ``eta`` [-]
+        (power out over power in), ``status`` (`ballcvt.status.Status`: 0 converged, 1
+        beyond the creep limit or with no equilibrium above the capacity, 2 no
+        equilibrium, 3 speeds out of range), ``loss`` [W],
+        ``overall_ratio`` [-], ``carrier_speed`` [rad/s], ``max_creep`` [-]; on ``ratio``:
+        ``limit_torque`` [N m] and ``eta_at_limit`` [-].
+    """
+    import xarray as xr
+
+    ratios = np.asarray(ratios, dtype=float)
+    here, opts = Drive(drive.design, drive.fluid, drive.architecture), _options(drive)
+    zero = solve_mode_batch(here, mode, ModePoint(ratios, 0.0, driver_speed, clamp_force), opts)
+    brake = zero.braking_direction(mode)
+    limit = limit_load_batch(here, mode, ModePoint(ratios, brake, driver_speed, clamp_force), opts)
+    at_limit = solve_mode_batch(
+        here, mode, ModePoint(ratios, brake * limit, driver_speed, clamp_force), opts
+    )
+    if np.ndim(loads) == 0:
+        top = 1.02 * float(np.nanmax(limit)) if np.isfinite(limit).any() else 1.0
+        loads = np.linspace(top / int(loads), top, int(loads))
+    loads = np.asarray(loads, dtype=float)
+    r, t = np.meshgrid(ratios, loads, indexing="ij")
+    got = solve_mode_batch(
+        here,
+        mode,
+        ModePoint(r.ravel(), (brake[:, None] * t).ravel(), driver_speed, clamp_force),
+        opts,
+    )
+    drn, drv = MEMBERS.index(mode.driven), MEMBERS.index(mode.driver)
+    shape = r.shape
+    # no equilibrium beyond the capacity: that load is beyond the limit, as in the default map
+    status = got.status.reshape(shape).copy()
+    status[(status == Status.NOT_CONVERGED) & (t > limit[:, None])] = Status.BEYOND_LIMIT
+    with np.errstate(divide="ignore", invalid="ignore"):
+        overall = got.speeds[drn] / got.speeds[drv]
+    grid = ("ratio", "output_torque")
+    ds = xr.Dataset(
+        {
+            "eta": (grid, got.eta.reshape(shape), {"units": "1"}),
+            "status": (grid, status),
+            "loss": (grid, got.loss.reshape(shape), {"units": "W"}),
+            "overall_ratio": (grid, overall.reshape(shape), {"units": "1"}),
+            "carrier_speed": (
+                grid,
+                got.speeds[MEMBERS.index("carrier")].reshape(shape),
+                {"units": "rad/s"},
+            ),
+            "max_creep": (grid, got.max_creep.reshape(shape), {"units": "1"}),
+            "limit_torque": ("ratio", limit, {"units": "N m"}),
+            "eta_at_limit": ("ratio", at_limit.eta, {"units": "1"}),
+        },
+        coords={"ratio": ratios, "output_torque": loads},
+        attrs={
+            "mode": mode.label,
+            "held": mode.held,
+            "driver": mode.driver,
+            "held_speed": mode.held_speed,
+            "driver_speed": float(driver_speed),
+            "clamp_force": float(clamp_force),
+        },
+    )
+    ds["output_torque"].attrs.update(units="N m", long_name="load torque of the driven member")
+    return ds

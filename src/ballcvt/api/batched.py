@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..model.clamping.base import names_fixed_force
+from ..model.modes import resolve_mode
 from ..params.models import Design, Fluid
 from ..solvers.options import SolverOptions
 from ..units import rpm_to_rad_s
@@ -73,6 +74,7 @@ class BatchMethods:
         clamp_law=None,
         workers: int = 1,
         progress: bool | None = None,
+        mode=None,
     ):
         """Efficiency over ideal ratio x output torque, with the limiting-torque curve.
 
@@ -89,6 +91,10 @@ class BatchMethods:
             Processes to use.
         progress : bool, optional
             Progress bars (default: when stderr is a terminal).
+        mode : OperatingMode or str, optional
+            As in `solve`: in a planetary mode, the map over ratio x load torque of the
+            driven member at ``input_speed_rpm`` of the driver, batched
+            (`ballcvt.analysis.planetary.mode_map`; constant clamping only, one process).
 
         Returns
         -------
@@ -96,6 +102,14 @@ class BatchMethods:
             As `sweep`; ``limit_torque`` [N m] is the limit curve, points beyond it have
             status 1.
         """
+        if not resolve_mode(mode).is_default:
+            return planetary.map_in_mode(
+                self,
+                resolve_mode(mode),
+                grid or MapGrid(),
+                rpm_to_rad_s(input_speed_rpm),
+                {"clamp_force": clamp_force, "clamp_law": clamp_law},
+            )
         run = {"workers": workers, "progress": progress}
         clamp = _clamp(clamp_force, clamp_law)
         return grids.efficiency_map(self, grid or MapGrid(), input_speed_rpm, clamp, run)

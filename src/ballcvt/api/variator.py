@@ -272,6 +272,7 @@ class Variator(BatchMethods):
         input_speed: float | None = None,
         input_speed_rpm: float | None = None,
         creep_limit: float | None = None,
+        mode=None,
     ) -> float:
         """Largest admissible output torque (docs/model.md §8, §11) [N m].
 
@@ -287,7 +288,24 @@ class Variator(BatchMethods):
             it).
         creep_limit : float, optional
             Largest admissible ``|C|``; ``design.creep_limit`` by default.
+        mode : OperatingMode or str, optional
+            As in `solve`: in a planetary mode, the largest load torque ``|L|`` of the
+            driven member braking it, to 1e-3 relative, the speed that of the driver
+            (`ballcvt.api.planetary.limit_in_mode`; where even zero load is not
+            admissible, the error of the zero-load point).
         """
+        if not resolve_mode(mode).is_default:
+            c_lim = self.design.creep_limit if creep_limit is None else float(creep_limit)
+            if not 0.0 < c_lim < 1.0:
+                raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
+            return planetary.limit_in_mode(
+                self,
+                resolve_mode(mode),
+                ratio,
+                {"clamp_force": clamp_force, "clamp_law": clamp_law},
+                _speed(input_speed, input_speed_rpm),
+                c_lim,
+            )
         problem, law, c_lim = self._capacity_basis(
             ratio, clamp_force, clamp_law, (input_speed, input_speed_rpm), creep_limit
         )
@@ -432,6 +450,7 @@ class Variator(BatchMethods):
         clamp_force: float | None = None,
         clamp_law=None,
         settings: CycleSettings | None = None,
+        mode=None,
         **legacy: Any,
     ):
         """Run this drive over a duty cycle (see `ballcvt.analysis.cycles.run_cycle`).
@@ -446,6 +465,10 @@ class Variator(BatchMethods):
             Strategy (``"target-input-speed"`` or ``"max-efficiency"``), the target input
             speed [rad/s] or [rpm], candidate ratios per step, the ratio range [-], progress
             bar and workers.
+        mode : OperatingMode or str, optional
+            As in `solve`: in a planetary mode the cycle's output is the driven member
+            and the driver turns at the target input speed
+            (`ballcvt.api.planetary.cycle_in_mode`; output-side cycles, constant clamping).
         **legacy
             The fields of `CycleSettings` as keywords (``strategy=...``), as before it.
 
@@ -459,6 +482,9 @@ class Variator(BatchMethods):
         how = merge_settings(CycleSettings, settings, legacy, "run_cycle")
         if not isinstance(cycle, Cycle):
             cycle = read_cycle(cycle)
+        if not resolve_mode(mode).is_default:
+            clamp = {"clamp_force": clamp_force, "clamp_law": clamp_law}
+            return planetary.cycle_in_mode(self, resolve_mode(mode), cycle, how, clamp)
         return run_cycle(
             self,
             cycle,

@@ -31,8 +31,8 @@ class PlanetaryResult:
     relative : OperatingResult
         The point in the carrier frame, its input disc turning forward: creeps, spins,
         pressures, films, contact forces, losses and validity warnings. Its efficiencies
-        are those of the variator between its discs in that frame; with the power flowing
-        from disc 2 to disc 0 there (`power_flow`) that efficiency is ``1 / eta``.
+        are computed with disc 0 as the input; `variator_efficiency` gives them by the way
+        the power actually crosses the variator.
     sign : float
         +1, or -1 where the carrier-frame point is mirrored (docs/model.md §13): the
         physical relative speeds and torques are ``sign`` times ``relative``'s.
@@ -65,6 +65,7 @@ class PlanetaryResult:
             ("overall ratio", self.overall_ratio, "-"),
             ("torque ratio", self.torque_ratio, "-"),
             ("efficiency", self.eta, "-"),
+            ("input member", self.input_member, ""),
             ("power flow", self.power_flow, ""),
             ("geared neutral", self.geared_neutral, ""),
         ]
@@ -93,6 +94,19 @@ class PlanetaryResult:
     def powers(self) -> dict[str, float]:
         """Power into the drive through each member, ``torque x speed`` [W]."""
         return {m: self.torques[m] * self.speeds[m] for m in MEMBERS}
+
+    @property
+    def input_member(self) -> str:
+        """The member(s) through which power enters the drive, largest first, joined by
+        ``+`` (e.g. ``carrier``, or ``carrier+disc2`` where the load overhauls the driven
+        member); ``none`` at rest."""
+        return _members(self.powers, 1.0)
+
+    @property
+    def output_member(self) -> str:
+        """The member(s) through which power leaves the drive (as `input_member`);
+        ``none`` where all the power in is dissipated."""
+        return _members(self.powers, -1.0)
 
     @property
     def input_power(self) -> float:
@@ -131,8 +145,10 @@ class PlanetaryResult:
 
     @property
     def eta_loss(self) -> float:
-        """``1 - losses / power in`` [-]; equals `eta` to round-off."""
-        return 1.0 - self.loss / self.input_power if self.input_power > 0 else math.nan
+        """``1 - losses / power in`` [-]; equals `eta` to round-off (clipped to [0, 1]
+        where that round-off would leave it, e.g. with no power out)."""
+        p_in = self.input_power
+        return min(max(1.0 - self.loss / p_in, 0.0), 1.0) if p_in > 0 else math.nan
 
     @property
     def geared_neutral(self) -> bool:
@@ -149,17 +165,64 @@ class PlanetaryResult:
     @property
     def power_flow(self) -> str:
         """How the power crosses the variator in the carrier frame: ``disc0 -> disc2``
-        (as on the rig) or ``disc2 -> disc0`` (reversed), and whether it circulates
-        (more power through the contacts than through the driver)."""
-        forward = self.relative.input_power > 0  # mirroring negates both factors
-        way = "disc0 -> disc2" if forward else "disc2 -> disc0"
+        (as on the rig), ``disc2 -> disc0`` (reversed) or ``into both discs (dissipated)``,
+        and whether it circulates (more power through the contacts than through the
+        driver)."""
+        ins = _members(self.disc_powers, 1.0)
+        way = {"disc0": "disc0 -> disc2", "disc2": "disc2 -> disc0"}.get(
+            ins, "into both discs (dissipated)"
+        )
         circ = self.circulating_power > abs(self.input_power) * (1 + 1e-9)
         return way + (" (circulating)" if circ else "")
+
+    @property
+    def disc_powers(self) -> dict[str, float]:
+        """Power into the variator through each disc in the carrier frame [W] (mirroring
+        negates both factors, so these are the physical relative powers)."""
+        rel = self.relative
+        return {
+            "disc0": rel.input_torque * rel.input_speed,
+            "disc2": -rel.output_torque * rel.output_speed,
+        }
+
+    @property
+    def variator_efficiency(self) -> dict[str, float]:
+        """The variator's efficiencies between its discs in the carrier frame, by the
+        way the power crosses it (`power_flow`) [-], each in [0, 1].
+
+        ``eta`` is power out over power in of the two discs (Eq. 38 with the input the disc
+        that takes power in); ``speed`` and ``torque`` are Eq. 9 and Eq. 37 the same way
+        (the inverses of ``relative``'s where the power flows from disc 2 to disc 0; NaN
+        where both discs take power in, and then ``eta`` is 0), clipped to [0, 1] against
+        round-off at zero load."""
+        rel, ins = self.relative, _members(self.disc_powers, 1.0)
+        p_in = sum(max(p, 0.0) for p in self.disc_powers.values())
+        eta = sum(max(-p, 0.0) for p in self.disc_powers.values()) / p_in if p_in > 0 else math.nan
+        if ins == "disc0":
+            speed, torque = rel.eta_speed, rel.eta_torque
+        elif ins == "disc2":
+            speed, torque = _inverse(rel.eta_speed), _inverse(rel.eta_torque)
+        else:
+            speed = torque = math.nan
+        return {"eta": eta, "speed": _unit(speed), "torque": _unit(torque)}
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data: the carrier-frame keys of `OperatingResult.to_dict` plus the
         planetary ones."""
         out = self.relative.to_dict()
+        # the carrier-frame figures with disc 0 as the input (for `from_dict`); the
+        # top-level efficiencies are the drive's, by the way its power flows
+        out["carrier_frame_efficiency"] = {k: out[k] for k in _EFFICIENCY_KEYS}
+        var = self.variator_efficiency
+        out.update(
+            eta=self.eta,
+            eta_loss=self.eta_loss,
+            eta_speed=var["speed"],
+            eta_torque=var["torque"],
+            variator_eta=var["eta"],
+            input_member=self.input_member,
+            output_member=self.output_member,
+        )
         out.update(
             mode={
                 "held": self.mode.held,
@@ -205,7 +268,9 @@ class PlanetaryResult:
                 "a value",
                 message=f"{source}: required key '{missing[0]}' is missing",
             )
-        rel = OperatingResult.from_dict({k: v for k, v in data.items() if k not in keys}, source)
+        rest = {k: v for k, v in data.items() if k not in keys}
+        rest.update(data.get("carrier_frame_efficiency") or {})  # absent before 0.1.1
+        rel = OperatingResult.from_dict(rest, source)
         m = data["mode"]
         mode = OperatingMode(
             m["held"],
@@ -241,6 +306,30 @@ class PlanetaryResult:
     def load(cls, path: str | Path) -> PlanetaryResult:
         """Read and validate a result written by `save`."""
         return cls.from_dict(*read_result(path))
+
+
+#: The efficiency keys of `OperatingResult.to_dict`, kept in a planetary result's
+#: ``carrier_frame_efficiency`` (disc 0 as the input).
+_EFFICIENCY_KEYS = ("eta", "eta_loss", "eta_speed", "eta_torque")
+
+
+def _members(powers: Mapping[str, float], sign: float) -> str:
+    """Members whose power has ``sign`` (+1 in, -1 out), largest first, joined by ``+``;
+    powers below 1e-12 of the largest count as zero."""
+    scale = max((abs(p) for p in powers.values()), default=0.0)
+    names = sorted(
+        (m for m, p in powers.items() if sign * p > 1e-12 * scale), key=lambda m: -sign * powers[m]
+    )
+    return "+".join(names) or "none"
+
+
+def _unit(value: float) -> float:
+    """``value`` clipped to [0, 1] (round-off at zero load or speed), NaN kept."""
+    return min(max(value, 0.0), 1.0) if not math.isnan(value) else value
+
+
+def _inverse(value: float) -> float:
+    return 1.0 / value if value else math.nan
 
 
 def make_planetary_result(

@@ -17,7 +17,7 @@ from ..model.architectures import contact_layout
 from ..model.inertia import max_carrier_speed
 from ..model.modes import MEMBERS, OperatingMode, member_torques, resolve_mode
 from ..params.drive import Drive
-from ..performance.efficiency import power_losses
+from ..performance.efficiency import LOSS_KINDS, loss_breakdown, power_losses
 from ..status import Status
 from .limit import traction_ceiling_torque
 from .newton import initial_creep, solve_batch
@@ -31,7 +31,8 @@ __all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch"]
 class ModeBatch:
     """Outcome of `solve_mode_batch`; arrays ``(n,)`` (speeds and torques ``(3, n)`` in
     the order of `ballcvt.model.modes.MEMBERS`), NaN where ``status`` (a
-    `ballcvt.status.Status` code) is not ``CONVERGED``."""
+    `ballcvt.status.Status` code) is not ``CONVERGED``; ``losses`` [W] is ``(k, n)``, one
+    row per kind of `ballcvt.performance.efficiency.LOSS_KINDS` (``loss`` is its total)."""
 
     status: np.ndarray
     speeds: np.ndarray
@@ -40,6 +41,7 @@ class ModeBatch:
     actual_ratio: np.ndarray
     max_creep: np.ndarray
     circulating_power: np.ndarray
+    losses: np.ndarray
 
     @property
     def powers(self) -> np.ndarray:
@@ -100,6 +102,7 @@ def solve_mode_batch(
     x = np.full((n, layout.n_contacts), np.nan)
     speeds, torques = np.full((3, n), np.nan), np.full((3, n), np.nan)
     loss, circ, big = (np.full(n, np.nan) for _ in range(3))
+    kinds = np.full((len(LOSS_KINDS), n), np.nan)
     settled = np.zeros(n, dtype=bool)
     for _ in range(max_passes):
         sp = mode.speeds(w, tau, check=False)
@@ -133,7 +136,10 @@ def solve_mode_batch(
         for row, m in enumerate(MEMBERS):
             speeds[row, j] = sp[m][todo][fin]
             torques[row, j] = members[m][fin]
-        loss[j] = power_losses(pb, st).total[fin]
+        by_kind = loss_breakdown(power_losses(pb, st))
+        loss[j] = by_kind["total"][fin]
+        for row, kind in enumerate(LOSS_KINDS):
+            kinds[row, j] = by_kind[kind][fin]
         circ[j] = np.abs(st.input_torque * pb.input_speed)[fin]
         big[j] = np.max(np.abs(st.creep[fin]), axis=-1)
         tau[todo] = np.where(sol.converged, new, tau[todo])
@@ -147,6 +153,7 @@ def solve_mode_batch(
         np.where(keep, tau, np.nan),
         np.where(keep, big, np.nan),
         np.where(keep, circ, np.nan),
+        np.where(keep, kinds, np.nan),
     )
 
 
@@ -158,14 +165,16 @@ def limit_load_batch(
     rtol: float = 1e-3,
     max_steps: int = 40,
 ) -> np.ndarray:
-    """Largest load torque of the driven member with every ``|C| <= creep_limit``.
+    """Largest load torque of the driven member with every ``|C| <= creep_limit``
+    (``drive.design.creep_limit``).
 
-    ``point.ratio`` and ``point.driver_speed`` are the batch (``point.load_torque`` is
-    not read: the load is what is searched).
+    ``point.ratio`` and ``point.driver_speed`` are the batch; ``point.load_torque`` only
+    gives the direction of the load searched, by its sign where it is finite and non-zero
+    (an overhauling load, negative to the driven member's speed, has its own capacity).
 
-    The load brakes the driven member: its sign is that of the driven speed at zero load
-    (positive at geared neutral). Bracketed by doubling from the carrier-frame traction
-    ceiling, then bisected to ``rtol`` on all ratios at once (`solve_mode_batch`).
+    Elsewhere the load brakes the driven member: its sign is that of the driven speed at
+    zero load (positive at geared neutral). Bracketed by doubling from the carrier-frame
+    traction ceiling, then bisected to ``rtol`` on all ratios at once (`solve_mode_batch`).
 
     Returns
     -------
@@ -174,9 +183,17 @@ def limit_load_batch(
         the speeds are out of range.
     """
     mode = resolve_mode(mode)
-    ratio = np.ravel(np.asarray(point.ratio, dtype=float))
+    ratio, given, w = (
+        np.ravel(v)
+        for v in np.broadcast_arrays(
+            *(
+                np.asarray(v, dtype=float)
+                for v in (point.ratio, point.load_torque, point.driver_speed)
+            )
+        )
+    )
     n = ratio.size
-    at = replace(point, ratio=ratio)
+    at = replace(point, ratio=ratio, driver_speed=w)
 
     def admissible(load):
         return (
@@ -185,7 +202,10 @@ def limit_load_batch(
         )
 
     zero = solve_mode_batch(drive, mode, replace(at, load_torque=0.0), options)
-    direction = zero.braking_direction(mode)
+    chosen = np.isfinite(given) & (given != 0.0)
+    direction = np.where(
+        chosen, np.sign(np.where(chosen, given, 1.0)), zero.braking_direction(mode)
+    )
     ok0 = zero.status == Status.CONVERGED
     hi = traction_ceiling_torque(
         make_problem(drive, OperatingInputs(ratio, 0.0, point.clamp_force, 1.0))

@@ -7,6 +7,7 @@ from pathlib import Path
 from ...api import STRATEGIES, CycleSettings, read_cycle
 from ...files import check_output_dir
 from . import options as o
+from .modes import add_mode_options, mode_of
 
 
 def add_parser(subparsers) -> None:
@@ -55,6 +56,9 @@ def add_parser(subparsers) -> None:
     o.out(p, "ballcvt-cycle")
     o.add(p, "json")
     o.run_options(p)
+    add_mode_options(
+        p, "the cycle's output is the driven member's speed and load torque", "--target-speed"
+    )
 
 
 def run(args) -> int:
@@ -71,7 +75,7 @@ def run(args) -> int:
         progress=o.show(args),
         workers=args.workers,
     )
-    result = v.run_cycle(cycle, **o.law(args), settings=settings)
+    result = v.run_cycle(cycle, **o.law(args), settings=settings, mode=mode_of(args))
     result.save(out)
     import matplotlib
 

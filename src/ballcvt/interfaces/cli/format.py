@@ -23,8 +23,9 @@ _ROWS = [  # (label, attribute, unit, scale, format)
 ]
 
 
-def point_table(r: OperatingResult) -> str:
-    """Readable summary of an operating point."""
+def point_table(r: OperatingResult, efficiency: str = "") -> str:
+    """Readable summary of an operating point; ``efficiency`` replaces its efficiency
+    line (a planetary point's carrier frame, by the way its power flows)."""
     names = list(r.contacts)
     w = 12
     lines = [
@@ -55,7 +56,8 @@ def point_table(r: OperatingResult) -> str:
             else ""
         )
         + f"  total {ls['total']:.2f}",
-        f"efficiency  overall {r.eta:.5f} (Eq. 38)  {r.eta_loss:.5f} (Eq. 39)  "
+        efficiency
+        or f"efficiency  overall {r.eta:.5f} (Eq. 38)  {r.eta_loss:.5f} (Eq. 39)  "
         f"speed {r.eta_speed:.5f}  torque {r.eta_torque:.5f}",
         f"solver      {'converged' if r.converged else 'NOT CONVERGED'}, max|residual| "
         f"{r.residual_norm:.1e}, {r.iterations} evaluations, quadrature {r.quadrature}",
@@ -71,9 +73,15 @@ def limit_table(data: dict) -> str:
         if data["clamp_law"] == "constant"
         else f"{data['clamp_law']} clamping law"
     )
+    mode = data.get("mode")
+    what = (
+        "limiting output torque"
+        if mode is None
+        else f"limiting load torque of the {mode['driven']} ({mode['label']})"
+    )
     spans = data.get("capacity_intervals") or [[0.0, data["limit_torque"]]]
     head = (
-        f"limiting output torque {data['limit_torque']:.2f} N m"
+        f"{what} {data['limit_torque']:.2f} N m"
         if len(spans) == 1 and spans[0][0] == 0.0
         else "admissible output torques "
         + " or ".join(f"{lo:.2f} to {hi:.2f} N m" for lo, hi in spans)
@@ -81,7 +89,8 @@ def limit_table(data: dict) -> str:
     return (
         f"{head}  ({data['architecture']} "
         f"idler, ratio {data['ratio']:g}, {clamp}, "
-        f"{data['input_speed_rpm']:g} rpm, |creep| <= {data['creep_limit']:g})"
+        f"{data['input_speed_rpm']:g} rpm{'' if mode is None else ' driver'}, "
+        f"|creep| <= {data['creep_limit']:g})"
     )
 
 
@@ -134,7 +143,8 @@ def planetary_table(r: PlanetaryResult) -> str:
         f"{r.torque_ratio:+.4f}",
         (
             f"efficiency  power out / power in {r.eta:.5f}   1 - losses / power in "
-            f"{r.eta_loss:.5f}"
+            f"{r.eta_loss:.5f}   (in through {r.input_member}, out through "
+            f"{r.output_member})"
             if not r.geared_neutral
             else "geared neutral: the driven member is at rest, so the efficiency says nothing; "
             f"read the torque ratio ({r.torque_ratio:+.4f})"
@@ -145,6 +155,15 @@ def planetary_table(r: PlanetaryResult) -> str:
         "in the carrier frame"
         + (" (mirrored: speeds and torques negated)" if r.sign < 0 else "")
         + ":",
-        point_table(r.relative),
+        point_table(r.relative, _variator_line(r)),
     ]
     return "\n".join(lines)
+
+
+def _variator_line(r: PlanetaryResult) -> str:
+    """The carrier-frame efficiency line of a planetary point, by its power flow."""
+    var = r.variator_efficiency
+    return (
+        f"efficiency  variator {var['eta']:.5f} ({r.power_flow.split(' (')[0]})  "
+        f"speed {var['speed']:.5f}  torque {var['torque']:.5f}"
+    )

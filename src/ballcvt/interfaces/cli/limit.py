@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..._version import __version__
 from . import options as o
 from .format import limit_table
+from .modes import add_mode_options, mode_of
 
 
 def add_parser(subparsers) -> None:
@@ -21,6 +22,7 @@ def add_parser(subparsers) -> None:
         "ballcvt limit --arch single --ratio 2 --clamp 2000 --speed 2000",
     )
     o.add(p, "arch", "ratio", *o.CLAMP_OPTIONS, "speed", "creep-limit", *o.FLUID_OPTIONS, "json")
+    add_mode_options(p, "the limit is the driven member's largest load torque")
 
 
 def run(args) -> int:
@@ -29,12 +31,18 @@ def run(args) -> int:
     c_lim = v.design.creep_limit if args.creep_limit is None else args.creep_limit
     law = o.law(args)
     where = {"input_speed_rpm": o.rpm(args.speed), "creep_limit": c_lim}
-    cap = v.capacity(args.ratio, **law, **where)
-    if not cap.intervals:  # none admissible: the limit search says why
-        v.limit_torque(args.ratio, **law, **where)
+    mode = mode_of(args)
+    if mode.is_default:
+        cap = v.capacity(args.ratio, **law, **where)
+        if not cap.intervals:  # none admissible: the limit search says why
+            v.limit_torque(args.ratio, **law, **where)
+        largest, spans = cap.largest, [list(span) for span in cap.intervals]
+    else:  # a planetary mode: the driven member's largest load, from zero
+        largest = v.limit_torque(ratio=args.ratio, **law, **where, mode=mode)
+        spans = [[0.0, largest]]
     data = {
-        "limit_torque": cap.largest,
-        "capacity_intervals": [list(span) for span in cap.intervals],
+        "limit_torque": largest,
+        "capacity_intervals": spans,
         "architecture": args.arch,
         "ratio": args.ratio,
         "clamp_law": args.clamp_law,
@@ -44,5 +52,15 @@ def run(args) -> int:
         "design": v.design.name,
         "version": __version__,
     }
+    if not mode.is_default:  # the limit is the driven member's load torque
+        data["mode"] = {
+            "label": mode.label,
+            "held": mode.held,
+            "driver": mode.driver,
+            "driven": mode.driven,
+            "held_speed_rpm": args.held_speed,
+            "centrifugal": mode.centrifugal,
+            "gyroscopic": mode.gyroscopic,
+        }
     o.emit_json(data) if args.json else o.emit(limit_table(data))
     return 0

@@ -9,6 +9,7 @@ import numpy as np
 from ...api import MapGrid, to_csv, to_netcdf
 from ...files import check_output_dir
 from . import options as o
+from .modes import add_mode_options, mode_of
 
 
 def add_parser(subparsers) -> None:
@@ -28,6 +29,7 @@ def add_parser(subparsers) -> None:
         p, n_ratio=31, n_torque=35, most=1000, torque_max="1.02 x the largest limiting torque"
     )
     o.run_options(p)
+    add_mode_options(p, "the torques are the driven member's load torques")
 
 
 def run(args) -> int:
@@ -35,17 +37,22 @@ def run(args) -> int:
     grid = MapGrid(tuple(args.ratio_range), args.n_ratio, args.torque_max, args.n_torque)
     out = check_output_dir(args.out)
     v = o.variator(args)
+    mode = mode_of(args)
     ds = v.efficiency_map(
         grid,
         input_speed_rpm=o.rpm(args.speed),
         **o.law(args),
         workers=args.workers,
         progress=o.show(args),
+        mode=mode,
     )
     _write(ds, out, args)
     if args.quiet:
         return 0
     st = ds.status.values
+    if not mode.is_default:
+        o.emit(_mode_summary(ds, out, v.design.name))
+        return 0
     o.emit(
         f"wrote {out}/map.png, map.svg, map.nc, map.csv ({v.design.name}): "
         f"{int((st == 0).sum())} of {st.size} points converged within the limit, "
@@ -79,9 +86,22 @@ def _write(ds, out, args) -> None:
             one.output_torque.values,
             one.eta.values,
             one.limit_torque.values,
-            f"Efficiency map, {args.arch} idler, {o.clamp_label(args)}, {args.speed:g} rpm",
+            f"Efficiency map, {args.arch} idler, {o.clamp_label(args)}, {args.speed:g} rpm"
+            + (f"\n{ds.attrs['mode']}" if "mode" in ds.attrs else ""),
             limit_eta=one.eta_at_limit.values,
         ),
         out,
         "map",
+    )
+
+
+def _mode_summary(ds, out, design: str) -> str:
+    """The summary line of a map in a planetary mode."""
+    st = ds.status.values
+    return (
+        f"wrote {out}/map.png, map.svg, map.nc, map.csv ({design}; {ds.attrs['mode']}, "
+        f"torques are the load torques of the driven member): {int((st == 0).sum())} of "
+        f"{st.size} points converged within the limit, {int((st == 1).sum())} beyond it, "
+        f"{int((st == 2).sum())} not converged, {int((st == 3).sum())} with speeds out of "
+        f"range; max eta {float(ds.eta.max()):.4f}"
     )

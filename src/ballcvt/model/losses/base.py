@@ -118,8 +118,8 @@ class ParasiticDrags:
     roller : ndarray
         On each roller (ball) about its spin axis [N m], ``(..., n_kinds)``.
     input, output : ndarray
-        On the input and output shafts [N m], ``(..., n_kinds)``: positive where they
-        oppose the shaft's (positive) rotation.
+        On the input and output shafts [N m], ``(..., n_kinds)``: signed to oppose
+        the shaft's rotation (positive for a positive speed).
     """
 
     kinds: tuple[str, ...]
@@ -174,8 +174,8 @@ def parasitic_drags(
 def _acting(term: LossTerm, at: DragInputs, output_speed, roller_speed):
     """``(member, signed torque)`` pairs of ``term`` (``at.speed`` is the input speed)."""
 
-    def torque(speed):
-        return np.asarray(term.torque(DragInputs(at.design, at.fluid, speed, at.thrust)))
+    def torque(speed):  # a magnitude, whatever sign a user's function returns
+        return np.abs(np.asarray(term.torque(DragInputs(at.design, at.fluid, speed, at.thrust))))
 
     if term.acts_on == "rollers":
         return [("roller", torque(roller_speed))]
@@ -185,7 +185,8 @@ def _acting(term: LossTerm, at: DragInputs, output_speed, roller_speed):
         return [("input", m), ("output", -1.0 * m)]
     shafts = {"input": at.speed, "output": output_speed}
     members = ("input", "output") if term.acts_on == "shafts" else (term.acts_on,)
-    return [(m, torque(shafts[m])) for m in members]
+    # opposing the shaft's rotation either way (a positive speed: the magnitude itself)
+    return [(m, np.where(shafts[m] < 0, -1.0, 1.0) * torque(shafts[m])) for m in members]
 
 
 def parasitic_torques(

@@ -68,7 +68,8 @@ def windage_torque(speed, radius, density, kinematic_viscosity, factor=1.0):
     re = w * r**2 / kinematic_viscosity
     with np.errstate(invalid="ignore"):
         m = 0.5 * factor * moment_coefficient(re) * density * w**2 * r**5
-    return np.where(w > 0, m, 0.0)
+    # at rest, or so slow that C_M overflows while omega^2 underflows: no torque
+    return np.where(np.isfinite(m), m, 0.0)
 
 
 def _roller_churning(at: DragInputs):

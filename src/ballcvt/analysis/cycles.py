@@ -78,7 +78,9 @@ class CycleResult:
     ----------
     steps : pandas.DataFrame
         One row per step (SI units; ``input_speed_rpm``/``output_speed_rpm`` in rpm),
-        with ``flag`` (`FLAGS`) and ``status``.
+        with the highest Hertz peak pressure ``max_pressure`` [Pa] and the lowest film
+        thickness ratio ``min_lambda`` [-] over the contacts, ``flag`` (`FLAGS`) and
+        ``status``.
     summary : dict
         ``energy_in_J``, ``energy_out_J``, ``efficiency`` (energy out over energy in),
         ``losses_J`` (by kind), ``steps``, ``steps_flagged``, ``flags`` (steps and seconds
@@ -122,6 +124,7 @@ class CycleResult:
             "output_speed_rpm": "rpm",
             "input_power": "W",
             "output_power": "W",
+            "max_pressure": "Pa",
             **{f"loss_{k}": "W" for k in LOSS_KINDS},
         }
         files = [
@@ -430,6 +433,8 @@ def _table(cycle: Cycle, run, solved, res, flag) -> dict:
     col["axial_force"] = put(res["axial_force"])
     col["eta"] = put(res["eta"])
     col["tilt_deg"] = put(res["tilt_deg"])
+    col["max_pressure"] = put(np.max(res["p_max"], axis=-1))  # over the contacts
+    col["min_lambda"] = put(np.min(res["lambda_ratio"], axis=-1))
     for j, kind in enumerate(LOSS_KINDS):
         col[f"loss_{kind}"] = put(res["losses"][:, j])
     col["warnings"] = put(res["warnings"]).astype(float)

@@ -80,3 +80,17 @@ def test_pressure_limit_that_binds_the_optimum(v):
     assert tight.max_pressure <= 0.999 * free.max_pressure * (1 + 1e-9)
     with pytest.raises(InputError, match="max_pressure"):
         v.optimal_clamp_force(1.0, 10.0, input_speed_rpm=RPM, max_pressure=float("nan"))
+
+
+def test_cycle_steps_at_zero_torque():
+    """An input-side cycle whose power cannot drive the drag ends at zero output torque:
+    the optimal law answers it (flagged power_below_drag, not an error)."""
+    from ballcvt import load_builtin
+    from ballcvt.analysis.cycle_files import cycle_from_arrays
+    from ballcvt.analysis.cycles import run_cycle
+
+    rig = cycle_from_arrays(time=[0.0, 1.0, 2.0], input_speed=np.full(3, RPM * math.pi / 30),
+                            input_power=[3000.0, 300.0, 300.0], ratio=[1.0, 1.0, 1.0])
+    res = run_cycle(Variator(*load_builtin("hub")), rig, clamp_law="optimal", progress=False)
+    assert list(res.steps["flag"]) == ["ok", "power_below_drag", "power_below_drag"]
+    assert np.all(res.steps["clamp_force"] > 0)

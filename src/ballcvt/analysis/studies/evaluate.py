@@ -269,7 +269,10 @@ def _cycle(ctx: Context, design, force, law) -> dict:
 
     op = ctx.spec.operating
     v = Drive(design, ctx.fluid, ctx.spec.study.architecture)
-    target = None if op.target_input_speed_rpm is None else rpm_to_rad_s(op.target_input_speed_rpm)
+    # held by target-input-speed only (under max-efficiency: the capacity speed)
+    target = (
+        rpm_to_rad_s(op.target_input_speed_rpm) if op.strategy == "target-input-speed" else None
+    )
     assert op.cycle is not None
     res = run_cycle(
         v,

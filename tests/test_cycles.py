@@ -120,7 +120,7 @@ def test_cycle_file_errors(tmp_path):
 
 def test_strategy_errors(hub, cruise):
     with pytest.raises(InputError, match="target_input_speed"):
-        run_cycle(hub, cruise, clamp_law="cam", progress=False)
+        run_cycle(hub, cruise, strategy="target-input-speed", clamp_law="cam", progress=False)
     with pytest.raises(InputError, match="strategy"):
         run_cycle(hub, cruise, strategy="fastest", clamp_law="cam", progress=False)
     with pytest.raises(InputError, match="ratio_range"):
@@ -145,8 +145,10 @@ def test_cli_cycle(tmp_path, capsys):
     import pandas as pd
     frame = pd.read_csv(out / "steps.csv")
     assert "eta [1]" in frame.columns and "loss_total [W]" in frame.columns
-    assert cli.main(["cycle", str(path), "--out", str(out)]) == 2      # no target speed
-    assert "target_input_speed" in capsys.readouterr().err
+    assert cli.main(["cycle", str(path), "--out", str(out), "--strategy",
+                     "target-input-speed"]) == 2      # no target speed
+    err = capsys.readouterr().err
+    assert "--target-speed" in err and len(err.strip().splitlines()) == 1
     assert cli.main(["cycle", str(tmp_path / "none.csv"), "--target-speed", "180",
                      "--out", str(out)]) == 2
 
@@ -162,3 +164,54 @@ def test_workers_give_the_same_results(hub):
     # the same chunks are solved either way: equal to round-off (batch-size dependent sums)
     assert np.allclose(one.steps["eta"], two.steps["eta"], rtol=0, atol=1e-12)
     assert one.summary["energy_in_J"] == pytest.approx(two.summary["energy_in_J"], rel=1e-12)
+
+
+def test_default_strategy_without_a_target_speed(hub, cruise, tmp_path, capsys):
+    """No strategy and no target speed: max-efficiency picks the ratio."""
+    res = run_cycle(hub, cruise, clamp_law="cam", progress=False)
+    assert res.summary["strategy"] == "max-efficiency"
+    assert res.summary["steps_flagged"] == 5          # the braking steps only
+    path = tmp_path / "c.csv"
+    path.write_text("time [s],output_speed [rpm],output_torque [N m]\n0,190,12\n1,190,12\n")
+    assert cli.main(["cycle", str(path), "--design", "hub", "--clamp-law", "cam",
+                     "--out", str(tmp_path / "run"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["strategy"] == "max-efficiency"
+
+
+def test_options_a_strategy_does_not_use_are_refused(hub, cruise, tmp_path, capsys):
+    target = 180 * RPM
+    with pytest.raises(InputError, match="candidates.*max-efficiency") as err:
+        run_cycle(hub, cruise, target_input_speed=target, candidates=15, clamp_law="cam",
+                  progress=False)
+    assert "\n" not in str(err.value)
+    with pytest.raises(InputError, match="target_input_speed.*target-input-speed"):
+        run_cycle(hub, cruise, strategy="max-efficiency", target_input_speed=target,
+                  clamp_law="cam", progress=False)
+    rig = cycle_from_arrays(time=[0.0, 1.0], input_speed=np.full(2, 2000 * RPM),
+                            input_power=[3000.0, 5000.0], ratio=[0.6, 1.8])
+    for bad in ({"strategy": "max-efficiency"}, {"candidates": 5},
+                {"target_input_speed": target}):
+        with pytest.raises(InputError, match=next(iter(bad))):
+            run_cycle(hub, rig, clamp_force=2000.0, progress=False, **bad)
+    path = tmp_path / "c.csv"
+    path.write_text("time [s],output_speed [rpm],output_torque [N m]\n0,190,12\n1,190,12\n")
+    assert cli.main(["cycle", str(path), "--design", "hub", "--target-speed", "180",
+                     "--candidates", "15", "--out", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err
+    assert "candidates" in err and "max-efficiency" in err and len(err.strip().splitlines()) == 1
+
+
+def test_ratio_range_restricts_every_strategy(hub, cruise):
+    held = run_cycle(hub, cruise, target_input_speed=180 * RPM, clamp_law="cam",
+                     ratio_range=(1.2, 1.5), progress=False)
+    run = held.steps[held.steps["flag"] != "idle"]
+    assert run["ratio"].dropna().between(1.2, 1.5).all()
+    assert (held.steps["flag"] == "ratio_limited").sum() == 20   # 190/180 rpm wants 1.06
+    best = run_cycle(hub, cruise, clamp_law="cam", ratio_range=(1.2, 1.5), candidates=5,
+                     progress=False)
+    assert best.steps["ratio"].dropna().between(1.2, 1.5).all()
+    rig = cycle_from_arrays(time=[0.0, 1.0], input_speed=np.full(2, 2000 * RPM),
+                            input_power=[3000.0, 5000.0], ratio=[0.6, 1.8])
+    res = run_cycle(hub, rig, clamp_force=2000.0, ratio_range=(0.8, 1.5), progress=False)
+    assert np.allclose(res.steps["ratio"], [0.8, 1.5])
+    assert list(res.steps["flag"]) == ["ratio_limited", "ratio_limited"]

@@ -83,13 +83,14 @@ def _variants(design, tmp):
     map_cam = (["map", "--out", str(tmp / "m2"), *small, *law],
                {"--cam-angle": ["--cam-angle", "4"]})
     tiny = str(Path(__file__).parent / "data" / "tiny_cycle.csv")
-    cycle = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c0"), "--json"], {
+    # no --target-speed: max-efficiency (a flag a strategy does not use is refused)
+    cycle = (["cycle", tiny, "--out", str(tmp / "c0"), "--json"], {
         "--arch": ["--arch", "single"], "--clamp": ["--clamp", "2500"],
         "--clamp-law": ["--clamp-law", "optimal"], "--design": ["--design", design],
-        "--strategy": ["--strategy", "max-efficiency", "--ratio-range", "0.8", "1.3"],
+        "--strategy": ["--strategy", "target-input-speed", "--target-speed", "180"],
         "--target-speed": ["--target-speed", "150"],
-        "--candidates": ["--strategy", "max-efficiency", "--candidates", "3"],
-        "--ratio-range": ["--strategy", "max-efficiency", "--ratio-range", "0.9", "1.2"],
+        "--candidates": ["--candidates", "3"],
+        "--ratio-range": ["--ratio-range", "0.9", "1.2"],
         "--out": ["--out", str(tmp / "c1")], "--json": None,
         "--workers": ["--workers", "2"]})
     cycle_text = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c3")],

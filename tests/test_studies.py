@@ -190,3 +190,38 @@ def test_example_studies_parse_and_their_first_design_evaluates(path):
     got = evaluate_chunk(ctx, np.arange(n), design_vectors(spec, n))
     assert got["status"].shape == (n,) and set(got["status"]) <= {Status.CONVERGED, Status.CANNOT_BE_BUILT,
                                                           Status.CONSTRAINT_VIOLATED}  # none "not solved"
+
+
+def test_cycle_study_constrains_pressure_and_film(tmp_path):
+    """A duty-cycle study computes the peak pressure and film ratio over its steps, so
+    its pressure and film constraints accept some designs and reject others."""
+    from ballcvt.analysis.studies.evaluate import evaluate_chunk, make_context
+    from ballcvt.analysis.studies.run import design_vectors
+    (tmp_path / "c.csv").write_text("time [s],output_speed [rpm],output_torque [N m]\n"
+                                    "0,1500,10\n1,2000,20\n2,2000,0\n3,1800,15\n")
+    (tmp_path / "s.toml").write_text(
+        '[study]\nname = "cycle-limits"\nmethod = "sobol"\nsamples = 4\nseed = 3\n'
+        'capacity_ratios = [1.0]\n[parameters]\n'
+        'roller_radius = { min = 0.024, max = 0.032 }\n'
+        'theta0_deg = { min = 40.0, max = 50.0 }\n'
+        '[operating]\ncycle = "c.csv"\nclamp_force = 2000.0\n'
+        'target_input_speed_rpm = 2000.0\n[objectives]\ncycle_efficiency = "max"\n'
+        '[constraints]\nmax_pressure_max = 1.7e9\nmin_lambda_min = 3.6\n')
+    spec = read_study(tmp_path / "s.toml")
+    got = evaluate_chunk(make_context(spec), np.arange(4), design_vectors(spec, 4))
+    assert np.all(np.isfinite(got["max_pressure"])) and np.all(np.isfinite(got["min_lambda"]))
+    ok = got["status"] == Status.CONVERGED
+    assert 0 < ok.sum() < 4
+    assert np.all(got["max_pressure"][ok] <= 1.7e9) and np.all(got["min_lambda"][ok] >= 3.6)
+    reasons = " ".join(got["reason"])
+    assert "max_pressure" in reasons and "min_lambda" in reasons
+
+
+def test_cycle_study_refuses_eta_min_min(tmp_path):
+    text = TINY.read_text().replace('ratio = [1.0]\noutput_torque = [20.0, 40.0]\n'
+                                    'input_speed_rpm = [2000.0]\n',
+                                    'cycle = "c.csv"\ntarget_input_speed_rpm = 2000.0\n')
+    text = text.replace('eta_mean = "max"', 'cycle_efficiency = "max"')
+    text += "eta_min_min = 0.5\n"
+    with pytest.raises(InputError, match="eta_min_min"):
+        parse_study(text)

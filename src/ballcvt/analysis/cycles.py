@@ -1,14 +1,16 @@
 """Run a drive over a duty cycle: pick the ratio, solve every step batched, add up energy.
 
-Strategies (``strategy=``):
+Strategies (``strategy=``; which options each uses: `ballcvt.analysis.cycle_request`):
 
 * ``target-input-speed``: hold the input at a target speed (a cyclist's cadence, a
   motor's best speed): ``tau_ID = omega_2 / (omega_target eta_speed)``, found in two
   batched passes (the second corrects for the creep of the first). Steps whose ratio falls
-  outside the usable range run at the range's end and are flagged ``ratio_limited``.
+  outside the allowed range (``ratio_range``, the usable range by default) run at the
+  range's end and are flagged ``ratio_limited``.
 * ``max-efficiency``: at each step, the most efficient of ``candidates`` ratios spread
-  geometrically over the ratio range (or ``ratio_range``), refined by a parabola through
-  the best and its neighbours; the input speed follows from the output speed.
+  geometrically over the allowed range, refined by a parabola through the best and its
+  neighbours; the input speed follows from the output speed. The default without a
+  target input speed.
 
 The ratio search and the creep correction use the solver's coarse predictor rule; every
 reported value comes from a final solve on the full quadrature.
@@ -38,16 +40,15 @@ import numpy as np
 
 from .._display import html_summary, text_summary
 from .._version import __version__
-from ..errors import InputError
 from ..files import write_json
 from ..model.clamping import clamp_law as resolve_law
-from ..model.kinematics import ratio_range as usable_ratio_range
 from ..params.drive import Drive
 from ..performance.efficiency import LOSS_KINDS
 from ..solvers.options import SolverOptions
 from ..status import Status
 from ..units import rad_s_to_rpm, rpm_to_rad_s
 from .cycle_files import STRATEGIES, Cycle
+from .cycle_request import COMMANDED, CycleRequest, allowed_ratios
 from .sweeps.curves import OperatingRows
 from .sweeps.export import write_table
 from .sweeps.points import evaluate_points
@@ -78,7 +79,9 @@ class CycleResult:
     ----------
     steps : pandas.DataFrame
         One row per step (SI units; ``input_speed_rpm``/``output_speed_rpm`` in rpm),
-        with ``flag`` (`FLAGS`) and ``status``.
+        with the highest Hertz peak pressure ``max_pressure`` [Pa] and the lowest film
+        thickness ratio ``min_lambda`` [-] over the contacts, ``flag`` (`FLAGS`) and
+        ``status``.
     summary : dict
         ``energy_in_J``, ``energy_out_J``, ``efficiency`` (energy out over energy in),
         ``losses_J`` (by kind), ``steps``, ``steps_flagged``, ``flags`` (steps and seconds
@@ -122,6 +125,7 @@ class CycleResult:
             "output_speed_rpm": "rpm",
             "input_power": "W",
             "output_power": "W",
+            "max_pressure": "Pa",
             **{f"loss_{k}": "W" for k in LOSS_KINDS},
         }
         files = [
@@ -132,62 +136,19 @@ class CycleResult:
 
 
 @dataclass(frozen=True)
-class CycleRequest:
-    """How a duty cycle is run (`run_cycle`).
-
-    Attributes
-    ----------
-    strategy : {"target-input-speed", "max-efficiency"}
-        How the ratio is chosen (output-side cycles; input-side cycles with a ``ratio``
-        column use it as commanded).
-    target_input_speed : float, optional
-        Input speed held by ``target-input-speed`` [rad/s].
-    clamp_force, clamp_law
-        As in `Variator.solve` (constant force [N], ``cam``, ``optimal`` or a law object).
-    candidates : int
-        Ratios tried per step by ``max-efficiency`` (3-101).
-    ratio_range : (float, float), optional
-        Ratios ``max-efficiency`` may use [-]; the usable range by default.
-    progress : bool, optional
-        Progress bar (default: when stderr is a terminal).
-    workers : int
-        Processes to solve the steps on (1-64; the same results, to round-off).
-    """
-
-    strategy: str = "target-input-speed"
-    target_input_speed: float | None = None
-    clamp_force: float | None = None
-    clamp_law: Any = None
-    candidates: int = 9
-    ratio_range: Any = None
-    progress: bool | None = None
-    workers: int = 1
-
-    def check(self) -> None:
-        """Refuse settings out of range (one `InputError` naming the setting)."""
-        if self.strategy not in STRATEGIES:
-            raise InputError("strategy", self.strategy, "one of: " + ", ".join(STRATEGIES))
-        if not 3 <= int(self.candidates) <= 101:
-            raise InputError("candidates", self.candidates, "3-101")
-        if not 1 <= int(self.workers) <= 64:
-            raise InputError("workers", self.workers, "1-64")
-
-
-@dataclass(frozen=True)
 class _Plan:
-    """What the ratio strategies share within one run: the batched solve, the usable and
-    allowed ratios, the step flags and the steps that run."""
+    """What the ratio strategies share within one run: the batched solve, the allowed
+    ratios (`allowed_ratios`), the step flags and the steps that run."""
 
     solve: Any
-    usable: tuple[float, float]
     allowed: tuple[float, float]
     candidates: int
     flag: np.ndarray
     run: np.ndarray
 
-    def limit(self, ratio, commanded=None):
-        """``ratio`` within the usable range; the clipped steps flagged ``ratio_limited``."""
-        clipped = np.clip(ratio, *self.usable)
+    def limit(self, ratio):
+        """``ratio`` within the allowed range; the clipped steps flagged ``ratio_limited``."""
+        clipped = np.clip(ratio, *self.allowed)
         changed = clipped != ratio
         self.flag[self.run[changed]] = "ratio_limited"
         return clipped, changed
@@ -212,16 +173,15 @@ def run_cycle(drive, cycle: Cycle, settings: CycleRequest | None = None, **keywo
     import pandas as pd
 
     start = _time.perf_counter()
-    s = replace(settings or CycleRequest(), **keywords)
-    s.check()
+    s = replace(settings or CycleRequest(), **keywords).resolve(cycle)
+    assert s.candidates is not None
     design = drive.design
     law = resolve_law(s.clamp_law, design, s.clamp_force)
-    commanded = cycle.kind == "input" and cycle.ratio is not None
-    usable, allowed = _ratio_ranges(design, s)
-    _check_strategy(s, cycle, commanded)
+    commanded = s.strategy == COMMANDED
+    allowed = allowed_ratios(design, s)
     flag = _step_flags(cycle)
     run = np.flatnonzero(flag == "ok")
-    passes = {"target-input-speed": 2, "max-efficiency": s.candidates + 2}[s.strategy]
+    passes = s.candidates + 2 if s.strategy == "max-efficiency" else 2
     if cycle.kind == "input":
         passes = POWER_PASSES * (1 if commanded else s.candidates + 1)
     # the ratio search and the creep correction run on the solver's coarse rule (the
@@ -243,7 +203,7 @@ def run_cycle(drive, cycle: Cycle, settings: CycleRequest | None = None, **keywo
             )
             return evaluate_points(points, t2, callback=bar.update, executor=pool)
 
-        plan = _Plan(solve, usable, allowed, s.candidates, flag, run)
+        plan = _Plan(solve, allowed, s.candidates, flag, run)
         if cycle.kind == "output":
             assert cycle.output_speed is not None and cycle.output_torque is not None
             t2 = cycle.output_torque[run]
@@ -276,37 +236,6 @@ def _bar(settings: CycleRequest, total: int, n: int):
     return tqdm(total=total, desc=f"duty cycle, {n} steps", unit="point", disable=not show)
 
 
-def _ratio_ranges(design, s: CycleRequest):
-    """(usable, allowed) ratio ranges: the design's, and the one ``max-efficiency`` may use."""
-    lo, hi = usable_ratio_range(design)
-    r_lo, r_hi = (lo, hi) if s.ratio_range is None else map(float, s.ratio_range)
-    if not lo <= r_lo < r_hi <= hi:
-        raise InputError(
-            "ratio_range",
-            f"{r_lo:g} {r_hi:g}",
-            f"MIN < MAX within the usable range {lo:.4g}-{hi:.4g}",
-        )
-    return (lo, hi), (r_lo, r_hi)
-
-
-def _check_strategy(s: CycleRequest, cycle: Cycle, commanded: bool) -> None:
-    if s.strategy != "target-input-speed" or commanded:
-        return
-    if cycle.kind == "input":
-        raise InputError(
-            "strategy",
-            s.strategy,
-            "max-efficiency (an input-side cycle without a ratio column fixes the input "
-            "speed already)",
-        )
-    if s.target_input_speed is None or not s.target_input_speed > 0:
-        raise InputError(
-            "target_input_speed",
-            s.target_input_speed,
-            "> 0 rad/s for the target-input-speed strategy",
-        )
-
-
 def _step_flags(cycle: Cycle) -> np.ndarray:
     """``ok``, ``idle`` or ``negative_torque`` per step, from the cycle's own columns."""
     flag = np.full(cycle.size, "ok", dtype=object)
@@ -329,7 +258,7 @@ def _output_side(plan: _Plan, s: CycleRequest, w2, t2):
         res = solve(ratio, t2, w2 / ratio, rough=True)
         # second pass: the creep's speed loss, so that the input turns at the target
         speed_eff = np.where(res["status"] == 0, res["eta_speed"], 1.0)
-        ratio2 = np.where(limited, ratio, np.clip(want / speed_eff, *plan.usable))
+        ratio2 = np.where(limited, ratio, np.clip(want / speed_eff, *plan.allowed))
         w0 = np.where(limited, w2 / ratio, target)
         return ratio2, w0, solve(ratio2, t2, w0)
     ratio = _best_ratio(
@@ -430,6 +359,8 @@ def _table(cycle: Cycle, run, solved, res, flag) -> dict:
     col["axial_force"] = put(res["axial_force"])
     col["eta"] = put(res["eta"])
     col["tilt_deg"] = put(res["tilt_deg"])
+    col["max_pressure"] = put(np.max(res["p_max"], axis=-1))  # over the contacts
+    col["min_lambda"] = put(np.min(res["lambda_ratio"], axis=-1))
     for j, kind in enumerate(LOSS_KINDS):
         col[f"loss_{kind}"] = put(res["losses"][:, j])
     col["warnings"] = put(res["warnings"]).astype(float)
@@ -480,9 +411,7 @@ def _summary(variator, cycle, steps, strategy, law, target, run_time) -> dict:
         "steps": int(len(dt)),
         "steps_flagged": int(sum(v["steps"] for k, v in flags.items() if k not in ("ok", "idle"))),
         "flags": flags,
-        "strategy": strategy
-        if not (cycle.kind == "input" and cycle.ratio is not None)
-        else "commanded ratio",
+        "strategy": strategy,
         "target_input_speed_rpm": None if target is None else rad_s_to_rpm(target),
         "clamp_law": law.name,
         "clamp_force": getattr(law, "force", None),

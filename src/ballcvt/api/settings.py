@@ -81,24 +81,26 @@ class CycleSettings:
 
     Attributes
     ----------
-    strategy : {"target-input-speed", "max-efficiency"}
-        How the ratio is chosen.
+    strategy : {"target-input-speed", "max-efficiency"}, optional
+        How the ratio is chosen; None: ``target-input-speed`` when a target input speed
+        is given, else ``max-efficiency`` (`ballcvt.analysis.cycle_request`).
     target_input_speed, target_input_speed_rpm : float, optional
-        Input speed held by ``target-input-speed`` [rad/s] or [rpm] (at most one).
-    candidates : int
-        Ratios tried per step by ``max-efficiency``.
+        Input speed held by ``target-input-speed`` [rad/s] or [rpm] (at most one; that
+        strategy only).
+    candidates : int, optional
+        Ratios tried per step by ``max-efficiency`` (that strategy only; 9 when None).
     ratio_range : (float, float), optional
-        Ratios ``max-efficiency`` may use [-].
+        Ratios any strategy may use [-] (default: the usable range).
     progress : bool, optional
         Progress bar (default: when stderr is a terminal).
     workers : int
         Processes to solve the steps on.
     """
 
-    strategy: str = "target-input-speed"
+    strategy: str | None = None
     target_input_speed: float | None = None
     target_input_speed_rpm: float | None = None
-    candidates: int = 9
+    candidates: int | None = None
     ratio_range: Any = None
     progress: bool | None = None
     workers: int = 1

@@ -200,7 +200,7 @@ def _evaluate(ctx: Context, values: dict):
         metrics["eta_min"] = float(np.min(eta))
     else:
         cyc = _cycle(ctx, design, force, law)
-        metrics["cycle_efficiency"] = cyc["efficiency"]
+        metrics.update({k: cyc[k] for k in ("cycle_efficiency", "max_pressure", "min_lambda")})
         beyond = cyc["beyond"]
         if beyond:
             return (
@@ -261,13 +261,18 @@ def _cycle_speed(ctx: Context) -> float:
 
 
 def _cycle(ctx: Context, design, force, law) -> dict:
-    """Efficiency and steps beyond capacity of the study's duty cycle."""
+    """Efficiency, steps beyond capacity, highest peak pressure [Pa] and lowest film
+    thickness ratio [-] (over the solved steps and their contacts; NaN if none solved) of
+    the study's duty cycle."""
     from ..cycle_files import read_cycle
     from ..cycles import run_cycle
 
     op = ctx.spec.operating
     v = Drive(design, ctx.fluid, ctx.spec.study.architecture)
-    target = None if op.target_input_speed_rpm is None else rpm_to_rad_s(op.target_input_speed_rpm)
+    # held by target-input-speed only (under max-efficiency: the capacity speed)
+    target = (
+        rpm_to_rad_s(op.target_input_speed_rpm) if op.strategy == "target-input-speed" else None
+    )
     assert op.cycle is not None
     res = run_cycle(
         v,
@@ -281,4 +286,10 @@ def _cycle(ctx: Context, design, force, law) -> dict:
     s = res.summary
     beyond = int(s.get("flags", {}).get("beyond_capacity", {}).get("steps", 0))
     eff = s["efficiency"]
-    return {"efficiency": np.nan if eff is None else float(eff), "beyond": beyond}
+    solved = res.steps[res.steps["status"] == Status.CONVERGED]
+    return {
+        "cycle_efficiency": np.nan if eff is None else float(eff),
+        "beyond": beyond,
+        "max_pressure": float(solved["max_pressure"].max()) if len(solved) else np.nan,
+        "min_lambda": float(solved["min_lambda"].min()) if len(solved) else np.nan,
+    }

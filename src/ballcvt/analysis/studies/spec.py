@@ -63,8 +63,11 @@ OBJECTIVES = {
     "capacity": ("N m", "lowest limiting torque over the capacity ratios"),
     "torque_per_volume": ("N m/m^3", "capacity over the ball envelope volume"),
     "torque_per_mass": ("N m/kg", "capacity over the mass of the balls"),
-    "min_lambda": ("-", "lowest film thickness ratio over points and contacts"),
-    "max_pressure": ("Pa", "highest Hertz peak pressure over points and contacts"),
+    "min_lambda": ("-", "lowest film thickness ratio over points (or cycle steps) and contacts"),
+    "max_pressure": (
+        "Pa",
+        "highest Hertz peak pressure over points (or cycle steps) and contacts",
+    ),
     "outer_diameter": ("m", "ball envelope diameter 2 (k + 2) r_S"),
 }
 #: Constraints a study can set (name -> unit, meaning).
@@ -278,6 +281,10 @@ class StudySpec(ParameterModel):
                     name,
                     "cycle_efficiency with a cycle, eta_mean/eta_min with a grid",
                 )
+        if cycle and self.constraints.eta_min_min is not None:
+            raise InputError(
+                "constraints.eta_min_min", self.constraints.eta_min_min, "with a grid, not a cycle"
+            )
         if self.study.choose is not None and self.study.choose not in self.objectives:
             raise InputError(
                 "study.choose",

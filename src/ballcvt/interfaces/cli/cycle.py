@@ -30,20 +30,22 @@ def add_parser(subparsers) -> None:
     p.add_argument(
         "--strategy",
         choices=STRATEGIES,
-        default="target-input-speed",
-        help="how the ratio is chosen (default: %(default)s)",
+        default=None,
+        help="how the ratio is chosen (default: target-input-speed with --target-speed, "
+        "else max-efficiency; an input-side cycle with a ratio column takes none)",
     )
     p.add_argument(
         "--target-speed",
         type=o.quantity("target_speed", "rpm", most=o.MOST_RPM),
         default=None,
-        help="input speed held by target-input-speed [rpm] (required by it)",
+        help="input speed held by target-input-speed [rpm] (required by it, refused by "
+        "the others)",
     )
     p.add_argument(
         "--candidates",
         type=o.count(3, 101),
-        default=9,
-        help="ratios tried per step by max-efficiency, 3-101 (default: 9)",
+        default=None,
+        help="ratios tried per step by max-efficiency, 3-101 (default: 9; refused by the others)",
     )
     p.add_argument(
         "--ratio-range",
@@ -51,7 +53,8 @@ def add_parser(subparsers) -> None:
         nargs=2,
         default=None,
         metavar=("MIN", "MAX"),
-        help="ratios max-efficiency may use (default: the usable range)",
+        help="ratios any strategy may use (default: the usable range); a held or "
+        "commanded ratio outside runs at its end, flagged ratio_limited",
     )
     o.out(p, "ballcvt-cycle")
     o.add(p, "json")

@@ -18,12 +18,16 @@ __all__ = ["OptimalClamp"]
 class OptimalClamp(ClampLaw):
     """The clamping force of maximum efficiency at each point (`ballcvt.solvers.optimal_clamp`).
 
+    At zero output torque (no efficiency to maximise) it is the least force from
+    ``min_force`` that holds the no-load drag within the creep limit.
+
     Parameters
     ----------
     creep_limit : float, optional
         ``C_lim`` [-]; the design's by default.
     max_pressure : float, optional
-        Largest Hertz peak pressure [Pa]; the design's by default.
+        Largest Hertz peak pressure [Pa]; the design's by default; ``inf``: no pressure
+        limit (the efficiency, falling at large forces, places the optimum).
     min_force : float
         Smallest clamping force searched [N].
     grid : int

@@ -25,6 +25,7 @@ from ballcvt import (
     TractionLimitError,
     cycle_from_arrays,
 )
+from ballcvt.errors import NoEquilibriumError
 from ballcvt.units import rpm_to_rad_s
 
 KEEP = ("output_torque", "loss", "contact")
@@ -74,16 +75,30 @@ def run_solve(task, v, cond):
             else:
                 task.exception(got, inputs)
             continue
-        bad = result_checks(v, got)
-        if lim is not None and math.isfinite(lim) and t > lim * (1 + LIMIT_TOL):
-            bad.append(
-                (
-                    "converged beyond the limit",
-                    f"solve converged at {t:.6g} N m = "
-                    f"{t / lim:.4g} x the reported limit {lim:.6g} N m, unflagged",
-                )
+        task.judge(beyond_limit(task, v, cond, t) + result_checks(v, got), inputs)
+
+
+def beyond_limit(task, v, cond, t: float) -> list:
+    """A solve that converged (unflagged) at ``t`` [N m] above the reported limit, or where
+    the limit search finds no admissible torque at all."""
+    lim, exc = limit_of(task, v, cond)
+    if lim is not None and math.isfinite(lim) and t > lim * (1 + LIMIT_TOL):
+        return [
+            (
+                "converged beyond the limit",
+                f"solve converged at {t:.6g} N m = {t / lim:.4g} x the reported limit "
+                f"{lim:.6g} N m, unflagged",
             )
-        task.judge(bad, inputs)
+        ]
+    if isinstance(exc, NoEquilibriumError) and t > 0:
+        return [
+            (
+                "converged beyond the limit",
+                f"solve converged at {t:.6g} N m where limit_torque finds no admissible "
+                f"torque ({str(exc)[:120]})",
+            )
+        ]
+    return []
 
 
 def run_limit(task, v, cond):
@@ -160,6 +175,12 @@ def judge_grid(task, v, cond, entry, rows, at=None):
         ref = reference(task, v, cond, float(t), **at)
         status, eta = int(rows["status"][j]), float(rows["eta"][j])
         bad = agree(entry, status, eta, ref)
+        drawn = at.get("rpm", cond["rpm"]) == cond["rpm"] and at.get("ratio") in (
+            None,
+            cond["ratio"],
+        )
+        if ref[0] == "ok" and drawn:
+            bad = beyond_limit(task, v, cond, float(t)) + bad
         if status == 0:
             values = {k: rows[k][j] for k in ("eta", "eta_loss", "losses", "creep")}
             bad += grid_point_checks(v, values)
@@ -169,7 +190,7 @@ def judge_grid(task, v, cond, entry, rows, at=None):
                 bad.append(
                     ("Eq. 38 = Eq. 39", f"eta {eta:.8g} vs eta_loss {rows['eta_loss'][j]:.8g}")
                 )
-        if j == 0 and lim is not None and not close(rows["limit"], lim):
+        if j == 0 and drawn and lim is not None and not close(rows["limit"], lim):
             bad.append(
                 (
                     f"{entry} limit = limit_torque",
@@ -223,12 +244,12 @@ def run_map(task, v, cond):
     ds = _grid_call(
         task,
         "map",
-        [top * j / 4 for j in (1, 2, 3, 4)],
+        [top * j / 4 for j in (1, 2, 3, 4)] * 2,  # the points the map would have given
         lambda: v.efficiency_map(grid, input_speed_rpm=cond["rpm"], **cond["kw"], progress=False),
     )
     if ds is not None:
-        r = float(ds.ratio.values[i])
-        judge_grid(task, v, cond, "map", _rows(ds, ratio=i), {"ratio": r})
+        for k in (i, 1 - i):  # the drawn ratio first (its limit is known), then the other
+            judge_grid(task, v, cond, "map", _rows(ds, ratio=k), {"ratio": float(ds.ratio[k])})
 
 
 def run_table(task, v, cond):
@@ -245,12 +266,13 @@ def run_table(task, v, cond):
     ds = _grid_call(
         task,
         "table",
-        [0.0, top / 2, top],
+        [0.0, top / 2, top] * 4,
         lambda: v.lookup_table(grid, **cond["kw"], progress=False),
     )
     if ds is not None:
-        at = {"ratio": float(ds.ratio.values[i]), "rpm": float(ds.input_speed_rpm.values[0])}
-        judge_grid(task, v, cond, "table", _rows(ds, ratio=i, input_speed_rpm=0), at)
+        for k, m in ((i, 0), (i, 1), (1 - i, 0), (1 - i, 1)):  # the drawn point first
+            at = {"ratio": float(ds.ratio[k]), "rpm": float(ds.input_speed_rpm[m])}
+            judge_grid(task, v, cond, "table", _rows(ds, ratio=k, input_speed_rpm=m), at)
 
 
 def run_cycle(task, v, cond):

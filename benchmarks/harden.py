@@ -95,7 +95,7 @@ def _on_alarm(signum, frame):
 def run_task(seed: int, index: int, deadline: float, timeout: float) -> dict:
     """Task ``index``: its case's points, each classified (run in a worker process)."""
     case = schedule(seed)[index % len(all_cases())]
-    out = {"points": [], "seconds": 0.0, "cut": False, "entry": case["entry"]}
+    out = {"points": [], "seconds": 0.0, "cpu": 0.0, "cut": False, "entry": case["entry"]}
     if not entries.supported(case):
         out["points"].append(
             {
@@ -110,7 +110,7 @@ def run_task(seed: int, index: int, deadline: float, timeout: float) -> dict:
     stop = min(time.time() + timeout, deadline)
     signal.signal(signal.SIGALRM, _on_alarm)
     signal.setitimer(signal.ITIMER_REAL, max(0.01, stop - time.time()))
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     task = entries.Task(case, rng, out["points"], {"seed": seed, "task": index})
     try:
         entries.run_case(task)
@@ -131,6 +131,7 @@ def run_task(seed: int, index: int, deadline: float, timeout: float) -> dict:
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
     out["seconds"] = time.perf_counter() - t0
+    out["cpu"] = time.process_time() - c0
     return out
 
 
@@ -143,6 +144,7 @@ class Tally:
     checks: collections.Counter = field(default_factory=collections.Counter)
     flags: collections.Counter = field(default_factory=collections.Counter)
     entry_seconds: collections.Counter = field(default_factory=collections.Counter)
+    entry_cpu: collections.Counter = field(default_factory=collections.Counter)
     entry_points: collections.Counter = field(default_factory=collections.Counter)
     failures: list = field(default_factory=list)
     tasks: int = 0
@@ -160,6 +162,7 @@ class Tally:
     def add(self, result: dict) -> None:
         self.tasks += 1
         self.entry_seconds[result["entry"]] += result["seconds"]
+        self.entry_cpu[result["entry"]] += result.get("cpu", 0.0)
         for p in result["points"]:
             case, outcome = p["case"], p["outcome"]
             for k in CASE_KEYS:
@@ -270,6 +273,10 @@ def summary(args, tally: Tally, seconds: float) -> dict:
             "points_per_second": round(tally.entry_points[e] / tally.entry_seconds[e], 2)
             if tally.entry_seconds[e] > 0
             else None,
+            "worker_cpu_seconds": round(tally.entry_cpu[e], 2),
+            "points_per_cpu_second": round(tally.entry_points[e] / tally.entry_cpu[e], 2)
+            if tally.entry_cpu[e] > 0
+            else None,
         }
         for e in entries.ENTRIES
     }
@@ -300,9 +307,12 @@ def print_table(s: dict, tally: Tally) -> None:
         print(f"\n{key:<26}" + "".join(f"{o:>12}" for o in OUTCOMES))
         for name, counts in rows.items():
             print(f"  {name:<24}" + "".join(f"{counts[o]:12d}" for o in OUTCOMES))
-    print("\npoints per worker-second by entry point:")
+    print("\npoints per worker-second (wall, and CPU) by entry point:")
     for e, r in s["rate"].items():
-        print(f"  {e:<18} {r['points']:7d} points  {r['points_per_second']}")
+        print(
+            f"  {e:<18} {r['points']:7d} points  {r['points_per_second']}  "
+            f"{r['points_per_cpu_second']}"
+        )
     print("\nsilent failures and bugs by check:")
     for name, n in s["by_check"].items():
         print(f"  {n:6d}  {name}")

@@ -80,7 +80,10 @@ class Task:
         p = {"case": self.case, "outcome": outcome, "check": check, "message": message}
         if outcome in ("silent", "bug"):
             p["inputs"] = inputs
-            p["python"] = python_snippet(inputs)
+            p["rerun"] = (
+                f"python benchmarks/harden.py --task {self.where['seed']}:{self.where['task']}"
+            )
+            p["python"] = python_snippet(inputs)  # the point through solve (or limit_torque)
         self.points.append(p)
 
     def exception(self, exc: BaseException, inputs: dict) -> None:

@@ -1,30 +1,39 @@
-"""Hardening campaign: thousands of operating points on random designs, every outcome counted.
+"""Hardening campaign: random designs and operating points over every case, every point checked.
 
-Run: ``python benchmarks/harden.py [--designs 500] [--conditions 4] [--seed 1]``
-(prints the counts; the README's reliability section records them).
+Run: ``python benchmarks/harden.py --seed 1 --budget 600 [--json] [--failures out.jsonl]``
+(``--workers N`` processes, ``--points N`` to stop early; ``--task SEED:INDEX`` re-runs one
+task and prints its points, e.g. one named in a failures file).
 
-Half the designs are drawn over every value the validators accept (log-uniform sizes from
-1 mm to 10 m, aspect ratios 0.05-100, contact angles 0.5-89.5 deg, 3-64 balls, grooves from
-nearly conforming to straight, any tilt safety factor, creep limits 0.01-0.9), half around
-Table I (sizes x 0.3-3, angles +-20 deg, 3-16 balls); both architectures. A drawn design
-that cannot be built is counted with the reason it was refused. For each
-feasible design, ``--conditions`` operating conditions (ratio across the whole usable range,
-clamping force 1e-2 to 1e2 times, and speed 1e-2 to 30 times, the Table I point scaled to
-the ball size at equal pressure and rolling speed) are each evaluated at five torques,
-0 to 1.5 x the limiting torque: by `Variator.solve` point by point, and by one
-`Variator.sweep` over the five torques, which must agree.
+The cases are the product of the registries (never a list written here): every traction
+law (`ballcvt.registry.TRACTION_LAWS`) x clamping law (`CLAMP_LAWS`) x architecture
+(`ARCHITECTURES`) x operating mode (`OPERATING_MODES`) x entry point: ``solve``
+(`Variator.solve`), ``sweep`` (`Variator.sweep`), ``limit`` (`Variator.limit_torque`, or
+`Variator.planetary_capacity` in a planetary mode), ``map`` (`Variator.efficiency_map`, or
+`Variator.planetary_map`), ``table`` (`Variator.lookup_table`), ``cycle step``
+(`Variator.run_cycle` on a short duty cycle) and ``study evaluation`` (one design through
+`ballcvt.analysis.studies.evaluate_chunk`). Only public names are used.
 
-Every point ends as exactly one of:
+Each task takes the next case (the cases in a seeded order, round after round), draws a
+buildable design around a built-in drive (``table1`` or ``hub``; sizes x 0.3-3, angles,
+ball counts, grooves, now and then over the validators' whole ranges; a random loading cam
+for the cam law) and an operating point (ratio over the usable range, input speed and
+clamping force scaled to the ball size), and evaluates the entry point at torques from 0
+to 1.5 x the limiting torque. Every point ends as exactly one of:
 
-* converged (with or without validity warnings);
-* flagged with a reason: beyond the traction capacity (`TractionLimitError`), no
-  equilibrium even at zero torque (`NoEquilibriumError`), refused input (`InputError`,
-  e.g. a clamp whose pressure overflows the viscosity law), not converged
-  (`ConvergenceError`, with its message);
-* a silent failure: NaN or inf in a result, eta outside [0, 1), a negative loss, Eq. 38 and
-  Eq. 39 apart by more than the residual bound, creep and traction of opposite signs, or
-  the sweep and `solve` disagreeing (status, or eta by more than 1e-6);
-* a bug: any other exception.
+* ``ok``: converged and every check holds;
+* ``flagged``: `TractionLimitError`, `NoEquilibriumError`, `InputError` or
+  `ConvergenceError`, with a one-line message (or a grid status other than converged);
+* ``silent``: a check violated without a flag: a NaN or inf; eta outside [0, 1] by the
+  direction the power flows (planetary: power out over power in, whichever member is the
+  input); a negative loss; Eq. 38 and Eq. 39 apart beyond the residual bound; ``|creep|``
+  above the creep limit; the solve converging above the reported limiting torque, or not
+  at it, or failing without `TractionLimitError` just above it (1.001 x); a sweep, map,
+  table, cycle step or study evaluation disagreeing with `Variator.solve` at the same point
+  (status, or eta by more than 1e-6: a different branch);
+* ``bug``: any other exception, a flag whose message is several lines or says
+  "internal error", or a point that hangs past ``--timeout``;
+* ``unsupported`` (not a point): an entry point the public API does not offer for the case
+  (e.g. a sweep in a planetary mode), counted so the coverage gaps show.
 
 The target is 0 silent failures and 0 bugs.
 """
@@ -33,232 +42,324 @@ from __future__ import annotations
 
 import argparse
 import collections
-import math
+import itertools
+import json
+import os
+import signal
+import sys
 import time
 import traceback
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass, field
 
 import numpy as np
-from tqdm import tqdm
 
-from ballcvt import ConvergenceError, InputError, TractionLimitError, Variator, __version__, load_builtin
-from ballcvt.errors import NoEquilibriumError
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harden_entries as entries  # noqa: E402  (the entry points and their checks)
 
-BASE_DESIGN, BASE_FLUID = load_builtin()
-FRACTIONS = (0.0, 0.3, 0.7, 0.95, 1.5)
+from ballcvt import __version__  # noqa: E402
+from ballcvt.registry import ARCHITECTURES, CLAMP_LAWS, OPERATING_MODES, TRACTION_LAWS  # noqa: E402
 
-
-def log_uniform(rng, lo, hi):
-    return float(math.exp(rng.uniform(math.log(lo), math.log(hi))))
+OUTCOMES = ("ok", "flagged", "silent", "bug", "unsupported")
+CASE_KEYS = ("law", "clamp", "arch", "mode", "entry")
 
 
-def draw_design(rng, wide):
-    """A design (may be infeasible): over the validators' whole ranges if ``wide``, else
-    around Table I (sizes x 0.3-3, angles +-20 deg, 3-16 balls)."""
-    if wide:
-        groove = lambda: math.inf if rng.random() < 0.2 else 1.0 + log_uniform(rng, 1e-2, 100)  # noqa: E731
-        rs = log_uniform(rng, 1e-3, 10.0)
-        return dict(
-            aspect_ratio=log_uniform(rng, 0.05, 100.0), roller_radius=rs,
-            theta0_deg=rng.uniform(0.5, 89.5), theta2_deg=rng.uniform(0.5, 89.5),
-            alpha_deg=rng.uniform(0.0, 89.5), n_rollers=int(rng.integers(3, 65)),
-            roller_bearing_diameter=rs * log_uniform(rng, 0.05, 2.0),
-            idler_bearing_diameter=rs * log_uniform(rng, 0.05, 2.0),
-            disc_groove_ratio=groove(), idler_groove_ratio=groove(),
-            single_idler_groove_ratio=groove(), tilt_safety_factor=rng.uniform(0.05, 1.0),
-            creep_limit=log_uniform(rng, 1e-2, 0.9),
-            min_roller_gap=rs * log_uniform(rng, 1e-4, 0.5))
-    f = lambda: log_uniform(rng, 0.3, 3.0)  # noqa: E731
-    rs = BASE_DESIGN.roller_radius * f()
-    return dict(
-        aspect_ratio=BASE_DESIGN.aspect_ratio * f(), roller_radius=rs,
-        theta0_deg=45.0 + rng.uniform(-20, 20), theta2_deg=45.0 + rng.uniform(-20, 20),
-        alpha_deg=10.0 + rng.uniform(-8, 20), n_rollers=int(rng.integers(3, 17)),
-        roller_bearing_diameter=rs / 3 * f(), idler_bearing_diameter=rs / 3 * f(),
-        disc_groove_ratio=1.0 + 1.4548 * f(), idler_groove_ratio=1.0 + 1.4548 * f(),
-        single_idler_groove_ratio=math.inf if rng.random() < 0.5 else 1.0 + 10 * f(),
-        tilt_safety_factor=rng.uniform(0.5, 0.95), creep_limit=rng.uniform(0.05, 0.2),
-        min_roller_gap=0.001 * f())
+def all_cases() -> list[dict]:
+    """Every case: the registries' names x the entry points."""
+    names = (
+        TRACTION_LAWS.names(),
+        CLAMP_LAWS.names(),
+        ARCHITECTURES.names(),
+        OPERATING_MODES.names(),
+        entries.ENTRIES,
+    )
+    return [dict(zip(CASE_KEYS, c)) for c in itertools.product(*names)]
 
 
-def feasible_design(rng, refused, wide):
-    """Draw until a design is accepted; count every refusal by the quantity named."""
-    while True:
-        fields = draw_design(rng, wide)
-        if rng.random() < 0.5:   # bias half the draws towards designs that fit
-            k, rs, g = fields["aspect_ratio"], fields["roller_radius"], fields["min_roller_gap"]
-            s = min(0.999, (1 + g / (2 * rs)) / (1 + k))
-            fields["n_rollers"] = int(rng.integers(3, max(4, int(math.pi / math.asin(s)) + 1)))
-        try:
-            return BASE_DESIGN.replace(name="random", **fields)
-        except InputError as exc:
-            refused[exc.quantity] += 1
+def schedule(seed: int) -> list[dict]:
+    """The cases in the seed's order (task ``i`` takes ``schedule[i % len]``)."""
+    cases = all_cases()
+    order = np.random.default_rng([seed, 99991]).permutation(len(cases))
+    return [cases[i] for i in order]
 
 
-def silent_failures(v, r):
-    """The silent-failure checks of one converged result; returns a list of reasons."""
-    bad = []
-    numbers = [r.eta, r.eta_loss, r.eta_speed, r.eta_torque, r.input_torque, r.actual_ratio,
-               r.tilt, *r.losses.values()]
-    for c in r.contacts.values():
-        numbers += [c.creep, c.spin, c.mu, c.chi, c.p_max, c.film_thickness, c.creep_loss,
-                    c.spin_loss, c.lambda_ratio]
-    if not all(math.isfinite(x) for x in numbers):
-        bad.append("NaN or inf in the result")
-    if not 0.0 <= r.eta < 1.0:
-        bad.append(f"eta = {r.eta} outside [0, 1)")
-    if min(r.losses.values()) < 0 or any(c.creep_loss < 0 or c.spin_loss < 0
-                                         for c in r.contacts.values()):
-        bad.append("negative loss")
-    speeds = abs(r.roller_speed) + sum(abs(c.body_speed) for c in r.contacts.values())
-    slack = v.design.n_rollers * r.clamp_force * v.design.roller_radius * r.residual_norm
-    bound = 1e-12 + 2.0 * slack * speeds / r.input_power if r.input_power > 0 else 1e-9
-    if abs(r.eta - r.eta_loss) > bound:
-        bad.append(f"Eq. 38 - Eq. 39 = {r.eta - r.eta_loss:.3g} beyond the residual bound "
-                   f"{bound:.3g}")
-    if any(c.creep * c.mu < 0 for c in r.contacts.values()):
-        bad.append("creep and traction of opposite signs")
-    return bad
+class _Alarm(BaseException):
+    """Raised by the per-task timer (a BaseException: no ``except Exception`` swallows it)."""
 
 
-def run_condition(v, rng, counts, reasons, examples):
-    lo, hi = v.ratio_range
-    ratio = log_uniform(rng, lo, hi) if rng.random() < 0.8 else (lo if rng.random() < .5 else hi)
-    scale = v.design.roller_radius / 0.03          # relative to the Table I ball
-    clamp = 2000.0 * scale**2 * log_uniform(rng, 1e-2, 1e2)
-    rpm = 2000.0 / scale * log_uniform(rng, 1e-2, 30.0)
-    op = dict(clamp_force=clamp, input_speed_rpm=rpm)
-    where = f"{v.architecture} idler, ratio {ratio:.4g}, clamp {clamp:.4g} N, {rpm:.4g} rpm"
+def _on_alarm(signum, frame):
+    raise _Alarm
+
+
+def run_task(seed: int, index: int, deadline: float, timeout: float) -> dict:
+    """Task ``index``: its case's points, each classified (run in a worker process)."""
+    case = schedule(seed)[index % len(all_cases())]
+    out = {"points": [], "seconds": 0.0, "cpu": 0.0, "cut": False, "entry": case["entry"]}
+    if not entries.supported(case):
+        out["points"].append(
+            {
+                "case": case,
+                "outcome": "unsupported",
+                "check": "api",
+                "message": "no public entry point for this case",
+            }
+        )
+        return out
+    rng = np.random.default_rng([seed, index])
+    stop = min(time.time() + timeout, deadline)
+    signal.signal(signal.SIGALRM, _on_alarm)
+    signal.setitimer(signal.ITIMER_REAL, max(0.01, stop - time.time()))
+    t0, c0 = time.perf_counter(), time.process_time()
+    task = entries.Task(case, rng, out["points"], {"seed": seed, "task": index})
     try:
-        limit = v.limit_torque(ratio=ratio, **op)
-    except (NoEquilibriumError, InputError) as exc:
-        kind = "no equilibrium at zero torque" if isinstance(exc, NoEquilibriumError) else \
-            f"refused input ({exc.quantity})"
-        counts["flagged"] += len(FRACTIONS)
-        reasons[kind] += len(FRACTIONS)
-        return
-    except Exception as exc:  # noqa: BLE001 - a bug: record it
-        counts["bug"] += len(FRACTIONS)
-        examples.append(f"BUG in limit_torque at {where}: {type(exc).__name__}: {exc}")
-        return
-    torques = [f * limit for f in FRACTIONS]
-    solved = {}
-    for t in torques:
-        try:
-            r = v.solve(ratio=ratio, output_torque=t, **op)
-        except TractionLimitError:
-            counts["flagged"] += 1
-            reasons["beyond the traction capacity"] += 1
-            continue
-        except NoEquilibriumError:
-            counts["flagged"] += 1
-            reasons["no equilibrium at zero torque"] += 1
-            continue
-        except ConvergenceError as exc:
-            counts["flagged"] += 1
-            reasons[f"not converged: {str(exc)[:60]}"] += 1
-            continue
-        except InputError as exc:
-            counts["flagged"] += 1
-            reasons[f"refused input ({exc.quantity})"] += 1
-            continue
-        except Exception as exc:  # noqa: BLE001
-            counts["bug"] += 1
-            examples.append(f"BUG in solve at {where}, T2 {t:.4g}: {type(exc).__name__}: {exc}"
-                            f"\n{traceback.format_exc(limit=3)}")
-            continue
-        bad = silent_failures(v, r)
-        if bad:
-            counts["silent"] += 1
-            examples.append(f"SILENT at {where}, T2 {t:.4g}: {'; '.join(bad)}")
+        entries.run_case(task)
+    except _Alarm:
+        if time.time() >= deadline - 0.05:  # the budget ran out: drop the partial point
+            out["cut"] = True
         else:
-            counts["converged"] += 1
-            if r.warnings:
-                counts["converged with warnings"] += 1
-                for w in r.warnings:
-                    reasons[f"warning: {w.split(':')[0]}"] += 1
-            solved[t] = r
-    # the same torques through one sweep: status and eta must agree with solve
-    try:   # the limit is the same function the sweep would call: given, not found twice
-        ds = v.sweep(ratio=ratio, output_torque=torques, progress=False, limit_torque=limit,
-                     **op)
-    except Exception as exc:  # noqa: BLE001
-        counts["bug"] += 1
-        examples.append(f"BUG in sweep at {where}: {type(exc).__name__}: {exc}")
-        return
-    status = ds.status.values.ravel()
-    eta = ds.eta.values.ravel()
-    for j, t in enumerate(torques):
-        if t in solved:
-            if status[j] != 0 or abs(eta[j] - solved[t].eta) > 1e-6:
-                counts["silent"] += 1
-                examples.append(f"SILENT sweep != solve at {where}, T2 {t:.4g}: status "
-                                f"{status[j]}, eta {eta[j]} vs {solved[t].eta}")
-        elif status[j] == 0 and not np.isfinite(eta[j]):
-            counts["silent"] += 1
-            examples.append(f"SILENT sweep NaN without a flag at {where}, T2 {t:.4g}")
+            task.record(
+                "bug", "timeout", f"no answer within {timeout:g} s", task.last_inputs or {}
+            )
+    except Exception as exc:  # noqa: BLE001 - the harness itself must never stop
+        task.record(
+            "bug",
+            "harness",
+            f"{type(exc).__name__}: {exc}\n" + traceback.format_exc(limit=-3),
+            task.last_inputs or {},
+        )
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+    out["seconds"] = time.perf_counter() - t0
+    out["cpu"] = time.process_time() - c0
+    return out
 
 
-def run_designs(seed, first, count, conditions):
-    """Designs ``first ... first + count - 1`` (each from its own seeded generator)."""
-    refused, counts, reasons = (collections.Counter() for _ in range(3))
-    examples, archs = [], collections.Counter()
-    for i in range(first, first + count):
-        rng = np.random.default_rng([seed, i])
-        v = None
-        while v is None:                      # redraw until one architecture accepts it
-            design = feasible_design(rng, refused, wide=i % 4 >= 2)
-            for arch in (("double", "single") if i % 2 == 0 else ("single", "double")):
+@dataclass
+class Tally:
+    """Counts of a campaign."""
+
+    by_case: dict = field(default_factory=dict)
+    by_combo: collections.Counter = field(default_factory=collections.Counter)
+    checks: collections.Counter = field(default_factory=collections.Counter)
+    flags: collections.Counter = field(default_factory=collections.Counter)
+    entry_seconds: collections.Counter = field(default_factory=collections.Counter)
+    entry_cpu: collections.Counter = field(default_factory=collections.Counter)
+    entry_points: collections.Counter = field(default_factory=collections.Counter)
+    failures: list = field(default_factory=list)
+    tasks: int = 0
+
+    def __post_init__(self):
+        names = {
+            "law": TRACTION_LAWS.names(),
+            "clamp": CLAMP_LAWS.names(),
+            "arch": ARCHITECTURES.names(),
+            "mode": OPERATING_MODES.names(),
+            "entry": entries.ENTRIES,
+        }
+        self.by_case = {k: {n: dict.fromkeys(OUTCOMES, 0) for n in names[k]} for k in CASE_KEYS}
+
+    def add(self, result: dict) -> None:
+        self.tasks += 1
+        self.entry_seconds[result["entry"]] += result["seconds"]
+        self.entry_cpu[result["entry"]] += result.get("cpu", 0.0)
+        for p in result["points"]:
+            case, outcome = p["case"], p["outcome"]
+            for k in CASE_KEYS:
+                self.by_case[k][case[k]][outcome] += 1
+            self.by_combo["/".join(case[k] for k in CASE_KEYS) + ":" + outcome] += 1
+            if outcome != "unsupported":
+                self.entry_points[case["entry"]] += 1
+            if outcome in ("silent", "bug"):
+                self.checks[f"{outcome}: {p['check']} ({case['entry']})"] += 1
+                self.failures.append(p)
+            elif outcome == "flagged":
+                self.flags[p["message"]] += 1
+
+    def totals(self) -> dict:
+        t = dict.fromkeys(OUTCOMES, 0)
+        for counts in self.by_case["entry"].values():
+            for k, n in counts.items():
+                t[k] += n
+        return t
+
+
+def _kill(pool: ProcessPoolExecutor) -> None:
+    """End this pool's own worker processes (by their ids) when they overrun the budget."""
+    for proc in list(getattr(pool, "_processes", {}).values()):
+        if proc.is_alive():
+            proc.kill()
+    pool.shutdown(wait=False, cancel_futures=True)
+
+
+def campaign(args) -> Tally:
+    """Run tasks on a process pool until the budget or the point count is reached."""
+    tally, start = Tally(), time.time()
+    deadline = start + args.budget
+    index, in_flight, cases = 0, {}, schedule(args.seed)
+    pool = ProcessPoolExecutor(max_workers=args.workers)
+    try:
+        while True:
+            done_points = sum(tally.totals()[k] for k in OUTCOMES[:4])
+            while (
+                len(in_flight) < 2 * args.workers
+                and time.time() < deadline - 0.5
+                and (args.points is None or done_points < args.points)
+            ):
+                case = cases[index % len(cases)]
+                if entries.supported(case):
+                    fut = pool.submit(run_task, args.seed, index, deadline, args.timeout)
+                    in_flight[fut] = index
+                else:  # no call to make: counted here, not sent to a worker
+                    tally.add(run_task(args.seed, index, deadline, args.timeout))
+                index += 1
+            if not in_flight:
+                break
+            done, _ = wait(in_flight, timeout=1.0, return_when=FIRST_COMPLETED)
+            for fut in done:
+                i = in_flight.pop(fut)
                 try:
-                    v = Variator(design, BASE_FLUID, arch)
+                    tally.add(fut.result())
+                except BrokenProcessPool as exc:  # a worker died (e.g. a segfault)
+                    tally.add(_crashed(args.seed, i, exc))
+                    pool = _restart(pool, args.workers, in_flight, args, tally)
                     break
-                except InputError as exc:     # the architecture's own checks (Eqs. F4-F6)
-                    refused[f"{exc.quantity} ({arch})"] += 1
-        archs[v.architecture] += 1
-        for _ in range(conditions):
-            run_condition(v, rng, counts, reasons, examples)
-    return refused, counts, reasons, examples, archs
+            if time.time() > deadline + max(2.0, 0.05 * args.budget):
+                _kill(pool)  # a point overran: stop within the budget
+                in_flight.clear()
+                break
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)
+    return tally
 
 
-def main(argv=None):
+def _crashed(seed: int, index: int, exc: BaseException) -> dict:
+    case = schedule(seed)[index % len(all_cases())]
+    return {
+        "points": [
+            {
+                "case": case,
+                "outcome": "bug",
+                "check": "worker crashed",
+                "message": f"{type(exc).__name__}: {exc}",
+                "inputs": {"seed": seed, "task": index},
+            }
+        ],
+        "seconds": 0.0,
+        "cut": False,
+        "entry": case["entry"],
+    }
+
+
+def _restart(pool, workers, in_flight, args, tally):
+    """A new pool after a crash; the tasks that were running on the old one count as bugs
+    (any of them may have crashed it) unless they finished."""
+    for fut, i in list(in_flight.items()):
+        try:
+            tally.add(fut.result(timeout=0))
+        except Exception as exc:  # noqa: BLE001
+            tally.add(_crashed(args.seed, i, exc))
+    in_flight.clear()
+    pool.shutdown(wait=False, cancel_futures=True)
+    return ProcessPoolExecutor(max_workers=workers)
+
+
+def summary(args, tally: Tally, seconds: float) -> dict:
+    totals = tally.totals()
+    rate = {
+        e: {
+            "points": tally.entry_points[e],
+            "worker_seconds": round(tally.entry_seconds[e], 2),
+            "points_per_second": round(tally.entry_points[e] / tally.entry_seconds[e], 2)
+            if tally.entry_seconds[e] > 0
+            else None,
+            "worker_cpu_seconds": round(tally.entry_cpu[e], 2),
+            "points_per_cpu_second": round(tally.entry_points[e] / tally.entry_cpu[e], 2)
+            if tally.entry_cpu[e] > 0
+            else None,
+        }
+        for e in entries.ENTRIES
+    }
+    return {
+        "version": __version__,
+        "seed": args.seed,
+        "seconds": round(seconds, 2),
+        "budget": args.budget,
+        "workers": args.workers,
+        "tasks": tally.tasks,
+        "points": sum(totals[k] for k in OUTCOMES[:4]),
+        **{k: totals[k] for k in OUTCOMES},
+        "by_case": tally.by_case,
+        "by_check": dict(tally.checks.most_common()),
+        "flags": dict(tally.flags.most_common(30)),
+        "rate": rate,
+        "by_combo": dict(sorted(tally.by_combo.items())),
+    }
+
+
+def print_table(s: dict, tally: Tally) -> None:
+    print(
+        f"ballcvt {s['version']} hardening campaign, seed {s['seed']}: {s['points']} points "
+        f"in {s['tasks']} tasks, {s['seconds']:.0f} s on {s['workers']} processes"
+    )
+    print("  ".join(f"{k} {s[k]}" for k in OUTCOMES))
+    for key, rows in s["by_case"].items():
+        print(f"\n{key:<26}" + "".join(f"{o:>12}" for o in OUTCOMES))
+        for name, counts in rows.items():
+            print(f"  {name:<24}" + "".join(f"{counts[o]:12d}" for o in OUTCOMES))
+    print("\npoints per worker-second (wall, and CPU) by entry point:")
+    for e, r in s["rate"].items():
+        print(
+            f"  {e:<18} {r['points']:7d} points  {r['points_per_second']}  "
+            f"{r['points_per_cpu_second']}"
+        )
+    print("\nsilent failures and bugs by check:")
+    for name, n in s["by_check"].items():
+        print(f"  {n:6d}  {name}")
+    print("\nflags:")
+    for name, n in s["flags"].items():
+        print(f"  {n:6d}  {name}")
+    seen = set()
+    for p in tally.failures:
+        key = (p["check"], p["case"]["entry"], p["case"]["law"], p["case"]["clamp"])
+        if key not in seen and len(seen) < 25:
+            seen.add(key)
+            print(
+                f"\n{p['outcome'].upper()} {p['check']} {'/'.join(p['case'].values())}: "
+                f"{p['message'][:300]}\n  rerun: python benchmarks/harden.py --task "
+                f"{p['inputs'].get('seed')}:{p['inputs'].get('task')}"
+            )
+
+
+def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--designs", type=int, default=500)
-    parser.add_argument("--conditions", type=int, default=4,
-                        help="operating conditions per design (x 5 torques)")
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--budget", type=float, default=300.0, help="seconds (wall clock)")
+    parser.add_argument("--points", type=int, default=None, help="stop after N points")
     parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--timeout", type=float, default=120.0, help="seconds per task")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument("--failures", default=None, help="JSONL file of silent/bug points")
+    parser.add_argument("--task", default=None, help="SEED:INDEX: re-run one task, print it")
     args = parser.parse_args(argv)
-    start = time.perf_counter()
-    chunks = [(args.seed, int(c[0]), len(c), args.conditions)
-              for c in np.array_split(np.arange(args.designs), 4 * args.workers) if len(c)]
-    with ProcessPoolExecutor(max_workers=args.workers) as pool:
-        futures = [pool.submit(run_designs, *chunk) for chunk in chunks]
-        with tqdm(total=args.designs, desc="hardening campaign", unit="design") as bar:
-            for f in as_completed(futures):
-                bar.update(chunks[futures.index(f)][2])
-        parts = [f.result() for f in futures]
-    refused, counts, reasons, archs = (sum((p[k] for p in parts), collections.Counter())
-                                       for k in (0, 1, 2, 4))
-    examples = [e for p in parts for e in p[3]]
-    elapsed = time.perf_counter() - start
-    points = counts["converged"] + counts["flagged"] + counts["silent"] + counts["bug"]
-    print(f"ballcvt {__version__} hardening campaign, seed {args.seed}: {sum(archs.values())} "
-          f"feasible designs ({archs['double']} double, {archs['single']} single idler), "
-          f"{points} operating points, {elapsed:.0f} s on {args.workers} processes")
-    print(f"designs refused while drawing: {sum(refused.values())}")
-    for name, n in refused.most_common():
-        print(f"  {n:6d}  {name}")
-    print(f"converged:        {counts['converged']:6d}  (with validity warnings: "
-          f"{counts['converged with warnings']})")
-    print(f"flagged:          {counts['flagged']:6d}")
-    print(f"silent failures:  {counts['silent']:6d}")
-    print(f"bugs:             {counts['bug']:6d}")
-    print("reasons (flags and warnings):")
-    for name, n in reasons.most_common():
-        print(f"  {n:6d}  {name}")
-    for text in examples[:20]:
-        print(text)
-    return 0 if counts["silent"] == 0 and counts["bug"] == 0 else 1
+    if args.task:
+        seed, index = (int(x) for x in args.task.split(":"))
+        got = run_task(seed, index, time.time() + args.timeout, args.timeout)
+        for p in got["points"]:
+            print(json.dumps(p, default=str))
+        return 0
+    start = time.time()
+    tally = campaign(args)
+    s = summary(args, tally, time.time() - start)
+    if args.failures:
+        with open(args.failures, "w") as fh:
+            for p in tally.failures:
+                fh.write(json.dumps(p, default=str) + "\n")
+    if args.json:
+        print(json.dumps(s, default=str))
+    else:
+        print_table(s, tally)
+    return 0 if s["silent"] == 0 and s["bug"] == 0 else 1
 
 
 if __name__ == "__main__":

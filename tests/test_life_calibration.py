@@ -74,10 +74,10 @@ def _hand_bearing_life(radial_load, m):
 
 def test_hand_calculation_of_a_ball_bearing_life():
     """ball_bearing_l10 (load zone in 2000 elements, Miner / series) against the closed
-    form hand calculation: to 1e-4 (the discretisation)."""
+    form hand calculation: to 1e-9 (measured 4.5e-12)."""
     for load in (2.0e3, 8.0e3, RATING_6206):
         assert ball_bearing_l10(BEARING_6206, load, MATERIAL) == pytest.approx(
-            _hand_bearing_life(load, MATERIAL), rel=1e-4
+            _hand_bearing_life(load, MATERIAL), rel=1e-9
         )
 
 

@@ -22,10 +22,11 @@ __all__ = ["LIFE_MODELS", "LifeModel", "TrackContact", "track_contact"]
 
 @dataclass(frozen=True)
 class TrackContact:
-    """A Hertz contact rolling along a closed track, with its subsurface stress.
+    """A Hertz contact rolling along a closed track, with its subsurface stress (arrays
+    of one shape).
 
-    Attributes (arrays broadcast together)
-    --------------------------------------
+    Attributes
+    ----------
     load : ndarray
         Normal load ``Q`` [N].
     semi_major, semi_minor : ndarray

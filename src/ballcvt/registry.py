@@ -2,9 +2,10 @@
 
 A traction law, a clamping law, a parasitic-loss term, an operating mode, an
 architecture and a fatigue life model are each registered by name in one `Registry`
-below. The solvers, the command line's choices, the study files and the documentation read the registry, so a
-piece registered from a user's own code (``ballcvt.registry.TRACTION_LAWS.register(...)``)
-is usable everywhere at once, without editing the package. The built-in pieces register
+below. The solvers, the command line's choices, the study files and the documentation
+read the registry, so a piece registered from a user's own code
+(``ballcvt.registry.TRACTION_LAWS.register(...)``) is usable everywhere at once, without
+editing the package. The built-in pieces register
 themselves when their model module is imported (importing `ballcvt` imports them all).
 
 This module is a leaf: it knows nothing of the physics, only names and objects.

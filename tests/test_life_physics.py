@@ -46,7 +46,7 @@ def test_6206_rating_from_geometry_matches_catalogue():
 )
 def test_load_life_exponent(model, ratio):
     """At fixed curvatures (Hertz semi-axes ~ Q^(1/3)): LP L ~ Q^-3 (Lundberg and
-    Palmgren 1947), Zaretsky L ~ p0^-12 = Q^-4 (NASA TN D-7869): to 1e-9."""
+    Palmgren 1947), Zaretsky L ~ p0^-12 = Q^-4 (Zaretsky et al., NASA/TM-2008-214265): to 1e-9."""
     length = 0.2
     lives = [contact_l10(q, *_contact(q), length, MATERIAL, model) for q in (1000.0, 2000.0)]
     assert lives[1] / lives[0] == pytest.approx(ratio, rel=1e-9)

@@ -25,10 +25,11 @@ from ..solvers.clamped import capacity_basis, solve_clamped
 from ..solvers.limit import limit_torque
 from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum
 from ..solvers.point import SolverOptions, solve_point
-from ..solvers.refusal import beyond_capacity, point_capacity
+from ..solvers.refusal import point_capacity
 from ..units import rpm_to_rad_s
 from . import grids, planetary
 from .batched import BatchMethods
+from .refusals import optimal_refusal, refuse_beyond_capacity
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
 
 __all__ = ["Variator"]
@@ -227,13 +228,7 @@ class Variator(BatchMethods):
         except TractionLimitError:  # the optimiser found no force: say the capacity
             speeds = {"input_speed": input_speed, "input_speed_rpm": input_speed_rpm}
             cap = self.capacity(ratio, clamp_force=clamp_force, clamp_law=clamp_law, **speeds)
-            raise TractionLimitError(
-                float(output_torque),
-                cap.largest,
-                f" at ratio {ratio:g}, optimal clamping law: no clamping force up to the "
-                "pressure limit keeps every creep within creep_limit",
-                "" if cap.limit == cap.largest else cap.describe(),
-            ) from None
+            raise optimal_refusal(float(output_torque), ratio, cap) from None
         problem = self._problem(ratio, output_torque, law, input_speed, input_speed_rpm)
         follows = not isinstance(law, ConstantClamp)
         if follows:
@@ -242,23 +237,8 @@ class Variator(BatchMethods):
             )
         else:
             sol = solve_point(problem, self.options)
-        why = beyond_capacity(problem, sol, follows)
-        if how.check_capacity and (why or not sol.converged):
-            cap = point_capacity(problem, self.design.creep_limit, self.options, law)
-            if not cap.intervals:  # none at all: NoEquilibriumError says why
-                limit_torque(problem, self.design.creep_limit, self.options, law=law)
-            if why or not cap.admits(float(output_torque)):
-                where = (
-                    f"clamp {float(problem.clamp_force):g} N"
-                    if not follows
-                    else f"{name} clamping law"
-                )
-                raise TractionLimitError(
-                    float(output_torque),
-                    cap.largest,
-                    f" at ratio {ratio:g}, {where}: {why or 'no equilibrium within it'}",
-                    "" if cap.intervals and cap.limit == cap.largest else cap.describe(),
-                )
+        if how.check_capacity:
+            refuse_beyond_capacity(problem, sol, law, name, self.options)
         if not sol.converged:
             raise ConvergenceError(sol.message)
         return make_result(problem, sol, self.options.quadrature, clamp_law=name)

@@ -162,7 +162,8 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     """
     options = SolverOptions() if options is None else options
     flat = problem.flat()
-    x = np.array(x0, dtype=float).reshape(flat.size, -1)
+    nc = flat.layout.n_contacts
+    x = np.array(x0, dtype=float).reshape(flat.size, nc)  # (0, n_c) too: no rows, no crash
     iterations = np.zeros(flat.size, dtype=int)
     _, state = _staged_newton(flat, x, iterations, options, pinned=contact)
     norm = _norm(state.residual[:, :-1])

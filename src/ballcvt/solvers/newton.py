@@ -41,14 +41,8 @@ try:
 except ImportError:  # pragma: no cover - numba is a declared dependency
     njit = None
 
-__all__ = [
-    "BatchSolution",
-    "solve_batch",
-    "solve_pinned",
-    "initial_creep",
-    "branch_solver",
-    "CREEP_BOUNDS",
-]
+__all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "branch_solver"]
+__all__ += ["CREEP_BOUNDS"]
 
 #: Largest change of any creep in one Newton step [-].
 MAX_STEP = 0.05
@@ -119,9 +113,7 @@ def solve_batch(
     flat = problem.flat()
     if has_multiple_equilibria(problem.fluid):
         x, iterations, _ = continue_in_torque(flat, branch_solver(options, predict))
-        state = evaluate(flat, x, options.quadrature)
-        iterations += 1
-        sol = _flat_solution(state, iterations, options.tol)
+        sol = _flat_solution(evaluate(flat, x, options.quadrature), iterations + 1, options.tol)
     else:
         x = (
             initial_creep(flat)
@@ -157,8 +149,7 @@ def _solve_flat(flat, x, options, fallback, predict) -> BatchSolution:
 
 
 def _flat_solution(state, iterations, tol) -> BatchSolution:
-    """The `BatchSolution` of a 1-D batch at ``state``: converged where ``max |residual|``
-    is at most ``tol`` and finite."""
+    """The `BatchSolution` of a 1-D batch at ``state`` (converged: norm <= ``tol``)."""
     norm = _norm(state.residual)
     return BatchSolution(state, norm <= tol, norm, iterations)
 

@@ -46,6 +46,8 @@ __all__ += ["CREEP_BOUNDS"]
 
 #: Largest change of any creep in one Newton step [-].
 MAX_STEP = 0.05
+#: Newton iterations per stage allowed to a step of the torque continuation [-].
+STEP_ITERATIONS = 12
 
 
 @dataclass(frozen=True)
@@ -93,9 +95,8 @@ def solve_batch(
         to the point solver); ``ballcvt.solvers.point.SolverOptions()`` by default.
     x0 : array_like, optional
         Starting creeps, broadcastable to ``(..., n_c)`` (e.g. a neighbour's solution).
-        Not used under a traction law with ``multiple_equilibria`` (the thermal law):
-        there every point is followed from zero torque (`continue_in_torque`), so that
-        any path returns the equilibrium the drive reaches (docs/model.md §14).
+        Not used under a law with ``multiple_equilibria`` (the thermal law): every point
+        is then followed from zero torque (`continue_in_torque`, docs/model.md §14).
     fallback : bool
         Whether unconverged points go to the point solver (otherwise they are flagged;
         under continuation only at zero torque).
@@ -130,8 +131,7 @@ def solve_batch(
 
 
 def _solve_flat(flat, x, options, fallback, predict) -> BatchSolution:
-    """`solve_batch` of the 1-D batch ``flat`` from the creeps ``x`` (``(n, n_c)``,
-    updated in place), by Newton and, with ``fallback``, the point solver."""
+    """`solve_batch` of the 1-D batch ``flat`` from the creeps ``x`` (``(n, n_c)``)."""
     iterations = np.zeros(flat.size, dtype=int)
     x, state = _staged_newton(flat, x, iterations, options, predict=predict)
     norm = _norm(state.residual)
@@ -156,12 +156,15 @@ def _flat_solution(state, iterations, tol) -> BatchSolution:
 
 def branch_solver(options: SolverOptions, predict: bool = True):
     """The solver each step of `continue_in_torque` calls (its ``Solve``): Newton from
-    the cold start with the point solver at zero torque, Newton alone from the last
-    step's creeps after it (``options``, ``predict`` as in `solve_batch`)."""
+    the cold start (the output creep at 0) with the point solver at zero torque, Newton
+    alone from the last step's creeps after it, for at most `STEP_ITERATIONS` (a step
+    that needs more is halved; ``options``, ``predict`` as in `solve_batch`)."""
+    step = replace(options, max_iterations=min(options.max_iterations, STEP_ITERATIONS))
 
     def solve(flat, x0, cold):
-        x = initial_creep(flat) if x0 is None else np.array(x0, dtype=float)
-        sol = _solve_flat(flat, x, options, cold, predict)
+        x = np.array(initial_creep(flat) if x0 is None else x0, dtype=float)
+        x[:, -1] = 0.0 if x0 is None else x[:, -1]  # from 1e-3 it ran off at high ratios
+        sol = _solve_flat(flat, x, options if cold else step, cold, predict)
         return sol.converged, sol.state.creep, sol.iterations
 
     return solve

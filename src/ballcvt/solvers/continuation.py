@@ -6,9 +6,10 @@ torque, and one past the fold of that branch, with more creep and a different ef
 (docs/model.md §14). Newton's method lands on either, depending on where it starts. The
 drive, loaded from rest at its speed, follows the first: each point is solved at zero
 torque, then at rising shares of its torque, each solve started from the last accepted
-one, the step doubled after a success and halved after a failure (batched over the
-points). A point whose step falls below `MIN_STEP` is past the fold of its branch: no
-equilibrium of the drive carries its torque, and it is reported unconverged. Used by
+one, the step doubled after a success and halved after a failure, never past a torque
+that failed (bisection of the bracket then; batched over the points). A point whose
+bracket narrows below `MIN_STEP` is past the fold of its branch: no equilibrium of the
+drive carries its torque, and it is reported unconverged. Used by
 `ballcvt.solvers.newton.solve_batch` for a law with ``multiple_equilibria``.
 """
 
@@ -53,8 +54,8 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
         ``+inf``: as far as the branch goes (its fold, the limiting torque). By default
         the problem's ``output_torque``.
     min_step : float
-        Smallest step, as a share of ``|target|`` (of ``torque_scale`` for an infinite
-        one), before a point stops [-].
+        Width of the bracket (last success, first failure) at which a point stops, as a
+        share of ``|target|`` (of ``torque_scale`` for an infinite one) [-].
     admissible : callable, optional
         ``creep (m, n_c) -> bool (m,)``: a converged step counts only where it is true
         (the creep limit, for the limiting torque).
@@ -81,10 +82,12 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
     if admissible is not None:
         ok = ok & admissible(x)
     torque = np.where(ok, 0.0, np.nan)
+    failed = np.full(n, np.nan)  # the lowest torque tried in vain (a bracket of the fold)
     active = np.flatnonzero(ok & (target != 0.0))
     while active.size:
-        t, goal = torque[active], target[active]
+        t, goal, bad = torque[active], target[active], failed[active]
         trial = np.where(np.abs(goal - t) <= step[active], goal, t + np.sign(goal) * step[active])
+        trial = np.where(np.abs(trial) >= np.abs(bad), 0.5 * (t + bad), trial)
         good, xt, its = solve(replace(flat.take(active), output_torque=trial), x[active], False)
         if admissible is not None:
             good = good & admissible(xt)
@@ -93,5 +96,7 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
         torque[acc], x[acc] = trial[good], xt[good]
         step[acc] *= 2.0
         step[rej] *= 0.5
-        active = active[(torque[active] != target[active]) & (step[active] >= least[active])]
+        failed[rej] = trial[~good]
+        width = np.where(np.isnan(failed[active]), step[active], failed[active] - torque[active])
+        active = active[(torque[active] != target[active]) & (np.abs(width) >= least[active])]
     return x, iterations, torque

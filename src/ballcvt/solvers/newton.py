@@ -47,7 +47,7 @@ __all__ += ["CREEP_BOUNDS"]
 #: Largest change of any creep in one Newton step [-].
 MAX_STEP = 0.05
 #: Newton iterations per stage allowed to a step of the torque continuation [-].
-STEP_ITERATIONS = 12
+STEP_ITERATIONS = 25
 
 
 @dataclass(frozen=True)

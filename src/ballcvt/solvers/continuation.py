@@ -7,9 +7,9 @@ torque, and one past the fold of that branch, with more creep and a different ef
 drive, loaded from rest at its speed, follows the first: each point is solved at zero
 torque, then at rising shares of its torque, each solve started from the last accepted
 one, the step doubled after a success and halved after a failure, never past a torque
-that failed (bisection of the bracket then; batched over the points). A point whose
-bracket narrows below `MIN_STEP` is past the fold of its branch: no equilibrium of the
-drive carries its torque, and it is reported unconverged. Used by
+that failed other than the target, which is tried again from closer (batched over the
+points). A point whose step or bracket narrows below `MIN_STEP` is past the fold of its
+branch: no equilibrium of the drive carries its torque, and it is reported unconverged. Used by
 `ballcvt.solvers.newton.solve_batch` for a law with ``multiple_equilibria``.
 """
 
@@ -28,7 +28,7 @@ __all__ = ["continue_in_torque", "FIRST_STEP", "MIN_STEP", "OPEN_STEP"]
 FIRST_STEP = 0.25
 #: Smallest step tried before a point is given up (past the fold), as a share of its
 #: torque (or of ``torque_scale`` without one) [-].
-MIN_STEP = 1e-4
+MIN_STEP = 1e-5
 #: First step towards an infinite target (as far as the branch goes), as a share of the
 #: problem's ``torque_scale`` ``n F_N0 r_S`` [-].
 OPEN_STEP = 0.05
@@ -87,7 +87,8 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
     while active.size:
         t, goal, bad = torque[active], target[active], failed[active]
         trial = np.where(np.abs(goal - t) <= step[active], goal, t + np.sign(goal) * step[active])
-        trial = np.where(np.abs(trial) >= np.abs(bad), 0.5 * (t + bad), trial)
+        beyond = (np.abs(trial) >= np.abs(bad)) & (trial != goal)  # the goal: from closer
+        trial = np.where(beyond, 0.5 * (t + bad), trial)
         good, xt, its = solve(replace(flat.take(active), output_torque=trial), x[active], False)
         if admissible is not None:
             good = good & admissible(xt)
@@ -98,5 +99,6 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
         step[rej] *= 0.5
         failed[rej] = trial[~good]
         width = np.where(np.isnan(failed[active]), step[active], failed[active] - torque[active])
-        active = active[(torque[active] != target[active]) & (np.abs(width) >= least[active])]
+        going = (np.abs(width) >= least[active]) & (step[active] >= least[active])
+        active = active[(torque[active] != target[active]) & going]
     return x, iterations, torque

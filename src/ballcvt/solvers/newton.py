@@ -46,8 +46,6 @@ __all__ += ["CREEP_BOUNDS"]
 
 #: Largest change of any creep in one Newton step [-].
 MAX_STEP = 0.05
-#: Newton iterations per stage allowed to a step of the torque continuation [-].
-STEP_ITERATIONS = 25
 
 
 @dataclass(frozen=True)
@@ -157,14 +155,13 @@ def _flat_solution(state, iterations, tol) -> BatchSolution:
 def branch_solver(options: SolverOptions, predict: bool = True):
     """The solver each step of `continue_in_torque` calls (its ``Solve``): Newton from
     the cold start (the output creep at 0) with the point solver at zero torque, Newton
-    alone from the last step's creeps after it, for at most `STEP_ITERATIONS` (a step
-    that needs more is halved; ``options``, ``predict`` as in `solve_batch`)."""
-    step = replace(options, max_iterations=min(options.max_iterations, STEP_ITERATIONS))
+    alone from the last step's creeps after it (``options``, ``predict`` as in
+    `solve_batch`)."""
 
     def solve(flat, x0, cold):
         x = np.array(initial_creep(flat) if x0 is None else x0, dtype=float)
         x[:, -1] = 0.0 if x0 is None else x[:, -1]  # from 1e-3 it ran off at high ratios
-        sol = _solve_flat(flat, x, options if cold else step, cold, predict)
+        sol = _solve_flat(flat, x, options, cold, predict)
         return sol.converged, sol.state.creep, sol.iterations
 
     return solve

@@ -40,7 +40,11 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
         return np.max(np.abs(x), axis=-1) <= creep_limit * (1.0 + 1e-9)
 
     x, _, torque = continue_in_torque(
-        flat, branch_solver(options), np.full(flat.size, np.inf), PEAK_RTOL, admissible
+        flat,
+        branch_solver(options),
+        np.full(flat.size, np.inf),
+        PEAK_RTOL,
+        admissible,
     )
     keep = np.isfinite(torque)
     return np.where(keep, torque, np.nan), np.where(keep[:, None], x, np.nan)

@@ -30,6 +30,8 @@ from ..equilibrium.residual import (
     evaluate,
     evaluate_with_jacobian,
 )
+from ..model.traction.base import has_multiple_equilibria
+from .continuation import continue_in_torque
 from .options import CREEP_BOUNDS, SolverOptions
 from .robust import solve_robust
 
@@ -39,7 +41,8 @@ try:
 except ImportError:  # pragma: no cover - numba is a declared dependency
     njit = None
 
-__all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "CREEP_BOUNDS"]
+__all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "branch_solver"]
+__all__ += ["CREEP_BOUNDS"]
 
 #: Largest change of any creep in one Newton step [-].
 MAX_STEP = 0.05
@@ -90,8 +93,11 @@ def solve_batch(
         to the point solver); ``ballcvt.solvers.point.SolverOptions()`` by default.
     x0 : array_like, optional
         Starting creeps, broadcastable to ``(..., n_c)`` (e.g. a neighbour's solution).
+        Not used under a law with ``multiple_equilibria`` (the thermal law): every point
+        is then followed from zero torque (`continue_in_torque`, docs/model.md §14).
     fallback : bool
-        Whether unconverged points go to the point solver (otherwise they are flagged).
+        Whether unconverged points go to the point solver (otherwise they are flagged;
+        under continuation only at zero torque).
     predict : bool
         Whether to run the predictor stage (``options.predictor``); False when ``x0`` is
         already close to the solution on the requested rule (e.g. a solution found by
@@ -104,11 +110,26 @@ def solve_batch(
     options = SolverOptions() if options is None else options
     shape, nc = problem.shape, problem.layout.n_contacts
     flat = problem.flat()
-    x = (
-        initial_creep(flat)
-        if x0 is None
-        else np.broadcast_to(np.asarray(x0, dtype=float), shape + (nc,)).reshape(-1, nc).copy()
+    if has_multiple_equilibria(problem.fluid):
+        x, iterations, _ = continue_in_torque(flat, branch_solver(options, predict))
+        sol = _flat_solution(evaluate(flat, x, options.quadrature), iterations + 1, options.tol)
+    else:
+        x = (
+            initial_creep(flat)
+            if x0 is None
+            else np.broadcast_to(np.asarray(x0, dtype=float), shape + (nc,)).reshape(-1, nc).copy()
+        )
+        sol = _solve_flat(flat, x, options, fallback, predict)
+    return BatchSolution(
+        state=_reshape(sol.state, shape),
+        converged=sol.converged.reshape(shape),
+        residual_norm=sol.residual_norm.reshape(shape),
+        iterations=sol.iterations.reshape(shape),
     )
+
+
+def _solve_flat(flat, x, options, fallback, predict) -> BatchSolution:
+    """`solve_batch` of the 1-D batch ``flat`` from the creeps ``x`` (``(n, n_c)``)."""
     iterations = np.zeros(flat.size, dtype=int)
     x, state = _staged_newton(flat, x, iterations, options, predict=predict)
     norm = _norm(state.residual)
@@ -122,14 +143,28 @@ def solve_batch(
             if sol.residual_norm < norm[i]:
                 x[i] = sol.state.creep
         state = evaluate(flat, x, options.quadrature)
-        norm = _norm(state.residual)
-    converged = norm <= options.tol
-    return BatchSolution(
-        state=_reshape(state, shape),
-        converged=converged.reshape(shape),
-        residual_norm=norm.reshape(shape),
-        iterations=iterations.reshape(shape),
-    )
+    return _flat_solution(state, iterations, options.tol)
+
+
+def _flat_solution(state, iterations, tol) -> BatchSolution:
+    """The `BatchSolution` of a 1-D batch at ``state`` (converged: norm <= ``tol``)."""
+    norm = _norm(state.residual)
+    return BatchSolution(state, norm <= tol, norm, iterations)
+
+
+def branch_solver(options: SolverOptions, predict: bool = True):
+    """The solver each step of `continue_in_torque` calls (its ``Solve``): Newton from
+    the cold start (the output creep at 0) with the point solver at zero torque, Newton
+    alone from the last step's creeps after it (``options``, ``predict`` as in
+    `solve_batch`)."""
+
+    def solve(flat, x0, cold):
+        x = np.array(initial_creep(flat) if x0 is None else x0, dtype=float)
+        x[:, -1] = 0.0 if x0 is None else x[:, -1]  # from 1e-3 it ran off at high ratios
+        sol = _solve_flat(flat, x, options, cold, predict)
+        return sol.converged, sol.state.creep, sol.iterations
+
+    return solve
 
 
 def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
@@ -162,7 +197,8 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     """
     options = SolverOptions() if options is None else options
     flat = problem.flat()
-    x = np.array(x0, dtype=float).reshape(flat.size, -1)
+    nc = flat.layout.n_contacts
+    x = np.array(x0, dtype=float).reshape(flat.size, nc)  # (0, n_c) too: no rows, no crash
     iterations = np.zeros(flat.size, dtype=int)
     _, state = _staged_newton(flat, x, iterations, options, pinned=contact)
     norm = _norm(state.residual[:, :-1])

@@ -45,6 +45,7 @@ __all__ = [
     "law_coefficients",
     "traction_law",
     "traction_rises_with_creep",
+    "has_multiple_equilibria",
 ]
 
 #: ``(state, fluid, quadrature, derivatives) -> (mu, chi)`` or, with ``derivatives``,
@@ -82,6 +83,12 @@ class TractionLaw:
         ``(state, fluid, quadrature)`` -> ``mu, chi, dT``: the coefficients and the film
         temperature rise [K] in one solve, for a law that heats the film (traction
         curves report the rise; zero for a law without it).
+    multiple_equilibria : bool
+        Whether the drive can have more than one equilibrium at an operating point (the
+        thermal law: a second one past the peak of a traction curve). The solvers then
+        return the one the drive reaches, followed continuously in torque from zero torque
+        at the point's speed (`ballcvt.solvers.continuation`, docs/model.md §14); a law
+        opts in by this attribute alone. False (the paper's law): Newton from any start.
     """
 
     name: str
@@ -92,6 +99,7 @@ class TractionLaw:
     monotone: bool = True
     fit_parameters: tuple[str, ...] = ("limiting_shear_stress", "limiting_shear_slope")
     with_rise: Callable[[ContactState, Fluid, Quadrature], tuple] | None = None
+    multiple_equilibria: bool = False
 
 
 def _viscoelastic(state: ContactState, fluid: Fluid, quadrature: Quadrature, derivatives: bool):
@@ -127,6 +135,7 @@ for _law in (
             "temperature_viscosity_coefficient",
         ),
         with_rise=thermal_law_rise,
+        multiple_equilibria=True,
     ),
     TractionLaw(
         "viscoelastic",
@@ -147,6 +156,12 @@ def traction_law(fluid: Fluid) -> TractionLaw:
 def traction_rises_with_creep(fluid: Fluid) -> bool:
     """Whether ``fluid``'s traction law gives a traction that never falls with the creep."""
     return traction_law(fluid).monotone
+
+
+def has_multiple_equilibria(fluid: Fluid) -> bool:
+    """Whether ``fluid``'s traction law can give the drive more than one equilibrium at a
+    point (`TractionLaw.multiple_equilibria`)."""
+    return traction_law(fluid).multiple_equilibria
 
 
 class _View(Mapping):

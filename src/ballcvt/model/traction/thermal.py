@@ -26,6 +26,13 @@ isothermal one with ``h`` scaled and ``tau`` scaled:
 (Eq. 53 depends on ``eta / h`` and ``eta / tau_L`` only), so the isothermal quadrature
 serves unchanged. ``dT`` solves ``dT = (R_flash + R_film) q(dT)`` by safeguarded Newton
 on the cheap `TEMPERATURE_RULE`, then one Newton step on the requested rule.
+
+The traction at fixed speed peaks at a creep of a few per cent and then falls (the heat
+grows with the sliding), so the drive can have two equilibria at one operating point: one
+on the branch that starts at zero torque, one past its fold (on Table I's drive at 2 kN,
+1000 rpm, ratio 0.718 and 130 N m: efficiency 0.9247 and 0.8935). The drive reaches the
+first; the law is registered with ``multiple_equilibria=True``, so every solver follows each
+point from zero torque (`ballcvt.solvers.continuation`, docs/model.md §14).
 """
 
 from __future__ import annotations

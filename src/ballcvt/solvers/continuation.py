@@ -1,0 +1,104 @@
+"""Torque continuation from no load, for traction laws with more than one equilibrium.
+
+Where a contact's traction falls past the peak of its curve (the thermal law), the drive
+can have two equilibria at one operating point: one on the branch that starts at zero
+torque, and one past the fold of that branch, with more creep and a different efficiency
+(docs/model.md §14). Newton's method lands on either, depending on where it starts. The
+drive, loaded from rest at its speed, follows the first: each point is solved at zero
+torque, then at rising shares of its torque, each solve started from the last accepted
+one, the step doubled after a success and halved after a failure, never past a torque
+that failed other than the target, which is tried again from closer (batched over the
+points). A point whose step or bracket narrows below `MIN_STEP` is past the fold of its
+branch: no equilibrium of the drive carries its torque, and it is reported unconverged. Used by
+`ballcvt.solvers.newton.solve_batch` for a law with ``multiple_equilibria``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem
+
+__all__ = ["continue_in_torque", "FIRST_STEP", "MIN_STEP", "OPEN_STEP"]
+
+#: First torque step after zero torque, as a share of each point's torque [-].
+FIRST_STEP = 0.25
+#: Smallest step tried before a point is given up (past the fold), as a share of its
+#: torque (or of ``torque_scale`` without one) [-].
+MIN_STEP = 1e-5
+#: First step towards an infinite target (as far as the branch goes), as a share of the
+#: problem's ``torque_scale`` ``n F_N0 r_S`` [-].
+OPEN_STEP = 0.05
+
+#: ``solve(problem, x0, cold)`` -> ``(converged, creep, iterations)`` of a 1-D batch;
+#: ``x0`` None (and ``cold`` True) at zero torque, from the cold start with every fallback.
+Solve = Callable[[EquilibriumProblem, np.ndarray | None, bool], tuple]
+
+
+def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_step=MIN_STEP,
+                       admissible=None):  # fmt: skip
+    """Follow each point of the 1-D batch ``flat`` from zero torque up to its target.
+
+    Parameters
+    ----------
+    flat : EquilibriumProblem
+        Operating points, 1-D batch ``(n,)``.
+    solve : callable
+        The batched solver (`Solve`), without fallbacks beyond zero torque: a fallback
+        from a cold start could land on the other equilibrium.
+    target : array_like, optional
+        Torque (of the torque condition, ``output_torque``) to reach per point [N m];
+        ``+inf``: as far as the branch goes (its fold, the limiting torque). By default
+        the problem's ``output_torque``.
+    min_step : float
+        Width of the bracket (last success, first failure) at which a point stops, as a
+        share of ``|target|`` (of ``torque_scale`` for an infinite one) [-].
+    admissible : callable, optional
+        ``creep (m, n_c) -> bool (m,)``: a converged step counts only where it is true
+        (the creep limit, for the limiting torque).
+
+    Returns
+    -------
+    creep : ndarray
+        ``(n, n_c)``: at the highest torque reached (the target where it was) [-].
+    iterations : ndarray of int
+        Residual evaluations of each point over all steps, ``(n,)``.
+    torque : ndarray
+        The highest torque reached, ``(n,)`` [N m]; NaN where zero torque failed (or was
+        not admissible).
+    """
+    n = flat.size
+    given = flat.output_torque if target is None else target
+    target = np.broadcast_to(np.asarray(given, dtype=float), (n,))
+    scale = np.broadcast_to(flat.torque_scale, (n,))
+    open_ = np.isinf(target)
+    step = np.where(open_, OPEN_STEP * scale, FIRST_STEP * np.abs(target))
+    least = min_step * np.where(open_, scale, np.abs(target))
+    ok, x, iterations = solve(replace(flat, output_torque=np.zeros(n)), None, True)
+    x, iterations = np.array(x, dtype=float), np.array(iterations, dtype=int)
+    if admissible is not None:
+        ok = ok & admissible(x)
+    torque = np.where(ok, 0.0, np.nan)
+    failed = np.full(n, np.nan)  # the lowest torque tried in vain (a bracket of the fold)
+    active = np.flatnonzero(ok & (target != 0.0))
+    while active.size:
+        t, goal, bad = torque[active], target[active], failed[active]
+        trial = np.where(np.abs(goal - t) <= step[active], goal, t + np.sign(goal) * step[active])
+        beyond = (np.abs(trial) >= np.abs(bad)) & (trial != goal)  # the goal: from closer
+        trial = np.where(beyond, 0.5 * (t + bad), trial)
+        good, xt, its = solve(replace(flat.take(active), output_torque=trial), x[active], False)
+        if admissible is not None:
+            good = good & admissible(xt)
+        iterations[active] += its
+        acc, rej = active[good], active[~good]
+        torque[acc], x[acc] = trial[good], xt[good]
+        step[acc] *= 2.0
+        step[rej] *= 0.5
+        failed[rej] = trial[~good]
+        width = np.where(np.isnan(failed[active]), step[active], failed[active] - torque[active])
+        going = (np.abs(width) >= least[active]) & (step[active] >= least[active])
+        active = active[(torque[active] != target[active]) & going]
+    return x, iterations, torque

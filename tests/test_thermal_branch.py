@@ -1,0 +1,108 @@
+"""The thermal law in the drive (issue 23): empty row sets through the batched solvers,
+and the branch of equilibria reached from zero torque (docs/model.md §8, §14)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from ballcvt import Variator
+from ballcvt.errors import TractionLimitError
+from ballcvt.equilibrium.problem import build_problem
+from ballcvt.solvers.clamped import solve_clamped
+from ballcvt.solvers.limit import limit_search, solve_admissible
+from ballcvt.solvers.newton import solve_batch, solve_pinned
+from ballcvt.solvers.options import SolverOptions
+from ballcvt.solvers.peak import peak_limits
+from ballcvt.registry import TRACTION_LAWS
+
+RPM = math.pi / 30.0
+THERMAL = Variator(traction_law="thermal")
+
+
+def _empty(v):
+    """A 1-D batch of no operating point, and its empty creeps ``(0, n_c)``."""
+    pb = build_problem(v.design, v.fluid, v.architecture, np.array([0.5, 1.0]),
+                       np.array([10.0, 10.0]), 2000.0, 2000.0 * RPM)
+    none = pb.flat().take(np.array([], dtype=int))
+    return none, np.zeros((0, none.layout.n_contacts))
+
+
+@pytest.mark.parametrize("law", ["isothermal", "thermal"])
+def test_batched_solvers_take_no_rows(law):
+    """Every batched solver function answers an empty row set with empty arrays (before:
+    `solve_pinned` raised "cannot reshape array of size 0 into shape (0,newaxis)", reached
+    from `peak_limits` when no pinned solve of a disc contact was admissible)."""
+    v = Variator(traction_law=law)
+    none, x0 = _empty(v)
+    options = SolverOptions()
+    torque, sol = solve_pinned(none, 0, x0, options)
+    assert torque.shape == (0,) and sol.state.creep.shape == x0.shape
+    assert sol.converged.shape == (0,)
+    assert solve_batch(none, options, x0).converged.shape == (0,)
+    torque, creep = peak_limits(none, 0.1, options, x0)
+    assert torque.shape == (0,) and creep.shape == x0.shape
+    assert limit_search(none, 0.1, options).torque.shape == (0,)
+    assert solve_admissible(none, 0.1, options).ok.shape == (0,)
+    _, clamped = solve_clamped(none, v.clamp_law("cam"), lambda p, x: solve_batch(p, options, x))
+    assert clamped.converged.shape == (0,)
+
+
+def test_thermal_limit_where_a_contact_has_no_admissible_pin():
+    """`ballcvt limit --traction-law thermal --ratio 0.5` crashed (internal error, exit 1):
+    the input contact pinned at the first scanned creep is inadmissible there."""
+    limit = THERMAL.limit_torque(ratio=0.5, clamp_force=2000.0, input_speed_rpm=2000.0)
+    assert 100.0 < limit < 140.0
+
+
+#: Where the thermal drive has two equilibria (docs/model.md §14): Table I's drive at 2 kN,
+#: 1000 rpm, the second of 12 ratios across its range (0.7176) and 130 N m (limit 131.9 N m):
+#: efficiency 0.9247 on the branch from zero torque, 0.8935 past its fold.
+RATIOS = np.linspace(*THERMAL.ratio_range, 12)
+SLOW = {"clamp_force": 2000.0, "input_speed_rpm": 1000.0}
+ON_BRANCH = 0.9246607  # at RATIOS[1] (0.92466273 at 0.718, followed in 1 N m steps)
+
+
+def test_registry_says_which_law_follows_the_branch():
+    assert TRACTION_LAWS.get("thermal").multiple_equilibria
+    assert not TRACTION_LAWS.get("isothermal").multiple_equilibria
+    assert not TRACTION_LAWS.get("viscoelastic").multiple_equilibria
+
+
+def test_solve_and_sweeps_return_the_equilibrium_reached_from_zero_torque():
+    """Before: the sweep over 0-160 N m reached the other equilibrium (0.8935) at 130 N m
+    where `Variator.solve` reached 0.9247."""
+    ds = THERMAL.sweep(ratio=RATIOS, output_torque=np.linspace(0.0, 160.0, 17), **SLOW)
+    swept = float(np.asarray(ds.eta).reshape(12, 17)[1, 13])
+    alone = THERMAL.sweep(ratio=[RATIOS[1]], output_torque=[130.0], **SLOW)
+    solved = THERMAL.solve(ratio=float(RATIOS[1]), output_torque=130.0, **SLOW).eta
+    assert solved == pytest.approx(ON_BRANCH, abs=1e-6)
+    assert swept == pytest.approx(solved, abs=1e-8)
+    assert float(np.asarray(alone.eta).squeeze()) == pytest.approx(solved, abs=1e-8)
+
+
+def test_thermal_solve_ignores_its_start():
+    """`solve_batch` under the thermal law follows each point from zero torque whatever
+    ``x0``: a start past the fold gives the same equilibrium."""
+    pb = build_problem(THERMAL.design, THERMAL.fluid, THERMAL.architecture,
+                       np.array([RATIOS[1]]), np.array([130.0]), 2000.0, 1000.0 * RPM)
+    cold = solve_batch(pb)
+    far = solve_batch(pb, x0=np.array([0.06, 0.0, 0.0, 0.06]))
+    assert cold.converged.all() and far.converged.all()
+    np.testing.assert_allclose(far.state.creep, cold.state.creep, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("ratio, rpm", [(0.5, 2000.0), (float(RATIOS[1]), 1000.0),
+                                        (1.8, 5000.0), (float(RATIOS[8]), 1000.0)])
+def test_thermal_limit_is_the_largest_torque_solve_reaches(ratio, rpm):
+    """The limit search follows the same branch as the solve: the solve succeeds 1e-3
+    below the limit and is refused 1e-3 above it. Before, at high ratios (the ninth of
+    12, 4.64), the limit search found no limit where the solve succeeded."""
+    kw = {"clamp_force": 2000.0, "input_speed_rpm": rpm}
+    limit = THERMAL.limit_torque(ratio=ratio, **kw)
+    assert limit > 0
+    below = THERMAL.solve(ratio=ratio, output_torque=limit * (1 - 1e-3), **kw)
+    creeps = [abs(c.creep) for c in below.contacts.values()]
+    assert max(creeps) <= THERMAL.design.creep_limit * (1 + 1e-9)
+    with pytest.raises(TractionLimitError):
+        THERMAL.solve(ratio=ratio, output_torque=limit * (1 + 1e-3), **kw)

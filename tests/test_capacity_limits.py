@@ -44,12 +44,7 @@ def _draw(seed):
 
 
 def _capacity(v, ratio, kw):
-    try:
-        return v.capacity(ratio, **kw)
-    except ValueError as exc:  # pragma: no cover - the thermal branch's own crash
-        if "cannot reshape array of size 0" in str(exc):
-            pytest.skip("thermal solve_pinned on empty rows: fixed on the thermal branch")
-        raise
+    return v.capacity(ratio, **kw)
 
 
 @pytest.mark.parametrize("seed", range(18))

@@ -27,6 +27,7 @@ from ..solvers.point import SolverOptions, solve_point
 from ..units import rpm_to_rad_s
 from . import grids, planetary
 from .batched import BatchMethods
+from .life import LifeMethods
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
 
 __all__ = ["Variator"]
@@ -37,7 +38,7 @@ def _default_drive():
 
 
 @dataclass(frozen=True)
-class Variator(BatchMethods):
+class Variator(BatchMethods, LifeMethods):
     """A ball variator of a given design, fluid and idler architecture.
 
     Parameters

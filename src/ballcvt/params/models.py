@@ -90,6 +90,34 @@ class BearingModel(ParameterModel):
     )
     load_exponent: float = _f("-", "exponent a of the bearing load P in Eq. 16", gt=0, lt=3)
     diameter_exponent: float = _f("-", "exponent b of the mean diameter in Eq. 16", gt=0, lt=3)
+    roller_bearing_rating: float | None = _opt(
+        "N", "basic dynamic load rating C of one ball-axle bearing (two per ball), fatigue "
+        "life (docs/life.md); none: those bearings are left out of the life", gt=0, lt=math.inf
+    )  # fmt: skip
+    idler_bearing_rating: float | None = _opt(
+        "N", "basic dynamic load rating C of one idler bearing, fatigue life", gt=0, lt=math.inf
+    )
+    disc_bearing_rating: float | None = _opt(
+        "N", "basic dynamic load rating C of the thrust bearing between the discs, fatigue "
+        "life", gt=0, lt=math.inf
+    )  # fmt: skip
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler) -> dict[str, Any]:
+        """The fields, without the fatigue ratings not given (so that files and results of
+        drives without them are as they were)."""
+        data = handler(self)
+        if isinstance(data, dict):
+            data = {k: v for k, v in data.items() if v is not None or k not in _RATINGS}
+        return data
+
+
+#: The optional fatigue fields of `BearingModel`.
+_RATINGS = (
+    "roller_bearing_rating",
+    "idler_bearing_rating",
+    "disc_bearing_rating",
+)
 
 
 class CamModel(ParameterModel):

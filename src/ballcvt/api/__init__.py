@@ -9,8 +9,8 @@ the leaves and the reports (tests/test_public_api.py).
 
 from .._lazy import lazy_exports
 from ..analysis.cycle_files import STRATEGIES, Cycle, cycle_from_arrays, read_cycle
-from ..model.modes import MEMBERS, OperatingMode
 from ..model.life import LIFE_MODELS
+from ..model.modes import MEMBERS, OperatingMode
 from ..model.traction.curve import TractionCurve, traction_curve
 from ..params import PAPER_POINT, Design, Drive, Fluid, drive_to_toml, load_builtin, load_drive
 from ..params.io import BUILTIN_DRIVES, BUILTIN_FLUIDS, builtin_text, resolve_drive, resolve_fluid

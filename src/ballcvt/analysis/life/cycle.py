@@ -57,7 +57,7 @@ def cycle_life(
         ``damage`` (Miner damage of the step, per pass [-]) and ``limiting_element``, and
         ``summary["life"]``: ``damage_per_pass``, ``l10_hours``, ``l10_passes``,
         ``l10_km`` (None without a distance), ``limiting_element``, ``elements`` (each
-        one's Miner life [h]), ``model``, ``steps_not_counted`` and their ``time_s``.
+        one's Miner life ``l10_hours`` [h]), ``model``, ``steps_not_counted`` and their ``time_s``.
     """
     s = (settings or LifeSettings()).check()
     steps = result.steps.copy()
@@ -65,13 +65,14 @@ def cycle_life(
     idx = np.flatnonzero(ran)
     hours = np.full(len(steps), np.nan)
     limiting = np.full(len(steps), "", dtype=object)
-    elements: dict[str, float] = {}
+    elements: dict[str, dict] = {}
     dt = np.asarray(steps["duration"], dtype=float)
     if idx.size:
         got, element_hours = _step_lives(drive, steps.iloc[idx], s)
         hours[idx], limiting[idx] = got
         for name, h in element_hours.items():  # repetitions of the cycle, in hours
-            elements[name] = float(miner_life(dt[idx] / HOUR, h)) * float(np.sum(dt)) / HOUR
+            repeats = float(miner_life(dt[idx] / HOUR, h))
+            elements[name] = {"l10_hours": repeats * float(np.sum(dt)) / HOUR}
     idle = np.asarray(steps["flag"] == "idle")
     damage = np.where(idle, 0.0, np.nan)
     with np.errstate(divide="ignore"):
@@ -88,7 +89,9 @@ def cycle_life(
         "l10_hours": passes * float(np.sum(dt)) / HOUR,
         "l10_km": None if distance is None else passes * distance / 1e3,
         "distance_per_pass_km": None if distance is None else distance / 1e3,
-        "limiting_element": min(elements, key=lambda k: elements[k]) if elements else "",
+        "limiting_element": min(elements, key=lambda k: elements[k]["l10_hours"])
+        if elements
+        else "",
         "elements": elements,
         "steps_not_counted": int(lost.sum()),
         "time_not_counted_s": float(np.sum(dt[lost])),

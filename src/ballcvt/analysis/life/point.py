@@ -95,7 +95,9 @@ class SolvedPoints:
 
 
 def creep_life(
-    points: SolvedPoints, settings: LifeSettings | None = None, quadrature: Quadrature | None = None
+    points: SolvedPoints,
+    settings: LifeSettings | None = None,
+    quadrature: Quadrature | None = None,
 ) -> tuple[np.ndarray, np.ndarray, LifeArrays | None]:
     """System L10 [h] and limiting element of each point of a batch (NaN and ``""`` where a
     point has no solution), and the lives of the solved points.

@@ -198,9 +198,13 @@ def _evaluate(ctx: Context, values: dict):
             )
         metrics["eta_mean"] = float(np.sum(ctx.weights * eta))
         metrics["eta_min"] = float(np.min(eta))
+        if _wants_life(spec):
+            metrics["l10_hours"] = _points_life(ctx, drive, res)
     else:
         cyc = _cycle(ctx, design, force, law)
         metrics["cycle_efficiency"] = cyc["efficiency"]
+        if "l10_hours" in cyc:
+            metrics["l10_hours"] = cyc["l10_hours"]
         beyond = cyc["beyond"]
         if beyond:
             return (
@@ -236,6 +240,7 @@ def _constraints(ctx: Context, metrics: dict, limits) -> tuple[int, str]:
         ("max_pressure", con.max_pressure_max, "<="),
         ("min_lambda", con.min_lambda_min, ">="),
         ("eta_min", con.eta_min_min, ">="),
+        ("l10_hours", con.min_l10_hours, ">="),
     ]
     for name, bound, sense in checks:
         value = metrics.get(name, np.nan)
@@ -281,4 +286,24 @@ def _cycle(ctx: Context, design, force, law) -> dict:
     s = res.summary
     beyond = int(s.get("flags", {}).get("beyond_capacity", {}).get("steps", 0))
     eff = s["efficiency"]
-    return {"efficiency": np.nan if eff is None else float(eff), "beyond": beyond}
+    out = {"efficiency": np.nan if eff is None else float(eff), "beyond": beyond}
+    if _wants_life(ctx.spec):
+        from ..life import cycle_life
+
+        out["l10_hours"] = float(cycle_life(v, res).summary["life"]["l10_hours"])
+    return out
+
+
+def _wants_life(spec: StudySpec) -> bool:
+    """Whether the study asks for the fatigue life (an objective or a constraint)."""
+    return "l10_hours" in spec.objectives or spec.constraints.min_l10_hours is not None
+
+
+def _points_life(ctx: Context, drive: Drive, res: dict) -> float:
+    """Shortest system L10 over the operating points [h] (docs/life.md)."""
+    from ..life.point import SolvedPoints, creep_life
+
+    points = SolvedPoints(
+        drive, ctx.ratio, ctx.torque, res["clamp_force"], ctx.speed, res["creep"]
+    )
+    return float(np.nanmin(creep_life(points)[0]))

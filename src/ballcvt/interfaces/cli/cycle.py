@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ...api import STRATEGIES, CycleSettings, read_cycle
+from ...api import read_cycle
 from ...files import check_output_dir
 from . import options as o
 
@@ -26,34 +26,9 @@ def add_parser(subparsers) -> None:
     )
     p.add_argument("cycle_file", type=Path, metavar="CYCLE.csv", help="the duty cycle")
     o.add(p, "arch", *o.CLAMP_OPTIONS, *o.FLUID_OPTIONS)
-    p.add_argument(
-        "--strategy",
-        choices=STRATEGIES,
-        default="target-input-speed",
-        help="how the ratio is chosen (default: %(default)s)",
-    )
-    p.add_argument(
-        "--target-speed",
-        type=o.quantity("target_speed", "rpm", most=o.MOST_RPM),
-        default=None,
-        help="input speed held by target-input-speed [rpm] (required by it)",
-    )
-    p.add_argument(
-        "--candidates",
-        type=o.count(3, 101),
-        default=9,
-        help="ratios tried per step by max-efficiency, 3-101 (default: 9)",
-    )
-    p.add_argument(
-        "--ratio-range",
-        type=o.number,
-        nargs=2,
-        default=None,
-        metavar=("MIN", "MAX"),
-        help="ratios max-efficiency may use (default: the usable range)",
-    )
+    o.cycle_options(p)
     o.out(p, "ballcvt-cycle")
-    o.add(p, "json")
+    o.add(p, "json", "life", "life-model")
     o.run_options(p)
 
 
@@ -63,15 +38,11 @@ def run(args) -> int:
     out = check_output_dir(args.out)
     cycle = read_cycle(args.cycle_file)
     v = o.variator(args)
-    settings = CycleSettings(
-        strategy=args.strategy,
-        target_input_speed_rpm=None if args.target_speed is None else o.rpm(args.target_speed),
-        candidates=args.candidates,
-        ratio_range=args.ratio_range,
-        progress=o.show(args),
-        workers=args.workers,
-    )
-    result = v.run_cycle(cycle, **o.law(args), settings=settings)
+    settings = o.cycle_settings(args)
+    if args.life:
+        result = v.cycle_life(cycle, **o.law(args), settings=settings, life_model=args.life_model)
+    else:
+        result = v.run_cycle(cycle, **o.law(args), settings=settings)
     result.save(out)
     import matplotlib
 
@@ -90,5 +61,6 @@ def run(args) -> int:
             f"({s['duration_s']:.0f} s), energy in {s['energy_in_J'] / 3.6e3:.2f} Wh, out "
             f"{s['energy_out_J'] / 3.6e3:.2f} Wh, efficiency {eff}; {s['steps_flagged']} "
             f"steps flagged; {s['run_time_s']:.1f} s on {args.workers} worker(s)"
+            + (f"; {o.life_line(s['life'])}" if args.life else "")
         )
     return 0

@@ -16,7 +16,16 @@ import textwrap
 from pathlib import Path
 from typing import Any
 
-from ...api import BUILTIN_FLUIDS, CAM_KEYS, PAPER_POINT, Variator, open_drive
+from ...api import (
+    BUILTIN_FLUIDS,
+    CAM_KEYS,
+    LIFE_MODELS,
+    PAPER_POINT,
+    STRATEGIES,
+    CycleSettings,
+    Variator,
+    open_drive,
+)
 from ...errors import InputError
 from ...registry import ARCHITECTURES, CLAMP_LAWS, TRACTION_LAWS
 
@@ -220,6 +229,15 @@ def options() -> dict[str, dict]:
             "hub) (default: table1, the paper's Table I drive)",
         },
         "json": {"action": "store_true", "help": "print one JSON object"},
+        "life": {
+            "action": "store_true",
+            "help": "add the rolling-contact fatigue life (system L10 [h], docs/life.md)",
+        },
+        "life-model": {
+            "choices": LIFE_MODELS.names(),
+            "default": "lundberg-palmgren",
+            "help": "contact fatigue life model (docs/life.md) (default: %(default)s)",
+        },
         "traction-law": {
             "choices": TRACTION_LAWS.names(),
             "default": None,
@@ -351,3 +369,52 @@ def grid_options(p, *, n_ratio: int, n_torque: int, most: int, torque_max: str) 
         default=n_torque,
         help=f"torques, 2-{most} (default: %(default)s)",
     )
+
+
+def cycle_options(p) -> None:
+    """The ratio strategy of ``cycle`` and ``life --cycle``."""
+    p.add_argument(
+        "--strategy",
+        choices=STRATEGIES,
+        default="target-input-speed",
+        help="how the ratio is chosen (default: %(default)s)",
+    )
+    p.add_argument(
+        "--target-speed",
+        type=quantity("target_speed", "rpm", most=MOST_RPM),
+        default=None,
+        help="input speed held by target-input-speed [rpm] (required by it)",
+    )
+    p.add_argument(
+        "--candidates",
+        type=count(3, 101),
+        default=9,
+        help="ratios tried per step by max-efficiency, 3-101 (default: 9)",
+    )
+    p.add_argument(
+        "--ratio-range",
+        type=number,
+        nargs=2,
+        default=None,
+        metavar=("MIN", "MAX"),
+        help="ratios max-efficiency may use (default: the usable range)",
+    )
+
+
+def cycle_settings(args) -> CycleSettings:
+    """The `CycleSettings` of `cycle_options` (and ``--workers``, ``--quiet``)."""
+    return CycleSettings(
+        strategy=args.strategy,
+        target_input_speed_rpm=None if args.target_speed is None else rpm(args.target_speed),
+        candidates=args.candidates,
+        ratio_range=args.ratio_range,
+        progress=show(args),
+        workers=args.workers,
+    )
+
+
+def life_line(life: dict) -> str:
+    """One line of a life's ``to_dict`` or a cycle's ``summary["life"]``."""
+    hours = life["l10_hours"]
+    text = "infinite" if hours is None else f"{hours:.4g} h"
+    return f"system L10 {text} ({life['model']}), limited by {life['limiting_element'] or '-'}"

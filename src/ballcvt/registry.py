@@ -24,6 +24,7 @@ __all__ = [
     "LOSS_TERMS",
     "OPERATING_MODES",
     "ARCHITECTURES",
+    "LIFE_MODELS",
 ]
 
 T = TypeVar("T")
@@ -108,3 +109,5 @@ LOSS_TERMS: Registry[Any] = Registry("loss term", "loss term")
 OPERATING_MODES: Registry[Any] = Registry("operating mode", "mode")
 #: Double or single idler, and any other (`ballcvt.model.architectures` entries).
 ARCHITECTURES: Registry[Any] = Registry("architecture", "architecture")
+#: Rolling-contact fatigue life models (`ballcvt.model.life.LifeModel` entries).
+LIFE_MODELS: Registry[Any] = Registry("life model", "life_model")

@@ -2,6 +2,7 @@
 
 from .drive import PAPER_POINT, Drive
 from .io import BUILTIN_DRIVES, builtin_text, drive_to_toml, load_builtin, load_drive, parse_drive
+from .material import FatigueMaterial, load_material
 from .models import (
     ARCHITECTURES,
     Architecture,
@@ -24,6 +25,7 @@ __all__ = [
     "CamModel",
     "Design",
     "Fluid",
+    "FatigueMaterial",
     "Material",
     "OperatingPoint",
     "ParameterModel",
@@ -34,4 +36,5 @@ __all__ = [
     "load_builtin",
     "load_drive",
     "parse_drive",
+    "load_material",
 ]

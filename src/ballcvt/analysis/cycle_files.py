@@ -105,31 +105,24 @@ class Cycle:
         return float(np.sum(self.vehicle_speed * self.durations))
 
 
-def cycle_from_arrays(
-    *,
-    time,
-    output_speed=None,
-    output_torque=None,
-    input_speed=None,
-    input_power=None,
-    ratio=None,
-    name: str = "cycle",
-    vehicle_speed=None,
-) -> Cycle:
-    """A validated `Cycle` from SI arrays (one of the two column sets of `KINDS`)."""
-    given = {
-        k: v
-        for k, v in dict(
-            time=time,
-            output_speed=output_speed,
-            output_torque=output_torque,
-            input_speed=input_speed,
-            input_power=input_power,
-            ratio=ratio,
-            vehicle_speed=vehicle_speed,
-        ).items()
-        if v is not None
-    }
+def cycle_from_arrays(*, time, name: str = "cycle", **columns) -> Cycle:
+    """A validated `Cycle` from SI arrays (one of the two column sets of `KINDS`).
+
+    Parameters
+    ----------
+    time : array_like
+        Sample times [s].
+    name : str
+        Where the cycle came from.
+    **columns : array_like or None
+        The other columns by name (`QUANTITIES`), in SI units: ``output_speed``,
+        ``output_torque``, ``input_speed``, ``input_power``, ``ratio``, ``vehicle_speed``
+        (None: not given).
+    """
+    unknown = sorted(set(columns) - set(QUANTITIES))
+    if unknown:
+        raise InputError("cycle column", unknown[0], "one of " + ", ".join(QUANTITIES))
+    given = {k: v for k, v in {"time": time, **columns}.items() if v is not None}
     kind = next((k for k, cols in KINDS.items() if all(c in given for c in cols)), None)
     if kind is None or (kind == "output" and {"input_speed", "input_power"} & set(given)):
         raise InputError(

@@ -45,13 +45,15 @@ def sweep_life(
     for i, arch in enumerate(ds.architecture.values):
         sub = ds.isel(architecture=i)
         status = sub.status
-        grid = [sub[k].broadcast_like(status).values.ravel() for k in _INPUTS]
+        ratio, torque, force, speed = (sub[k].broadcast_like(status).values for k in _INPUTS)
         names = list(CONTACT_NAMES[str(arch)])
         creep = sub.creep.sel(contact=names).transpose(*status.dims, "contact").values
         creep = creep.reshape(-1, len(names))
         creep[status.values.ravel() != Status.CONVERGED] = np.nan
         here = Drive(drive.design, drive.fluid, str(arch))
-        got, _, _ = creep_life(SolvedPoints(here, *grid, creep), s, quadrature)
+        got, _, _ = creep_life(
+            SolvedPoints(here, ratio, torque, force, speed, creep), s, quadrature
+        )
         hours[i] = got.reshape(status.shape)
     out = ds.copy()
     out["l10_hours"] = (dims, hours, attrs_for("l10_hours"))

@@ -174,3 +174,33 @@ def test_study_life_objective_and_constraint(tmp_path):
     built = got["status"] != 4  # cannot be built
     assert np.all(got["l10_hours"][built] > 0)
     assert all("l10_hours" in r for r in got["reason"][built])  # 1e9 h: none meets it
+
+
+def test_a_iso_multiplies_the_rated_bearings_only(hub):
+    from ballcvt.model.life import a_iso
+    point = dict(clamp_law="cam", input_speed_rpm=180)
+    plain = hub.life(1.5, 30.0, **point)
+    b = hub.design.bearings.replace(contamination_factor=0.5, viscosity_ratio=1.0,
+                                    disc_bearing_fatigue_limit=None)
+    v = Variator(hub.design.replace(bearings=b), hub.fluid)
+    got = v.life(1.5, 30.0, **point)
+    for name, e in got.elements.items():
+        before = plain.elements[name]
+        if name.startswith(("roller_bearing", "idler_bearing")):
+            limit = (b.roller_bearing_fatigue_limit if name.startswith("roller")
+                     else b.idler_bearing_fatigue_limit)
+            factor = float(a_iso(0.5 * limit / e.load, 1.0))
+            assert e.l10_cycles == pytest.approx(before.l10_cycles * factor, rel=1e-12)
+        else:  # tracks, and the disc bearing without its C_u
+            assert e.l10_cycles == before.l10_cycles
+    # from the fluid: the traction fluid is far thinner than the bearings' rated viscosity
+    thin = hub.design.bearings.replace(contamination_factor=0.5)
+    got = Variator(hub.design.replace(bearings=thin), hub.fluid).life(1.5, 30.0, **point)
+    assert any("below 0.1" in n for n in got.notes) and got.l10_hours < plain.l10_hours
+
+
+def test_rated_viscosity_iso_281():
+    from ballcvt.analysis.life.elements import rated_viscosity
+    # ISO 281 Fig. 13 / SKF: d_m = 100 mm at 1000 rpm -> about 14 mm^2/s
+    assert rated_viscosity(1000 / 60, 0.1) * 1e6 == pytest.approx(4500 / 1000**0.5 / 10)
+    assert rated_viscosity(500 / 60, 0.1) * 1e6 == pytest.approx(45000 * 500**-0.83 / 10)

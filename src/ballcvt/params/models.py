@@ -26,11 +26,13 @@ from ..units import rad_s_to_rpm
 from .base import ParameterModel, _f, _opt
 from .feasibility import check_design
 from .laws import LAW_FIELDS, check_law
+from .ratings import BearingRatings
 
 __all__ = [
     "ParameterModel",
     "Material",
     "BearingModel",
+    "BearingRatings",
     "CamModel",
     "ParasiticModel",
     "Design",
@@ -70,8 +72,9 @@ class Material(ParameterModel):
         return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
 
 
-class BearingModel(ParameterModel):
-    """Rolling-bearing friction torque coefficients of Eqs. 15-16 (Harris / SKF form)."""
+class BearingModel(BearingRatings):
+    """Rolling-bearing friction torque coefficients of Eqs. 15-16 (Harris / SKF form), and
+    the optional catalogue ratings of the fatigue life (`BearingRatings`)."""
 
     f0: float = _f("-", "load-independent coefficient f0 of Eq. 15", ge=0, lt=math.inf)
     f1: float = _f("-", "load-dependent coefficient f1 of Eq. 16", ge=0, lt=math.inf)
@@ -90,34 +93,6 @@ class BearingModel(ParameterModel):
     )
     load_exponent: float = _f("-", "exponent a of the bearing load P in Eq. 16", gt=0, lt=3)
     diameter_exponent: float = _f("-", "exponent b of the mean diameter in Eq. 16", gt=0, lt=3)
-    roller_bearing_rating: float | None = _opt(
-        "N", "basic dynamic load rating C of one ball-axle bearing (two per ball), fatigue "
-        "life (docs/life.md); none: those bearings are left out of the life", gt=0, lt=math.inf
-    )  # fmt: skip
-    idler_bearing_rating: float | None = _opt(
-        "N", "basic dynamic load rating C of one idler bearing, fatigue life", gt=0, lt=math.inf
-    )
-    disc_bearing_rating: float | None = _opt(
-        "N", "basic dynamic load rating C of the thrust bearing between the discs, fatigue "
-        "life", gt=0, lt=math.inf
-    )  # fmt: skip
-
-    @model_serializer(mode="wrap")
-    def _dump(self, handler) -> dict[str, Any]:
-        """The fields, without the fatigue ratings not given (so that files and results of
-        drives without them are as they were)."""
-        data = handler(self)
-        if isinstance(data, dict):
-            data = {k: v for k, v in data.items() if v is not None or k not in _RATINGS}
-        return data
-
-
-#: The optional fatigue fields of `BearingModel`.
-_RATINGS = (
-    "roller_bearing_rating",
-    "idler_bearing_rating",
-    "disc_bearing_rating",
-)
 
 
 class CamModel(ParameterModel):

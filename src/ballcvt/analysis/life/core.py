@@ -2,7 +2,8 @@
 
 Each element's L10 comes from the physics of `ballcvt.model.life`: a track's in stress
 cycles from `contact_l10`, a bearing's in revolutions from its catalogue rating
-(`bearing_l10`, the ISO 281 basic rating life).
+(`bearing_l10`, the ISO 281 basic rating life, times ``a_ISO`` where the design gives the
+contamination factor and the bearing's fatigue load limit).
 Dividing by the element's cycle rate gives hours; ``count`` identical parts in series
 live ``count^(-1/e)`` times as long as one; the system is every element in series
 (`system_l10`, the strict-series Weibull sum with the material's slope ``e``).
@@ -14,10 +15,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...model.life import bearing_l10, contact_l10, system_l10
+from ...model.life import a_iso, bearing_l10, contact_l10, system_l10
 from ...params.material import FatigueMaterial
 from ...registry import LIFE_MODELS
-from .elements import LifeInputs, bearing_elements, track_elements
+from .elements import BearingElement, LifeInputs, bearing_elements, rated_viscosity, track_elements
 
 __all__ = ["LifeSettings", "ElementArrays", "LifeArrays", "life_arrays", "LIFE_MODELS"]
 
@@ -126,7 +127,30 @@ def life_arrays(x: LifeInputs, settings: LifeSettings) -> LifeArrays:
     for b in bearings:
         with np.errstate(divide="ignore"):
             revs = 1e6 * np.asarray(bearing_l10(b.rating, b.load), dtype=float)
+        revs = revs * _life_factor(x, b, notes)
         hours = _hours(revs, b.speed, b.count, e)
         out[b.name] = ElementArrays("bearing", "bearing", b.count, revs, b.speed, hours, b.load)
     system = np.asarray(system_l10(np.stack([v.l10_hours for v in out.values()], -1), e))
     return LifeArrays(out, system, tuple(notes), e)
+
+
+def _life_factor(x: LifeInputs, b: BearingElement, notes: list[str]):
+    """``a_ISO`` of a bearing (ISO 281:2007 §9.3; 1 without ``e_C`` or its ``C_u``), with
+    ``kappa = nu / nu_1`` from the design's ``viscosity_ratio`` or the fluid; a ``kappa``
+    below the standard's 0.1 counts as 0.1, with a note."""
+    ratings = x.design.bearings
+    e_c = ratings.contamination_factor
+    if e_c is None or b.fatigue_limit is None:
+        return 1.0
+    kappa = ratings.viscosity_ratio
+    if kappa is None:
+        if b.diameter is None:
+            notes.append(f"{b.name}: no a_ISO (no diameter for its rated viscosity)")
+            return 1.0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            kappa = x.kinematic_viscosity / rated_viscosity(b.speed, b.diameter)
+    kappa = np.asarray(kappa, dtype=float)
+    if np.any(kappa < 0.1):
+        notes.append(f"{b.name}: viscosity ratio below 0.1 counted as 0.1 (ISO 281 range)")
+    with np.errstate(divide="ignore"):
+        return a_iso(e_c * b.fatigue_limit / b.load, np.maximum(np.nan_to_num(kappa), 0.1))

@@ -30,7 +30,14 @@ from ...model.architectures import contact_layout
 from ...model.kinematics import rolling_radius
 from ...params.models import Design
 
-__all__ = ["LifeInputs", "TrackElement", "BearingElement", "track_elements", "bearing_elements"]
+__all__ = [
+    "LifeInputs",
+    "TrackElement",
+    "BearingElement",
+    "track_elements",
+    "bearing_elements",
+    "rated_viscosity",
+]
 
 
 @dataclass(frozen=True)
@@ -54,6 +61,8 @@ class LifeInputs:
         Axial thrust on each disc [N], ``(m,)``.
     tilt : ndarray
         Ball tilt [rad], ``(m,)``.
+    kinematic_viscosity : float
+        Of the fluid, ``eta_0 / rho``, for the bearings' ``a_ISO`` [m^2/s].
     """
 
     design: Design
@@ -66,6 +75,7 @@ class LifeInputs:
     axle_reactions: np.ndarray
     axial_force: np.ndarray
     tilt: np.ndarray
+    kinematic_viscosity: float
 
     @classmethod
     def of_result(cls, result) -> LifeInputs:
@@ -86,6 +96,7 @@ class LifeInputs:
             np.array([result.axle_reactions], dtype=float),
             np.array([result.axial_force], dtype=float),
             np.array([result.tilt], dtype=float),
+            result.fluid.kinematic_viscosity,
         )
 
     @classmethod
@@ -103,6 +114,7 @@ class LifeInputs:
             np.asarray(state.axle_reactions, dtype=float).reshape(-1, 2),
             np.asarray(axial_force, dtype=float),
             np.asarray(problem.tilt, dtype=float),
+            problem.fluid.kinematic_viscosity,
         )
 
 
@@ -149,6 +161,10 @@ class BearingElement:
         Dynamic equivalent load ``P`` [N], ``(m,)``.
     speed : ndarray
         Revolutions per second of the bearing's rings relative to each other [1/s], ``(m,)``.
+    fatigue_limit : float or None
+        Fatigue load limit ``C_u`` [N], for ``a_ISO``.
+    diameter : float or None
+        Mean diameter [m], for the rated viscosity of ``a_ISO``.
     """
 
     name: str
@@ -156,6 +172,8 @@ class BearingElement:
     rating: float
     load: np.ndarray
     speed: np.ndarray
+    fatigue_limit: float | None = None
+    diameter: float | None = None
 
 
 #: Element names of the tracks on the discs and idlers, by contact name.
@@ -214,6 +232,8 @@ def bearing_elements(x: LifeInputs) -> tuple[list[BearingElement], list[str]]:
                     b.roller_bearing_rating,
                     np.abs(x.axle_reactions[:, i]),
                     np.abs(x.roller_speed) * rev,
+                    b.roller_bearing_fatigue_limit,
+                    d.roller_bearing_diameter,
                 )
             )
     out += _idler_bearings(x, notes)
@@ -221,8 +241,11 @@ def bearing_elements(x: LifeInputs) -> tuple[list[BearingElement], list[str]]:
         notes.append("disc thrust bearing left out: no disc_bearing_rating in [design.bearings]")
     else:
         slip = np.abs(x.body_speed[:, 0] - x.body_speed[:, -1]) * rev
+        bore = None if d.parasitic is None else d.parasitic.disc_bearing_diameter or None
+        load = np.abs(x.axial_force)
+        limit = b.disc_bearing_fatigue_limit
         out.append(
-            BearingElement("disc_bearing", 1, b.disc_bearing_rating, np.abs(x.axial_force), slip)
+            BearingElement("disc_bearing", 1, b.disc_bearing_rating, load, slip, limit, bore)
         )
     return out, notes
 
@@ -248,6 +271,33 @@ def _idler_bearings(x: LifeInputs, notes: list[str]) -> list[BearingElement]:
             rating,
             t,
             np.abs(x.body_speed[:, j]) / (2.0 * math.pi),
+            d.bearings.idler_bearing_fatigue_limit,
+            d.idler_bearing_diameter,
         )
         for j, t in zip(idlers, thrust)
     ]
+
+
+def rated_viscosity(speed, diameter):
+    """Rated kinematic viscosity ``nu_1`` of a bearing (ISO 281:2007 §9.3.3, Fig. 13).
+
+    ``nu_1 = 45000 n^-0.83 d_m^-0.5`` below 1000 rpm, ``4500 n^-0.5 d_m^-0.5`` above
+    (``n`` in rpm, ``d_m`` in mm, ``nu_1`` in mm^2/s).
+
+    Parameters
+    ----------
+    speed : array_like
+        Revolutions per second of the bearing [1/s] (> 0).
+    diameter : float
+        Mean diameter ``d_m`` [m].
+
+    Returns
+    -------
+    ndarray
+        ``nu_1`` [m^2/s].
+    """
+    n = 60.0 * np.asarray(speed, dtype=float)
+    dm = 1e3 * diameter
+    with np.errstate(divide="ignore"):
+        nu1 = np.where(n < 1000.0, 45000.0 * n**-0.83, 4500.0 * n**-0.5) / np.sqrt(dm)
+    return 1e-6 * nu1

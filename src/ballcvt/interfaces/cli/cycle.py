@@ -28,7 +28,7 @@ def add_parser(subparsers) -> None:
     o.add(p, "arch", *o.CLAMP_OPTIONS, *o.FLUID_OPTIONS)
     o.cycle_options(p)
     o.out(p, "ballcvt-cycle")
-    o.add(p, "json", "life", "life-model")
+    o.add(p, "json", "life", "life-model", "material")
     o.run_options(p)
 
 
@@ -40,7 +40,13 @@ def run(args) -> int:
     v = o.variator(args)
     settings = o.cycle_settings(args)
     if args.life:
-        result = v.cycle_life(cycle, **o.law(args), settings=settings, life_model=args.life_model)
+        result = v.cycle_life(
+            cycle,
+            **o.law(args),
+            settings=settings,
+            life_model=args.life_model,
+            material=args.material,
+        )
     else:
         result = v.run_cycle(cycle, **o.law(args), settings=settings)
     result.save(out)

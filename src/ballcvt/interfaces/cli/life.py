@@ -26,7 +26,7 @@ def add_parser(subparsers) -> None:
         "examples/cycles/ebike_commute.csv --target-speed 180 --json",
     )
     o.add(p, "arch", "ratio", "torque", *o.CLAMP_OPTIONS, "speed", *o.FLUID_OPTIONS)
-    o.add(p, "life-model", "json")
+    o.add(p, "life-model", "material", "json")
     p.add_argument(
         "--cycle",
         type=Path,
@@ -47,6 +47,7 @@ def run(args) -> int:
         args.ratio,
         args.torque,
         life_model=args.life_model,
+        material=args.material,
         **o.law(args),
         input_speed_rpm=o.rpm(args.speed),
     )
@@ -66,7 +67,11 @@ def _cycle(args, v) -> int:
     o.input_file(args.cycle, "cycle file")
     cycle = read_cycle(args.cycle)
     result = v.cycle_life(
-        cycle, **o.law(args), settings=o.cycle_settings(args), life_model=args.life_model
+        cycle,
+        **o.law(args),
+        settings=o.cycle_settings(args),
+        life_model=args.life_model,
+        material=args.material,
     )
     life = result.summary["life"]
     if args.json:

@@ -24,7 +24,7 @@ def add_parser(subparsers) -> None:
         "contours at the decades of hours (docs/life.md).",
         "ballcvt map --out map_dir --clamp 2000 --speed 2000 --n-ratio 31 --n-torque 35",
     )
-    o.add(p, "arch", *o.CLAMP_OPTIONS, "speed", *o.FLUID_OPTIONS, "life", "life-model")
+    o.add(p, "arch", *o.CLAMP_OPTIONS, "speed", *o.FLUID_OPTIONS, "life", "life-model", "material")
     o.out(p, "ballcvt-map")
     o.grid_options(
         p, n_ratio=31, n_torque=35, most=1000, torque_max="1.02 x the largest limiting torque"
@@ -45,7 +45,7 @@ def run(args) -> int:
         progress=o.show(args),
     )
     if args.life:
-        ds = v.map_life(ds, life_model=args.life_model)
+        ds = v.map_life(ds, life_model=args.life_model, material=args.material)
     _write(ds, out, args)
     if args.quiet:
         return 0

@@ -233,6 +233,12 @@ def options() -> dict[str, dict]:
             "action": "store_true",
             "help": "add the rolling-contact fatigue life (system L10 [h], docs/life.md)",
         },
+        "material": {
+            "metavar": "NAME|FILE.toml",
+            "default": None,
+            "help": "fatigue material of the tracks: a built-in name or a TOML file with a "
+            "[material] table (default: steel_52100, AISI 52100 bearing steel)",
+        },
         "life-model": {
             "choices": LIFE_MODELS.names(),
             "default": "lundberg-palmgren",

@@ -154,3 +154,18 @@ def test_a_iso():
     assert a_iso(0.1, 1.0) == pytest.approx(hand, rel=1e-12)
     with pytest.raises(InputError):
         a_iso(0.1, 0.05)
+
+
+def test_unloaded_contact_with_zero_ellipse():
+    """Hertz gives zero semi-axes at zero load: still an infinite life, no warning."""
+    with np.errstate(all="raise"):
+        for model in LIFE_MODELS:
+            lives = contact_l10([0.0, 1000.0], [0.0, 1e-3], [0.0, 2e-4], 0.1, MATERIAL, model)
+            assert np.isinf(lives[0]) and np.isfinite(lives[1])
+
+
+@pytest.mark.parametrize("field", ["semi_major", "semi_minor", "track_length"])
+def test_loaded_contact_needs_a_positive_geometry(field):
+    args = {"semi_major": 1e-3, "semi_minor": 2e-4, "track_length": 0.1, field: 0.0}
+    with pytest.raises(InputError, match=field):
+        contact_l10(100.0, material=MATERIAL, **args)

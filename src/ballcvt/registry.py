@@ -1,10 +1,11 @@
 """Named, pluggable pieces: one registry for each kind of choice (docs/architecture.md).
 
-A traction law, a clamping law, a parasitic-loss term, an operating mode and an
-architecture are each registered by name in one `Registry` below. The solvers, the
-command line's choices, the study files and the documentation read the registry, so a
-piece registered from a user's own code (``ballcvt.registry.TRACTION_LAWS.register(...)``)
-is usable everywhere at once, without editing the package. The built-in pieces register
+A traction law, a clamping law, a parasitic-loss term, an operating mode, an
+architecture and a fatigue life model are each registered by name in one `Registry`
+below. The solvers, the command line's choices, the study files and the documentation
+read the registry, so a piece registered from a user's own code
+(``ballcvt.registry.TRACTION_LAWS.register(...)``) is usable everywhere at once, without
+editing the package. The built-in pieces register
 themselves when their model module is imported (importing `ballcvt` imports them all).
 
 This module is a leaf: it knows nothing of the physics, only names and objects.
@@ -109,5 +110,6 @@ LOSS_TERMS: Registry[Any] = Registry("loss term", "loss term")
 OPERATING_MODES: Registry[Any] = Registry("operating mode", "mode")
 #: Double or single idler, and any other (`ballcvt.model.architectures` entries).
 ARCHITECTURES: Registry[Any] = Registry("architecture", "architecture")
-#: Rolling-contact fatigue life models (`ballcvt.model.life.LifeModel` entries).
+#: Rolling-contact fatigue life models (`ballcvt.model.life.LifeModel` entries; the
+#: built-ins register when `ballcvt.model.life` is imported).
 LIFE_MODELS: Registry[Any] = Registry("life model", "life_model")

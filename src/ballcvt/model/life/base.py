@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...errors import InputError
 from ...params.material import FatigueMaterial
 from ...registry import LIFE_MODELS
 from .stress import orthogonal_shear, peak_pressure
@@ -21,10 +22,11 @@ __all__ = ["LIFE_MODELS", "LifeModel", "TrackContact", "track_contact"]
 
 @dataclass(frozen=True)
 class TrackContact:
-    """A Hertz contact rolling along a closed track, with its subsurface stress.
+    """A Hertz contact rolling along a closed track, with its subsurface stress (arrays
+    of one shape).
 
-    Attributes (arrays broadcast together)
-    --------------------------------------
+    Attributes
+    ----------
     load : ndarray
         Normal load ``Q`` [N].
     semi_major, semi_minor : ndarray
@@ -59,16 +61,28 @@ def track_contact(load, semi_major, semi_minor, track_length) -> TrackContact:
     load : array_like
         Normal load ``Q`` [N] (``<= 0``: unloaded, infinite life).
     semi_major, semi_minor : array_like
-        Semi-axes transverse to (``a``) and along (``b``) the rolling direction [m].
+        Semi-axes transverse to (``a``) and along (``b``) the rolling direction [m]
+        (any value where unloaded).
     track_length : array_like
         Circumference of the rolling track ``l`` [m].
+
+    Raises
+    ------
+    InputError
+        If a loaded contact has a semi-axis or track length that is not positive.
     """
     arrays = np.broadcast_arrays(
         *(np.asarray(x, dtype=float) for x in (load, semi_major, semi_minor, track_length))
     )
     load, a, b, length = (np.array(x) for x in arrays)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        p0 = np.where(load > 0.0, peak_pressure(np.maximum(load, 0.0), a, b), 0.0)
+    loaded = load > 0.0
+    for name, value in (("semi_major", a), ("semi_minor", b), ("track_length", length)):
+        bad = loaded & ~(value > 0.0)
+        if np.any(bad):
+            raise InputError(name, float(value[bad].flat[0]), "> 0 [m] where the load is > 0")
+    # An unloaded contact (its semi-axes may be zero) gets a unit ellipse and no stress.
+    a, b, length = (np.where(loaded, x, 1.0) for x in (a, b, length))
+    p0 = np.where(loaded, peak_pressure(np.where(loaded, load, 0.0), a, b), 0.0)
     tau0, z0 = orthogonal_shear(a, b, p0)
     return TrackContact(load, a, b, length, p0, tau0, z0)
 

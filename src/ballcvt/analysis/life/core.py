@@ -142,14 +142,17 @@ def _life_factor(x: LifeInputs, b: BearingElement, notes: list[str]):
     e_c = ratings.contamination_factor
     if e_c is None or b.fatigue_limit is None:
         return 1.0
-    kappa = ratings.viscosity_ratio
-    if kappa is None:
-        if b.diameter is None:
-            notes.append(f"{b.name}: no a_ISO (no diameter for its rated viscosity)")
-            return 1.0
-        with np.errstate(divide="ignore", invalid="ignore"):
-            kappa = x.kinematic_viscosity / rated_viscosity(b.speed, b.diameter)
-    kappa = np.asarray(kappa, dtype=float)
+    given = ratings.viscosity_ratio
+    if given is None and b.diameter is None:
+        notes.append(f"{b.name}: no a_ISO (no diameter for its rated viscosity)")
+        return 1.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        kappa = np.asarray(
+            x.kinematic_viscosity / rated_viscosity(b.speed, b.diameter)
+            if given is None
+            else given,
+            dtype=float,
+        )
     if np.any(kappa < 0.1):
         notes.append(f"{b.name}: viscosity ratio below 0.1 counted as 0.1 (ISO 281 range)")
     with np.errstate(divide="ignore"):

@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ...api import read_cycle
+from ...errors import InputError
 from . import options as o
 
 
@@ -43,6 +44,7 @@ def run(args) -> int:
     v = o.variator(args)
     if args.cycle is not None:
         return _cycle(args, v)
+    _point_only(args)
     r = v.life(
         args.ratio,
         args.torque,
@@ -58,8 +60,22 @@ def run(args) -> int:
     for name, e in r.elements.items():
         rows.append(f"{name:<18} {e.count:>5} {e.l10_hours:>11.4g} {e.l10_cycles:>13.4g}")
     rows += [f"note: {n}" for n in r.notes]
-    o.emit("\n".join(rows + [o.life_line(r.to_dict())]))
+    o.emit("\n".join(rows + ([] if args.quiet else [o.life_line(r.to_dict())])))
     return 0
+
+
+def _point_only(args) -> None:
+    """Refuse the duty-cycle options without ``--cycle`` (they would do nothing)."""
+    given = {
+        "--strategy": args.strategy != "target-input-speed",
+        "--target-speed": args.target_speed is not None,
+        "--candidates": args.candidates != 9,
+        "--ratio-range": args.ratio_range is not None,
+        "--workers": args.workers != 1,
+    }
+    for flag, used in given.items():
+        if used:
+            raise InputError(flag, None, "--cycle", message=f"{flag} needs --cycle")
 
 
 def _cycle(args, v) -> int:
@@ -75,7 +91,8 @@ def _cycle(args, v) -> int:
     )
     life = result.summary["life"]
     if args.json:
-        o.emit_json(life)
+        rest = {k: v for k, v in result.summary.items() if k != "life"}
+        o.emit_json({**life, "cycle": rest})
         return 0
     rows = [f"{'element':<18} {'Miner L10 [h]':>13}"]
     rows += [f"{k:<18} {e['l10_hours']:>13.4g}" for k, e in life["elements"].items()]
@@ -85,5 +102,5 @@ def _cycle(args, v) -> int:
         f"{life['l10_passes']:.4g} passes{km}; "
         f"{life['steps_not_counted']} steps without a solution not counted"
     )
-    o.emit("\n".join(rows + [o.life_line(life)]))
+    o.emit("\n".join(rows + ([] if args.quiet else [o.life_line(life)])))
     return 0

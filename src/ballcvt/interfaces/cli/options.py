@@ -229,6 +229,26 @@ def options() -> dict[str, dict]:
             "hub) (default: table1, the paper's Table I drive)",
         },
         "json": {"action": "store_true", "help": "print one JSON object"},
+        "traction-law": {
+            "choices": TRACTION_LAWS.names(),
+            "default": None,
+            "help": "shear law of the film (docs/model.md section 14): the paper's "
+            "isothermal law, thermal or viscoelastic (default: the fluid's "
+            "own, isothermal for the built-in drives)",
+        },
+        "fluid": {
+            "metavar": "FILE.toml",
+            "help": "fluid replacing the drive's: a TOML file with a [fluid] table (a "
+            "drive file or one written by fit-fluid), or a built-in fluid's name "
+            f"({', '.join(BUILTIN_FLUIDS)}) (default: the drive's fluid)",
+        },
+        **_life_options(),
+    }
+
+
+def _life_options() -> dict[str, dict]:
+    """The fatigue-life options (``life``, ``map --life``, ``cycle --life``)."""
+    return {
         "life": {
             "action": "store_true",
             "help": "add the rolling-contact fatigue life (system L10 [h], docs/life.md)",
@@ -243,19 +263,6 @@ def options() -> dict[str, dict]:
             "choices": LIFE_MODELS.names(),
             "default": "lundberg-palmgren",
             "help": "contact fatigue life model (docs/life.md) (default: %(default)s)",
-        },
-        "traction-law": {
-            "choices": TRACTION_LAWS.names(),
-            "default": None,
-            "help": "shear law of the film (docs/model.md section 14): the paper's "
-            "isothermal law, thermal or viscoelastic (default: the fluid's "
-            "own, isothermal for the built-in drives)",
-        },
-        "fluid": {
-            "metavar": "FILE.toml",
-            "help": "fluid replacing the drive's: a TOML file with a [fluid] table (a "
-            "drive file or one written by fit-fluid), or a built-in fluid's name "
-            f"({', '.join(BUILTIN_FLUIDS)}) (default: the drive's fluid)",
         },
     }
 

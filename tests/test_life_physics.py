@@ -46,7 +46,7 @@ def test_6206_rating_from_geometry_matches_catalogue():
 )
 def test_load_life_exponent(model, ratio):
     """At fixed curvatures (Hertz semi-axes ~ Q^(1/3)): LP L ~ Q^-3 (Lundberg and
-    Palmgren 1947), Zaretsky L ~ p0^-12 = Q^-4 (NASA TN D-7869): to 1e-9."""
+    Palmgren 1947), Zaretsky L ~ p0^-12 = Q^-4 (Zaretsky et al., NASA/TM-2008-214265): to 1e-9."""
     length = 0.2
     lives = [contact_l10(q, *_contact(q), length, MATERIAL, model) for q in (1000.0, 2000.0)]
     assert lives[1] / lives[0] == pytest.approx(ratio, rel=1e-9)
@@ -70,12 +70,14 @@ def test_lp_volume_effect():
 
 def test_orthogonal_shear_limits():
     """Lundberg and Palmgren (1947) Eqs. 8-10: line contact tau0 = p0/4 at z0 = b/2;
-    circle tau0 = 0.2139 p0 at 0.3509 b (Harris and Kotzalas print 0.215 and 0.35)."""
+    circle (b/a = 1: t = (1 + sqrt 17)/4) tau0 = 0.2139 p0 at 0.3509 b: to 1e-12."""
     tau, z = orthogonal_shear(1.0, [1e-9, 1.0], 1.0)
     assert tau[0] == pytest.approx(0.25, rel=1e-9)
     assert z[0] == pytest.approx(0.5e-9, rel=1e-9)
-    assert tau[1] == pytest.approx(0.2139, abs=1e-4)
-    assert z[1] == pytest.approx(0.3509, abs=1e-4)
+    t = (1 + math.sqrt(17)) / 4
+    assert tau[1] == pytest.approx(math.sqrt(2 * t - 1) / (2 * t * (t + 1)), rel=1e-12)
+    assert z[1] == pytest.approx(1 / ((t + 1) * math.sqrt(2 * t - 1)), rel=1e-12)
+    assert (tau[1], z[1]) == pytest.approx((0.2139, 0.3509), abs=1e-4)
 
 
 def test_orthogonal_shear_solves_auxiliary_equation():
@@ -169,3 +171,21 @@ def test_loaded_contact_needs_a_positive_geometry(field):
     args = {"semi_major": 1e-3, "semi_minor": 2e-4, "track_length": 0.1, field: 0.0}
     with pytest.raises(InputError, match=field):
         contact_l10(100.0, material=MATERIAL, **args)
+
+
+def test_a_registered_life_model_is_usable_by_name():
+    """A new life model is one LifeModel in LIFE_MODELS (docs/life.md §3)."""
+    from ballcvt.model.life import LifeModel
+
+    def half_lp(contact, material):
+        return 0.5 * contact_l10(
+            contact.load, contact.semi_major, contact.semi_minor, contact.track_length, material
+        )
+
+    LIFE_MODELS.register(LifeModel("half-lp", half_lp, "half the LP life"))
+    try:
+        a, b = _contact(1000.0)
+        lp = contact_l10(1000.0, a, b, 0.1, MATERIAL)
+        assert contact_l10(1000.0, a, b, 0.1, MATERIAL, "half-lp") == pytest.approx(0.5 * lp)
+    finally:
+        LIFE_MODELS.unregister("half-lp")

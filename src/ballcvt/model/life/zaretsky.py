@@ -19,9 +19,11 @@ def zaretsky_l10(contact: TrackContact, material: FatigueMaterial) -> np.ndarray
     "Rolling bearing life prediction, theory, and application", NASA/TP-2013-215305;
     Zaretsky, Poplawski and Peters, STLE Tribol. Trans. 39 (1996) 237): ``L10 = (B /
     (tau0^(c e) V))^(1/e)``. ``c = n - 2/e`` is set from the stress-life exponent
-    ``n = 12`` of the material (NASA TN D-7869; five-ball tests of vacuum-processed
-    52100), so that, ``V`` growing as ``p0^2`` at a fixed contact shape,
-    ``L10 ~ p0^-n``, i.e. ``Q^-(n/3) = Q^-4`` for a point contact.
+    ``n = 12`` of the material (Parker and Zaretsky, "Reevaluation of the stress-life
+    relation in rolling-element bearings", NASA, 1972: five-ball tests of
+    vacuum-degassed 52100; Zaretsky, Poplawski and Root, NASA/TM-2008-214265), so
+    that, ``V`` growing as ``p0^2`` at a fixed contact shape, ``L10 ~ p0^-n``, i.e.
+    ``Q^-(n/3) = Q^-4`` for a point contact.
     """
     m = material
     exponent = m.zaretsky_stress_exponent * m.weibull_slope - 2.0  # c e

@@ -4,6 +4,7 @@ a study, and the bearing ratings of the design."""
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -204,3 +205,21 @@ def test_rated_viscosity_iso_281():
     # ISO 281 Fig. 13 / SKF: d_m = 100 mm at 1000 rpm -> about 14 mm^2/s
     assert rated_viscosity(1000 / 60, 0.1) * 1e6 == pytest.approx(4500 / 1000**0.5 / 10)
     assert rated_viscosity(500 / 60, 0.1) * 1e6 == pytest.approx(45000 * 500**-0.83 / 10)
+
+
+def test_study_life_over_a_duty_cycle(tmp_path):
+    from ballcvt.analysis.studies.evaluate import evaluate_chunk, make_context
+    from ballcvt.analysis.studies.run import design_vectors
+    cyc = Path(__file__).parent / "data" / "tiny_cycle.csv"
+    text = open("tests/data/study_tiny.toml").read()
+    start, end = text.index("[operating]"), text.index("[objectives]")
+    text = (text[:start] + f'[operating]\ncycle = "{cyc}"\ntarget_input_speed_rpm = 180.0\n'
+            'clamp_force = 2000.0\n\n' + text[end:])
+    text = text.replace('eta_mean = "max"', 'cycle_efficiency = "max"')
+    text = text.replace('capacity = "max"', 'l10_hours = "max"')
+    path = tmp_path / "s.toml"
+    path.write_text(text)
+    spec = read_study(path)
+    got = evaluate_chunk(make_context(spec), np.arange(2), design_vectors(spec, 2))
+    ok = got["status"] == 0
+    assert ok.any() and np.all(got["l10_hours"][ok] > 0)

@@ -159,6 +159,43 @@ def _geometry_violation(ctx: Context, design, outer_diameter: float) -> str:
     return ""
 
 
+def _wants_life(spec: StudySpec) -> bool:
+    """Whether the study asks for the fatigue life (an objective or a constraint)."""
+    return "l10_hours" in spec.objectives or spec.constraints.min_l10_hours is not None
+
+
+def _points_life(ctx: Context, drive: Drive, res: dict) -> float:
+    """Shortest system L10 over the operating points [h] (docs/life.md)."""
+    from ..life.point import SolvedPoints, creep_life
+
+    points = SolvedPoints(
+        drive, ctx.ratio, ctx.torque, res["clamp_force"], ctx.speed, res["creep"]
+    )
+    return float(np.nanmin(creep_life(points)[0]))
+
+
+def _cycle_life(ctx: Context, design, force, law) -> float:
+    """System L10 over the study's duty cycle by Miner's rule [h] (docs/life.md)."""
+    from ..cycle_files import read_cycle
+    from ..cycles import run_cycle
+    from ..life import cycle_life
+
+    op = ctx.spec.operating
+    drive = Drive(design, ctx.fluid, ctx.spec.study.architecture)
+    target = None if op.target_input_speed_rpm is None else rpm_to_rad_s(op.target_input_speed_rpm)
+    assert op.cycle is not None
+    run = run_cycle(
+        drive,
+        read_cycle(op.cycle),
+        strategy=op.strategy,
+        target_input_speed=target,
+        clamp_force=None if law else force,
+        clamp_law=law,
+        progress=False,
+    )
+    return float(cycle_life(drive, run).summary["life"]["l10_hours"])
+
+
 def _evaluate(ctx: Context, values: dict):
     """(status, reason, metrics, eta per point, point status) of one design."""
     spec = ctx.spec
@@ -203,8 +240,6 @@ def _evaluate(ctx: Context, values: dict):
     else:
         cyc = _cycle(ctx, design, force, law)
         metrics["cycle_efficiency"] = cyc["efficiency"]
-        if "l10_hours" in cyc:
-            metrics["l10_hours"] = cyc["l10_hours"]
         beyond = cyc["beyond"]
         if beyond:
             return (
@@ -214,6 +249,8 @@ def _evaluate(ctx: Context, values: dict):
                 None,
                 None,
             )
+        if _wants_life(spec):
+            metrics["l10_hours"] = _cycle_life(ctx, design, force, law)
     # capacity at the capacity ratios (constant force: the study's; laws: their own),
     # searched as a sweep searches its limits
     speed = float(np.median(ctx.speed)) if ctx.speed.size else _cycle_speed(ctx)
@@ -286,24 +323,4 @@ def _cycle(ctx: Context, design, force, law) -> dict:
     s = res.summary
     beyond = int(s.get("flags", {}).get("beyond_capacity", {}).get("steps", 0))
     eff = s["efficiency"]
-    out = {"efficiency": np.nan if eff is None else float(eff), "beyond": beyond}
-    if _wants_life(ctx.spec):
-        from ..life import cycle_life
-
-        out["l10_hours"] = float(cycle_life(v, res).summary["life"]["l10_hours"])
-    return out
-
-
-def _wants_life(spec: StudySpec) -> bool:
-    """Whether the study asks for the fatigue life (an objective or a constraint)."""
-    return "l10_hours" in spec.objectives or spec.constraints.min_l10_hours is not None
-
-
-def _points_life(ctx: Context, drive: Drive, res: dict) -> float:
-    """Shortest system L10 over the operating points [h] (docs/life.md)."""
-    from ..life.point import SolvedPoints, creep_life
-
-    points = SolvedPoints(
-        drive, ctx.ratio, ctx.torque, res["clamp_force"], ctx.speed, res["creep"]
-    )
-    return float(np.nanmin(creep_life(points)[0]))
+    return {"efficiency": np.nan if eff is None else float(eff), "beyond": beyond}

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ...api import read_cycle
+from ...api import STRATEGIES, CycleSettings, read_cycle
 from ...files import check_output_dir
 from . import options as o
 
@@ -26,7 +26,32 @@ def add_parser(subparsers) -> None:
     )
     p.add_argument("cycle_file", type=Path, metavar="CYCLE.csv", help="the duty cycle")
     o.add(p, "arch", *o.CLAMP_OPTIONS, *o.FLUID_OPTIONS)
-    o.cycle_options(p)
+    p.add_argument(
+        "--strategy",
+        choices=STRATEGIES,
+        default="target-input-speed",
+        help="how the ratio is chosen (default: %(default)s)",
+    )
+    p.add_argument(
+        "--target-speed",
+        type=o.quantity("target_speed", "rpm", most=o.MOST_RPM),
+        default=None,
+        help="input speed held by target-input-speed [rpm] (required by it)",
+    )
+    p.add_argument(
+        "--candidates",
+        type=o.count(3, 101),
+        default=9,
+        help="ratios tried per step by max-efficiency, 3-101 (default: 9)",
+    )
+    p.add_argument(
+        "--ratio-range",
+        type=o.number,
+        nargs=2,
+        default=None,
+        metavar=("MIN", "MAX"),
+        help="ratios max-efficiency may use (default: the usable range)",
+    )
     o.out(p, "ballcvt-cycle")
     o.add(p, "json", "life", "life-model", "material")
     o.run_options(p)
@@ -38,17 +63,19 @@ def run(args) -> int:
     out = check_output_dir(args.out)
     cycle = read_cycle(args.cycle_file)
     v = o.variator(args)
-    settings = o.cycle_settings(args)
-    if args.life:
-        result = v.cycle_life(
-            cycle,
-            **o.law(args),
-            settings=settings,
-            life_model=args.life_model,
-            material=args.material,
-        )
-    else:
-        result = v.run_cycle(cycle, **o.law(args), settings=settings)
+    settings = CycleSettings(
+        strategy=args.strategy,
+        target_input_speed_rpm=None if args.target_speed is None else o.rpm(args.target_speed),
+        candidates=args.candidates,
+        ratio_range=args.ratio_range,
+        progress=o.show(args),
+        workers=args.workers,
+    )
+    result = (
+        v.cycle_life(cycle, **o.law(args), settings=settings, **o.life(args))
+        if args.life
+        else v.run_cycle(cycle, **o.law(args), settings=settings)
+    )
     result.save(out)
     import matplotlib
 

@@ -384,8 +384,13 @@ def grid_options(p, *, n_ratio: int, n_torque: int, most: int, torque_max: str) 
     )
 
 
+def life(args) -> dict:
+    """``life_model`` and ``material`` keywords of the Python API from the options."""
+    return {"life_model": args.life_model, "material": args.material}
+
+
 def cycle_options(p) -> None:
-    """The ratio strategy of ``cycle`` and ``life --cycle``."""
+    """The ratio strategy of ``life --cycle`` (as ``cycle``'s)."""
     p.add_argument(
         "--strategy",
         choices=STRATEGIES,

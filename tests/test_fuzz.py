@@ -86,7 +86,7 @@ def test_bad_numbers_exit_2(capsys, tmp_path, command, flag, nargs, value):
     if command in ("map", "reproduce", "cycle", "table"):
         argv += ["--out", str(tmp_path / "out")]
     code, out, err = run(capsys, argv)
-    if value == "0" and flag == "--torque" and command in ("point", "clamp"):
+    if value == "0" and flag == "--torque" and command in ("point", "clamp", "life"):
         assert code == 0                           # zero torque is a valid operating point
         return
     if value == "0" and flag == "--port" and command == "explore-ui":

@@ -10,6 +10,7 @@ import pytest
 from ballcvt import InputError, OperatingResult, Variator
 from ballcvt.interfaces.cli import main as cli
 from ballcvt.interfaces.cli.main import build_parser
+from ballcvt.params.material import FatigueMaterial, material_to_toml
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -106,10 +107,33 @@ def _variants(design, tmp):
         "--torque-max": ["--torque-max", "50"], "--n-torque": ["--n-torque", "4"],
         "--out": ["--out", str(tmp / "t1")], "--workers": ["--workers", "2"],
         "--quiet": ["--quiet"]})
+    # the fatigue life (docs/life.md): the life command, and map and cycle with --life
+    material = tmp / "material.toml"
+    material.write_text(material_to_toml(FatigueMaterial.builtin().replace(weibull_slope=1.5)))
+    lives = {"--life-model": ["--life-model", "zaretsky"], "--material": ["--material",
+                                                                            str(material)]}
+    life = (["life", "--json"], {
+        "--arch": ["--arch", "single"], "--ratio": ["--ratio", "1.5"],
+        "--torque": ["--torque", "20"], "--clamp": ["--clamp", "2500"], "--clamp-law": law,
+        "--speed": ["--speed", "1000"], "--design": ["--design", design], "--json": None,
+        "--cycle": ["--cycle", tiny, "--target-speed", "180"], **lives})
+    life_cycle = (["life", "--json", "--cycle", tiny, "--target-speed", "180"], {
+        "--strategy": ["--strategy", "max-efficiency", "--ratio-range", "0.8", "1.3"],
+        "--target-speed": ["--target-speed", "150"],
+        "--candidates": ["--strategy", "max-efficiency", "--candidates", "3"],
+        "--ratio-range": ["--strategy", "max-efficiency", "--ratio-range", "0.9", "1.2"],
+        "--workers": ["--workers", "2"]})
+    life_text = (["life"], {"--quiet": ["--quiet"]})
+    life_cam = (["life", "--json", *law], dict(cam))
+    map_life = (["map", "--out", str(tmp / "m3"), *small, "--life"], dict(lives))
+    cycle_life = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c4"), "--json",
+                   "--life"], dict(lives))
+    mapping[1]["--life"] = ["--life"]
+    cycle[1]["--life"] = ["--life"]
     # the fluid and its traction law (docs/model.md section 14), on every drive command
     fluid = {"--fluid": ["--fluid", "mineral-oil"],
              "--traction-law": ["--traction-law", "viscoelastic"]}
-    for _, changes in (point, limit, clamp, mapping, cycle, table):
+    for _, changes in (point, limit, clamp, mapping, cycle, table, life):
         changes.update(fluid)
     soft = tmp / "soft.toml"                         # another material: another E'
     soft.write_text(Path(design).read_text().replace("youngs_modulus = 210.0e9",
@@ -145,7 +169,9 @@ def _variants(design, tmp):
             "traction-curve": curve, "traction-curve:pmax": curve_p, "fit-fluid": fit,
             "point": point, "point:planetary": planetary, "limit": limit, "clamp": clamp, "map": mapping,
             "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam,
-            "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table}
+            "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table,
+            "life": life, "life:cycle": life_cycle, "life:text": life_text, "life:cam": life_cam,
+            "map:life": map_life, "cycle:life": cycle_life}
 
 
 def _output(code, out, err, argv):

@@ -7,7 +7,8 @@ Both files are data made by this script, deterministic, and committed; nothing i
   (rolling resistance 0.006, CdA 0.5 m^2, air 1.2 kg/m^3, wheel radius 0.35 m):
   ``T_2 = r (m dv/dt + m g (C_rr cos(a) + sin(a)) + rho CdA v^2 / 2)``. The route has
   two traffic stops, a 4 % climb at 15 km/h and a 5 % descent where the rider brakes
-  (negative torque: outside the model, flagged by the runner).
+  (negative torque: outside the model, flagged by the runner). The bike's speed is a
+  column too (``vehicle_speed``: the commute's distance, a fatigue life in km).
 * ``rig_power_ramp.csv`` (input side): a test-rig ramp at 2000 rpm input and a constant
   5 kW input power while the commanded ratio sweeps 0.5 -> 2 in 120 s (2 samples/s).
 """
@@ -21,7 +22,7 @@ MASS, CRR, CDA, RHO_AIR, G, WHEEL = 100.0, 0.006, 0.5, 1.2, 9.81, 0.35
 
 
 def commute():
-    """(time [s], wheel speed [rpm], wheel torque [N m]) of the commute."""
+    """(time [s], wheel speed [rpm], wheel torque [N m], bike speed [km/h]) of the commute."""
     # (duration [s], speed at the end [km/h], grade [-]); speeds ramp linearly
     legs = [(20, 25, 0.0), (220, 25, 0.0), (15, 0, 0.0), (30, 0, 0.0),      # stop 1
             (20, 25, 0.0), (100, 25, 0.0), (20, 15, 0.04), (180, 15, 0.04),  # climb
@@ -39,7 +40,7 @@ def commute():
     force = (MASS * accel + MASS * G * (CRR * np.cos(slope) + np.sin(slope))
              + 0.5 * RHO_AIR * CDA * v**2)
     force = np.where(v > 0, force, 0.0)            # standing still: no drive torque
-    return t, v / WHEEL * 30.0 / np.pi, force * WHEEL
+    return t, v / WHEEL * 30.0 / np.pi, force * WHEEL, v * 3.6
 
 
 def rig():
@@ -58,7 +59,8 @@ def write(path, header, columns, note):
 
 
 if __name__ == "__main__":
-    write(HERE / "ebike_commute.csv", ["time [s]", "output_speed [rpm]", "output_torque [N m]"],
+    write(HERE / "ebike_commute.csv",
+          ["time [s]", "output_speed [rpm]", "output_torque [N m]", "vehicle_speed [km/h]"],
           commute(), "e-bike commute, rear hub output = wheel (see make_cycles.py)")
     write(HERE / "rig_power_ramp.csv",
           ["time [s]", "input_speed [rpm]", "input_power [W]", "ratio [1]"], rig(),

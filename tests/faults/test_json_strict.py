@@ -28,13 +28,17 @@ CASES = {
                "--speed", "100"]],
     "limit": [[], ["--clamp", "1"], ["--speed", "1e5"]],
     "clamp": [[], ["--max-pressure", "1e10"], ["--torque", "0"]],
-    "cycle": [[TINY_CYCLE, "--target-speed", "180"], [TINY_CYCLE, "--target-speed", "1e5"]],
+    "cycle": [[TINY_CYCLE, "--target-speed", "180"], [TINY_CYCLE, "--target-speed", "1e5"],
+              [TINY_CYCLE, "--target-speed", "180", "--life"]],
     "traction-curve": [[*TC, "--load", "1000"], [*TC, "--load", "1e6"],
                        ["--rx", "1e-6", "--ry", "1e3", "--load", "1e6", "--speed", "1e3"],
                        [*TC, "--pmax", "1e10", "--law", "thermal"],
                        [*TC, "--load", "1e-300", "--law", "viscoelastic"]],
     "fit-fluid": [[TINY_CURVES]],
     "explore": [[str(TINY_STUDY), "--in-process", "--quiet"]],
+    "life": [[], ["--torque", "0"], ["--life-model", "iso-fatigue-limit", "--clamp", "500"],
+             ["--design", "hub", "--speed", "1e5"],
+             ["--design", "hub", "--cycle", TINY_CYCLE, "--target-speed", "180"]],
 }
 NEEDS_OUT = ("cycle", "fit-fluid", "explore")
 

@@ -8,6 +8,9 @@ Two kinds of cycle are read:
   ``ratio`` (the commanded ideal ratio; without it the ``max-efficiency`` strategy picks
   one); the output torque follows from the input power.
 
+Either kind may add ``vehicle_speed`` (the speed of the vehicle the drive moves): the
+cycle's distance, for a fatigue life in kilometres (docs/life.md).
+
 Column names carry their unit in brackets, e.g. ``output_speed [rpm]``; the accepted
 units are listed in `UNITS`. Values are converted to SI on reading.
 """
@@ -35,6 +38,7 @@ QUANTITIES = {
     "output_torque": "torque",
     "input_power": "power",
     "ratio": "dimensionless",
+    "vehicle_speed": "speed",
 }
 #: Accepted units per column: unit -> factor to SI.
 UNITS = {column: dict(QUANTITY_UNITS[q]) for column, q in QUANTITIES.items()}
@@ -61,6 +65,9 @@ class Cycle:
     input_speed, input_power, ratio : ndarray or None
         Input-side cycle: ``omega_0`` >= 0 [rad/s], input power [W], and the commanded
         ideal ratio [-] (optional).
+    vehicle_speed : ndarray or None
+        Speed of the vehicle the drive moves (optional, either kind) [m/s]: gives the
+        distance of the cycle, and a fatigue life in kilometres.
     name : str
         Where it came from.
     """
@@ -73,6 +80,7 @@ class Cycle:
     input_power: np.ndarray | None = None
     ratio: np.ndarray | None = None
     name: str = "cycle"
+    vehicle_speed: np.ndarray | None = None
 
     @property
     def size(self) -> int:
@@ -89,30 +97,32 @@ class Cycle:
         edges = np.concatenate([[t[0]], 0.5 * (t[1:] + t[:-1]), [t[-1]]])
         return np.diff(edges)
 
+    @property
+    def distance(self) -> float | None:
+        """Distance covered, ``sum v_i dt_i`` [m]; None without a ``vehicle_speed``."""
+        if self.vehicle_speed is None:
+            return None
+        return float(np.sum(self.vehicle_speed * self.durations))
 
-def cycle_from_arrays(
-    *,
-    time,
-    output_speed=None,
-    output_torque=None,
-    input_speed=None,
-    input_power=None,
-    ratio=None,
-    name: str = "cycle",
-) -> Cycle:
-    """A validated `Cycle` from SI arrays (one of the two column sets of `KINDS`)."""
-    given = {
-        k: v
-        for k, v in dict(
-            time=time,
-            output_speed=output_speed,
-            output_torque=output_torque,
-            input_speed=input_speed,
-            input_power=input_power,
-            ratio=ratio,
-        ).items()
-        if v is not None
-    }
+
+def cycle_from_arrays(*, time, name: str = "cycle", **columns) -> Cycle:
+    """A validated `Cycle` from SI arrays (one of the two column sets of `KINDS`).
+
+    Parameters
+    ----------
+    time : array_like
+        Sample times [s].
+    name : str
+        Where the cycle came from.
+    **columns : array_like or None
+        The other columns by name (`QUANTITIES`), in SI units: ``output_speed``,
+        ``output_torque``, ``input_speed``, ``input_power``, ``ratio``, ``vehicle_speed``
+        (None: not given).
+    """
+    unknown = sorted(set(columns) - set(QUANTITIES))
+    if unknown:
+        raise InputError("cycle column", unknown[0], "one of " + ", ".join(QUANTITIES))
+    given = {k: v for k, v in {"time": time, **columns}.items() if v is not None}
     kind = next((k for k, cols in KINDS.items() if all(c in given for c in cols)), None)
     if kind is None or (kind == "output" and {"input_speed", "input_power"} & set(given)):
         raise InputError(
@@ -135,7 +145,7 @@ def cycle_from_arrays(
     if t.size > 1 and np.any(np.diff(t) <= 0):
         i = int(np.flatnonzero(np.diff(t) <= 0)[0]) + 1
         raise InputError("time", float(t[i]), f"strictly increasing (step {i})")
-    for key in ("output_speed", "input_speed"):
+    for key in ("output_speed", "input_speed", "vehicle_speed"):
         if key in arrays and np.any(arrays[key] < 0):
             i = int(np.flatnonzero(arrays[key] < 0)[0])
             raise InputError(

@@ -9,6 +9,7 @@ the leaves and the reports (tests/test_public_api.py).
 
 from .._lazy import lazy_exports
 from ..analysis.cycle_files import STRATEGIES, Cycle, cycle_from_arrays, read_cycle
+from ..model.life import LIFE_MODELS
 from ..model.modes import MEMBERS, OperatingMode
 from ..model.traction.curve import TractionCurve, traction_curve
 from ..params import PAPER_POINT, Design, Drive, Fluid, drive_to_toml, load_builtin, load_drive
@@ -19,6 +20,7 @@ from ..solvers.limit import LimitSearch
 from ..solvers.planetary_batch import ModeBatch
 from .batched import CAM_KEYS
 from .grids import LimitCurve
+from .life import life_settings
 from .settings import CycleSettings, MapGrid, SolveSettings, SweepSettings, TableGrid
 from .tools import contact_fluid, drive_text, open_drive, read_study
 from .variator import Variator
@@ -26,6 +28,11 @@ from .variator import Variator
 #: Names whose modules load xarray, pandas or Dask: imported on first use (`ballcvt._lazy`).
 _LAZY = {
     "CycleResult": "..analysis.cycles",
+    "LifeResult": "..analysis.life.result",
+    "ElementLife": "..analysis.life.result",
+    "LifeSettings": "..analysis.life.core",
+    "cycle_life": "..analysis.life.cycle",
+    "sweep_life": "..analysis.life.maps",
     "Curves": "..analysis.fitting",
     "FluidFit": "..analysis.fitting",
     "fit_fluid": "..analysis.fitting",
@@ -65,6 +72,13 @@ __all__ = [
     "ModeBatch",
     "Cycle",
     "CycleResult",
+    "LifeResult",
+    "ElementLife",
+    "LifeSettings",
+    "LIFE_MODELS",
+    "life_settings",
+    "cycle_life",
+    "sweep_life",
     "STRATEGIES",
     "read_cycle",
     "cycle_from_arrays",

@@ -29,6 +29,7 @@ from ..solvers.refusal import point_capacity
 from ..units import rpm_to_rad_s
 from . import grids, planetary
 from .batched import BatchMethods
+from .life import LifeMethods
 from .refusals import optimal_refusal, refuse_beyond_capacity
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
 
@@ -40,7 +41,7 @@ def _default_drive():
 
 
 @dataclass(frozen=True)
-class Variator(BatchMethods):
+class Variator(BatchMethods, LifeMethods):
     """A ball variator of a given design, fluid and idler architecture.
 
     Parameters

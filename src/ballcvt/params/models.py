@@ -26,11 +26,13 @@ from ..units import rad_s_to_rpm
 from .base import ParameterModel, _f, _opt
 from .feasibility import check_design
 from .laws import LAW_FIELDS, check_law
+from .ratings import BearingRatings
 
 __all__ = [
     "ParameterModel",
     "Material",
     "BearingModel",
+    "BearingRatings",
     "CamModel",
     "ParasiticModel",
     "Design",
@@ -70,8 +72,9 @@ class Material(ParameterModel):
         return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
 
 
-class BearingModel(ParameterModel):
-    """Rolling-bearing friction torque coefficients of Eqs. 15-16 (Harris / SKF form)."""
+class BearingModel(BearingRatings):
+    """Rolling-bearing friction torque coefficients of Eqs. 15-16 (Harris / SKF form), and
+    the optional catalogue ratings of the fatigue life (`BearingRatings`)."""
 
     f0: float = _f("-", "load-independent coefficient f0 of Eq. 15", ge=0, lt=math.inf)
     f1: float = _f("-", "load-dependent coefficient f1 of Eq. 16", ge=0, lt=math.inf)

@@ -7,6 +7,7 @@ from .cycles import cycle_figure
 from .figures import (
     LABELS,
     draw_efficiency_map,
+    draw_life_contours,
     efficiency_map,
     line_panels,
     plot_curves,
@@ -23,6 +24,7 @@ __all__ = [
     "line_panels",
     "efficiency_map",
     "draw_efficiency_map",
+    "draw_life_contours",
     "plot_efficiency_map",
     "plot_curves",
     "ratio_vs_tilt",

@@ -198,14 +198,47 @@ def _triangulation(x, y, ratio, limit):
 
 
 def efficiency_map(
-    ratio, torque, eta, limit, title="Overall efficiency", limit_eta=None
+    ratio, torque, eta, limit, title="Overall efficiency", limit_eta=None, life=None
 ) -> Figure:
-    """A figure of `draw_efficiency_map` with a title (for files)."""
+    """A figure of `draw_efficiency_map` with a title (for files); ``life``, the system L10
+    [h] on the same ``(ratio, torque)`` grid, adds its contours (`draw_life_contours`)."""
     fig = Figure(figsize=(6.6, 4.8), layout="constrained")
     ax = fig.add_subplot()
     draw_efficiency_map(ax, ratio, torque, eta, limit, limit_eta=limit_eta)
+    if life is not None:
+        draw_life_contours(ax, ratio, torque, life)
     ax.set_title(title, fontsize=10)
     return fig
+
+
+def draw_life_contours(ax, ratio, torque, hours):
+    """Contours of the fatigue life at the decades ``10^k`` hours (dashed white lines).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    ratio, torque : array_like
+        The grid's ratios [-] and output torques [N m].
+    hours : array_like
+        System L10 [h], ``(n_ratio, n_torque)`` (NaN: no solution, left blank).
+
+    Returns
+    -------
+    ContourSet or None
+        None when fewer than two decades are finite (nothing to draw).
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = np.log10(np.asarray(hours, dtype=float)).T
+    finite = z[np.isfinite(z)]
+    if finite.size < 4 or np.floor(finite.max()) <= np.ceil(finite.min()) - 1:
+        return None
+    levels = np.arange(np.ceil(finite.min()), np.floor(finite.max()) + 1)
+    lines = ax.contour(
+        ratio, torque, np.ma.masked_invalid(z), levels=levels, colors="w", linestyles="--",
+        linewidths=0.8,
+    )  # fmt: skip
+    ax.clabel(lines, fmt=lambda k: f"L10 {10.0**k:g} h", fontsize=7, inline=True)
+    return lines
 
 
 def _axes(ax):

@@ -159,6 +159,43 @@ def _geometry_violation(ctx: Context, design, outer_diameter: float) -> str:
     return ""
 
 
+def _wants_life(spec: StudySpec) -> bool:
+    """Whether the study asks for the fatigue life (an objective or a constraint)."""
+    return "l10_hours" in spec.objectives or spec.constraints.min_l10_hours is not None
+
+
+def _points_life(ctx: Context, drive: Drive, res: dict) -> float:
+    """Shortest system L10 over the operating points [h] (docs/life.md)."""
+    from ..life.point import SolvedPoints, creep_life
+
+    points = SolvedPoints(
+        drive, ctx.ratio, ctx.torque, res["clamp_force"], ctx.speed, res["creep"]
+    )
+    return float(np.nanmin(creep_life(points)[0]))
+
+
+def _cycle_life(ctx: Context, design, force, law) -> float:
+    """System L10 over the study's duty cycle by Miner's rule [h] (docs/life.md)."""
+    from ..cycle_files import read_cycle
+    from ..cycles import run_cycle
+    from ..life import cycle_life
+
+    op = ctx.spec.operating
+    drive = Drive(design, ctx.fluid, ctx.spec.study.architecture)
+    target = None if op.target_input_speed_rpm is None else rpm_to_rad_s(op.target_input_speed_rpm)
+    assert op.cycle is not None
+    run = run_cycle(
+        drive,
+        read_cycle(op.cycle),
+        strategy=op.strategy,
+        target_input_speed=target,
+        clamp_force=None if law else force,
+        clamp_law=law,
+        progress=False,
+    )
+    return float(cycle_life(drive, run).summary["life"]["l10_hours"])
+
+
 def _evaluate(ctx: Context, values: dict):
     """(status, reason, metrics, eta per point, point status) of one design."""
     spec = ctx.spec
@@ -198,6 +235,8 @@ def _evaluate(ctx: Context, values: dict):
             )
         metrics["eta_mean"] = float(np.sum(ctx.weights * eta))
         metrics["eta_min"] = float(np.min(eta))
+        if _wants_life(spec):
+            metrics["l10_hours"] = _points_life(ctx, drive, res)
     else:
         cyc = _cycle(ctx, design, force, law)
         metrics.update({k: cyc[k] for k in ("cycle_efficiency", "max_pressure", "min_lambda")})
@@ -210,6 +249,8 @@ def _evaluate(ctx: Context, values: dict):
                 None,
                 None,
             )
+        if _wants_life(spec):
+            metrics["l10_hours"] = _cycle_life(ctx, design, force, law)
     # capacity at the capacity ratios (constant force: the study's; laws: their own),
     # searched as a sweep searches its limits
     speed = float(np.median(ctx.speed)) if ctx.speed.size else _cycle_speed(ctx)
@@ -236,6 +277,7 @@ def _constraints(ctx: Context, metrics: dict, limits) -> tuple[int, str]:
         ("max_pressure", con.max_pressure_max, "<="),
         ("min_lambda", con.min_lambda_min, ">="),
         ("eta_min", con.eta_min_min, ">="),
+        ("l10_hours", con.min_l10_hours, ">="),
     ]
     for name, bound, sense in checks:
         value = metrics.get(name, np.nan)

@@ -69,6 +69,11 @@ OBJECTIVES = {
         "highest Hertz peak pressure over points (or cycle steps) and contacts",
     ),
     "outer_diameter": ("m", "ball envelope diameter 2 (k + 2) r_S"),
+    "l10_hours": (
+        "h",
+        "system fatigue life L10 (Lundberg-Palmgren, docs/life.md): the shortest over the "
+        "operating points, or by Miner's rule over the duty cycle",
+    ),
 }
 #: Constraints a study can set (name -> unit, meaning).
 CONSTRAINTS = {
@@ -78,6 +83,7 @@ CONSTRAINTS = {
     "eta_min_min": ("-", "lowest efficiency at least"),
     "ratio_range": ("-", "[lo, hi]: the usable ratio range covers it"),
     "min_capacity": ("N m", "[{ratio, torque}]: limiting torque at the ratio at least"),
+    "min_l10_hours": ("h", "system fatigue life L10 at least"),
 }
 #: Fields a study may vary besides the design's own.
 EXTRA_PARAMETERS = ("clamp_force",)
@@ -200,6 +206,7 @@ class Constraints(ParameterModel):
     eta_min_min: float | None = Field(None, ge=0, le=1)
     ratio_range: list[float] | None = None
     min_capacity: list[MinCapacity] = []
+    min_l10_hours: float | None = Field(None, gt=0, lt=math.inf)
 
     @model_validator(mode="after")
     def _range(self) -> Constraints:

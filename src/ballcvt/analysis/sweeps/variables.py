@@ -60,6 +60,8 @@ VARIABLES = {
     "spin_loss": ("W", "spin power loss of the contact, all balls"),
     "lambda_ratio": ("1", "film thickness ratio h_min / surface roughness"),
     "loss": ("1", "kind of power loss"),
+    "l10_hours": ("h", "system L10 rolling-contact fatigue life (docs/life.md)"),
+    "damage": ("1", "Miner damage of the step, per pass over the cycle (docs/life.md)"),
 }
 
 POINT_VARIABLES = (

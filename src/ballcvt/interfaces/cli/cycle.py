@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ...api import STRATEGIES, CycleSettings, read_cycle
+from ...api import read_cycle
+from ...errors import InputError
 from ...files import check_output_dir
 from . import options as o
 from .modes import add_mode_options, mode_of
@@ -27,37 +28,9 @@ def add_parser(subparsers) -> None:
     )
     p.add_argument("cycle_file", type=Path, metavar="CYCLE.csv", help="the duty cycle")
     o.add(p, "arch", *o.CLAMP_OPTIONS, *o.FLUID_OPTIONS)
-    p.add_argument(
-        "--strategy",
-        choices=STRATEGIES,
-        default=None,
-        help="how the ratio is chosen (default: target-input-speed with --target-speed, "
-        "else max-efficiency; an input-side cycle with a ratio column takes none)",
-    )
-    p.add_argument(
-        "--target-speed",
-        type=o.quantity("target_speed", "rpm", most=o.MOST_RPM),
-        default=None,
-        help="input speed held by target-input-speed [rpm] (required by it, refused by "
-        "the others)",
-    )
-    p.add_argument(
-        "--candidates",
-        type=o.count(3, 101),
-        default=None,
-        help="ratios tried per step by max-efficiency, 3-101 (default: 9; refused by the others)",
-    )
-    p.add_argument(
-        "--ratio-range",
-        type=o.number,
-        nargs=2,
-        default=None,
-        metavar=("MIN", "MAX"),
-        help="ratios any strategy may use (default: the usable range); a held or "
-        "commanded ratio outside runs at its end, flagged ratio_limited",
-    )
+    o.cycle_options(p)
     o.out(p, "ballcvt-cycle")
-    o.add(p, "json")
+    o.add(p, "json", "life", "life-model", "material")
     o.run_options(p)
     add_mode_options(
         p, "the cycle's output is the driven member's speed and load torque", "--target-speed"
@@ -70,15 +43,20 @@ def run(args) -> int:
     out = check_output_dir(args.out)
     cycle = read_cycle(args.cycle_file)
     v = o.variator(args)
-    settings = CycleSettings(
-        strategy=args.strategy,
-        target_input_speed_rpm=None if args.target_speed is None else o.rpm(args.target_speed),
-        candidates=args.candidates,
-        ratio_range=args.ratio_range,
-        progress=o.show(args),
-        workers=args.workers,
+    settings = o.cycle_settings(args)
+    mode = mode_of(args)
+    if args.life and not mode.is_default:
+        raise InputError(
+            "--life",
+            "with --held/--driver",
+            "the carrier-held drive only (fatigue life over a cycle in a planetary mode is "
+            "not modelled)",
+        )
+    result = (
+        v.cycle_life(cycle, **o.law(args), settings=settings, **o.life(args))
+        if args.life
+        else v.run_cycle(cycle, **o.law(args), settings=settings, mode=mode)
     )
-    result = v.run_cycle(cycle, **o.law(args), settings=settings, mode=mode_of(args))
     result.save(out)
     import matplotlib
 
@@ -97,5 +75,6 @@ def run(args) -> int:
             f"({s['duration_s']:.0f} s), energy in {s['energy_in_J'] / 3.6e3:.2f} Wh, out "
             f"{s['energy_out_J'] / 3.6e3:.2f} Wh, efficiency {eff}; {s['steps_flagged']} "
             f"steps flagged; {s['run_time_s']:.1f} s on {args.workers} worker(s)"
+            + (f"; {o.life_line(s['life'])}" if args.life else "")
         )
     return 0

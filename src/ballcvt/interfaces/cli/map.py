@@ -20,10 +20,12 @@ def add_parser(subparsers) -> None:
         "efficiency map (ratio x output torque) as data and figure",
         "Efficiency over ideal ratio x output torque at one clamping force and speed, "
         "with the limiting-torque curve: map.png, map.svg, map.nc (NetCDF-4, CF) and "
-        "map.csv in --out. Points beyond the limit have status 1.",
+        "map.csv in --out. Points beyond the limit have status 1. With --life, the "
+        "system fatigue life L10 of every point (variable l10_hours [h]) and its "
+        "contours at the decades of hours (docs/life.md).",
         "ballcvt map --out map_dir --clamp 2000 --speed 2000 --n-ratio 31 --n-torque 35",
     )
-    o.add(p, "arch", *o.CLAMP_OPTIONS, "speed", *o.FLUID_OPTIONS)
+    o.add(p, "arch", *o.CLAMP_OPTIONS, "speed", *o.FLUID_OPTIONS, "life", "life-model", "material")
     o.out(p, "ballcvt-map")
     o.grid_options(
         p, n_ratio=31, n_torque=35, most=1000, torque_max="1.02 x the largest limiting torque"
@@ -46,6 +48,8 @@ def run(args) -> int:
         progress=o.show(args),
         mode=mode,
     )
+    if args.life:
+        ds = v.map_life(ds, life_model=args.life_model, material=args.material)
     _write(ds, out, args)
     if args.quiet:
         return 0
@@ -89,6 +93,7 @@ def _write(ds, out, args) -> None:
             f"Efficiency map, {args.arch} idler, {o.clamp_label(args)}, {args.speed:g} rpm"
             + (f"\n{ds.attrs['mode']}" if "mode" in ds.attrs else ""),
             limit_eta=one.eta_at_limit.values,
+            life=one.l10_hours.transpose("ratio", "output_torque").values if args.life else None,
         ),
         out,
         "map",

@@ -16,7 +16,16 @@ import textwrap
 from pathlib import Path
 from typing import Any
 
-from ...api import BUILTIN_FLUIDS, CAM_KEYS, PAPER_POINT, Variator, open_drive
+from ...api import (
+    BUILTIN_FLUIDS,
+    CAM_KEYS,
+    LIFE_MODELS,
+    PAPER_POINT,
+    STRATEGIES,
+    CycleSettings,
+    Variator,
+    open_drive,
+)
 from ...errors import InputError
 from ...registry import ARCHITECTURES, CLAMP_LAWS, TRACTION_LAWS
 
@@ -233,6 +242,28 @@ def options() -> dict[str, dict]:
             "drive file or one written by fit-fluid), or a built-in fluid's name "
             f"({', '.join(BUILTIN_FLUIDS)}) (default: the drive's fluid)",
         },
+        **_life_options(),
+    }
+
+
+def _life_options() -> dict[str, dict]:
+    """The fatigue-life options (``life``, ``map --life``, ``cycle --life``)."""
+    return {
+        "life": {
+            "action": "store_true",
+            "help": "add the rolling-contact fatigue life (system L10 [h], docs/life.md)",
+        },
+        "material": {
+            "metavar": "NAME|FILE.toml",
+            "default": None,
+            "help": "fatigue material of the tracks: a built-in name or a TOML file with a "
+            "[material] table (default: steel_52100, AISI 52100 bearing steel)",
+        },
+        "life-model": {
+            "choices": LIFE_MODELS.names(),
+            "default": "lundberg-palmgren",
+            "help": "contact fatigue life model (docs/life.md) (default: %(default)s)",
+        },
     }
 
 
@@ -351,3 +382,60 @@ def grid_options(p, *, n_ratio: int, n_torque: int, most: int, torque_max: str) 
         default=n_torque,
         help=f"torques, 2-{most} (default: %(default)s)",
     )
+
+
+def life(args) -> dict:
+    """``life_model`` and ``material`` keywords of the Python API from the options."""
+    return {"life_model": args.life_model, "material": args.material}
+
+
+def cycle_options(p) -> None:
+    """The ratio strategy of a duty cycle (``cycle`` and ``life --cycle``)."""
+    p.add_argument(
+        "--strategy",
+        choices=STRATEGIES,
+        default=None,
+        help="how the ratio is chosen (default: target-input-speed with --target-speed, "
+        "else max-efficiency; an input-side cycle with a ratio column takes none)",
+    )
+    p.add_argument(
+        "--target-speed",
+        type=quantity("target_speed", "rpm", most=MOST_RPM),
+        default=None,
+        help="input speed held by target-input-speed [rpm] (required by it, refused by "
+        "the others)",
+    )
+    p.add_argument(
+        "--candidates",
+        type=count(3, 101),
+        default=None,
+        help="ratios tried per step by max-efficiency, 3-101 (default: 9; refused by the others)",
+    )
+    p.add_argument(
+        "--ratio-range",
+        type=number,
+        nargs=2,
+        default=None,
+        metavar=("MIN", "MAX"),
+        help="ratios any strategy may use (default: the usable range); a held or "
+        "commanded ratio outside runs at its end, flagged ratio_limited",
+    )
+
+
+def cycle_settings(args) -> CycleSettings:
+    """The `CycleSettings` of `cycle_options` (and ``--workers``, ``--quiet``)."""
+    return CycleSettings(
+        strategy=args.strategy,
+        target_input_speed_rpm=None if args.target_speed is None else rpm(args.target_speed),
+        candidates=args.candidates,
+        ratio_range=args.ratio_range,
+        progress=show(args),
+        workers=args.workers,
+    )
+
+
+def life_line(life: dict) -> str:
+    """One line of a life's ``to_dict`` or a cycle's ``summary["life"]``."""
+    hours = life["l10_hours"]
+    text = "infinite" if hours is None else f"{hours:.4g} h"
+    return f"system L10 {text} ({life['model']}), limited by {life['limiting_element'] or '-'}"

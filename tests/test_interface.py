@@ -117,11 +117,12 @@ def _variants(design, tmp):
         "--torque": ["--torque", "20"], "--clamp": ["--clamp", "2500"], "--clamp-law": law,
         "--speed": ["--speed", "1000"], "--design": ["--design", design], "--json": None,
         "--cycle": ["--cycle", tiny, "--target-speed", "180"], **lives})
-    life_cycle = (["life", "--json", "--cycle", tiny, "--target-speed", "180"], {
-        "--strategy": ["--strategy", "max-efficiency", "--ratio-range", "0.8", "1.3"],
+    # no --target-speed: max-efficiency (a flag a strategy does not use is refused)
+    life_cycle = (["life", "--json", "--cycle", tiny], {
+        "--strategy": ["--strategy", "target-input-speed", "--target-speed", "180"],
         "--target-speed": ["--target-speed", "150"],
-        "--candidates": ["--strategy", "max-efficiency", "--candidates", "3"],
-        "--ratio-range": ["--strategy", "max-efficiency", "--ratio-range", "0.9", "1.2"],
+        "--candidates": ["--candidates", "3"],
+        "--ratio-range": ["--ratio-range", "0.9", "1.2"],
         "--workers": ["--workers", "2"]})
     life_text = (["life"], {"--quiet": ["--quiet"]})
     life_cam = (["life", "--json", *law], dict(cam))

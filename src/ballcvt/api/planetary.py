@@ -176,10 +176,14 @@ def cycle_in_mode(variator, mode: OperatingMode, cycle, how, clamp: dict):
     """`Variator.run_cycle` in a planetary mode (`ballcvt.analysis.planetary_cycles`):
     the driver held at the target input speed of ``how`` (a `CycleSettings`); ``clamp``
     holds ``clamp_force`` and ``clamp_law``."""
-    if how.strategy != "target-input-speed":
+    if how.strategy not in (None, "target-input-speed"):
         raise InputError("strategy", how.strategy, "target-input-speed in a planetary mode")
     driver_speed = how.target()
     if driver_speed is None:
-        raise InputError("target_input_speed", None, "a speed for the driver in a planetary mode")
+        raise InputError(
+            "target_input_speed",
+            None,
+            "a speed for the driver in a planetary mode (--target-speed [rpm])",
+        )
     force = _constant_force(variator, clamp.get("clamp_force"), clamp.get("clamp_law"))
     return mode_cycle(variator, cycle, ModeCycle(mode, float(driver_speed), force))

@@ -79,7 +79,8 @@ def _write(ds, out, args) -> None:
             one.output_torque.values,
             one.eta.values,
             one.limit_torque.values,
-            f"Efficiency map, {args.arch} idler, {o.clamp_label(args)}, {args.speed:g} rpm",
+            f"{ds.attrs['design_name']}\nEfficiency map, {args.arch} idler, "
+            f"{o.clamp_label(args)}, {args.speed:g} rpm",
             limit_eta=one.eta_at_limit.values,
         ),
         out,

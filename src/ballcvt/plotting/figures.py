@@ -326,7 +326,9 @@ def map_title(ds) -> str:
 
 
 def plot_curves(ds, y="eta", x="output_torque", ax=None, **style):
-    """Lines of ``ds[y]`` against ``x``, one per value of every other sweep dimension.
+    """Lines of ``ds[y]`` against ``x``, one per value of every other sweep dimension
+    (none for a combination without data, such as one architecture's values at the other
+    architecture's idler contacts).
 
     Parameters
     ----------
@@ -350,6 +352,8 @@ def plot_curves(ds, y="eta", x="output_torque", ax=None, **style):
     lines = []
     for i in range(stacked.sizes["curve"]):
         curve = stacked.isel(curve=i)
+        if not np.isfinite(curve.values).any():
+            continue  # e.g. the other architecture's idler contact: nothing to draw
         label = ", ".join(
             f"{d} = {curve[d].item():g}"
             if np.ndim(curve[d]) == 0 and np.issubdtype(curve[d].dtype, np.number)

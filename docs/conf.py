@@ -49,24 +49,6 @@ sys.path.insert(0, str(ROOT / "tools"))
 import figcheck  # noqa: E402
 
 
-class CheckedMatplotlibScraper:
-    """sphinx-gallery's matplotlib scraper, after tools/figcheck.py passed every figure: a
-    gallery figure with a labelled line that has nothing to draw, or a contour outside its
-    data, fails the build (tests/test_figures_draw.py runs the same check)."""
-
-    def __repr__(self):  # sphinx-gallery keys its cache on the configuration's repr
-        return "CheckedMatplotlibScraper"
-
-    def __call__(self, block, block_vars, gallery_conf, **kwargs):
-        import matplotlib.pyplot as plt
-        from sphinx_gallery.scrapers import matplotlib_scraper
-
-        found = [p for n in plt.get_fignums() for p in figcheck.problems(plt.figure(n))]
-        if found:
-            raise RuntimeError(f"{block_vars['src_file']}: " + "; ".join(found))
-        return matplotlib_scraper(block, block_vars, gallery_conf, **kwargs)
-
-
 sphinx_gallery_conf = {
     "examples_dirs": str(ROOT / "examples" / "gallery"),
     "gallery_dirs": "auto_examples",
@@ -75,7 +57,8 @@ sphinx_gallery_conf = {
     "remove_config_comments": True,
     "within_subsection_order": "FileNameSortKey",
     "abort_on_example_error": True,
-    "image_scrapers": (CheckedMatplotlibScraper(),),
+    # sphinx-gallery's matplotlib scraper, once tools/figcheck.py passed every figure
+    "image_scrapers": (figcheck.CheckedScraper(),),
 }
 
 html_theme = "furo"

@@ -85,3 +85,21 @@ def _contour_problems(ax, box) -> list[str]:
                 if (v[:, 1] > cap * (1 + 1e-6) + 1e-9).any():
                     out.append("a filled contour lies above the limiting torque")
     return out
+
+
+class CheckedScraper:
+    """sphinx-gallery's matplotlib scraper, after `problems` passed every open figure: a
+    gallery figure with a labelled line that has nothing to draw, or a contour outside
+    its data, fails the docs build (docs/conf.py)."""
+
+    def __repr__(self):  # sphinx-gallery keys its cache on the configuration's repr
+        return "figcheck.CheckedScraper"
+
+    def __call__(self, block, block_vars, gallery_conf, **kwargs):
+        import matplotlib.pyplot as plt
+        from sphinx_gallery.scrapers import matplotlib_scraper
+
+        found = [p for n in plt.get_fignums() for p in problems(plt.figure(n))]
+        if found:
+            raise RuntimeError(f"{block_vars['src_file']}: " + "; ".join(found))
+        return matplotlib_scraper(block, block_vars, gallery_conf, **kwargs)

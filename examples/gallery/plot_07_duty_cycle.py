@@ -18,8 +18,10 @@ import numpy as np
 from ballcvt import Variator, load_builtin
 from ballcvt.api import CycleSettings
 
-HERE = Path(__file__).resolve().parent
-cycle = HERE.parent / "cycles" / "ebike_commute.csv"
+# examples/cycles/ebike_commute.csv, from the repository root or from examples/gallery
+# (where the documentation build runs the gallery)
+cycle = next(p for p in (Path("examples/cycles"), Path("../cycles")) if p.is_dir())
+cycle = cycle / "ebike_commute.csv"
 hub = Variator(*load_builtin("hub"))
 how = CycleSettings(strategy="target-input-speed", target_input_speed_rpm=180.0,
                     progress=False)

@@ -74,3 +74,8 @@ _graph = codemap.import_graph(codemap.ROOT)
 codemap.draw_layers(_graph, _GENERATED / "layers.png")
 (_GENERATED / "layers_table.md").write_text(codemap.layer_table(_graph) + "\n")
 (_GENERATED / "hygiene.md").write_text(codemap.figures_markdown() + "\n")
+
+# docs/model.md §1's labelled geometry figure, drawn at every build (tools/geometry_figure.py)
+import geometry_figure  # noqa: E402
+
+geometry_figure.draw(_GENERATED / "geometry.png")

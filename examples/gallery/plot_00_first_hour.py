@@ -15,6 +15,9 @@ below is the one the code gives today. The model behind it: :doc:`../model`.
 # input and an output disc, two idlers (the "double" architecture), and the paper's
 # traction fluid. Printing it shows what you are computing with.
 
+import matplotlib.pyplot as plt
+import numpy as np
+
 from ballcvt import Variator
 
 v = Variator()
@@ -22,14 +25,17 @@ print(v)
 
 # %%
 # * **rollers** ``8 x r_S 30 mm``: the number of balls and their radius :math:`r_S`.
-# * **aspect ratio k** :math:`k = r_{carrier}/r_S`: how far the ball centres sit from the
-#   main axis, in ball radii; it sets the rolling radii (docs/model.md §1).
+# * **aspect ratio k** :math:`k = r_1/r_S`: the idler's radius in ball radii; the ball
+#   centres sit at :math:`(1 + k)\,r_S` from the main axis, which sets the rolling radii
+#   of every contact (docs/model.md §1, with a labelled figure).
 # * **contact angles** :math:`\theta_0 / \theta_2`: where the input and output discs
 #   touch the ball (45 deg each).
 # * **ratio range**: the ideal speed ratios reachable within the tilt's safety factor
 #   (0.8 of the geometric limit, Eq. 6). Outside it ``solve`` refuses in one line.
 # * **traction law** and **quadrature**: how the shear stress in each contact is modelled
-#   and integrated (Appendix A of the paper; 32 x 24 nodes reproduce its figures).
+#   (Appendix A of the paper: isothermal, as the paper) and integrated over the contact
+#   ellipse (32 x 24 nodes, within about 3e-5 in efficiency of a much finer rule;
+#   docs/model.md §3).
 #
 # 2. One operating point
 # ----------------------
@@ -48,8 +54,10 @@ print(r)
 #   the ideal one is the *speed efficiency* ``r.eta_speed``.
 # * **tilt**: the ball's spin axis angle :math:`\gamma` that gives this ideal ratio.
 # * **input speed**, **output torque T_2**: what you asked for.
-# * **input torque T_0**: what the input must supply; larger than T_2 / ratio by the
-#   losses. Its shortfall is the *torque efficiency* ``r.eta_torque``.
+# * **input torque T_0**: what the input must supply. Without losses it would be
+#   :math:`\tau_{ID} T_2` (70.4 N m here: the output turns 1.76 times faster, so the input
+#   torque is 1.76 times larger); :math:`\tau_{ID} T_2 / T_0` is the *torque efficiency*
+#   ``r.eta_torque`` (Eq. 37).
 # * **input power**: :math:`T_0\,\omega_0`.
 # * **efficiency (Eq. 38)**: output over input power, ``r.eta`` = ``eta_speed *
 #   eta_torque``. Eq. 39 (one minus losses over input power, ``r.eta_loss``) agrees.
@@ -59,7 +67,8 @@ print(r)
 # * **max |creep|**: the largest creep of any contact; the drive's capacity ends where it
 #   reaches ``design.creep_limit`` (0.1).
 # * **max p_max**: the highest Hertz peak pressure (1.63 GPa at 2 kN, as the paper).
-# * **min film**: the thinnest lubricant film; compare with the surface roughness.
+# * **min film**: the thinnest lubricant film; here 0.50 um against a composite roughness
+#   of 0.07 um (``design.surface_roughness``): a full film, no mixed-lubrication warning.
 # * **clamp F_N0**: the force used, and the law that set it (here: the constant you gave).
 # * **converged**, **residual**: the equilibrium of balls, idlers and discs was found to
 #   that accuracy; **warnings** count model-validity warnings (e.g. a thin film).
@@ -75,8 +84,6 @@ print(r.to_dataframe()[["creep", "spin", "mu", "p_max", "spin_loss"]])
 # ``sweep`` solves a grid of points (here one ratio, 16 torques) and returns an
 # ``xarray.Dataset``. Points beyond the drive's limiting torque are not solved: their
 # ``status`` is 1 and their values NaN, and ``limit_torque`` says where the limit is.
-
-import numpy as np
 
 torque = np.linspace(5.0, 150.0, 16)
 base = v.sweep(ratio=[1.76], output_torque=torque, clamp_force=2000.0,
@@ -109,8 +116,6 @@ print(f"limiting torque at 1 kN: {float(half.limit_torque):.1f} N m")
 #
 # 5. A plot
 # ---------
-
-import matplotlib.pyplot as plt
 
 fig, ax = plt.subplots(figsize=(6.5, 4.2), layout="constrained")
 for ds, label in ((base, "2 kN"), (half, "1 kN")):

@@ -45,6 +45,10 @@ autodoc_default_options = {"members": True, "show-inheritance": False}
 autodoc_pydantic_model_show_json = False
 default_role = "py:obj"
 
+sys.path.insert(0, str(ROOT / "tools"))
+import figcheck  # noqa: E402
+
+
 sphinx_gallery_conf = {
     "examples_dirs": str(ROOT / "examples" / "gallery"),
     "gallery_dirs": "auto_examples",
@@ -53,7 +57,8 @@ sphinx_gallery_conf = {
     "remove_config_comments": True,
     "within_subsection_order": "FileNameSortKey",
     "abort_on_example_error": True,
-    "image_scrapers": ("matplotlib",),
+    # sphinx-gallery's matplotlib scraper, once tools/figcheck.py passed every figure
+    "image_scrapers": (figcheck.CheckedScraper(),),
 }
 
 html_theme = "furo"
@@ -61,7 +66,6 @@ html_title = f"ballcvt {release}"
 
 # docs/architecture.md shows the package's layers as they are: the diagram and the table
 # are drawn from the source's imports at every build (tools/codemap.py), never by hand.
-sys.path.insert(0, str(ROOT / "tools"))
 import codemap  # noqa: E402
 
 _GENERATED = Path(__file__).resolve().parent / "_generated"
@@ -70,3 +74,8 @@ _graph = codemap.import_graph(codemap.ROOT)
 codemap.draw_layers(_graph, _GENERATED / "layers.png")
 (_GENERATED / "layers_table.md").write_text(codemap.layer_table(_graph) + "\n")
 (_GENERATED / "hygiene.md").write_text(codemap.figures_markdown() + "\n")
+
+# docs/model.md §1's labelled geometry figure, drawn at every build (tools/geometry_figure.py)
+import geometry_figure  # noqa: E402
+
+geometry_figure.draw(_GENERATED / "geometry.png")

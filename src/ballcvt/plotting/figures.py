@@ -25,6 +25,7 @@ __all__ = [
     "draw_efficiency_map",
     "plot_efficiency_map",
     "plot_curves",
+    "map_title",
     "LABELS",
 ]
 
@@ -110,6 +111,11 @@ def _levels(eta):
 def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True, limit_eta=None):
     """Draw filled efficiency contours and the limiting-torque curve on ``ax``.
 
+    Only the data given is drawn: the contours stay inside the swept torques and below
+    the limiting torque. The region above the limit is hatched ("beyond the limiting
+    torque") and, where the limit lies above the sweep's largest torque, the band between
+    them is dotted ("not computed"); both are named in the legend.
+
     Parameters
     ----------
     ax : matplotlib.axes.Axes
@@ -126,14 +132,15 @@ def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True, limit_eta=
         Add a colour bar.
     limit_eta : array_like, optional
         Efficiency at the limiting torque per ratio, shape ``(n_r,)`` [-]. With it the
-        contours reach the limit curve (a triangulation of the grid points and the limit
-        points) instead of stopping at the last grid row below it.
+        contours reach the limit curve where it lies within the swept torques (a
+        triangulation of the grid points and those limit points) instead of stopping at
+        the last grid row below it.
 
     Returns
     -------
     dict
         The artists: ``filled`` and ``lines`` (contour sets), ``labels``, ``limit`` (the
-        red line) and ``colorbar`` (or None).
+        red line), ``outside`` (the hatched regions) and ``colorbar`` (or None).
     """
     ratio, torque = np.asarray(ratio, float), np.asarray(torque, float)
     limit = np.asarray(limit, float)
@@ -144,13 +151,15 @@ def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True, limit_eta=
         filled = ax.contourf(ratio, torque, eta, levels=levels, cmap="viridis")
         lines = ax.contour(ratio, torque, eta, levels=line_levels, colors="k", linewidths=0.5)
     else:
+        swept = np.nanmax(torque)
+        inside = np.isfinite(limit) & (limit <= swept)  # limit points within the sweep
         r, t = np.meshgrid(ratio, torque)
-        x = np.concatenate([r.ravel(), ratio])
-        y = np.concatenate([t.ravel(), limit])
-        z = np.concatenate([eta.ravel(), np.asarray(limit_eta, float)])
+        x = np.concatenate([r.ravel(), ratio[inside]])
+        y = np.concatenate([t.ravel(), limit[inside]])
+        z = np.concatenate([eta.ravel(), np.asarray(limit_eta, float)[inside]])
         keep = np.isfinite(x) & np.isfinite(y) & np.isfinite(z)
         _enough_to_contour(x[keep], y[keep])
-        tri = _triangulation(x[keep], y[keep], ratio, limit)
+        tri = _triangulation(x[keep], y[keep], ratio, np.fmin(limit, swept))
         filled = ax.tricontourf(tri, z[keep], levels=levels, cmap="viridis")
         lines = ax.tricontour(tri, z[keep], levels=line_levels, colors="k", linewidths=0.5)
     labels = ax.clabel(lines, fmt="%.2f", fontsize=7, inline=True)
@@ -158,16 +167,42 @@ def draw_efficiency_map(ax, ratio, torque, eta, limit, colorbar=True, limit_eta=
     bar = ax.figure.colorbar(filled, ax=ax, label=LABELS["eta"]) if colorbar else None
     ax.set_xlabel(LABELS["ratio"])
     ax.set_ylabel(LABELS["output_torque"])
-    top = np.nanmax(np.concatenate([torque, limit]))
-    ax.set_ylim(float(np.min(torque)), 1.05 * top)
+    top = 1.05 * np.nanmax(np.concatenate([torque, limit]))
+    ax.set_ylim(float(np.min(torque)), top)
+    ax.set_xlim(float(np.min(ratio)), float(np.max(ratio)))
+    outside = _shade_outside(ax, ratio, float(np.nanmax(torque)), limit, top)
     ax.legend(loc="upper right", fontsize=8)
     return {
         "filled": filled,
         "lines": lines,
         "labels": labels,
         "limit": limit_line,
+        "outside": outside,
         "colorbar": bar,
     }
+
+
+def _shade_outside(ax, ratio, swept, limit, top) -> list:
+    """Hatch what the map does not show: above the limiting torque, and between the
+    sweep's largest torque ``swept`` [N m] and a limit above it (not computed)."""
+    known = np.isfinite(limit)
+    if not known.any():
+        return []
+    r = np.linspace(ratio[known].min(), ratio[known].max(), 400)
+    lim = np.fmin(np.interp(r, ratio[known], limit[known]), top)
+    hatch = {"facecolor": "none", "linewidth": 0}
+    shown = [
+        ax.fill_between(
+            r, lim, top, edgecolor="0.55", hatch="///", label="beyond the limiting torque", **hatch
+        )
+    ]
+    if (lim > swept * (1 + 1e-9)).any():
+        label = f"not computed (the sweep ends at {swept:.4g} N m)"
+        band = np.maximum(lim, swept)
+        shown.append(
+            ax.fill_between(r, swept, band, edgecolor="0.7", hatch="..", label=label, **hatch)
+        )
+    return shown
 
 
 def _enough_to_contour(x, y) -> None:
@@ -186,7 +221,8 @@ def _enough_to_contour(x, y) -> None:
 
 
 def _triangulation(x, y, ratio, limit):
-    """Delaunay triangles of the points, without those above the limit curve."""
+    """Delaunay triangles of the points, without those above the curve ``limit`` (the
+    limiting torque, capped at the sweep's largest torque) [N m]."""
     from matplotlib.tri import Triangulation
 
     scale = np.ptp(y) / np.ptp(x) if np.ptp(x) > 0 else 1.0
@@ -249,27 +285,33 @@ def _axes(ax):
     return ax
 
 
-def plot_efficiency_map(ds, ax=None, colorbar=True):
+def plot_efficiency_map(ds, ax=None, colorbar=True, title=None):
     """Efficiency map of a ratio x torque sweep on ``ax`` (pyplot's current axes if None).
 
     Parameters
     ----------
     ds : xarray.Dataset
         A sweep with one architecture, clamping force and speed (the other dimensions of
-        length 1), e.g. ``Variator().sweep(ratio=..., output_torque=..., ...)``.
+        length 1), e.g. ``Variator().sweep(ratio=..., output_torque=..., ...)``. A sweep
+        over several (say two clamping forces) is refused: select one first, e.g.
+        ``ds.sel(clamp_force=2000.0)``, and draw each on its own axes.
     ax : matplotlib.axes.Axes, optional
         Target axes.
     colorbar : bool
         Add a colour bar.
+    title : str, optional
+        Axes title; by default the design's name and the operating point (``""``: none).
 
     Returns
     -------
     dict
         The artists (see `draw_efficiency_map`).
     """
+    _one_map(ds)
     one = ds.squeeze(drop=True)
-    return draw_efficiency_map(
-        _axes(ax),
+    ax = _axes(ax)
+    artists = draw_efficiency_map(
+        ax,
         one.ratio.values,
         one.output_torque.values,
         one.eta.transpose("ratio", "output_torque").values,
@@ -277,10 +319,49 @@ def plot_efficiency_map(ds, ax=None, colorbar=True):
         colorbar=colorbar,
         limit_eta=one.eta_at_limit.values,
     )
+    ax.set_title(map_title(ds) if title is None else title, fontsize=9)
+    return artists
+
+
+def _one_map(ds) -> None:
+    """Refuse, in one line, a sweep with more than one map in it."""
+    for dim in ds.eta.dims:
+        n = ds.sizes[dim]
+        if dim not in ("ratio", "output_torque") and n > 1:
+            values = [v.item() for v in ds[dim].values]
+            shown = ", ".join(f"{v:g}" if isinstance(v, float) else str(v) for v in values)
+            raise InputError(
+                dim,
+                n,
+                "1 value",
+                message=f"plot_efficiency_map draws one map, and this sweep has {n} values "
+                f"of {dim} ({shown}): select one with sweep.sel({dim}={values[0]!r}) and "
+                "draw each on its own axes",
+            )
+
+
+def map_title(ds) -> str:
+    """The title of an efficiency map of the sweep ``ds``: the design's name (its
+    ``design_name`` attribute) and the architecture, clamping and input speed."""
+    parts = []
+    if "architecture" in ds.coords and ds["architecture"].size == 1:
+        parts.append(f"{ds['architecture'].item()} idler")
+    law = ds.attrs.get("clamp_law", "constant")
+    if law == "constant" and "clamp_force" in ds.coords and ds["clamp_force"].size == 1:
+        parts.append(f"$F_{{N0}}$ = {float(ds['clamp_force'].item()):g} N")
+    elif law != "constant":
+        parts.append(f"{law} clamping")
+    if "input_speed_rpm" in ds.coords and ds["input_speed_rpm"].size == 1:
+        parts.append(f"{float(ds['input_speed_rpm'].item()):g} rpm")
+    name = ds.attrs.get("design_name", "")
+    point = "Efficiency map" + (", " + ", ".join(parts) if parts else "")
+    return f"{name}\n{point}" if name else point
 
 
 def plot_curves(ds, y="eta", x="output_torque", ax=None, **style):
-    """Lines of ``ds[y]`` against ``x``, one per value of every other sweep dimension.
+    """Lines of ``ds[y]`` against ``x``, one per value of every other sweep dimension
+    (none for a combination without data, such as one architecture's values at the other
+    architecture's idler contacts).
 
     Parameters
     ----------
@@ -304,6 +385,8 @@ def plot_curves(ds, y="eta", x="output_torque", ax=None, **style):
     lines = []
     for i in range(stacked.sizes["curve"]):
         curve = stacked.isel(curve=i)
+        if not np.isfinite(curve.values).any():
+            continue  # e.g. the other architecture's idler contact: nothing to draw
         label = ", ".join(
             f"{d} = {curve[d].item():g}"
             if np.ndim(curve[d]) == 0 and np.issubdtype(curve[d].dtype, np.number)

@@ -90,7 +90,8 @@ def _write(ds, out, args) -> None:
             one.output_torque.values,
             one.eta.values,
             one.limit_torque.values,
-            f"Efficiency map, {args.arch} idler, {o.clamp_label(args)}, {args.speed:g} rpm"
+            f"{ds.attrs.get('design_name', o.variator(args).design.name)}\nEfficiency map, "
+            f"{args.arch} idler, {o.clamp_label(args)}, {args.speed:g} rpm"
             + (f"\n{ds.attrs['mode']}" if "mode" in ds.attrs else ""),
             limit_eta=one.eta_at_limit.values,
             life=one.l10_hours.transpose("ratio", "output_torque").values if args.life else None,

@@ -29,6 +29,7 @@ from ..solvers.refusal import beyond_capacity, point_capacity
 from ..units import rpm_to_rad_s
 from . import grids, planetary
 from .batched import BatchMethods
+from .cam_sizing import check_operating
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
 
 __all__ = ["Variator"]
@@ -84,6 +85,7 @@ class Variator(BatchMethods):
                 "architecture", self.architecture, "one of: " + ", ".join(ARCHITECTURES)
             )
         check_architecture(self.design, self.architecture)
+        check_operating(self.design)
 
     def _summary(self) -> tuple[str, list]:
         lo, hi = self.ratio_range

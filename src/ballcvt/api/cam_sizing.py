@@ -81,13 +81,13 @@ def _ratios(design: Design, n: int = N_RATIOS) -> np.ndarray:
     return np.geomspace(lo, hi, n)
 
 
-def rated_torque(drive) -> float:
+def rated_torque(drive, creep_limit: float | None = None) -> float:
     """The output torque a drive is rated for [N m].
 
     ``[operating] rated_torque`` when the file gives it; else the constant-clamp capacity:
     the smallest limiting torque over the ratio range (`operating_ratio_range`) at the
-    ``[operating] clamp_force`` (the paper's 2000 N without it), the input speed and the
-    design's creep limit.
+    ``[operating] clamp_force`` (the paper's 2000 N without it), the input speed and
+    ``creep_limit`` (the design's by default).
     """
     d = drive.design
     op = d.operating
@@ -97,7 +97,10 @@ def rated_torque(drive) -> float:
     force = PAPER_POINT.clamp_force if force is None else force
     speed = operating_speed_rpm(d)
     return min(
-        drive.limit_torque(float(r), clamp_force=force, input_speed_rpm=speed) for r in _ratios(d)
+        drive.limit_torque(
+            float(r), clamp_force=force, input_speed_rpm=speed, creep_limit=creep_limit
+        )
+        for r in _ratios(d)
     )
 
 
@@ -136,8 +139,12 @@ def drive_warnings(drive, *, cam: bool = True) -> list[str]:
     out = design_warnings(drive.design)
     if not cam or drive.design.cam is None:
         return out
-    rated = rated_torque(drive)
-    short = [(r, c) for r, c in _scan(drive, drive.design.creep_limit) if not _covers(c, rated)]
+    try:
+        rated = rated_torque(drive)
+        scan = _scan(drive, drive.design.creep_limit)
+    except (BallCVTError, ValueError) as exc:  # advisory: say so, do not stop the command
+        return [*out, f"[design.cam] could not be checked over the ratio range: {exc}"]
+    short = [(r, c) for r, c in scan if not _covers(c, rated)]
     if short:
         ratio, cap = min(short, key=lambda rc: rc[1].largest if rc[1].intervals else -1.0)
         lo, hi = operating_ratio_range(drive.design)
@@ -206,7 +213,7 @@ def size_cam(drive, margin: float = 1.2) -> CamSizing:
     if not 1.0 <= margin < 10.0:
         raise InputError("margin", margin, "1 <= margin < 10")
     c_lim = d.creep_limit / margin
-    rated = rated_torque(drive)
+    rated = rated_torque(drive, c_lim)
     per_force = d.n_rollers * math.sin(d.theta0)  # thrust per unit F_N0 (the cam law)
     preload, gain = _thrust_line(drive, c_lim, rated)
     preload, gain = preload * per_force, gain * per_force
@@ -228,13 +235,14 @@ def size_cam(drive, margin: float = 1.2) -> CamSizing:
 MAX_BUMPS = 8
 #: First constant force of `_thrust_line` [N] and how many it tries per ratio.
 FIRST_FORCE = 10.0
-MAX_FORCES = 40
+MAX_FORCES = 25
 
 
 def _cam(cam: CamModel, preload: float, gain: float) -> CamModel:
     """``cam`` with the preload [N] rounded up to 10 N and the ramp angle [deg] of the
     thrust ``gain`` [1/m], ``phi = atan(1 / (gain r_m)) - atan(mu_r)``, rounded down."""
-    angle = math.degrees(math.atan(1.0 / (gain * cam.mean_radius)) - math.atan(cam.friction))
+    lead = math.atan(1.0 / (gain * cam.mean_radius)) if gain > 0.0 else math.pi / 2
+    angle = math.degrees(lead - math.atan(cam.friction))
     angle = min(math.floor(angle * 10.0) / 10.0, RAMP_BOUNDS[1])
     if not angle >= RAMP_BOUNDS[0]:
         raise InputError(
@@ -268,6 +276,13 @@ def _thrust_line(drive, c_lim: float, rated: float) -> tuple[float, float]:
                 if torque >= rated:
                     break
             force *= 1.5
+        else:
+            raise InputError(
+                "rated_torque",
+                rated,
+                f"what a clamp force up to {force / 1.5:.3g} N carries at ratio {r:.3g} "
+                "within the creep limit (narrow [operating] ratio_range or lower the rating)",
+            )
     return _lowest_line([(0.0, floor), *points], 0.5 * rated)
 
 

@@ -126,24 +126,18 @@ def _outer_radius(d) -> float:
 def check_dependents(d) -> None:
     """Refuse parameters that depend on the geometry and cannot fit it (docs/drive-files.md).
 
-    The parasitic-loss radii, the seals, the bearings and the cam are given in metres, so
-    they do not follow an edit of the balls or the aspect ratio: a disc whose outer radius
-    lies inside its own contact track is refused here, with the range the geometry allows.
+    The parasitic-loss radii, the seals, the disc bearing and the cam are given in metres,
+    so they do not follow an edit of the balls or the aspect ratio: a disc whose outer
+    radius lies inside its own contact track is refused here, with the range the geometry
+    allows. (The idler bearing is checked by the architecture, Eq. F6.)
 
     Raises
     ------
     InputError
         Naming the field, its value and the allowed range.
     """
-    rs, g = d.roller_radius, d.min_roller_gap
+    g = d.min_roller_gap
     r_c = disc_contact_radius(d)
-    r_idler = d.aspect_ratio * rs
-    if d.idler_bearing_diameter >= 2.0 * r_idler:
-        raise InputError(
-            "idler_bearing_diameter",
-            d.idler_bearing_diameter,
-            f"< 2 r_1 = 2 k r_S = {2 * r_idler:.4g} m (the bearing sits inside the idler)",
-        )
     par = d.parasitic
     if par is not None:
         if par.disc_radius < r_c + g:

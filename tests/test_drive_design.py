@@ -173,7 +173,7 @@ def test_hub_commands_start_where_the_hub_runs():
     a = parsed("table", "--design", "hub")
     assert a.speed_range == (90.0, 200.0) and a.ratio_range == (0.5, 1.9)
     a = parsed("cycle", "x.csv", "--design", "hub")
-    assert a.ratio_range == (0.5, 1.9) and a.clamp_law == "cam"
+    assert a.ratio_range == (0.5, 1.9) and a.clamp_law == "cam" and a.target_speed == 150.0
     a = parsed("map", "--design", "hub")
     assert a.speed == 150.0 and a.ratio_range == (0.5, 1.9)
 

@@ -293,6 +293,7 @@ def variator(args) -> Variator:
 #: Option -> (``[operating]`` key, the ``args`` attribute it sets).
 _OPERATING = {
     "--speed": ("input_speed_rpm", "speed"),
+    "--target-speed": ("input_speed_rpm", "target_speed"),
     "--ratio-range": ("ratio_range", "ratio_range"),
     "--speed-range": ("speed_range_rpm", "speed_range"),
 }

@@ -84,6 +84,11 @@ def test_a_cam_for_another_design_is_a_warning_naming_the_fix(hub):
     assert "[design.cam]" in line and "size-cam" in line and "0 to 100 N m" in line
 
 
+def test_table1_shows_without_warnings(capsys):
+    code, out, err = run(capsys, "design", "show")
+    assert code == 0 and out.rstrip("\n") == builtin_text("table1").rstrip("\n") and err == ""
+
+
 def test_a_disc_far_beyond_its_track_is_a_warning(hub):
     d, f = hub
     big = d.replace(parasitic=d.parasitic.replace(disc_radius=0.3))

@@ -132,12 +132,14 @@ def drive_warnings(drive, *, cam: bool = True) -> list[str]:
     drive : Variator
         The drive.
     cam : bool
-        Also check the loading cam over the ratio range (a few capacity solutions): under
-        the cam every ratio of `operating_ratio_range` must admit every torque from zero
-        to `rated_torque` within the design's creep limit.
+        Also check the loading cam over the ratio range (a few capacity solutions) of a
+        drive with an ``[operating]`` table (one that says where it runs; the paper's
+        Table I drive has none, and its cam is not part of the paper's rig): under the cam
+        every ratio of `operating_ratio_range` must admit every torque from zero to
+        `rated_torque` within the design's creep limit.
     """
     out = design_warnings(drive.design)
-    if not cam or drive.design.cam is None:
+    if not cam or drive.design.cam is None or drive.design.operating is None:
         return out
     try:
         rated = rated_torque(drive)

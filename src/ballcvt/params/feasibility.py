@@ -115,14 +115,6 @@ def disc_contact_radius(d) -> float:
     return d.roller_radius * (1.0 + d.aspect_ratio + c)
 
 
-def _outer_radius(d) -> float:
-    """Outer radius of the discs [m]: ``parasitic.disc_radius``, else the balls' reach
-    ``r_S (2 + k)``."""
-    if d.parasitic is not None:
-        return float(d.parasitic.disc_radius)
-    return d.roller_radius * (2.0 + d.aspect_ratio)
-
-
 def check_dependents(d) -> None:
     """Refuse parameters that depend on the geometry and cannot fit it (docs/drive-files.md).
 
@@ -155,12 +147,12 @@ def check_dependents(d) -> None:
                     value,
                     f"< {2 * r_c:.4g} m (inside the disc contacts at radius {r_c:.4g} m)",
                 )
-    if d.cam is not None and d.cam.mean_radius > _outer_radius(d):
+    if d.cam is not None and par is not None and d.cam.mean_radius > par.disc_radius:
         raise InputError(
             "cam.mean_radius",
             d.cam.mean_radius,
-            f"<= {_outer_radius(d):.4g} m (the ramp acts on the back of the disc, of outer "
-            "radius parasitic.disc_radius, else r_S (2 + k))",
+            f"<= parasitic.disc_radius = {par.disc_radius:g} m (the ramp acts on the back "
+            "of the disc)",
         )
 
 

@@ -2,6 +2,7 @@
 the cam is sized for the drive, the drive file says where the drive runs, and
 ``design export`` takes its options in any order."""
 
+import argparse
 import json
 
 import pytest
@@ -181,6 +182,12 @@ def test_hub_commands_start_where_the_hub_runs():
     assert a.ratio_range == (0.5, 1.9) and a.clamp_law == "cam" and a.target_speed == 150.0
     a = parsed("map", "--design", "hub")
     assert a.speed == 150.0 and a.ratio_range == (0.5, 1.9)
+
+
+def test_single_contact_commands_keep_their_own_speed():
+    a = argparse.Namespace(command="traction-curve", design="hub", speed=5.0)  # [m/s]
+    options.apply_operating(a, [])
+    assert a.speed == 5.0
 
 
 def test_typed_flags_win():

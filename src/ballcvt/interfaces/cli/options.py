@@ -290,6 +290,8 @@ def variator(args) -> Variator:
     return v.with_cam(cam, flags) if cam else v
 
 
+#: The commands that run the drive (``traction-curve --speed`` is a rolling speed in m/s).
+DRIVEN = ("point", "limit", "clamp", "map", "table", "cycle", "explore-ui")
 #: Option -> (``[operating]`` key, the ``args`` attribute it sets).
 _OPERATING = {
     "--speed": ("input_speed_rpm", "speed"),
@@ -306,7 +308,7 @@ def apply_operating(args, argv: list[str]) -> None:
     The clamping law is the table's unless ``--clamp-law`` or ``--clamp`` is typed; the
     constant law's force is the table's ``clamp_force`` unless ``--clamp`` is typed.
     """
-    if getattr(args, "design", None) is None:
+    if getattr(args, "design", None) is None or getattr(args, "command", None) not in DRIVEN:
         return
     design, _ = open_drive(args.design, None, None)
     op = design.operating

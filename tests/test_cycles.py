@@ -173,9 +173,15 @@ def test_default_strategy_without_a_target_speed(hub, cruise, tmp_path, capsys):
     assert res.summary["steps_flagged"] == 5          # the braking steps only
     path = tmp_path / "c.csv"
     path.write_text("time [s],output_speed [rpm],output_torque [N m]\n0,190,12\n1,190,12\n")
-    assert cli.main(["cycle", str(path), "--design", "hub", "--clamp-law", "cam",
+    assert cli.main(["cycle", str(path), "--clamp-law", "cam",
                      "--out", str(tmp_path / "run"), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["strategy"] == "max-efficiency"
+    # a drive file with an [operating] input speed holds it (docs/drive-files.md)
+    assert cli.main(["cycle", str(path), "--design", "hub",
+                     "--out", str(tmp_path / "run_hub"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["strategy"] == "target-input-speed"
+    assert summary["target_input_speed_rpm"] == pytest.approx(150.0)
 
 
 def test_options_a_strategy_does_not_use_are_refused(hub, cruise, tmp_path, capsys):

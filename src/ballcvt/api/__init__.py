@@ -19,6 +19,15 @@ from ..results.point import ContactResult, OperatingResult
 from ..solvers.limit import LimitSearch
 from ..solvers.planetary_batch import ModeBatch
 from .batched import CAM_KEYS
+from .cam_sizing import (
+    CamSizing,
+    check_operating,
+    drive_warnings,
+    operating_ratio_range,
+    operating_speed_rpm,
+    rated_torque,
+    size_cam,
+)
 from .grids import LimitCurve
 from .life import life_settings
 from .settings import CycleSettings, MapGrid, SolveSettings, SweepSettings, TableGrid
@@ -112,4 +121,11 @@ __all__ = [
     "builtin_text",
     "BUILTIN_DRIVES",
     "BUILTIN_FLUIDS",
+    "CamSizing",
+    "size_cam",
+    "rated_torque",
+    "drive_warnings",
+    "check_operating",
+    "operating_ratio_range",
+    "operating_speed_rpm",
 ]

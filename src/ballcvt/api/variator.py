@@ -29,6 +29,7 @@ from ..solvers.refusal import point_capacity
 from ..units import rpm_to_rad_s
 from . import grids, planetary
 from .batched import BatchMethods
+from .cam_sizing import check_operating
 from .life import LifeMethods
 from .refusals import optimal_refusal, refuse_beyond_capacity
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
@@ -86,6 +87,7 @@ class Variator(BatchMethods, LifeMethods):
                 "architecture", self.architecture, "one of: " + ", ".join(ARCHITECTURES)
             )
         check_architecture(self.design, self.architecture)
+        check_operating(self.design)
 
     def _summary(self) -> tuple[str, list]:
         lo, hi = self.ratio_range

@@ -16,7 +16,13 @@ import math
 from .._compat import moved_names
 from ..errors import InputError
 
-__all__ = ["check_design", "max_rollers"]
+__all__ = [
+    "check_design",
+    "check_dependents",
+    "design_warnings",
+    "disc_contact_radius",
+    "max_rollers",
+]
 
 #: Names that moved to the model layer (answered with a warning).
 __getattr__ = moved_names(
@@ -98,3 +104,68 @@ def check_design(d) -> None:
             d.roller_bearing_diameter,
             f"< 2 r_S = {2 * rs:g} m (the axle bearing sits inside the ball)",
         )
+    check_dependents(d)
+
+
+def disc_contact_radius(d) -> float:
+    """Radius of the disc contacts from the drive's axis, ``r_S (1 + k + cos theta)``, the
+    larger of the input (``theta_0``) and output (``theta_2``) discs' (docs/model.md §1;
+    a disc contact stays where it is as the balls tilt) [m]."""
+    c = max(math.cos(d.theta0), math.cos(d.theta2))
+    return d.roller_radius * (1.0 + d.aspect_ratio + c)
+
+
+def check_dependents(d) -> None:
+    """Refuse parameters that depend on the geometry and cannot fit it (docs/drive-files.md).
+
+    The parasitic-loss radii, the seals, the disc bearing and the cam are given in metres,
+    so they do not follow an edit of the balls or the aspect ratio: a disc whose outer
+    radius lies inside its own contact track is refused here, with the range the geometry
+    allows. (The idler bearing is checked by the architecture, Eq. F6.)
+
+    Raises
+    ------
+    InputError
+        Naming the field, its value and the allowed range.
+    """
+    g = d.min_roller_gap
+    r_c = disc_contact_radius(d)
+    par = d.parasitic
+    if par is not None:
+        if par.disc_radius < r_c + g:
+            raise InputError(
+                "parasitic.disc_radius",
+                par.disc_radius,
+                f">= {r_c + g:.4g} m (the disc contacts are at r_S (1 + k + cos theta) = "
+                f"{r_c:.4g} m, plus min_roller_gap)",
+            )
+        for name in ("seal_diameter", "disc_bearing_diameter"):
+            value = getattr(par, name)
+            if value >= 2.0 * r_c:
+                raise InputError(
+                    f"parasitic.{name}",
+                    value,
+                    f"< {2 * r_c:.4g} m (inside the disc contacts at radius {r_c:.4g} m)",
+                )
+    if d.cam is not None and par is not None and d.cam.mean_radius > par.disc_radius:
+        raise InputError(
+            "cam.mean_radius",
+            d.cam.mean_radius,
+            f"<= parasitic.disc_radius = {par.disc_radius:g} m (the ramp acts on the back "
+            "of the disc)",
+        )
+
+
+def design_warnings(d) -> list[str]:
+    """Parameters that fit the geometry but look meant for another design (one line each,
+    naming the field and the fix); empty for a consistent design."""
+    out = []
+    r_c = disc_contact_radius(d)
+    par = d.parasitic
+    if par is not None and par.disc_radius > r_c + 2.0 * d.roller_radius:
+        out.append(
+            f"[design.parasitic] disc_radius = {par.disc_radius:g} m is far beyond the disc "
+            f"contacts at {r_c:.4g} m (more than a ball diameter): the churning loss is "
+            f"overestimated; set it to about {r_c + 0.1 * d.roller_radius:.3g} m"
+        )
+    return out

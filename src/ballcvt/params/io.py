@@ -173,13 +173,23 @@ def parse_drive(text: str, source: str = "design file") -> tuple[Design, Fluid]:
                 "a table",
                 message=f"{source} is incomplete: table [{table}] is missing",
             )
-    extra = sorted(set(data) - {"design", "fluid"})
+    extra = sorted(set(data) - {"design", "fluid", "operating"})
     if extra:
         raise InputError(
-            extra[0], None, "[design] and [fluid]", message=f"{source}: unknown table [{extra[0]}]"
+            extra[0],
+            None,
+            "[design], [fluid] and [operating]",
+            message=f"{source}: unknown table [{extra[0]}]",
         )
+    design = dict(data["design"])
+    if "operating" in data:
+        if "operating" in design:
+            raise InputError(
+                "operating", None, "one table", message=f"{source}: [operating] given twice"
+            )
+        design["operating"] = data["operating"]
     try:
-        return Design(**data["design"]), Fluid(**data["fluid"])
+        return Design(**design), Fluid(**data["fluid"])
     except InputError as exc:
         raise InputError(
             exc.quantity, exc.value, exc.allowed, message=f"{source}: {exc}"
@@ -213,9 +223,20 @@ def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> 
         raise InputError(
             "template", None, "valid TOML", message=f"design template is not valid TOML: {exc}"
         ) from None
-    _update(doc, "design", design.model_dump())
+    dump = design.model_dump()
+    operating = dump.pop("operating", None)
+    _update(doc, "design", dump)
     _update(doc, "fluid", fluid.model_dump())
+    if operating is None:
+        doc.pop("operating", None)
+    else:
+        _update(doc, "operating", {k: _plain(v) for k, v in operating.items()})
     return tomlkit.dumps(doc)
+
+
+def _plain(value):
+    """A tuple (a range) as the list TOML writes."""
+    return list(value) if isinstance(value, tuple) else value
 
 
 def _update(container, key, data) -> None:

@@ -26,6 +26,7 @@ from ..units import rad_s_to_rpm
 from .base import ParameterModel, _f, _opt
 from .feasibility import check_design
 from .laws import LAW_FIELDS, check_law
+from .operating import OperatingContext
 from .ratings import BearingRatings
 
 __all__ = [
@@ -38,6 +39,7 @@ __all__ = [
     "Design",
     "Fluid",
     "OperatingPoint",
+    "OperatingContext",
     "Architecture",
     "ARCHITECTURES",
     "TRACTION_LAWS",
@@ -227,6 +229,20 @@ class Design(ParameterModel):
     parasitic: ParasiticModel | None = Field(
         None, description="churning, seal and disc bearing losses (optional: none without it)"
     )
+    operating: OperatingContext | None = Field(
+        None,
+        description="where the drive runs: the drive file's [operating] table (optional: "
+        "the paper's operating point without it)",
+    )
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler) -> dict[str, Any]:
+        """The fields, without ``operating`` when it is not given (so that files and
+        results of drives without it are as they were)."""
+        data = handler(self)
+        if isinstance(data, dict) and data.get("operating") is None:
+            data.pop("operating", None)
+        return data
 
     @model_validator(mode="before")
     @classmethod

@@ -8,6 +8,7 @@ from ...api import read_cycle
 from ...errors import InputError
 from ...files import check_output_dir
 from . import options as o
+from .cycle_options import cycle_options, cycle_settings
 from .modes import add_mode_options, mode_of
 
 
@@ -28,7 +29,7 @@ def add_parser(subparsers) -> None:
     )
     p.add_argument("cycle_file", type=Path, metavar="CYCLE.csv", help="the duty cycle")
     o.add(p, "arch", *o.CLAMP_OPTIONS, *o.FLUID_OPTIONS)
-    o.cycle_options(p)
+    cycle_options(p)
     o.out(p, "ballcvt-cycle")
     o.add(p, "json", "life", "life-model", "material")
     o.run_options(p)
@@ -43,7 +44,7 @@ def run(args) -> int:
     out = check_output_dir(args.out)
     cycle = read_cycle(args.cycle_file)
     v = o.variator(args)
-    settings = o.cycle_settings(args)
+    settings = cycle_settings(args, cycle.kind)
     mode = mode_of(args)
     if args.life and not mode.is_default:
         raise InputError(

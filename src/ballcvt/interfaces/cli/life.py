@@ -7,6 +7,7 @@ from pathlib import Path
 from ...api import read_cycle
 from ...errors import InputError
 from . import options as o
+from .cycle_options import cycle_options, cycle_settings
 
 
 def add_parser(subparsers) -> None:
@@ -35,7 +36,7 @@ def add_parser(subparsers) -> None:
         metavar="CYCLE.csv",
         help="a duty cycle (docs/cycles.md): its life by Miner's rule instead of a point's",
     )
-    o.cycle_options(p)
+    cycle_options(p)
     o.run_options(p)
 
 
@@ -74,7 +75,7 @@ def _point_only(args) -> None:
         "--workers": args.workers != 1,
     }
     for flag, used in given.items():
-        if used:
+        if used and flag not in getattr(args, "from_operating", ()):
             raise InputError(flag, None, "--cycle", message=f"{flag} needs --cycle")
 
 
@@ -85,7 +86,7 @@ def _cycle(args, v) -> int:
     result = v.cycle_life(
         cycle,
         **o.law(args),
-        settings=o.cycle_settings(args),
+        settings=cycle_settings(args, cycle.kind),
         life_model=args.life_model,
         material=args.material,
     )

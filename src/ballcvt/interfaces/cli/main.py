@@ -40,6 +40,7 @@ from . import (
     fit_fluid,
     life,
     limit,
+    options,
     point,
     reproduce,
     table,
@@ -94,11 +95,13 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
+    argv = sys.argv[1:] if argv is None else list(argv)
     args = build_parser().parse_args(argv)
     with _open_stdout():
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", RuntimeWarning)
+                options.apply_operating(args, argv)  # where the drive runs (typed flags win)
                 code = COMMANDS[args.command].run(args)
             return _flushed(code)
         except BrokenPipeError:  # the reader went away (| head): quiet, as Unix tools are

@@ -21,8 +21,6 @@ from ...api import (
     CAM_KEYS,
     LIFE_MODELS,
     PAPER_POINT,
-    STRATEGIES,
-    CycleSettings,
     Variator,
     open_drive,
 )
@@ -192,14 +190,15 @@ def options() -> dict[str, dict]:
             "type": quantity("clamp_force", "N", most=MOST_FORCE),
             "default": None,
             "help": f"input-contact normal load F_N0 [N] of the constant clamping law "
-            f"(default: {PAPER_POINT.clamp_force:g})",
+            f"(default: the drive's [operating] clamp_force, else "
+            f"{PAPER_POINT.clamp_force:g})",
         },
         "clamp-law": {
             "default": "constant",
             "choices": CLAMP_LAWS.names(),
             "help": "clamping law (docs/model.md section 11): constant F_N0 (--clamp), "
             "the design's loading cam, or the efficiency-optimal force "
-            "(default: constant)",
+            "(default: the drive's [operating] clamp_law, else constant)",
         },
         "cam-disc": {
             "choices": ("input", "output"),
@@ -216,7 +215,8 @@ def options() -> dict[str, dict]:
         "speed": {
             "type": quantity("speed", "rpm", most=MOST_RPM),
             "default": PAPER_POINT.input_speed_rpm,
-            "help": "input speed [rpm] (default: %(default)s)",
+            "help": "input speed [rpm] (default: the drive's [operating] input_speed_rpm, "
+            "else %(default)s)",
         },
         "creep-limit": {
             "type": number,
@@ -319,6 +319,50 @@ def variator(args) -> Variator:
     return v.with_cam(cam, flags) if cam else v
 
 
+#: The commands that run the drive (``traction-curve --speed`` is a rolling speed in m/s).
+DRIVEN = ("point", "limit", "clamp", "map", "table", "cycle", "life", "explore-ui")
+#: Option -> (``[operating]`` key, the ``args`` attribute it sets).
+_OPERATING = {
+    "--speed": ("input_speed_rpm", "speed"),
+    "--target-speed": ("input_speed_rpm", "operating_target_speed"),
+    "--ratio-range": ("ratio_range", "ratio_range"),
+    "--speed-range": ("speed_range_rpm", "speed_range"),
+}
+
+
+def apply_operating(args, argv: list[str]) -> None:
+    """Start where the drive runs: the ``[operating]`` table of ``--design`` (docs/cli.md)
+    gives the options a command has and ``argv`` does not type (typed flags always win).
+
+    The clamping law is the table's unless ``--clamp-law`` or ``--clamp`` is typed; the
+    constant law's force is the table's ``clamp_force`` unless ``--clamp`` is typed.
+    """
+    if getattr(args, "design", None) is None or getattr(args, "command", None) not in DRIVEN:
+        return
+    design, _ = open_drive(args.design, None, None)
+    op = design.operating
+    if op is None:
+        return
+    typed = {word.split("=", 1)[0] for word in argv if word.startswith("--")}
+    for flag, (key, attr) in _OPERATING.items():
+        value = getattr(op, key)
+        settable = hasattr(args, attr) or (
+            attr == "operating_target_speed" and hasattr(args, "target_speed")
+        )
+        if settable and flag not in typed and value is not None:
+            setattr(args, attr, tuple(value) if isinstance(value, tuple) else value)
+            args.from_operating = (*getattr(args, "from_operating", ()), flag)
+    if hasattr(args, "clamp_law") and not typed & {"--clamp-law", "--clamp"} and op.clamp_law:
+        if op.clamp_law not in CLAMP_LAWS.names():
+            raise InputError(
+                "operating.clamp_law", op.clamp_law, "one of " + ", ".join(CLAMP_LAWS.names())
+            )
+        args.clamp_law = op.clamp_law
+    if getattr(args, "clamp_law", None) == "constant" and "--clamp" not in typed:
+        if op.clamp_force is not None:
+            args.clamp = op.clamp_force
+
+
 def law(args) -> dict:
     """``clamp_force`` or ``clamp_law`` keyword of the Python API from the options."""
     if args.clamp_law == "constant":
@@ -362,7 +406,7 @@ def grid_options(p, *, n_ratio: int, n_torque: int, most: int, torque_max: str) 
         nargs=2,
         default=(0.5, 2.0),
         metavar=("MIN", "MAX"),
-        help="ratio range (default: 0.5 2)",
+        help="ratio range (default: the drive's [operating] ratio_range, else 0.5 2)",
     )
     p.add_argument(
         "--n-ratio",
@@ -387,51 +431,6 @@ def grid_options(p, *, n_ratio: int, n_torque: int, most: int, torque_max: str) 
 def life(args) -> dict:
     """``life_model`` and ``material`` keywords of the Python API from the options."""
     return {"life_model": args.life_model, "material": args.material}
-
-
-def cycle_options(p) -> None:
-    """The ratio strategy of a duty cycle (``cycle`` and ``life --cycle``)."""
-    p.add_argument(
-        "--strategy",
-        choices=STRATEGIES,
-        default=None,
-        help="how the ratio is chosen (default: target-input-speed with --target-speed, "
-        "else max-efficiency; an input-side cycle with a ratio column takes none)",
-    )
-    p.add_argument(
-        "--target-speed",
-        type=quantity("target_speed", "rpm", most=MOST_RPM),
-        default=None,
-        help="input speed held by target-input-speed [rpm] (required by it, refused by "
-        "the others)",
-    )
-    p.add_argument(
-        "--candidates",
-        type=count(3, 101),
-        default=None,
-        help="ratios tried per step by max-efficiency, 3-101 (default: 9; refused by the others)",
-    )
-    p.add_argument(
-        "--ratio-range",
-        type=number,
-        nargs=2,
-        default=None,
-        metavar=("MIN", "MAX"),
-        help="ratios any strategy may use (default: the usable range); a held or "
-        "commanded ratio outside runs at its end, flagged ratio_limited",
-    )
-
-
-def cycle_settings(args) -> CycleSettings:
-    """The `CycleSettings` of `cycle_options` (and ``--workers``, ``--quiet``)."""
-    return CycleSettings(
-        strategy=args.strategy,
-        target_input_speed_rpm=None if args.target_speed is None else rpm(args.target_speed),
-        candidates=args.candidates,
-        ratio_range=args.ratio_range,
-        progress=show(args),
-        workers=args.workers,
-    )
 
 
 def life_line(life: dict) -> str:

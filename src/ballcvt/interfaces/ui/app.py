@@ -4,7 +4,10 @@ Sliders set the operating point (ideal ratio, output torque, clamping force, inp
 and the main design parameters (ball radius, aspect ratio, number of balls, contact
 angle). The page shows the operating point (efficiency, the losses as a breakdown, creeps,
 peak pressures and films per contact), the efficiency map with the point on it and the
-limiting-torque curve. A point is one `Variator.solve` (a few milliseconds); the map and
+limiting-torque curve. A clamping-law menu picks the constant force (the slider), the
+design's loading cam or the efficiency-optimal force. The page opens where the drive runs
+(its ``[operating]`` table: input speed, ratio range, clamping law and force), else at the
+paper's point. A point is one `Variator.solve` (a few milliseconds); the map and
 the limits are recomputed when the design, the clamping force or the speed change (about
 half a second, on the fast batched paths). Every figure shown is also in a hidden element
 (``.bcvt-state``) as JSON, so that tests can compare it with the Python API.
@@ -18,9 +21,10 @@ from typing import Any
 
 import numpy as np
 
-from ...api import PAPER_POINT, Variator
+from ...api import PAPER_POINT, Variator, operating_ratio_range
 from ...errors import BallCVTError
 from ...params import Design, Fluid
+from ...registry import CLAMP_LAWS
 
 __all__ = ["make_document", "serve", "SLIDERS", "MAP_GRID"]
 
@@ -45,11 +49,16 @@ class _State:
 
     def __init__(self, design: Design, fluid: Fluid, architecture: str):
         self.base, self.fluid, self.architecture = design, fluid, architecture
+        op = design.operating
+        given = {} if op is None else op.model_dump(exclude_none=True)
+        #: Clamping law: a name of `ballcvt.registry.CLAMP_LAWS` (the constant force: slider).
+        self.clamp_law: str = given.get("clamp_law", "constant")
+        lo, hi = given.get("ratio_range", (0.5, 2.0))
         self.values: dict[str, float] = {
-            "ratio": PAPER_POINT.ratio,
+            "ratio": min(max(PAPER_POINT.ratio, lo), hi),
             "output_torque": PAPER_POINT.output_torque,
-            "clamp_force": PAPER_POINT.clamp_force,
-            "input_speed_rpm": PAPER_POINT.input_speed_rpm,
+            "clamp_force": given.get("clamp_force", PAPER_POINT.clamp_force),
+            "input_speed_rpm": given.get("input_speed_rpm", PAPER_POINT.input_speed_rpm),
             "roller_radius_mm": design.roller_radius * 1e3,
             "aspect_ratio": design.aspect_ratio,
             "n_rollers": design.n_rollers,
@@ -75,11 +84,30 @@ class _State:
         except BallCVTError as exc:
             self.variator, self.message = None, str(exc)
 
+    def clamp(self) -> dict[str, Any]:
+        """``clamp_force`` (constant law, the slider) or ``clamp_law`` of the API calls."""
+        if self.clamp_law == "constant":
+            return {"clamp_force": float(self.values["clamp_force"])}
+        return {"clamp_law": self.clamp_law}
+
+    def slider_range(self, name: str) -> tuple[float, float, float]:
+        """(start, end, step) of a slider: `SLIDERS`', or around the drive's operating
+        speeds and over its operating ratios."""
+        start, end, step = SLIDERS[name][1:4]
+        op = self.base.operating
+        if name == "input_speed_rpm" and op is not None and op.speed_range_rpm is not None:
+            lo, hi = op.speed_range_rpm
+            return 0.5 * lo, max(2.0 * hi, float(self.values[name])), 5.0
+        if name == "ratio" and op is not None and op.ratio_range is not None:
+            return float(op.ratio_range[0]), float(op.ratio_range[1]), step
+        return start, end, step
+
     def point(self) -> dict[str, Any]:
         """Solve the current point: the figures shown (``eta`` None with a message)."""
         v = self.values
         out: dict[str, Any] = {
             "inputs": {k: float(v[k]) for k in SLIDERS},
+            "clamp_law": self.clamp_law,
             "design": None if self.variator is None else self.variator.design.model_dump(),
             "architecture": self.architecture,
             "eta": None,
@@ -91,8 +119,8 @@ class _State:
             r: Any = self.variator.solve(
                 ratio=float(v["ratio"]),
                 output_torque=float(v["output_torque"]),
-                clamp_force=float(v["clamp_force"]),
                 input_speed_rpm=float(v["input_speed_rpm"]),
+                **self.clamp(),
             )
         except BallCVTError as exc:
             out["message"] = str(exc)
@@ -118,21 +146,16 @@ class _State:
         if self.variator is None:
             return None
         v = self.values
-        lo, hi = self.variator.ratio_range
-        ratio = np.linspace(max(lo, 0.5), min(hi, 2.0), MAP_GRID[0])
-        kw: dict[str, Any] = {
-            "clamp_force": float(v["clamp_force"]),
-            "input_speed_rpm": v["input_speed_rpm"],
-        }
+        lo, hi = operating_ratio_range(self.base)
+        lo, hi = (lo, hi) if self.base.operating is not None else (max(lo, 0.5), min(hi, 2.0))
+        ratio = np.linspace(lo, hi, MAP_GRID[0])
+        kw: dict[str, Any] = {**self.clamp(), "input_speed_rpm": v["input_speed_rpm"]}
         var, n = self.variator, ratio.size
         try:
             # one limit search for the whole map, handed to the sweep; the torque axis
             # reaches past the limits at both ends and in the middle of the ratio range
             search = var.limit_curve(
-                ratio,
-                input_speed_rpm=float(v["input_speed_rpm"]),
-                clamp_force=kw["clamp_force"],
-                progress=False,
+                ratio, input_speed_rpm=float(v["input_speed_rpm"]), progress=False, **self.clamp()
             )
             ends = [0, n - 1, n // 2]
             for i in ends:
@@ -163,7 +186,8 @@ def _sliders(state: _State) -> dict:
     from bokeh.models import Slider
 
     sliders = {}
-    for name, (title, start, end, step, unit) in SLIDERS.items():
+    for name, (title, *_, unit) in SLIDERS.items():
+        start, end, step = state.slider_range(name)
         sliders[name] = Slider(
             title=f"{title} [{unit}]" if unit else title,
             start=start,
@@ -173,8 +197,23 @@ def _sliders(state: _State) -> dict:
             name=name,
             css_classes=[f"bcvt-slider-{name}"],
             width=320,
+            disabled=name == "clamp_force" and state.clamp_law != "constant",
         )
     return sliders
+
+
+def _law_menu(state: _State):
+    """The clamping-law menu (`ballcvt.registry.CLAMP_LAWS`), at the state's law."""
+    from bokeh.models import Select
+
+    return Select(
+        title="clamping law",
+        value=state.clamp_law,
+        options=list(CLAMP_LAWS.names()),
+        name="clamp_law",
+        css_classes=["bcvt-clamp-law"],
+        width=320,
+    )
 
 
 def _contact_table(source):
@@ -291,7 +330,16 @@ def make_document(doc, design: Design, fluid: Fluid, architecture: str = "double
     state = _State(design, fluid, architecture)
     state.rebuild()
     sliders = _sliders(state)
+    law = _law_menu(state)
     view = _View()
+
+    def on_law(new: str) -> None:
+        state.clamp_law = new
+        sliders["clamp_force"].disabled = new != "constant"
+        view.show_point(state.point())
+        view.show_map(state.map())
+
+    law.on_change("value", lambda _a, _o, new: on_law(new))
 
     def on_point(name: str, new) -> None:
         state.values[name] = new
@@ -320,7 +368,11 @@ def make_document(doc, design: Design, fluid: Fluid, architecture: str = "double
     doc.add_root(
         column(
             title,
-            row(column(*sliders.values()), column(view.eta, view.losses, view.table), view.emap),
+            row(
+                column(law, *sliders.values()),
+                column(view.eta, view.losses, view.table),
+                view.emap,
+            ),
             view.message,
             view.state,
         )

@@ -29,7 +29,7 @@ from ..model.kinematics import (
     spin_axis_projection,
     tilt_from_ratio,
 )
-from ..model.losses import PARASITIC_KINDS, active_terms, parasitic_drags
+from ..model.losses import PARASITIC_KINDS, active_terms, drag_magnitudes
 from ..model.rheology import roelands_pressure_limit
 from ..params.drive import Drive
 from ..params.models import Design, Fluid
@@ -77,6 +77,7 @@ _PER_CONTACT = (
     "roller_drag",
     "input_drag",
     "output_drag",
+    "disc_drag",
 )
 
 
@@ -108,8 +109,12 @@ class EquilibriumProblem:
         [N m], ``(..., n_kinds)``; zero without ``design.parasitic`` and user loss terms
         (docs/model.md §12).
     input_drag, output_drag : ndarray
-        Parasitic drag torques on the input and output shafts by kind [N m],
-        ``(..., n_kinds)``.
+        Magnitudes of the parasitic drag torques on the input and output shafts by kind
+        [N m], ``(..., n_kinds)``; each opposes its shaft's solved rotation
+        (`ballcvt.model.losses.shaft_drags`).
+    disc_drag : ndarray
+        Magnitudes of the drag torques between the discs by kind (the disc thrust
+        bearing) [N m], ``(..., n_kinds)``; each opposes the discs' solved relative speed.
     carrier_speed : ndarray
         Carrier speed ``omega_c`` [rad/s], ``(...)``; zero for the paper's drive. The
         other speeds are relative to the carrier (docs/model.md §13).
@@ -145,6 +150,7 @@ class EquilibriumProblem:
     roller_drag: np.ndarray
     input_drag: np.ndarray
     output_drag: np.ndarray
+    disc_drag: np.ndarray
     carrier_speed: np.ndarray = None  # type: ignore[assignment]
     gyro_factor: np.ndarray = None  # type: ignore[assignment]
     torque_weights: tuple = (0.0, 1.0)
@@ -337,9 +343,10 @@ def make_problem(
         load = load - centrifugal_force(design, wc)[..., None] * idler_share(layout, design)
     ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
     _check_pressure(fluid, fn0, p_max)
-    # parasitic drags at the creep-free speeds (docs/model.md §12)
+    # parasitic drags' magnitudes at the creep-free speeds; their directions follow the
+    # solved speeds in the residual (docs/model.md §12)
     omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
-    drags = parasitic_drags(
+    drags = drag_magnitudes(
         design, fluid, w0, omega[..., -1], omega_s, design.n_rollers * fn0 * np.sin(design.theta0)
     )
     return EquilibriumProblem(
@@ -362,6 +369,7 @@ def make_problem(
         roller_drag=drags.roller,
         input_drag=drags.input,
         output_drag=drags.output,
+        disc_drag=drags.between,
         carrier_speed=wc,
         gyro_factor=(
             gyro_factor(design, tilt, wc) if turning and frame.gyroscopic else np.zeros(wc.shape)

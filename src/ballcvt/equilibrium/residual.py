@@ -30,6 +30,7 @@ import numpy as np
 from ..model.bearings import load_dependent_torque, speed_dependent_torque
 from ..model.film import SPEED_EXPONENT, central_film_thickness
 from ..model.kinematics import body_speeds, creep_term, entrainment_factor, spin
+from ..model.losses import DragMagnitudes, shaft_drags
 from ..model.traction.contact import ContactState, contact_coefficients
 from ..model.traction.quadrature import Quadrature
 from .problem import EquilibriumProblem
@@ -77,8 +78,10 @@ class EquilibriumState:
         ``T_BL,c`` of each contact's body (0 where not an idler) [N m].
     residual : ndarray
         Dimensionless residuals, shape ``(..., n_c)``: ball moment, idlers, output.
-    input_drag : ndarray
-        Parasitic drag on the input shaft [N m] (docs/model.md §12; zero by default).
+    input_drag, output_drag : ndarray
+        Parasitic drags on the input and output shafts at the solved speeds, opposing
+        each shaft's rotation and, for the disc thrust bearing, the discs' relative speed
+        [N m] (docs/model.md §12; zero by default).
     """
 
     creep: np.ndarray
@@ -97,6 +100,7 @@ class EquilibriumState:
     idler_bearing_torque: np.ndarray
     residual: np.ndarray
     input_drag: np.ndarray
+    output_drag: np.ndarray
 
     def take(self, index) -> EquilibriumState:
         """The points ``index`` (integer or boolean array) of a 1-D batch."""
@@ -294,9 +298,28 @@ def _balance_constants(problem: EquilibriumProblem) -> dict:
         "roller_scale": pb.clamp_force * rs,
         "scale": pb.torque_scale[..., None],
         "roller_drag": np.sum(pb.roller_drag, axis=-1),
-        "input_drag": np.sum(pb.input_drag, axis=-1),
-        "output_drag": np.sum(pb.output_drag, axis=-1),
+        "shaft_drags": _drag_magnitudes(pb),
+        "no_drag": np.zeros(pb.shape),
     }
+
+
+def _drag_magnitudes(problem: EquilibriumProblem) -> DragMagnitudes | None:
+    """The problem's shaft and between-disc drag magnitudes, None if all are zero."""
+    pb = problem
+    if not (np.any(pb.input_drag) or np.any(pb.output_drag) or np.any(pb.disc_drag)):
+        return None
+    return DragMagnitudes(
+        pb.drag_kinds, pb.roller_drag, pb.input_drag, pb.output_drag, pb.disc_drag
+    )
+
+
+def _solved_drags(k: dict, omega):
+    """Input and output shaft drags at the solved disc speeds, summed over the kinds
+    (`shaft_drags`: each follows its speed, the disc bearing the discs' relative speed)."""
+    if k["shaft_drags"] is None:
+        return k["no_drag"], k["no_drag"]
+    m0, m2 = shaft_drags(k["shaft_drags"], omega[..., 0], omega[..., -1])
+    return m0.sum(axis=-1), m2.sum(axis=-1)
 
 
 def _balances(problem: EquilibriumProblem, creep, at: ContactInputs, mu, chi) -> EquilibriumState:
@@ -332,13 +355,13 @@ def _balances(problem: EquilibriumProblem, creep, at: ContactInputs, mu, chi) ->
     # ball's spin like its axle bearings; the output shaft's drag adds to the load torque
     res[..., 0] = (m_s - np.sign(omega_s) * (t_bls + k["roller_drag"])) / k["roller_scale"]
     res[..., 1:-1] = ((body - np.sign(omega) * t_bl) / scale)[..., 1:-1]
-    input_drag = k["input_drag"]
+    input_drag, output_drag = _solved_drags(k, omega)
     if pb.torque_weights == (0.0, 1.0):
-        res[..., -1] = (body[..., -1] - (pb.output_torque + k["output_drag"])) / scale[..., 0]
+        res[..., -1] = (body[..., -1] - (pb.output_torque + output_drag)) / scale[..., 0]
     else:  # the torque condition a T_0 + b T_2 = target of a planetary mode (§13)
         a, b = pb.torque_weights
         t0 = -body[..., 0] + input_drag
-        t2 = body[..., -1] - k["output_drag"]
+        t2 = body[..., -1] - output_drag
         res[..., -1] = (a * t0 + b * t2 - pb.output_torque) / scale[..., 0]
     return EquilibriumState(
         creep=creep,
@@ -357,13 +380,15 @@ def _balances(problem: EquilibriumProblem, creep, at: ContactInputs, mu, chi) ->
         idler_bearing_torque=t_bl,
         residual=res,
         input_drag=input_drag,
+        output_drag=output_drag,
     )
 
 
 def balancing_output_torque(problem: EquilibriumProblem, state: EquilibriumState):
     """The output torque ``T_2 = T_body,2 - T_drag,2`` that balances the output disc at
-    ``state`` [N m], whatever the problem's own torque condition (docs/model.md §5, §13)."""
-    return state.body_torque[..., -1] - np.sum(problem.output_drag, axis=-1)
+    ``state`` [N m], whatever the problem's own torque condition (docs/model.md §5, §13);
+    ``T_drag,2`` at the solved speeds (`EquilibriumState.output_drag`)."""
+    return state.body_torque[..., -1] - state.output_drag
 
 
 def carrier_reaction_torque(problem: EquilibriumProblem, state: EquilibriumState):

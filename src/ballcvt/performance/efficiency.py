@@ -13,6 +13,7 @@ import numpy as np
 from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState
 from ..model.kinematics import creep_term
+from ..model.losses import DragMagnitudes, drag_power
 
 __all__ = [
     "PowerLosses",
@@ -146,10 +147,15 @@ def power_losses(problem: EquilibriumProblem, state: EquilibriumState) -> PowerL
     spin = n * np.abs(state.moment * state.spin * state.omega)
     roller = n * state.roller_bearing_torque * np.abs(state.omega_s)
     idler = state.idler_bearing_torque * np.abs(state.omega)
-    # parasitic drags times the actual speeds, by kind (docs/model.md §12)
-    shafts = (
-        problem.input_drag * state.omega[..., :1] + problem.output_drag * state.omega[..., -1:]
+    # parasitic drags times the solved speeds they oppose, by kind (docs/model.md §12)
+    drags = DragMagnitudes(
+        problem.drag_kinds,
+        problem.roller_drag,
+        problem.input_drag,
+        problem.output_drag,
+        problem.disc_drag,
     )
+    shafts = drag_power(drags, state.omega[..., 0], state.omega[..., -1])
     parasitic = shafts + n * problem.roller_drag * np.abs(state.omega_s)[..., None]
     return PowerLosses(
         creep=creep,

@@ -10,14 +10,20 @@ from __future__ import annotations
 
 from .base import (
     ACTS_ON,
+    STICK_SPEED,
     DragInputs,
+    DragMagnitudes,
     LossTerm,
     ParasiticDrags,
     active_terms,
+    coulomb_direction,
     drag_kinds,
+    drag_magnitudes,
+    drag_power,
     has_parasitic,
     parasitic_drags,
     parasitic_torques,
+    shaft_drags,
 )
 from .churning import BALL_CHURNING, DISC_CHURNING, moment_coefficient, windage_torque
 from .seals import SEALS, seal_torque
@@ -25,14 +31,20 @@ from .thrust_bearing import DISC_BEARING, thrust_bearing_torque
 
 __all__ = [
     "ACTS_ON",
+    "STICK_SPEED",
     "DragInputs",
+    "DragMagnitudes",
     "LossTerm",
     "ParasiticDrags",
     "active_terms",
+    "coulomb_direction",
     "drag_kinds",
+    "drag_magnitudes",
+    "drag_power",
     "has_parasitic",
     "parasitic_drags",
     "parasitic_torques",
+    "shaft_drags",
     "moment_coefficient",
     "windage_torque",
     "seal_torque",

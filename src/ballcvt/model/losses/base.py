@@ -21,7 +21,13 @@ from ...registry import LOSS_TERMS
 
 __all__ = [
     "ACTS_ON",
+    "STICK_SPEED",
     "DragInputs",
+    "DragMagnitudes",
+    "coulomb_direction",
+    "drag_magnitudes",
+    "drag_power",
+    "shaft_drags",
     "LossTerm",
     "ParasiticDrags",
     "drag_kinds",
@@ -36,6 +42,13 @@ __all__ = [
 #: the faster disc and drives the slower one, like the thrust bearing closing the clamping
 #: loop).
 ACTS_ON = ("rollers", "shafts", "input", "output", "between_discs")
+
+#: Regularisation speed ``omega_s`` of the friction torques' direction [rad/s]
+#: (`coulomb_direction`): a shaft or disc-bearing torque reaches its full magnitude to
+#: round-off above ``19 omega_s`` = 0.019 rad/s (0.18 rpm), far below any speed a drive
+#: runs at; a thrust bearing of 60 mm bore slides at ``3e-5`` m/s at ``omega_s``, within
+#: the pre-sliding range of rolling and boundary-lubricated contacts.
+STICK_SPEED = 1e-3
 
 
 @dataclass(frozen=True)
@@ -119,13 +132,40 @@ class ParasiticDrags:
         On each roller (ball) about its spin axis [N m], ``(..., n_kinds)``.
     input, output : ndarray
         On the input and output shafts [N m], ``(..., n_kinds)``: signed to oppose
-        the shaft's rotation (positive for a positive speed).
+        the shaft's rotation (positive for a positive speed), the terms between the discs
+        signed by the discs' relative speed (`shaft_drags`).
     """
 
     kinds: tuple[str, ...]
     roller: np.ndarray
     input: np.ndarray
     output: np.ndarray
+
+
+@dataclass(frozen=True)
+class DragMagnitudes:
+    """Magnitudes of the registered loss terms' torques, by kind (the last axis, `kinds`).
+
+    The directions follow the speeds the torques act at (`shaft_drags`), so an equilibrium
+    can take them at its solved speeds while the magnitudes stay those of given speeds.
+
+    Attributes
+    ----------
+    kinds : tuple of str
+        Loss kinds, in order of first registration (`drag_kinds`).
+    roller : ndarray
+        On each roller (ball) about its spin axis [N m], ``(..., n_kinds)``, >= 0.
+    input, output : ndarray
+        Of the terms on the input and on the output shaft [N m], ``(..., n_kinds)``, >= 0.
+    between : ndarray
+        Of the terms between the two discs [N m], ``(..., n_kinds)``, >= 0.
+    """
+
+    kinds: tuple[str, ...]
+    roller: np.ndarray
+    input: np.ndarray
+    output: np.ndarray
+    between: np.ndarray
 
 
 def drag_kinds() -> tuple[str, ...]:
@@ -136,6 +176,137 @@ def drag_kinds() -> tuple[str, ...]:
 def active_terms(design: Design) -> tuple[LossTerm, ...]:
     """The registered terms that act on ``design``."""
     return tuple(term for _, term in LOSS_TERMS.items() if term.applies(design))
+
+
+def coulomb_direction(speed, stick_speed: float = STICK_SPEED):
+    """Direction factor ``tanh(omega / omega_s)`` of a friction torque [-].
+
+    Coulomb friction regularised by a hyperbolic tangent (Andersson, Soderberg and
+    Bjorklund, "Friction models for sliding dry, boundary and mixed lubricated contacts",
+    Tribology International 40 (2007) 580-587, the ``tanh`` model of Sec. 2): the torque
+    ``M tanh(omega / omega_s)`` opposes the relative speed ``omega`` and dissipates
+    ``M tanh(omega / omega_s) omega >= 0`` at any speed; it equals ``M sign(omega)`` to
+    round-off once ``|omega| > 19 omega_s`` and passes smoothly through zero in the stick
+    band ``|omega| <~ omega_s`` (where a rigid Coulomb contact would stick at any torque
+    below ``M``).
+
+    Parameters
+    ----------
+    speed : array_like
+        Relative speed ``omega`` of the rubbing surfaces [rad/s].
+    stick_speed : float
+        Regularisation speed ``omega_s`` > 0 [rad/s] (`STICK_SPEED`).
+
+    Returns
+    -------
+    ndarray
+        ``tanh(omega / omega_s)`` in ``[-1, 1]`` [-], of the sign of ``speed``.
+    """
+    return np.tanh(np.asarray(speed, dtype=float) / stick_speed)
+
+
+def shaft_drags(drags: DragMagnitudes, input_speed, output_speed):
+    """The drag torques on the two shafts, by kind, at the shafts' actual speeds [N m].
+
+    A shaft term opposes its shaft's rotation, a term between the discs their relative
+    speed ``omega_0 - omega_2`` (it brakes the faster disc and drives the slower one), each
+    through `coulomb_direction`. So the power ``M_0 omega_0 + M_2 omega_2`` of every kind is
+    ``>= 0`` at any speeds (docs/model.md §12).
+
+    Parameters
+    ----------
+    drags : DragMagnitudes
+        Torque magnitudes by kind, ``(..., n_kinds)``.
+    input_speed, output_speed : array_like
+        Disc speeds ``omega_0``, ``omega_2`` [rad/s], broadcasting with ``drags``' batch.
+
+    Returns
+    -------
+    input, output : ndarray
+        Torques opposing the input and output shafts' rotation [N m], ``(..., n_kinds)``.
+    """
+    w0 = np.asarray(input_speed, dtype=float)[..., None]
+    w2 = np.asarray(output_speed, dtype=float)[..., None]
+    between = drags.between * coulomb_direction(w0 - w2)
+    return (
+        drags.input * coulomb_direction(w0) + between,
+        drags.output * coulomb_direction(w2) - between,
+    )
+
+
+def drag_power(drags: DragMagnitudes, input_speed, output_speed):
+    """Power dissipated by the shaft and between-disc terms, by kind [W].
+
+    ``M_0 omega_0 + M_2 omega_2`` of `shaft_drags`, summed term by term so that each
+    product is of two factors of one sign: ``>= 0`` exactly, also where the discs' speeds
+    nearly agree.
+
+    Parameters
+    ----------
+    drags : DragMagnitudes
+        Torque magnitudes by kind, ``(..., n_kinds)``.
+    input_speed, output_speed : array_like
+        Disc speeds ``omega_0``, ``omega_2`` [rad/s].
+
+    Returns
+    -------
+    ndarray
+        ``(..., n_kinds)`` [W].
+    """
+    w0 = np.asarray(input_speed, dtype=float)[..., None]
+    w2 = np.asarray(output_speed, dtype=float)[..., None]
+    relative = w0 - w2
+    return (
+        drags.input * (coulomb_direction(w0) * w0)
+        + drags.output * (coulomb_direction(w2) * w2)
+        + drags.between * (coulomb_direction(relative) * relative)
+    )
+
+
+def drag_magnitudes(
+    design: Design, fluid: Fluid, input_speed, output_speed, roller_speed, thrust
+) -> DragMagnitudes:
+    """The registered loss terms' torque magnitudes at given speeds, by kind (§12).
+
+    Parameters
+    ----------
+    design, fluid : Design, Fluid
+        The drive; a term that does not apply to it contributes zeros.
+    input_speed, output_speed : array_like
+        Disc speeds ``omega_0``, ``omega_2`` [rad/s].
+    roller_speed : array_like
+        Ball spin speed ``omega_S`` [rad/s].
+    thrust : array_like
+        Disc axial thrust ``F_ax`` [N].
+
+    Returns
+    -------
+    DragMagnitudes
+    """
+    w0, w2, ws, fax = (
+        np.asarray(v, dtype=float) for v in (input_speed, output_speed, roller_speed, thrust)
+    )
+    shape = np.broadcast_shapes(w0.shape, w2.shape, ws.shape, fax.shape)
+    kinds = drag_kinds()
+    out = {m: np.zeros(shape + (len(kinds),)) for m in ("roller", "input", "output", "between")}
+    speeds = {"roller": ws, "input": w0, "output": w2, "between": w0 - w2}
+    for term in active_terms(design):
+        col = kinds.index(term.kind)
+        for member in _MEMBERS[term.acts_on]:
+            at = DragInputs(design, fluid, speeds[member], fax)
+            # a magnitude, whatever sign a user's function returns
+            out[member][..., col] += np.abs(np.asarray(term.torque(at)))
+    return DragMagnitudes(kinds, out["roller"], out["input"], out["output"], out["between"])
+
+
+#: The members of `DragMagnitudes` each place a term acts on loads.
+_MEMBERS = {
+    "rollers": ("roller",),
+    "shafts": ("input", "output"),
+    "input": ("input",),
+    "output": ("output",),
+    "between_discs": ("between",),
+}
 
 
 def parasitic_drags(
@@ -157,36 +328,13 @@ def parasitic_drags(
     Returns
     -------
     ParasiticDrags
+        The torques at these speeds, directed by `shaft_drags`.
     """
-    w0, w2, ws, fax = (
-        np.asarray(v, dtype=float) for v in (input_speed, output_speed, roller_speed, thrust)
-    )
-    shape = np.broadcast_shapes(w0.shape, w2.shape, ws.shape, fax.shape)
-    kinds = drag_kinds()
-    out = {m: np.zeros(shape + (len(kinds),)) for m in ("roller", "input", "output")}
-    for term in active_terms(design):
-        col = kinds.index(term.kind)
-        for member, value in _acting(term, DragInputs(design, fluid, w0, fax), w2, ws):
-            out[member][..., col] += value
-    return ParasiticDrags(kinds, out["roller"], out["input"], out["output"])
-
-
-def _acting(term: LossTerm, at: DragInputs, output_speed, roller_speed):
-    """``(member, signed torque)`` pairs of ``term`` (``at.speed`` is the input speed)."""
-
-    def torque(speed):  # a magnitude, whatever sign a user's function returns
-        return np.abs(np.asarray(term.torque(DragInputs(at.design, at.fluid, speed, at.thrust))))
-
-    if term.acts_on == "rollers":
-        return [("roller", torque(roller_speed))]
-    if term.acts_on == "between_discs":
-        relative = at.speed - output_speed
-        m = np.sign(relative) * torque(relative)
-        return [("input", m), ("output", -1.0 * m)]
-    shafts = {"input": at.speed, "output": output_speed}
-    members = ("input", "output") if term.acts_on == "shafts" else (term.acts_on,)
-    # opposing the shaft's rotation either way (a positive speed: the magnitude itself)
-    return [(m, np.where(shafts[m] < 0, -1.0, 1.0) * torque(shafts[m])) for m in members]
+    mag = drag_magnitudes(design, fluid, input_speed, output_speed, roller_speed, thrust)
+    shape = mag.roller.shape[:-1]
+    w0, w2 = (np.broadcast_to(np.asarray(v, float), shape) for v in (input_speed, output_speed))
+    m0, m2 = shaft_drags(mag, w0, w2)
+    return ParasiticDrags(mag.kinds, mag.roller, m0, m2)
 
 
 def parasitic_torques(
@@ -214,7 +362,9 @@ def parasitic_torques(
         Drag torques on the input and output shafts by kind (`drag_kinds`; the built-in
         ``churning, seals, disc_bearings`` first) [N m], shape ``(..., n_kinds)``:
         positive where they oppose the shaft's rotation. The disc thrust bearing's torque
-        has opposite signs on the two shafts; its power is ``M |omega_0 - omega_2|``.
+        has opposite signs on the two shafts; its power is
+        ``M tanh((omega_0 - omega_2) / omega_s) (omega_0 - omega_2) >= 0``
+        (`coulomb_direction`).
     """
     drags = parasitic_drags(design, fluid, input_speed, output_speed, roller_speed, thrust)
     return np.sum(drags.roller, axis=-1), drags.input, drags.output

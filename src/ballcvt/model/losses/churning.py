@@ -36,7 +36,7 @@ def moment_coefficient(reynolds):
         ``C_M`` [-] (``inf`` at ``Re = 0``, where the torque is zero).
     """
     re = np.asarray(reynolds, dtype=float)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):  # inf at (near) rest, as documented
         return np.maximum.reduce([16.0 * np.pi / re, 3.87 / np.sqrt(re), 0.146 / re**0.2])
 
 

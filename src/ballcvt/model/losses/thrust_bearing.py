@@ -1,7 +1,10 @@
 """The thrust bearing that closes the clamping loop between the discs (docs/model.md §12).
 
 It turns at the discs' relative speed: it brakes the faster disc and drives the slower
-one. The built-in loss term ``disc_bearing`` (kind ``disc_bearings``), read from
+one. Its torque's direction follows the discs' solved relative speed, creep included, as
+regularised Coulomb friction (`ballcvt.model.losses.base.coulomb_direction`): just above
+``tau_ID = 1`` the creep can make the output the slower disc (issue 23). The built-in loss
+term ``disc_bearing`` (kind ``disc_bearings``), read from
 ``design.parasitic``.
 """
 

@@ -17,7 +17,10 @@ from ballcvt import Variator, load_builtin
 from ballcvt.api import CycleSettings, read_cycle
 
 hub = Variator(*load_builtin("hub"))
-commute = read_cycle(Path(__file__).resolve().parents[1] / "cycles" / "ebike_commute.csv")
+# examples/cycles/ebike_commute.csv, from the repository root or from examples/gallery
+# (where the documentation build runs the gallery)
+folder = next(p for p in (Path("examples/cycles"), Path("../cycles")) if p.is_dir())
+commute = read_cycle(folder / "ebike_commute.csv")
 run = hub.cycle_life(
     commute, clamp_law="cam", settings=CycleSettings(target_input_speed_rpm=180, progress=False)
 )

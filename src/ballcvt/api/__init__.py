@@ -18,6 +18,7 @@ from ..results.point import ContactResult, OperatingResult
 from ..solvers.limit import LimitSearch
 from ..solvers.planetary_batch import ModeBatch
 from .batched import CAM_KEYS
+from .capacity import CapacityCurve, capacity_curve
 from .grids import LimitCurve
 from .settings import CycleSettings, MapGrid, SolveSettings, SweepSettings, TableGrid
 from .tools import contact_fluid, drive_text, open_drive, read_study
@@ -56,6 +57,8 @@ __all__ = [
     "TableGrid",
     "LimitCurve",
     "LimitSearch",
+    "CapacityCurve",
+    "capacity_curve",
     "CAM_KEYS",
     "OperatingResult",
     "ContactResult",

@@ -91,6 +91,7 @@ def limit_table(data: dict) -> str:
         f"idler, ratio {data['ratio']:g}, {clamp}, "
         f"{data['input_speed_rpm']:g} rpm{'' if mode is None else ' driver'}, "
         f"|creep| <= {data['creep_limit']:g})"
+        + (f"\n  set by: {data['active_constraint']}" if data.get("active_constraint") else "")
     )
 
 

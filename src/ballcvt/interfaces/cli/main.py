@@ -32,6 +32,7 @@ import warnings
 from ..._version import __version__
 from ...errors import BallCVTError
 from . import (
+    capacity,
     clamp,
     cycle,
     design,
@@ -53,6 +54,7 @@ __all__ = ["main", "build_parser", "COMMANDS"]
 COMMANDS = {
     "point": point,
     "limit": limit,
+    "capacity": capacity,
     "clamp": clamp,
     "map": efficiency_map,
     "cycle": cycle,

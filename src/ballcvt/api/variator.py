@@ -30,6 +30,7 @@ from ..solvers.refusal import point_capacity
 from ..units import rpm_to_rad_s
 from . import grids, planetary
 from .batched import BatchMethods
+from .hints import check_speed_unit
 from .refusals import optimal_refusal, refuse_beyond_capacity
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
 
@@ -494,4 +495,5 @@ def _speed(input_speed, input_speed_rpm) -> float:
             input_speed,
             "exactly one of input_speed [rad/s] or input_speed_rpm [rpm]",
         )
+    check_speed_unit(input_speed)
     return float(input_speed) if input_speed is not None else rpm_to_rad_s(float(input_speed_rpm))

@@ -207,10 +207,14 @@ def no_equilibrium_error(
     else:
         best = solve_point(zero, options)
     force = float(zero.clamp_force)
+    said = {
+        "input_speed": f"input speed {float(problem.input_speed):g} rad/s",
+        "clamp_force": f"clamp_force {force:g} N",
+    }
     where = (
-        f"ratio {float(problem.ratio):g}, clamp_force {force:g} N"
+        f"ratio {float(problem.ratio):g}, {said['clamp_force']}"
         f"{f' by the {law.name} law at zero torque' if law is not None else ''}, "
-        f"input speed {float(problem.input_speed):g} rad/s"
+        f"{said['input_speed']}"
     )
     if law is not None and force > float(pressure_bound_force(zero, zero.design.max_pressure)):
         why = (
@@ -238,8 +242,9 @@ def no_equilibrium_error(
             f"no admissible equilibrium at any output torque ({where}): the {law.name} "
             f"law's force does not carry the torque within creep_limit {creep_limit:g} "
             f"({at_zero}); a law that clamps harder (a cam: a larger preload or a smaller "
-            "ramp angle) would"
+            "ramp angle) would",
+            said,
         )
     return NoEquilibriumError(
-        f"no admissible equilibrium even at zero output torque ({where}): {why}"
+        f"no admissible equilibrium even at zero output torque ({where}): {why}", said
     )

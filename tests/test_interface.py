@@ -106,10 +106,18 @@ def _variants(design, tmp):
         "--torque-max": ["--torque-max", "50"], "--n-torque": ["--n-torque", "4"],
         "--out": ["--out", str(tmp / "t1")], "--workers": ["--workers", "2"],
         "--quiet": ["--quiet"]})
+    # issue 25: the capacity over a ratio range (its cam options act as in map)
+    capacity = (["capacity", "--out", str(tmp / "k0"), "--points", "2", "--ratio-range", "0.8",
+                 "1.2"], {
+        "--arch": ["--arch", "single"], "--clamp": ["--clamp", "2500"],
+        "--clamp-law": law, "--speed": ["--speed", "1000"],
+        "--creep-limit": ["--creep-limit", "0.05"], "--design": ["--design", design],
+        "--ratio-range": ["--ratio-range", "0.7", "1.4"], "--points": ["--points", "3"],
+        "--out": ["--out", str(tmp / "k1")], "--quiet": ["--quiet"]})
     # the fluid and its traction law (docs/model.md section 14), on every drive command
     fluid = {"--fluid": ["--fluid", "mineral-oil"],
              "--traction-law": ["--traction-law", "viscoelastic"]}
-    for _, changes in (point, limit, clamp, mapping, cycle, table):
+    for _, changes in (point, limit, clamp, mapping, cycle, table, capacity):
         changes.update(fluid)
     soft = tmp / "soft.toml"                         # another material: another E'
     soft.write_text(Path(design).read_text().replace("youngs_modulus = 210.0e9",
@@ -145,7 +153,8 @@ def _variants(design, tmp):
             "traction-curve": curve, "traction-curve:pmax": curve_p, "fit-fluid": fit,
             "point": point, "point:planetary": planetary, "limit": limit, "clamp": clamp, "map": mapping,
             "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam,
-            "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table}
+            "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table,
+            "capacity": capacity}
 
 
 def _output(code, out, err, argv):
@@ -153,7 +162,8 @@ def _output(code, out, err, argv):
     assert code == 0, (argv, err)
     files = ""
     names = {"map": "map.csv", "cycle": "steps.csv", "table": "table.csv",
-             "traction-curve": "traction_curve.csv", "fit-fluid": "fluid.toml"}
+             "traction-curve": "traction_curve.csv", "fit-fluid": "fluid.toml",
+             "capacity": "capacity.csv"}
     if argv[0] in names and "--out" in argv and not (argv[0] == "traction-curve"
                                                      and "--json" in argv):
         folder = Path(argv[argv.index("--out") + 1])
@@ -175,7 +185,7 @@ def test_every_flag_changes_the_output(capsys, tmp_path, small_design):
         # every flag covered (the cam options act alike everywhere: one suffices for the
         # commands that only pass them on)
         cam_rest = {f for f in _options(subs[command]) if f.startswith("--cam-")}
-        assert flags | (cam_rest if command in ("map", "cycle", "table") else set()) == \
+        assert flags | (cam_rest if command in ("map", "cycle", "table", "capacity") else set()) == \
             _options(subs[command]), command
     for command, (base, changes) in variants.items():
         reference = _output(*run(capsys, base), base)

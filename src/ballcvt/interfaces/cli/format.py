@@ -48,11 +48,11 @@ def point_table(r: OperatingResult, efficiency: str = "") -> str:
     lines += [
         "",
         f"losses [W]  creep {ls['creep']:.2f}  spin {ls['spin']:.2f}  bearings "
-        f"{ls['bearing']:.2f}"
+        f"{ls['roller_bearings'] + ls['idler_bearings']:.2f}"
         + (
             f"  churning {ls['churning']:.2f}  seals {ls['seals']:.2f}"
             f"  disc bearings {ls['disc_bearings']:.2f}"
-            if ls.get("parasitic")
+            if any(ls.get(k) for k in ("churning", "seals", "disc_bearings"))
             else ""
         )
         + f"  total {ls['total']:.2f}",

@@ -212,15 +212,22 @@ def test_reproduce_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
                         lambda out, **kw: calls.append({"out": str(out), **kw}) or Done)
     base = ["reproduce", "--out", str(tmp_path / "a")]
     assert _options(_subcommands()["reproduce"]) == {"--out", "--quick", "--workers", "--quiet",
-                                                     "--traction-law"}
+                                                     "--traction-law", "--design", "--fluid",
+                                                     "--creep-limit"}
     variants = [[], ["--out", str(tmp_path / "b")], ["--quick"], ["--workers", "2"],
-                ["--quiet"], ["--traction-law", "thermal"]]
+                ["--quiet"], ["--traction-law", "thermal"], ["--design", "hub"],
+                ["--fluid", "mineral-oil"], ["--creep-limit", "0.05"]]
     outputs = []
     for extra in variants:
         argv = base + extra if extra[:1] != ["--out"] else ["reproduce", *extra]
         code, out, _ = run(capsys, argv)
         assert code == 0
+        drive = calls[-1].pop("drive", None)  # issue 25: another drive, as a Variator
+        if drive is not None:
+            calls[-1]["drive"] = [drive.design.model_dump_json(), drive.fluid.model_dump_json()]
         outputs.append((json.dumps(calls[-1], sort_keys=True), out))
+    assert calls[0] == {"out": str(tmp_path / "a"), "quick": False, "workers": 1,
+                        "progress": False, "traction_law": None}  # the paper's call
     for other in outputs[1:]:
         assert other != outputs[0]
 

@@ -76,3 +76,15 @@ def test_cycle_losses_are_components_and_one_total():
         lj["total"], rel=1e-12)
     assert s["loss_subtotals_J"]["bearing"] == pytest.approx(
         lj["roller_bearings"] + lj["idler_bearings"])
+
+
+def test_sweep_loss_components_sum_to_total(hub):
+    from ballcvt.analysis.sweeps.variables import LOSS_COMPONENTS
+    ds = hub.sweep(ratio=[0.7, 1.3], output_torque=[10.0, 40.0], clamp_force=2500.0,
+                   input_speed_rpm=1500)
+    parts = ds.losses.sel(loss=list(LOSS_COMPONENTS)).sum("loss")
+    total = ds.losses.sel(loss="total")
+    ok = ds.status == 0
+    assert bool(ok.any())
+    assert np.allclose(parts.where(ok), total.where(ok), rtol=1e-12, equal_nan=True)
+    assert "summing the loss axis counts losses twice" in ds.losses.attrs["long_name"]

@@ -52,3 +52,15 @@ def test_capacity_curve_api():
     assert list(frame["active_constraint"]) == ["creep (output contact)",
                                                 "creep (input contact)"]
     assert np.all(c.limit_torque > 0)
+
+
+def test_small_preload_names_the_lower_end(capsys):
+    argv = ["limit", "--design", "hub", "--clamp-law", "cam", "--cam-preload", "20",
+            "--ratio", "1"]
+    assert main([*argv, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["capacity_intervals"][0][0] > 0.0
+    assert data["interval_constraints"][0] == ["creep (input contact)",
+                                               "pressure (max_pressure 3 GPa)"]
+    assert main(argv) == 0
+    assert "N m set by creep (input contact)" in capsys.readouterr().out

@@ -92,6 +92,17 @@ def limit_table(data: dict) -> str:
         f"{data['input_speed_rpm']:g} rpm{'' if mode is None else ' driver'}, "
         f"|creep| <= {data['creep_limit']:g})"
         + (f"\n  set by: {data['active_constraint']}" if data.get("active_constraint") else "")
+        + _interval_ends(spans, data.get("interval_constraints"))
+    )
+
+
+def _interval_ends(spans, ends) -> str:
+    """What sets each end, when the admissible torques do not simply run from zero."""
+    if not ends or (len(spans) == 1 and spans[0][0] == 0.0):
+        return ""
+    return "".join(
+        f"\n  {lo:.2f} N m set by {a}, {hi:.2f} N m set by {b}"
+        for (lo, hi), (a, b) in zip(spans, ends)
     )
 
 

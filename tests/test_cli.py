@@ -34,9 +34,11 @@ def test_point_json_keys(capsys, arch, names):
     for key in ("creep", "spin", "mu", "chi", "p_max", "film_thickness"):
         assert list(data[key]) == names
         assert all(math.isfinite(v) for v in data[key].values())
-    assert {"creep", "spin", "bearing", "total"} <= set(data["losses"])
+    # issue 25: losses holds components and one total; the subtotals sit beside it
+    assert {"creep", "spin", "roller_bearings", "idler_bearings", "total"} <= set(data["losses"])
+    assert "bearing" not in data["losses"] and "parasitic" not in data["losses"]
     assert data["losses"]["total"] == pytest.approx(
-        data["losses"]["creep"] + data["losses"]["spin"] + data["losses"]["bearing"])
+        data["losses"]["creep"] + data["losses"]["spin"] + data["loss_subtotals"]["bearing"])
     assert "NaN" not in out
 
 

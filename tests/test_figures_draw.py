@@ -162,6 +162,11 @@ def _figures(sweep, both):
     tilt = np.linspace(-30.0, 30.0, 13)
     return {
         "cycle_figure": bp.cycle_figure(_cycle_steps()),
+        "capacity_figure": bp.capacity_figure(pd.DataFrame({
+            "ratio": [0.6, 1.0, 1.6], "limit_torque": [120.0, 160.0, 90.0],
+            "lowest_torque": [0.0, 0.0, 5.0],
+            "active_constraint": ["creep (output contact)", "pressure (max_pressure 3 GPa)",
+                                  "creep (input contact)"]})),
         "line_panels": bp.line_panels([{"ylabel": "eta", "lines": [
             (one.output_torque.values, one.eta.sel(ratio=1.2).values, "1.2", None)]}], "T"),
         "efficiency_map": bp.efficiency_map(*arrays, limit_eta=one.eta_at_limit.values),

@@ -131,10 +131,18 @@ def _variants(design, tmp):
                    "--life"], dict(lives))
     mapping[1]["--life"] = ["--life"]
     cycle[1]["--life"] = ["--life"]
+    # issue 25: the capacity over a ratio range (its cam options act as in map)
+    capacity = (["capacity", "--out", str(tmp / "k0"), "--points", "2", "--ratio-range", "0.8",
+                 "1.2"], {
+        "--arch": ["--arch", "single"], "--clamp": ["--clamp", "2500"],
+        "--clamp-law": law, "--speed": ["--speed", "1000"],
+        "--creep-limit": ["--creep-limit", "0.05"], "--design": ["--design", design],
+        "--ratio-range": ["--ratio-range", "0.7", "1.4"], "--points": ["--points", "3"],
+        "--out": ["--out", str(tmp / "k1")], "--quiet": ["--quiet"]})
     # the fluid and its traction law (docs/model.md section 14), on every drive command
     fluid = {"--fluid": ["--fluid", "mineral-oil"],
              "--traction-law": ["--traction-law", "viscoelastic"]}
-    for _, changes in (point, limit, clamp, mapping, cycle, table, life):
+    for _, changes in (point, limit, clamp, mapping, cycle, table, life, capacity):
         changes.update(fluid)
     soft = tmp / "soft.toml"                         # another material: another E'
     soft.write_text(Path(design).read_text().replace("youngs_modulus = 210.0e9",
@@ -172,7 +180,8 @@ def _variants(design, tmp):
             "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam,
             "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table,
             "life": life, "life:cycle": life_cycle, "life:text": life_text, "life:cam": life_cam,
-            "map:life": map_life, "cycle:life": cycle_life}
+            "map:life": map_life, "cycle:life": cycle_life,
+            "capacity": capacity}
 
 
 def _output(code, out, err, argv):
@@ -180,7 +189,8 @@ def _output(code, out, err, argv):
     assert code == 0, (argv, err)
     files = ""
     names = {"map": "map.csv", "cycle": "steps.csv", "table": "table.csv",
-             "traction-curve": "traction_curve.csv", "fit-fluid": "fluid.toml"}
+             "traction-curve": "traction_curve.csv", "fit-fluid": "fluid.toml",
+             "capacity": "capacity.csv"}
     if argv[0] in names and "--out" in argv and not (argv[0] == "traction-curve"
                                                      and "--json" in argv):
         folder = Path(argv[argv.index("--out") + 1])
@@ -202,7 +212,7 @@ def test_every_flag_changes_the_output(capsys, tmp_path, small_design):
         # every flag covered (the cam options act alike everywhere: one suffices for the
         # commands that only pass them on)
         cam_rest = {f for f in _options(subs[command]) if f.startswith("--cam-")}
-        assert flags | (cam_rest if command in ("map", "cycle", "table") else set()) == \
+        assert flags | (cam_rest if command in ("map", "cycle", "table", "capacity") else set()) == \
             _options(subs[command]), command
     for command, (base, changes) in variants.items():
         reference = _output(*run(capsys, base), base)
@@ -229,15 +239,22 @@ def test_reproduce_flags_reach_the_computation(capsys, tmp_path, monkeypatch):
                         lambda out, **kw: calls.append({"out": str(out), **kw}) or Done)
     base = ["reproduce", "--out", str(tmp_path / "a")]
     assert _options(_subcommands()["reproduce"]) == {"--out", "--quick", "--workers", "--quiet",
-                                                     "--traction-law"}
+                                                     "--traction-law", "--design", "--fluid",
+                                                     "--creep-limit"}
     variants = [[], ["--out", str(tmp_path / "b")], ["--quick"], ["--workers", "2"],
-                ["--quiet"], ["--traction-law", "thermal"]]
+                ["--quiet"], ["--traction-law", "thermal"], ["--design", "hub"],
+                ["--fluid", "mineral-oil"], ["--creep-limit", "0.05"]]
     outputs = []
     for extra in variants:
         argv = base + extra if extra[:1] != ["--out"] else ["reproduce", *extra]
         code, out, _ = run(capsys, argv)
         assert code == 0
+        drive = calls[-1].pop("drive", None)  # issue 25: another drive, as a Variator
+        if drive is not None:
+            calls[-1]["drive"] = [drive.design.model_dump_json(), drive.fluid.model_dump_json()]
         outputs.append((json.dumps(calls[-1], sort_keys=True), out))
+    assert calls[0] == {"out": str(tmp_path / "a"), "quick": False, "workers": 1,
+                        "progress": False, "traction_law": None}  # the paper's call
     for other in outputs[1:]:
         assert other != outputs[0]
 

@@ -60,16 +60,28 @@ def test_round_trip_interpolation_matches_the_model(tables):
         assert abs(got - exact) < 0.02
 
 
-def test_beyond_capacity_is_filled_and_marked(tmp_path):
+def test_beyond_capacity_holds_no_number_and_is_marked(tmp_path):
+    # issue 25: beyond-capacity cells used to hold the last admissible value, which a
+    # system model ignoring status takes for a real drive; now NaN / empty / sentinel
+    import pandas as pd
+    from ballcvt.analysis.tables import MODELICA_BEYOND
     out = tmp_path / "t"
     assert cli.main(["table", "--ratio-range", "0.8", "1.2", "--n-ratio", "2",
                      "--speed-range", "1000", "2000", "--n-speed", "2", "--torque-max", "300",
                      "--n-torque", "4", "--out", str(out), "--quiet"]) == 0
     mat = loadmat(out / "table.mat", squeeze_me=True)
     beyond = mat["status"] == 1
-    assert beyond.any() and np.isfinite(mat["eta"]).all()
+    assert beyond.any()
+    assert np.isnan(mat["eta"][beyond]).all() and np.isnan(mat["loss_total"][beyond]).all()
+    assert np.isfinite(mat["eta"][mat["status"] == 0]).all()
     for i, j in np.ndindex(2, 2):
         b = np.flatnonzero(beyond[i, j])
-        if b.size:                       # the value at the last admissible torque
-            assert np.all(mat["eta"][i, j, b] == mat["eta"][i, j, b[0] - 1])
+        if b.size:
             assert mat["output_torque"][b[0]] > mat["limit_torque"][i, j]
+    csv = pd.read_csv(out / "table.csv")
+    assert csv.loc[csv["status"] == 1, "eta [1]"].isna().all()
+    mo = read_modelica_tables(out / "table_modelica.txt")
+    for k in range(2):
+        cells = mo[f"eta_w{k + 1}"][2]
+        assert np.all(cells[beyond[:, k, :]] == MODELICA_BEYOND)
+        assert np.all(cells[~beyond[:, k, :]] >= 0.0)

@@ -43,7 +43,8 @@ print(results["cam (hub)"].steps["flag"].value_counts())
 
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 3.8), layout="constrained",
                                width_ratios=(2, 1))
-kinds = ["creep", "spin", "bearing", "parasitic"]
+# ``losses_J`` holds every component and one ``total`` (the components sum to it)
+kinds = [k for k in next(iter(results.values())).summary["losses_J"] if k != "total"]
 width = 0.38
 for i, (label, res) in enumerate(results.items()):
     steps = res.steps
@@ -55,7 +56,8 @@ ax1.set_xlabel("time [min]")
 ax1.set_ylabel("efficiency of the step [-]")
 ax1.set_ylim(0.4, 1.0)
 ax1.legend(fontsize="small", loc="lower right")
-ax2.set_xticks(range(len(kinds)), kinds)
+ax2.set_xticks(range(len(kinds)), [k.replace("_", " ") for k in kinds], rotation=45,
+               ha="right")
 ax2.set_ylabel("energy lost over the cycle [Wh]")
 ax2.legend(fontsize="small")
 plt.show()

@@ -26,10 +26,10 @@ print(r)
 # %%
 # At a cyclist's 30 N m and 180 rpm in, the cam clamps lightly, the contacts lose little,
 # and the parasitic terms (which do not depend on the load) are a visible share of the
-# loss: ``r.losses`` holds every kind in watts (and the sums ``bearing``, ``parasitic``
-# and ``total``, left out of the bars so nothing is counted twice).
+# loss: ``r.losses`` holds every component in watts and one ``total``, their sum (left out
+# of the bars).
 
-kinds = [k for k in r.losses if k not in ("bearing", "parasitic", "total")]
+kinds = [k for k in r.losses if k != "total"]
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
 ax1.barh(kinds, [r.losses[k] for k in kinds])
 ax1.set_xlabel("power loss [W]")

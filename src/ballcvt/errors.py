@@ -6,6 +6,9 @@ so that the command-line interface can print it as is (exit status 2).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from types import MappingProxyType
+
 __all__ = [
     "BallCVTError",
     "InputError",
@@ -13,11 +16,35 @@ __all__ = [
     "ConvergenceError",
     "NoEquilibriumError",
     "ResultChecksumWarning",
+    "UnitHintWarning",
 ]
 
 
 class BallCVTError(Exception):
-    """Base class of every error ballcvt raises on purpose."""
+    """Base class of every error ballcvt raises on purpose.
+
+    ``phrases`` maps a quantity's name (``input_speed``) to the words of the message that
+    state it in SI units (``"input speed 209.44 rad/s"``), so that a front end can restate
+    the message in the terms its user typed (`restated`; the command line says
+    ``--speed 2000 rpm``).
+    """
+
+    phrases: Mapping[str, str] = MappingProxyType({})
+
+    def restated(self, terms: Mapping[str, str]) -> str:
+        """The message with each phrase of a quantity in ``terms`` replaced by its text.
+
+        Parameters
+        ----------
+        terms : Mapping[str, str]
+            Quantity name -> the text to say instead (e.g. ``{"input_speed": "--speed
+            2000 rpm"}``); quantities without a phrase are ignored.
+        """
+        text = str(self)
+        for name, phrase in self.phrases.items():
+            if name in terms:
+                text = text.replace(phrase, terms[name])
+        return text
 
 
 class InputError(BallCVTError, ValueError):
@@ -72,7 +99,18 @@ class NoEquilibriumError(ConvergenceError):
 
     The traction the clamping force can transmit does not carry the drive's own bearing and
     spin drag (e.g. a clamping force of a few newtons); the message names the conditions.
+
+    Parameters
+    ----------
+    message : str
+        The one-line message.
+    phrases : Mapping[str, str], optional
+        The words of ``message`` stating each quantity (`BallCVTError.phrases`).
     """
+
+    def __init__(self, message: str, phrases: Mapping[str, str] | None = None):
+        super().__init__(message)
+        self.phrases = MappingProxyType(dict(phrases or {}))
 
 
 def _fmt(value: object) -> str:
@@ -100,3 +138,9 @@ class ResultChecksumWarning(UserWarning):
     def __init__(self, message: str, modified: bool = True):
         super().__init__(message)
         self.modified = modified
+
+
+class UnitHintWarning(UserWarning):
+    """A value that looks like a unit mistake (an angular speed in rpm given in rad/s, a
+    contact angle in radians given in degrees): it is used as given, and the message names
+    the likely intended input."""

@@ -8,6 +8,7 @@ import numpy as np
 from ..equilibrium.problem import build_problem
 from ..solvers.capacity import Capacity
 from ..solvers.clamped import capacity_basis
+from ..solvers.constraints import with_constraints
 from ..solvers.limit import limit_search, saturated_traction
 from ..solvers.options import SolverOptions
 
@@ -48,7 +49,8 @@ def torque_capacity(
     Returns
     -------
     Capacity
-        Empty when no torque is admissible.
+        Empty when no torque is admissible; ``constraints`` names what sets each end
+        (`ballcvt.solvers.constraints`).
     """
     design = drive.design
     c_lim = design.creep_limit if creep_limit is None else float(creep_limit)
@@ -58,7 +60,8 @@ def torque_capacity(
     )
     problem, follows, c_lim = capacity_basis(zero, law, c_lim)
     search = limit_search(problem, c_lim, options, law=follows)
-    return Capacity.from_array(search.spans())
+    cap = Capacity.from_array(search.spans())
+    return with_constraints(problem, cap, c_lim, options, follows)
 
 
 def traction_ceiling(drive, ratio: float, *, clamp_force: float, input_speed: float) -> dict:

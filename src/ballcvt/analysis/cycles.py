@@ -44,6 +44,7 @@ from ..files import write_json
 from ..model.clamping import clamp_law as resolve_law
 from ..params.drive import Drive
 from ..performance.efficiency import LOSS_KINDS
+from ..results.losses import LossBreakdown
 from ..solvers.options import SolverOptions
 from ..status import Status
 from ..units import rad_s_to_rpm, rpm_to_rad_s
@@ -84,7 +85,8 @@ class CycleResult:
         ``status``.
     summary : dict
         ``energy_in_J``, ``energy_out_J``, ``efficiency`` (energy out over energy in),
-        ``losses_J`` (by kind), ``steps``, ``steps_flagged``, ``flags`` (steps and seconds
+        ``losses_J`` (by component, and ``total``, their sum: `_loss_energies`),
+        ``loss_subtotals_J`` (``bearing``, ``parasitic``), ``steps``, ``steps_flagged``, ``flags`` (steps and seconds
         per flag), the inputs (design, strategy, clamping law) and the run time.
     """
 
@@ -380,9 +382,7 @@ def _summary(variator, cycle, steps, strategy, law, target, run_time) -> dict:
     counted = ok | (steps["flag"] == "ratio_limited") & (steps["status"] == 0)
     e_in = float(np.sum(np.where(counted, steps["input_power"] * dt, 0.0)))
     e_out = float(np.sum(np.where(counted, steps["output_power"] * dt, 0.0)))
-    losses = {
-        k: float(np.sum(np.where(counted, steps[f"loss_{k}"] * dt, 0.0))) for k in LOSS_KINDS
-    }
+    losses, subtotals = _loss_energies(steps, counted, dt)
     flags = {}
     for f in FLAGS:
         mask = steps["flag"] == f
@@ -407,6 +407,7 @@ def _summary(variator, cycle, steps, strategy, law, target, run_time) -> dict:
         "energy_out_J": e_out,
         "efficiency": e_out / e_in if e_in > 0 else None,
         "losses_J": losses,
+        "loss_subtotals_J": subtotals,
         "energy_not_delivered_J": missing,
         "steps": int(len(dt)),
         "steps_flagged": int(sum(v["steps"] for k, v in flags.items() if k not in ("ok", "idle"))),
@@ -420,3 +421,18 @@ def _summary(variator, cycle, steps, strategy, law, target, run_time) -> dict:
         "version": __version__,
         "run_time_s": run_time,
     }
+
+
+def _loss_energies(steps, counted, dt) -> tuple[dict, dict]:
+    """Energy lost over the counted steps [J]: by component with ``total`` their sum to
+    round-off (`ballcvt.results.losses.LossBreakdown`: ``creep``, ``spin``, ``roller_bearings``,
+    ``idler_bearings``, ``churning``, ``seals``, ``disc_bearings``, and ``user_terms``
+    when user loss terms dissipate), and the subtotals ``bearing`` and ``parasitic``."""
+    energy = {
+        k: float(np.sum(np.where(counted, steps[f"loss_{k}"] * dt, 0.0))) for k in LOSS_KINDS
+    }
+    user = energy["parasitic"] - (energy["churning"] + energy["seals"] + energy["disc_bearings"])
+    if abs(user) > 1e-12 * max(1.0, abs(energy["parasitic"])):
+        energy["user_terms"] = user
+    parts = LossBreakdown(energy)
+    return dict(parts), {"bearing": parts.bearing, "parasitic": parts.parasitic}

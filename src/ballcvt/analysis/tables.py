@@ -13,14 +13,19 @@
   speed ``k`` (first row: output torque [N m], first column: ratio), and
   ``limit_torque`` (first row: input speed [rpm], first column: ratio).
 
-Simulation blocks need finite tables, so in the ``.mat`` and Modelica layouts the points
-beyond the traction capacity (``status`` 1) hold the value at the last admissible torque
-of their ratio and speed (constant extrapolation along the torque axis); ``status`` and
-``limit_torque`` say where that is, and a system model should saturate the torque there.
-Under a loading cam with a small preload the admissible torques may start above zero or
-leave a gap (`ballcvt.analysis.torque_capacity`): only the points outside every admissible
-interval have ``status`` 1; below the first one the value at its start is held, and across
-a gap the values are interpolated. The CSV keeps NaN.
+A point beyond the traction capacity (``status`` 1) has no efficiency or losses: the
+drive cannot carry its torque. Its cells hold no number, so that a system model that
+ignores ``status`` cannot take them for a real drive: empty in the CSV, NaN in the
+``.mat`` file, and the sentinel `MODELICA_BEYOND` (-1, which no efficiency or loss can
+be) in the Modelica tables, whose interpolation needs finite values. So do the points
+outside the converged range of their ratio and speed (a ratio and speed where nothing is
+admissible). ``status`` (0 converged, 1 beyond the capacity, 2 not converged) is written
+beside the tables in every layout but the Modelica one, and ``limit_torque`` gives the
+capacity (0 where none): a system model should saturate the torque there. An isolated
+unconverged point (``status`` 2) between admissible ones is interpolated along the
+torque. Under a loading cam with a small preload the admissible torques may start above
+zero or leave a gap (`ballcvt.analysis.torque_capacity`): the points below the first
+interval and in the gap have ``status`` 1 and hold no number either.
 """
 
 from __future__ import annotations
@@ -33,10 +38,19 @@ from ..files import atomic_path, atomic_write_text
 from ..performance.efficiency import LOSS_KINDS
 from .sweeps.export import write_table
 
-__all__ = ["TABLE_VARIABLES", "table_arrays", "write_tables", "read_modelica_tables"]
+__all__ = [
+    "TABLE_VARIABLES",
+    "table_arrays",
+    "write_tables",
+    "read_modelica_tables",
+    "MODELICA_BEYOND",
+]
 
 #: The quantities tabulated (with ``loss_<kind>`` for every kind of `LOSS_KINDS`).
 TABLE_VARIABLES = ("eta", "input_torque", "clamp_force")
+#: The value of a Modelica table cell beyond the traction capacity (no efficiency, loss,
+#: torque or force is negative; CombiTable2Ds needs finite values).
+MODELICA_BEYOND = -1.0
 
 
 def table_arrays(ds) -> dict:
@@ -73,22 +87,21 @@ def table_arrays(ds) -> dict:
 
 
 def _filled(table: np.ndarray, status: np.ndarray) -> np.ndarray:
-    """Beyond-capacity points take the value at their curve's last admissible torque."""
+    """NaN at the points beyond the capacity and outside the converged range of their
+    ratio and speed; isolated unconverged points between converged ones interpolated."""
     out = np.array(table, dtype=float)
     ok = status == 0
     for i, j in np.ndindex(out.shape[:2]):
         good = np.flatnonzero(ok[i, j])
         if good.size == 0:
-            out[i, j] = 0.0
+            out[i, j] = np.nan
             continue
-        last = good[-1]
-        out[i, j, last + 1 :] = out[i, j, last]
-        out[i, j, : good[0]] = out[i, j, good[0]]
-        bad = ~ok[i, j]
-        bad[last + 1 :] = False
-        bad[: good[0]] = False
+        inside = np.zeros(ok.shape[2], dtype=bool)
+        inside[good[0] : good[-1] + 1] = True
+        bad = ~ok[i, j] & inside & (status[i, j] != 1)
         if bad.any():  # isolated unconverged points: interpolate
             out[i, j, bad] = np.interp(np.flatnonzero(bad), good, out[i, j, good])
+        out[i, j, ~ok[i, j] & ~bad] = np.nan
     return out
 
 
@@ -146,8 +159,8 @@ def write_tables(ds, out, formats=("csv", "mat", "modelica")) -> list[Path]:
             "limit_torque": np.nan_to_num(arr["limit_torque"], nan=0.0),
             **filled,
             "description": "ballcvt lookup table: tables (ratio, input_speed_rpm, "
-            "output_torque); beyond the capacity (status 1) the value at "
-            "the last admissible torque; see docs/cycles.md",
+            "output_torque); NaN beyond the capacity (status 1) and where nothing "
+            "converged; see docs/cycles.md",
         }
         path = out / "table.mat"
         with atomic_path(path) as tmp:
@@ -160,15 +173,16 @@ def write_tables(ds, out, formats=("csv", "mat", "modelica")) -> list[Path]:
             "// ballcvt lookup tables for Modelica.Blocks.Tables.CombiTable2Ds",
             "// eta_w<k>, loss_total_w<k>: u1 = ratio [1], u2 = output torque [N m], at "
             "input speed k:",
+            f"// {MODELICA_BEYOND:g} in eta and loss_total: beyond the traction capacity "
+            "(no drive: saturate the torque at limit_torque)",
         ]
         for k, w in enumerate(arr["input_speed_rpm"], start=1):
             text.append(f"//   w{k} = {w:.10g} rpm")
         text.append("// limit_torque [N m]: u1 = ratio [1], u2 = input speed [rpm]")
         for k in range(arr["input_speed_rpm"].size):
             for name in ("eta", "loss_total"):
-                text += _modelica(
-                    f"{name}_w{k + 1}", arr["ratio"], arr["output_torque"], filled[name][:, k, :]
-                )
+                cells = np.nan_to_num(filled[name][:, k, :], nan=MODELICA_BEYOND)
+                text += _modelica(f"{name}_w{k + 1}", arr["ratio"], arr["output_torque"], cells)
         text += _modelica(
             "limit_torque",
             arr["ratio"],

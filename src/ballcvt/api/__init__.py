@@ -28,6 +28,7 @@ from .cam_sizing import (
     rated_torque,
     size_cam,
 )
+from .capacity import CapacityCurve, capacity_curve
 from .grids import LimitCurve
 from .life import life_settings
 from .settings import CycleSettings, MapGrid, SolveSettings, SweepSettings, TableGrid
@@ -72,6 +73,8 @@ __all__ = [
     "TableGrid",
     "LimitCurve",
     "LimitSearch",
+    "CapacityCurve",
+    "capacity_curve",
     "CAM_KEYS",
     "OperatingResult",
     "ContactResult",

@@ -22,6 +22,7 @@ from ..results.planetary import PlanetaryResult
 from ..results.point import OperatingResult, make_result
 from ..solvers.capacity import Capacity
 from ..solvers.clamped import capacity_basis, solve_clamped
+from ..solvers.constraints import with_constraints
 from ..solvers.limit import limit_torque
 from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum
 from ..solvers.point import SolverOptions, solve_point
@@ -30,6 +31,7 @@ from ..units import rpm_to_rad_s
 from . import grids, planetary
 from .batched import BatchMethods
 from .cam_sizing import check_operating
+from .hints import one_speed as _speed
 from .life import LifeMethods
 from .refusals import optimal_refusal, refuse_beyond_capacity
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
@@ -315,12 +317,15 @@ class Variator(BatchMethods, LifeMethods):
         -------
         Capacity
             ``intervals`` ``((lo, hi), ...)`` [N m]; ``limit`` the limiting torque when the
-            only interval starts at zero.
+            only interval starts at zero; ``constraints`` what sets each end and
+            ``active_constraint`` what sets the largest (e.g. ``"creep (output contact)"``,
+            ``"pressure (max_pressure 3 GPa)"``; `ballcvt.solvers.constraints`).
         """
         problem, law, c_lim = self._capacity_basis(
             ratio, clamp_force, clamp_law, (input_speed, input_speed_rpm), creep_limit
         )
-        return point_capacity(problem, c_lim, self.options, law=law)
+        cap = point_capacity(problem, c_lim, self.options, law=law)
+        return with_constraints(problem, cap, c_lim, self.options, law)
 
     def _capacity_basis(self, ratio, clamp_force, clamp_law, speeds, creep_limit):
         """(problem at zero torque, force-following law or None, creep limit) of the
@@ -484,13 +489,3 @@ class Variator(BatchMethods, LifeMethods):
     def with_quadrature(self, quadrature: Quadrature) -> Variator:
         """A copy using another traction-integral rule."""
         return replace(self, options=replace(self.options, quadrature=quadrature))
-
-
-def _speed(input_speed, input_speed_rpm) -> float:
-    if (input_speed is None) == (input_speed_rpm is None):
-        raise InputError(
-            "input_speed",
-            input_speed,
-            "exactly one of input_speed [rad/s] or input_speed_rpm [rpm]",
-        )
-    return float(input_speed) if input_speed is not None else rpm_to_rad_s(float(input_speed_rpm))

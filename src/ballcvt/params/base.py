@@ -232,11 +232,23 @@ def _field_error(name: str, field: Any, err: Any) -> InputError:
             if value is not None and value not in (math.inf, -math.inf):
                 bounds.append(f"{text} {value:g}")
     unit = str((field.json_schema_extra or {}).get("unit", "")) if field is not None else ""
+    if str(err["type"]).startswith("int_"):
+        return _whole_number_error(name, err.get("input"), bounds)
     if bounds:
         allowed = " and ".join(bounds) + (f" {unit}" if unit not in ("", "-") else "")
     else:
         allowed = err["msg"].replace("Input should be ", "")
     return InputError(name, err.get("input"), allowed)
+
+
+def _whole_number_error(name: str, value: Any, bounds: list[str]) -> InputError:
+    """The `InputError` of a non-integer value of an integer field (``n_rollers = 6.5``):
+    it says a whole number is needed, then the range."""
+    allowed = "a whole number" + (f" {' and '.join(bounds)}" if bounds else "")
+    within = f" (allowed {' and '.join(bounds)})" if bounds else ""
+    return InputError(
+        name, value, allowed, message=f"{name} = {value!r} must be a whole number{within}"
+    )
 
 
 def _field(model: type[BaseModel], loc: list[str]) -> Any:

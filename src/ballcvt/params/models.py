@@ -25,6 +25,7 @@ from ..registry import TRACTION_LAWS
 from ..units import rad_s_to_rpm
 from .base import ParameterModel, _f, _opt
 from .feasibility import check_design
+from .hints import check_unit_mistakes
 from .laws import LAW_FIELDS, check_law
 from .operating import OperatingContext
 from .ratings import BearingRatings
@@ -258,6 +259,7 @@ class Design(ParameterModel):
 
     @model_validator(mode="after")
     def _buildable(self) -> Design:
+        check_unit_mistakes(self)
         check_design(self)
         return self
 

@@ -3,6 +3,7 @@
 Importing this package does not change matplotlib's backend.
 """
 
+from .capacity import capacity_figure
 from .cycles import cycle_figure
 from .figures import (
     LABELS,
@@ -20,6 +21,7 @@ from .studies import maps_figure, parameters_figure, pareto_figure
 from .traction import fit_figure, plot_traction_curve, traction_curve_figure
 
 __all__ = [
+    "capacity_figure",
     "cycle_figure",
     "save",
     "line_panels",

@@ -72,23 +72,25 @@ class Number:
 
 @dataclass(frozen=True)
 class Check:
-    """A qualitative claim: ``ours`` returns whether the criterion holds and what we see."""
+    """A qualitative claim: ``ours`` returns whether the criterion holds and what we see,
+    and, where the criterion is a number (a distance within a bound), the number to set
+    against it as a third item: the difference column shows it, holding or not."""
 
     figure: str
     claim: str
     paper: str
     criterion: str
-    ours: Callable[[Any], tuple[bool, str]]
+    ours: Callable[[Any], tuple]  # (holds, what we see[, the number against the bound])
 
     def evaluate(self, runs) -> Claim:
         """The claim's row, with the verdict."""
-        holds, ours = self.ours(runs)
+        holds, ours, *number = self.ours(runs)
         return Claim(
             self.figure,
             self.claim,
             self.paper,
             ours,
-            "-" if holds else "opposite",
+            number[0] if number else ("-" if holds else "opposite"),
             "agrees" if holds else "differs",
             self.criterion,
         )
@@ -221,12 +223,13 @@ def _envelope(r: Runs) -> tuple[bool, str]:
     return bool((band.eta > 0.92).all()), f"min {band.eta.min():.3f} for T_2 >= 10 N m"
 
 
-def _sign_changes(r: Runs) -> tuple[bool, str]:
+def _sign_changes(r: Runs) -> tuple[bool, str, str]:
     d40 = r.at40("double")
     x = d40.ratio.values
     r_creep = _sign_change(x, _sq(d40.creep.sel(contact="idler_a")).values)
     r_spin = _sign_change(x, _sq(d40.spin.sel(contact="idler_a")).values)
-    return abs(r_creep - r_spin) <= 0.1, f"creep at {r_creep:.3f}, spin at {r_spin:.3f}"
+    gap = abs(r_creep - r_spin)
+    return gap <= 0.1, f"creep at {r_creep:.3f}, spin at {r_spin:.3f}", f"{gap:.3f} in tau_ID"
 
 
 def _eq38_39(r: Runs) -> tuple[bool, str]:

@@ -71,15 +71,17 @@ def compute(
     workers: int = 1,
     progress: bool | None = None,
     traction_law: str | None = None,
+    drive: Variator | None = None,
 ):
     """Run every sweep the figures need; returns (FigureData, Fig. 11 peak).
 
-    ``traction_law`` replaces the paper's isothermal law (docs/model.md §14) in every sweep.
+    ``traction_law`` replaces the paper's isothermal law (docs/model.md §14) in every sweep;
+    ``drive`` replaces the Table I drive (its design, fluid and law) altogether.
 
     Every sweep and the Fig. 8c envelope run on ``workers`` processes, each with a labelled
     progress bar.
     """
-    v = Variator(traction_law=traction_law)
+    v = Variator(traction_law=traction_law) if drive is None else drive
     speed = rpm_to_rad_s(RPM)
     torque = _torques(_grid("torque", quick))
     common: dict[str, Any] = {"input_speed": speed, "workers": workers, "progress": progress}
@@ -174,6 +176,7 @@ def reproduce(
     workers: int = 1,
     progress: bool | None = None,
     traction_law: str | None = None,
+    drive: Variator | None = None,
 ) -> Reproduction:
     """Recompute the paper's results on the Table I drive and write figures and report.
 
@@ -190,6 +193,11 @@ def reproduce(
     traction_law : str, optional
         A traction law other than the paper's isothermal one (docs/model.md §14): every
         figure and claim is then recomputed under it, and the report says so.
+    drive : Variator, optional
+        A drive replacing the paper's Table I drive (another design, fluid or creep limit,
+        e.g. ``Variator(*open_drive("hub"))``): every figure and claim is recomputed on it
+        (the claims still quote the paper's values), and the report names its design and
+        fluid. ``traction_law`` is then ignored (the drive's fluid has its own law).
 
     Returns
     -------
@@ -198,7 +206,7 @@ def reproduce(
     start = time.perf_counter()
     out = check_output_dir(out)
     check_output_dir(out / "data")
-    data, peak = compute(quick, workers, progress, traction_law)
+    data, peak = compute(quick, workers, progress, traction_law, drive)
     files = []
     show = sys.stderr.isatty() if progress is None else progress
     for fn, _ in tqdm(
@@ -207,7 +215,7 @@ def reproduce(
         files += fn(data, out)
     for name in ("torque_curves", "clamp_curves", "ratio_curves", "efficiency_map"):
         files.append(to_netcdf(getattr(data, name), out / "data" / f"{name}.nc"))
-    v = Variator(traction_law=traction_law)
+    v = Variator(traction_law=traction_law) if drive is None else drive
     design, fluid = v.design, v.fluid
     claims = paper_claims(data, peak)
     frame = pd.DataFrame([c.__dict__ for c in claims])

@@ -28,6 +28,7 @@ from ..performance.validity import validity, warning_messages
 from ..solvers.point import PointSolution
 from ..units import rad_s_to_rpm
 from .io import JsonFile, read_result
+from .losses import LossBreakdown
 
 __all__ = ["ContactResult", "OperatingResult", "make_result"]
 
@@ -110,11 +111,13 @@ class OperatingResult:
         Per contact, keyed ``input``, ``idler_a``, ``idler_b``/``idler``, ``output``.
     axle_reactions : tuple of float
         ``(F_Ra, F_Rb)`` on each ball axle [N].
-    losses : Mapping[str, float]
-        Power loss by kind [W]: ``creep``, ``spin``, ``roller_bearings``,
-        ``idler_bearings``, ``bearing``, ``churning``, ``seals``, ``disc_bearings``,
-        ``parasitic``, ``total`` (``LOSS_KINDS``; the parasitic ones are zero without
-        ``design.parasitic``, docs/model.md §12).
+    losses : LossBreakdown
+        Power loss by component [W]: ``creep``, ``spin``, ``roller_bearings``,
+        ``idler_bearings``, ``churning``, ``seals``, ``disc_bearings`` (zero without
+        ``design.parasitic``, docs/model.md §12), each user loss term's kind, and
+        ``total``, their sum (to round-off; `ballcvt.results.losses`). The subtotals are
+        ``losses.bearing`` and ``losses.parasitic`` (``losses["bearing"]`` still answers,
+        with a deprecation warning).
     eta, eta_loss, eta_speed, eta_torque : float
         Overall efficiency by Eq. 38 and by Eq. 39, speed (Eq. 9) and torque (Eq. 37) [-].
     converged : bool
@@ -200,7 +203,7 @@ class OperatingResult:
             ("efficiency (Eq. 38)", self.eta, "-"),
             ("losses", self.losses["total"], "W"),
             ("  creep / spin", f"{self.losses['creep']:.4g} / {self.losses['spin']:.4g}", "W"),
-            ("  bearings", self.losses["bearing"], "W"),
+            ("  bearings", self.losses["roller_bearings"] + self.losses["idler_bearings"], "W"),
             ("max |creep|", max(abs(v.creep) for v in c.values()), "-"),
             ("max p_max", max(v.p_max for v in c.values()) / 1e9, "GPa"),
             ("min film", min(v.film_thickness for v in c.values()) * 1e6, "um"),
@@ -236,7 +239,9 @@ class OperatingResult:
         return self.fluid.traction_law
 
     def to_dict(self) -> dict[str, Any]:
-        """Plain, JSON-able data, including the CLI keys (``tilt_deg``, per-contact maps)."""
+        """Plain, JSON-able data, including the CLI keys (``tilt_deg``, per-contact maps,
+        ``loss_subtotals``: ``bearing`` and ``parasitic`` [W], which ``losses`` no longer
+        holds among its components)."""
         out: dict[str, Any] = {}
         for f in fields(self):
             value = getattr(self, f.name)
@@ -253,6 +258,8 @@ class OperatingResult:
         out["traction_law"] = self.traction_law
         out["input_speed_rpm"] = self.input_speed_rpm
         out["axial_force"] = self.axial_force
+        ls = LossBreakdown(self.losses)  # subtotals beside the components, not among them
+        out["loss_subtotals"] = {"bearing": ls.bearing, "parasitic": ls.parasitic}
         names = list(self.contacts)
         for key in ("creep", "spin", "mu", "chi", "p_max", "film_thickness"):
             out[key] = {n: getattr(self.contacts[n], key) for n in names}
@@ -308,7 +315,7 @@ class OperatingResult:
                 message=f"{source}: {name} = {err.get('input')!r}: {err['msg']}",
             ) from None
         object.__setattr__(result, "contacts", MappingProxyType(dict(result.contacts)))
-        object.__setattr__(result, "losses", MappingProxyType(dict(result.losses)))
+        object.__setattr__(result, "losses", LossBreakdown(result.losses))
         _check_consistent(result, source)
         return result
 
@@ -350,12 +357,9 @@ def _check_consistent(r: OperatingResult, source: str) -> None:
         (
             "losses.total",
             ls.get("total", math.nan),
-            ls.get("creep", math.nan)
-            + ls.get("spin", math.nan)
-            + ls.get("bearing", math.nan)
-            + ls.get("parasitic", 0.0),
+            math.fsum(v for k, v in ls.items() if k != "total"),
             1e-9,
-            "creep + spin + bearing + parasitic",
+            "the sum of the loss components",
         ),
         ("eta_loss", r.eta_loss, r.eta, 1e-6, "eta (Eq. 38 = Eq. 39)"),
     ]
@@ -423,7 +427,7 @@ def make_result(
         roller_speed=f(st.omega_s),
         contacts=MappingProxyType(contacts),
         axle_reactions=(f(st.axle_reactions[0]), f(st.axle_reactions[1])),
-        losses=MappingProxyType(losses),
+        losses=LossBreakdown(losses),
         eta=f(eff.overall),
         eta_loss=f(eff.from_losses),
         eta_speed=f(eff.speed),

@@ -42,9 +42,15 @@ class Capacity:
         equilibria converge with every ``|C| <= creep_limit`` (and, under a
         torque-following law, every peak pressure within ``design.max_pressure``); empty
         when no torque is admissible.
+    constraints : tuple of (str, str)
+        Per interval, the constraint that sets its lower and its upper end, e.g.
+        ``("zero torque", "creep (output contact)")`` or ``("creep (input contact)",
+        "pressure (max_pressure 3 GPa)")`` (`ballcvt.solvers.constraints`); empty when not
+        determined.
     """
 
     intervals: tuple[tuple[float, float], ...]
+    constraints: tuple[tuple[str, str], ...] = ()
 
     @classmethod
     def from_array(cls, bounds) -> Capacity:
@@ -63,6 +69,14 @@ class Capacity:
     def largest(self) -> float:
         """The largest admissible output torque [N m] (NaN when there is none)."""
         return self.intervals[-1][1] if self.intervals else float("nan")
+
+    @property
+    def active_constraint(self) -> str | None:
+        """The constraint that sets the largest admissible torque (``"no equilibrium"``
+        when none is admissible; None when not determined)."""
+        if not self.intervals:
+            return "no equilibrium"
+        return self.constraints[-1][1] if self.constraints else None
 
     def admits(self, torque: float, rtol: float = 0.0) -> bool:
         """Whether ``torque`` [N m] lies in an interval (each widened by ``rtol`` of its
@@ -193,10 +207,14 @@ def no_equilibrium_error(
     else:
         best = solve_point(zero, options)
     force = float(zero.clamp_force)
+    said = {
+        "input_speed": f"input speed {float(problem.input_speed):g} rad/s",
+        "clamp_force": f"clamp_force {force:g} N",
+    }
     where = (
-        f"ratio {float(problem.ratio):g}, clamp_force {force:g} N"
+        f"ratio {float(problem.ratio):g}, {said['clamp_force']}"
         f"{f' by the {law.name} law at zero torque' if law is not None else ''}, "
-        f"input speed {float(problem.input_speed):g} rad/s"
+        f"{said['input_speed']}"
     )
     if law is not None and force > float(pressure_bound_force(zero, zero.design.max_pressure)):
         why = (
@@ -224,8 +242,9 @@ def no_equilibrium_error(
             f"no admissible equilibrium at any output torque ({where}): the {law.name} "
             f"law's force does not carry the torque within creep_limit {creep_limit:g} "
             f"({at_zero}); a law that clamps harder (a cam: a larger preload or a smaller "
-            "ramp angle) would"
+            "ramp angle) would",
+            said,
         )
     return NoEquilibriumError(
-        f"no admissible equilibrium even at zero output torque ({where}): {why}"
+        f"no admissible equilibrium even at zero output torque ({where}): {why}", said
     )

@@ -219,7 +219,9 @@ class Compute:
     in_process : bool
         Evaluate in this process, without Dask.
     progress : bool, optional
-        Progress bar (default: when stderr is a terminal).
+        Progress bar and the line naming the Dask dashboard's address (default: when
+        stderr is a terminal; ``ballcvt explore --quiet`` gives neither: the dashboard
+        closes with the command anyway).
     """
 
     workers: int = 2
@@ -336,7 +338,8 @@ def _connect(compute: Compute):
     else:
         client = local_client(compute.workers)
         execution = f"local Dask cluster, {compute.workers} worker processes"
-    print(f"Dask dashboard: {client.dashboard_link}", file=sys.stderr)
+    if sys.stderr.isatty() if compute.progress is None else compute.progress:
+        print(f"Dask dashboard: {client.dashboard_link}", file=sys.stderr)
     return client, client, execution
 
 

@@ -1,4 +1,9 @@
-"""Names, units and long names of every variable a sweep writes (CF-style attributes)."""
+"""Names, units and long names of every variable a sweep writes (CF-style attributes).
+
+The ``loss`` axis of ``losses`` holds components and their subtotals (`LOSS_KINDS`):
+`LOSS_COMPONENTS` are the kinds that sum to ``total`` without the user loss terms' kinds
+(which only ``parasitic`` and ``total`` include).
+"""
 
 from __future__ import annotations
 
@@ -15,9 +20,14 @@ __all__ = [
     "POINT_VARIABLES",
     "CONTACT_VARIABLES",
     "LOSS_KINDS",
+    "LOSS_COMPONENTS",
     "attrs_for",
     "SWEEP_CODES",
 ]
+
+#: The kinds of the ``loss`` axis that are components (each loss counted once); with the
+#: built-in loss terms only, they sum to ``total`` to round-off.
+LOSS_COMPONENTS = tuple(k for k in LOSS_KINDS if k not in ("bearing", "parasitic", "total"))
 
 #: The ``status`` codes a sweep writes (`ballcvt.status.Status`).
 SWEEP_CODES = (Status.CONVERGED, Status.BEYOND_LIMIT, Status.NOT_CONVERGED)
@@ -47,7 +57,13 @@ VARIABLES = {
     "input_torque": ("N m", "input torque T_0"),
     "actual_ratio": ("1", "actual speed ratio omega_2 / omega_0"),
     "tilt_deg": ("degree", "ball tilt angle gamma"),
-    "losses": ("W", "power loss by kind (Eq. 40; total = creep + spin + bearing + parasitic)"),
+    "losses": (
+        "W",
+        "power loss by kind (Eq. 40): components creep, spin, roller_bearings, "
+        "idler_bearings, churning, seals, disc_bearings; subtotals bearing (roller + idler "
+        "bearings) and parasitic (churning + seals + disc bearings + user terms); total. "
+        "Sum over the components only: summing the loss axis counts losses twice",
+    ),
     "warnings": ("1", "validity warnings (bit flags, docs/model.md section 10)"),
     "creep": ("1", "creep coefficient C (Eq. 7)"),
     "spin": ("1", "spin coefficient sigma (Eqs. 11-14)"),

@@ -48,11 +48,11 @@ def point_table(r: OperatingResult, efficiency: str = "") -> str:
     lines += [
         "",
         f"losses [W]  creep {ls['creep']:.2f}  spin {ls['spin']:.2f}  bearings "
-        f"{ls['bearing']:.2f}"
+        f"{ls['roller_bearings'] + ls['idler_bearings']:.2f}"
         + (
             f"  churning {ls['churning']:.2f}  seals {ls['seals']:.2f}"
             f"  disc bearings {ls['disc_bearings']:.2f}"
-            if ls.get("parasitic")
+            if any(ls.get(k) for k in ("churning", "seals", "disc_bearings"))
             else ""
         )
         + f"  total {ls['total']:.2f}",
@@ -91,6 +91,18 @@ def limit_table(data: dict) -> str:
         f"idler, ratio {data['ratio']:g}, {clamp}, "
         f"{data['input_speed_rpm']:g} rpm{'' if mode is None else ' driver'}, "
         f"|creep| <= {data['creep_limit']:g})"
+        + (f"\n  set by: {data['active_constraint']}" if data.get("active_constraint") else "")
+        + _interval_ends(spans, data.get("interval_constraints"))
+    )
+
+
+def _interval_ends(spans, ends) -> str:
+    """What sets each end, when the admissible torques do not simply run from zero."""
+    if not ends or (len(spans) == 1 and spans[0][0] == 0.0):
+        return ""
+    return "".join(
+        f"\n  {lo:.2f} N m set by {a}, {hi:.2f} N m set by {b}"
+        for (lo, hi), (a, b) in zip(spans, ends)
     )
 
 

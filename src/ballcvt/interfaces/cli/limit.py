@@ -18,7 +18,9 @@ def add_parser(subparsers) -> None:
         "the creep limit (docs/model.md section 8); under the cam law also every peak "
         "pressure <= the design's max_pressure (section 11). Where the admissible torques "
         "do not run from zero to it (a cam with a small preload) they are shown as "
-        "intervals (JSON: capacity_intervals, [[lo, hi], ...] in N m).",
+        "intervals (JSON: capacity_intervals, [[lo, hi], ...] in N m). The constraint that sets "
+        "the limit is named (JSON: active_constraint, e.g. 'creep (output contact)' or "
+        "'pressure (max_pressure 3 GPa)'; interval_constraints: the constraint of each end).",
         "ballcvt limit --arch single --ratio 2 --clamp 2000 --speed 2000",
     )
     o.add(p, "arch", "ratio", *o.CLAMP_OPTIONS, "speed", "creep-limit", *o.FLUID_OPTIONS, "json")
@@ -37,12 +39,15 @@ def run(args) -> int:
         if not cap.intervals:  # none admissible: the limit search says why
             v.limit_torque(args.ratio, **law, **where)
         largest, spans = cap.largest, [list(span) for span in cap.intervals]
+        active, ends = cap.active_constraint, [list(pair) for pair in cap.constraints]
     else:  # a planetary mode: the driven member's largest load, from zero
         largest = v.limit_torque(ratio=args.ratio, **law, **where, mode=mode)
-        spans = [[0.0, largest]]
+        spans, active, ends = [[0.0, largest]], None, None
     data = {
         "limit_torque": largest,
         "capacity_intervals": spans,
+        "active_constraint": active,
+        "interval_constraints": ends,
         "architecture": args.arch,
         "ratio": args.ratio,
         "clamp_law": args.clamp_law,

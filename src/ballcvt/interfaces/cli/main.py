@@ -30,8 +30,9 @@ import sys
 import warnings
 
 from ..._version import __version__
-from ...errors import BallCVTError
+from ...errors import BallCVTError, UnitHintWarning
 from . import (
+    capacity,
     clamp,
     cycle,
     design,
@@ -55,6 +56,7 @@ __all__ = ["main", "build_parser", "COMMANDS"]
 COMMANDS = {
     "point": point,
     "limit": limit,
+    "capacity": capacity,
     "clamp": clamp,
     "map": efficiency_map,
     "cycle": cycle,
@@ -101,6 +103,7 @@ def main(argv: list[str] | None = None) -> int:
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", RuntimeWarning)
+                warnings.showwarning = _show_warning
                 options.apply_operating(args, argv)  # where the drive runs (typed flags win)
                 code = COMMANDS[args.command].run(args)
             return _flushed(code)
@@ -108,7 +111,7 @@ def main(argv: list[str] | None = None) -> int:
             _discard_stdout()
             return 141
         except BallCVTError as exc:  # bad input, beyond capacity, no equilibrium: exit 2
-            return _say(f"error: {exc}", 2)
+            return _say(f"error: {exc.restated(_typed(args))}", 2)
         except KeyboardInterrupt:
             return _say("interrupted", 130)
         except OSError as exc:  # the environment: a full disk, a network, a device
@@ -123,6 +126,29 @@ def main(argv: list[str] | None = None) -> int:
                 "(set BALLCVT_DEBUG=1 for a traceback)",
                 1,
             )
+
+
+_SHOW_WARNING = warnings.showwarning
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """A unit hint as one line ``ballcvt: warning: ...``; other warnings as Python shows
+    them."""
+    if issubclass(category, UnitHintWarning):
+        _say(f"warning: {message}", 0)
+    else:
+        _SHOW_WARNING(message, category, filename, lineno, file, line)
+
+
+def _typed(args) -> dict[str, str]:
+    """The quantities of an error message as the user typed them: the flag and its unit
+    (``input speed 209.44 rad/s`` becomes ``--speed 2000 rpm``; `BallCVTError.restated`)."""
+    terms = {}
+    if getattr(args, "speed", None) is not None:
+        terms["input_speed"] = f"--speed {args.speed:g} rpm"
+    if getattr(args, "clamp", None) is not None:
+        terms["clamp_force"] = f"--clamp {args.clamp:g} N"
+    return terms
 
 
 def _say(message: str, code: int) -> int:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ...api import Variator, open_drive
 from . import options as o
 
 
@@ -13,12 +14,13 @@ def add_parser(subparsers) -> None:
         "recompute every result of the paper: figures, data and report",
         "Recompute every result figure and stated number of the paper on the Table I "
         "drive: figNN.png/.svg/.csv, data/NAME.nc, claims.csv, report.md and report.html "
-        "in --out.",
+        "in --out. --design, --fluid and --creep-limit recompute them on another drive "
+        "(the claims still quote the paper's values; the report names the drive).",
         "ballcvt reproduce --out reproduction --quick --workers 2",
     )
     o.out(p, "ballcvt-reproduction")
     p.add_argument("--quick", action="store_true", help="coarse grids (seconds)")
-    o.add(p, "traction-law")
+    o.add(p, "traction-law", "design", "fluid", "creep-limit")
     o.run_options(p)
 
 
@@ -34,7 +36,7 @@ def run(args) -> int:
         quick=args.quick,
         workers=args.workers,
         progress=o.show(args),
-        traction_law=args.traction_law,
+        **_drive(args),
     )
     n_agree = sum(c.verdict == "agrees" for c in r.claims)
     if not args.quiet:
@@ -44,3 +46,14 @@ def run(args) -> int:
             f"{args.workers} worker(s)"
         )
     return 0
+
+
+def _drive(args) -> dict:
+    """``traction_law`` alone (the paper's drive), or ``drive``: the Variator of
+    ``--design``, ``--fluid``, ``--traction-law`` and ``--creep-limit``."""
+    if args.design is None and args.fluid is None and args.creep_limit is None:
+        return {"traction_law": args.traction_law}
+    design, fluid = open_drive(args.design, args.fluid, args.traction_law)
+    if args.creep_limit is not None:
+        design = design.replace(creep_limit=args.creep_limit)
+    return {"drive": Variator(design, fluid)}

@@ -7,8 +7,8 @@ import numpy as np
 
 from ..equilibrium.problem import build_problem
 from ..solvers.capacity import Capacity
-from ..solvers.clamped import capacity_basis
 from ..solvers.limit import limit_search, saturated_traction
+from ..solvers.optimal_capacity import capacity_basis
 from ..solvers.options import SolverOptions
 
 __all__ = ["traction_ceiling", "torque_capacity", "Capacity"]
@@ -56,7 +56,7 @@ def torque_capacity(
     zero = build_problem(
         design, drive.fluid, drive.architecture, float(ratio), 0.0, start, float(input_speed)
     )
-    problem, follows, c_lim = capacity_basis(zero, law, c_lim)
+    problem, follows, c_lim = capacity_basis(zero, law, c_lim, options)
     search = limit_search(problem, c_lim, options, law=follows)
     return Capacity.from_array(search.spans())
 

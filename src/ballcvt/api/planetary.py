@@ -37,7 +37,8 @@ def _constant_force(variator, clamp_force, clamp_law) -> float:
             "clamp_law",
             law.name,
             "constant in a planetary mode (the cam "
-            "and optimal laws are not yet defined with the carrier turning)",
+            "and optimal laws are not yet defined with the carrier turning): give "
+            "clamp_force instead, or use the default mode (carrier held)",
         )
     return law.force
 
@@ -176,7 +177,7 @@ def cycle_in_mode(variator, mode: OperatingMode, cycle, how, clamp: dict):
     """`Variator.run_cycle` in a planetary mode (`ballcvt.analysis.planetary_cycles`):
     the driver held at the target input speed of ``how`` (a `CycleSettings`); ``clamp``
     holds ``clamp_force`` and ``clamp_law``."""
-    if how.strategy != "target-input-speed":
+    if how.strategy not in (None, "target-input-speed"):  # None: the target speed's
         raise InputError("strategy", how.strategy, "target-input-speed in a planetary mode")
     driver_speed = how.target()
     if driver_speed is None:

@@ -8,9 +8,10 @@ The cases are the product of the registries (never a list written here): every t
 law (`ballcvt.registry.TRACTION_LAWS`) x clamping law (`CLAMP_LAWS`) x architecture
 (`ARCHITECTURES`) x operating mode (`OPERATING_MODES`) x entry point: ``solve``
 (`Variator.solve`), ``sweep`` (`Variator.sweep`), ``limit`` (`Variator.limit_torque`, or
-`Variator.planetary_capacity` in a planetary mode), ``map`` (`Variator.efficiency_map`, or
-`Variator.planetary_map`), ``table`` (`Variator.lookup_table`), ``cycle step``
-(`Variator.run_cycle` on a short duty cycle) and ``study evaluation`` (one design through
+`Variator.planetary_capacity` in a planetary mode, checked against ``limit_torque(mode=)``),
+``map`` (`Variator.efficiency_map`, or `Variator.planetary_map`), ``table``
+(`Variator.lookup_table`), ``cycle step`` (`Variator.run_cycle` on a short duty cycle, with
+``mode=`` in a planetary mode) and ``study evaluation`` (one design through
 `ballcvt.analysis.studies.evaluate_chunk`). Only public names are used.
 
 Each task takes the next case (the cases in a seeded order, round after round), draws a
@@ -33,7 +34,9 @@ to 1.5 x the limiting torque. Every point ends as exactly one of:
 * ``bug``: any other exception, a flag whose message is several lines or says
   "internal error", or a point that hangs past ``--timeout``;
 * ``unsupported`` (not a point): an entry point the public API does not offer for the case
-  (e.g. a sweep in a planetary mode), counted so the coverage gaps show.
+  (a sweep, table or study in a planetary mode), or refuses on purpose in one line saying
+  what to use instead (the cam and optimal laws, or parasitic losses, in a planetary mode:
+  the mode-aware call is made and its refusal recorded), counted so the coverage gaps show.
 
 The target is 0 silent failures and 0 bugs.
 """

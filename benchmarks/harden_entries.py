@@ -30,7 +30,7 @@ from ballcvt.registry import CLAMP_LAWS, OPERATING_MODES
 #: The entry points, in the order they are reported.
 ENTRIES = ("solve", "sweep", "limit", "map", "table", "cycle step", "study evaluation")
 #: Entry points the public API offers in a planetary mode (and which clamping they take).
-MODE_ENTRIES = {"solve": "any", "limit": "fixed", "map": "fixed"}
+MODE_ENTRIES = {"solve": "any", "limit": "any", "map": "any", "cycle step": "any"}
 FLAGS = (TractionLimitError, NoEquilibriumError, InputError, ConvergenceError)
 ETA_TOL = 1e-6  # sweep/map/table/cycle/study against solve
 LIMIT_TOL = 1e-3  # limit searches against each other; 1.001 x the limit is "above"

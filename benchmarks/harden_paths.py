@@ -53,12 +53,31 @@ def _fractions(rng) -> list[float]:
     return [0.0, float(rng.uniform(0.05, 0.9)), 0.95, float(rng.uniform(1.0, 1.5))]
 
 
-def _refused_below(exc, t: float, lim) -> bool:
-    """A torque the reported limit admits, refused as beyond the capacity or as bad input."""
+def capacity_of(task, v, cond):
+    """`Variator.capacity` of the task's point (once; None where it raises): under a
+    loading cam with a small preload the admissible torques need not start at zero."""
+    if "capacity" not in task.cache:
+        try:
+            task.cache["capacity"] = v.capacity(
+                cond["ratio"], **cond["kw"], input_speed_rpm=cond["rpm"]
+            )
+        except Exception:  # noqa: BLE001 - the limit entry records why
+            task.cache["capacity"] = None
+    return task.cache["capacity"]
+
+
+def _refused_below(task, v, cond, exc, t: float) -> bool:
+    """A torque the reported capacity admits, refused as beyond it or as bad input."""
     refused = isinstance(exc, TractionLimitError) or (
         isinstance(exc, InputError) and exc.quantity == "output_torque"
     )
-    return refused and lim is not None and math.isfinite(lim) and t < lim * (1 - LIMIT_TOL)
+    lim, _ = limit_of(task, v, cond)
+    if not (refused and lim is not None and math.isfinite(lim) and t < lim * (1 - LIMIT_TOL)):
+        return False
+    cap = capacity_of(task, v, cond)
+    if cap is None:
+        return True
+    return any(lo * (1 + LIMIT_TOL) <= t <= hi * (1 - LIMIT_TOL) for lo, hi in cap.intervals)
 
 
 def run_solve(task, v, cond):
@@ -67,7 +86,7 @@ def run_solve(task, v, cond):
         inputs = task.inputs(output_torque=t)
         kind, got = reference(task, v, cond, t)
         if kind != "ok":
-            if _refused_below(got, t, lim):
+            if _refused_below(task, v, cond, got, t):
                 msg = (
                     f"{type(got).__name__} at {t:.6g} N m, below the reported limit {lim:.6g} N m"
                 )

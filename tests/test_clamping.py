@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from ballcvt import InputError, TractionLimitError, Variator, load_builtin
@@ -63,6 +63,11 @@ def test_input_cam_is_part_of_the_equilibrium(v, cam):
 @settings(max_examples=8, deadline=None)
 @given(ratio=st.floats(0.5, 2.0), torque=st.floats(1.0, 60.0),
        angle=st.floats(4.0, 12.0), preload=st.floats(200.0, 4000.0))
+# issue 23: a 200 N preload at 8-11 deg admits 5-10 N m upwards (and, below 10.5 deg, a
+# sliver near zero): 1 N m lies between, a TractionLimitError, never NoEquilibriumError
+@example(ratio=1.0, torque=1.0, angle=8.0, preload=200.0)
+@example(ratio=1.0, torque=1.0, angle=10.5, preload=200.0)
+@example(ratio=1.0, torque=1.0, angle=11.0, preload=200.0)
 def test_input_cam_fixed_point_holds(ratio, torque, angle, preload):
     v = Variator()
     law = CamClamp(preload, math.radians(angle), 0.05, 0.005, disc="input")

@@ -77,3 +77,16 @@ def test_campaign_json(tmp_path):
         assert {"law", "clamp", "arch", "mode", "entry"} <= set(r["case"])
     # LEAD: switch this on once the fixes of issue 23 are merged (the campaign's target):
     # assert s["silent"] == 0 and s["bug"] == 0, s["by_check"]
+
+
+def test_cam_refusal_below_its_interval_is_a_flag_not_silent():
+    """harden --task 2:663: a cam with a small preload admits 0.x to 935 N m only, so its
+    refusal at zero torque is a flag (the capacity's intervals, not the largest torque,
+    say which torques a solve must accept)."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import harden
+
+    got = harden.run_task(2, 663, time.time() + 300, 300)
+    outcomes = [p["outcome"] for p in got["points"]]
+    assert "silent" not in outcomes and "bug" not in outcomes, got["points"]
+    assert "flagged" in outcomes

@@ -114,3 +114,21 @@ def test_cycle_in_a_mode(v, tmp_path):
     assert main(["cycle", str(path), "--held", "disc2", "--driver", "carrier",
                  "--target-speed", "600", "--out", str(tmp_path / "o"), "--quiet"]) == 0
     assert (tmp_path / "o" / "steps.csv").exists()
+
+
+def test_cycle_settings_in_a_mode_and_the_refused_laws(v):
+    """issue 23: `CycleSettings(target_input_speed_rpm=...)` (strategy None: the target
+    speed's) runs in a mode as it does in the default one; the cam and optimal laws are
+    refused in one line that says what to use instead."""
+    from ballcvt import CycleSettings, InputError
+    from ballcvt.api import cycle_from_arrays
+    from ballcvt.units import rpm_to_rad_s
+    w = rpm_to_rad_s(np.array([50.0, 120.0]))
+    c = cycle_from_arrays(time=[0.0, 1.0], output_speed=w, output_torque=[20.0, 40.0])
+    how = CycleSettings(target_input_speed_rpm=600, progress=False)
+    res = v.run_cycle(c, clamp_force=F, settings=how, mode=CARRIER_DRIVES)
+    assert res.steps.flag.tolist() == ["ok", "ok"]
+    for law in ("cam", "optimal"):
+        with pytest.raises(InputError) as err:
+            v.limit_torque(1.0, clamp_law=law, input_speed_rpm=600, mode=CARRIER_DRIVES)
+        assert len(str(err.value).splitlines()) == 1 and "clamp_force instead" in str(err.value)

@@ -37,7 +37,8 @@ def _constant_force(variator, clamp_force, clamp_law) -> float:
             "clamp_law",
             law.name,
             "constant in a planetary mode (the cam "
-            "and optimal laws are not yet defined with the carrier turning)",
+            "and optimal laws are not yet defined with the carrier turning): give "
+            "clamp_force instead, or use the default mode (carrier held)",
         )
     return law.force
 

@@ -21,9 +21,10 @@ from ..params.models import ARCHITECTURES, Design, Fluid
 from ..results.planetary import PlanetaryResult
 from ..results.point import OperatingResult, make_result
 from ..solvers.capacity import Capacity
-from ..solvers.clamped import capacity_basis, solve_clamped
+from ..solvers.clamped import solve_clamped
 from ..solvers.constraints import with_constraints
 from ..solvers.limit import limit_torque
+from ..solvers.optimal_capacity import capacity_basis
 from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum
 from ..solvers.point import SolverOptions, solve_point
 from ..solvers.refusal import point_capacity
@@ -329,13 +330,13 @@ class Variator(BatchMethods, LifeMethods):
 
     def _capacity_basis(self, ratio, clamp_force, clamp_law, speeds, creep_limit):
         """(problem at zero torque, force-following law or None, creep limit) of the
-        capacity at a point (`ballcvt.solvers.clamped.capacity_basis`)."""
+        capacity at a point (`ballcvt.solvers.optimal_capacity.capacity_basis`)."""
         c_lim = self.design.creep_limit if creep_limit is None else float(creep_limit)
         if not 0.0 < c_lim < 1.0:
             raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
         law = self.clamp_law(clamp_law, clamp_force)
         start = ConstantClamp(1.0) if law.optimises else law
-        return capacity_basis(self._problem(ratio, 0.0, start, *speeds), law, c_lim)
+        return capacity_basis(self._problem(ratio, 0.0, start, *speeds), law, c_lim, self.options)
 
     # many parameters: what is computed, in the user's quantities (ratio, torque, force
     # or law, speed in rad/s or rpm), then one settings object; **legacy: old keywords.

@@ -78,6 +78,8 @@ def solve_nested(problem: EquilibriumProblem, quadrature: Quadrature, xtol: floa
         x, f, n = _inner(problem, c0, quadrature, xtol)
         total[0] += n
         cache[c0] = x
+        if not np.isfinite(f[0]):  # beyond the model's range (e.g. the Roelands limit)
+            raise NoBracketError(f"the ball moment balance is not finite at input creep {c0:g}")
         return f[0]
 
     a, b = DISC_BRACKET

@@ -22,7 +22,6 @@ __all__ = [
     "with_clamp",
     "solve_clamped",
     "pressure_bound_force",
-    "capacity_basis",
     "CLAMP_RTOL",
     "MAX_CLAMP_ITERATIONS",
 ]
@@ -64,21 +63,6 @@ def pressure_bound_force(problem: EquilibriumProblem, max_pressure: float) -> np
         ),
     )
     return problem.clamp_force * (p_lim / np.max(problem.p_max, axis=-1)) ** 3
-
-
-def capacity_basis(problem: EquilibriumProblem, law, creep_limit: float):
-    """What the limiting torque under ``law`` is searched on: ``(problem, law, creep_limit)``.
-
-    Under ``optimal`` the optimiser may pick any force up to the pressure bound, so its
-    capacity is that of the constant law at the largest force within the law's (or the
-    design's) ``max_pressure``, with the law's own ``creep_limit`` if it has one
-    (docs/model.md §11). Any other law is returned unchanged.
-    """
-    if law is None or not law.optimises:
-        return problem, law, creep_limit
-    p_lim = problem.design.max_pressure if law.max_pressure is None else law.max_pressure
-    c_lim = creep_limit if law.creep_limit is None else law.creep_limit
-    return with_clamp(problem, pressure_bound_force(problem, p_lim)), None, c_lim
 
 
 def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):

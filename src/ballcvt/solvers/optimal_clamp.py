@@ -26,7 +26,9 @@ from ..params.models import Design, Fluid
 from ..performance.efficiency import efficiency
 from .clamped import pressure_bound_force
 from .newton import solve_batch
+from .optimal_capacity import capacity_force
 from .options import SolverOptions
+from .refusal import CREEP_RTOL
 
 __all__ = ["ClampCase", "ClampOptimum", "clamp_optimum", "optimal_clamp_force"]
 
@@ -141,7 +143,9 @@ class _Search:
         )
         sol = solve_batch(pb, self.options)
         creep = np.max(np.abs(sol.state.creep), axis=-1)
-        ok = sol.converged & (creep <= self.c_lim)
+        # the margin of a solved point on the creep limit (a limiting torque is pinned
+        # there to the solver's tolerance): the force carrying the limit stays feasible
+        ok = sol.converged & (creep <= self.c_lim * (1.0 + CREEP_RTOL))
         eta = efficiency(pb, sol.state).overall
         return np.where(ok, eta, -np.inf), creep, np.max(pb.p_max, axis=-1)
 
@@ -198,6 +202,15 @@ def _refine(search: _Search, forces: np.ndarray, eta: np.ndarray, f_c: float, xt
     return float(res.x)
 
 
+def _capacity_candidate(search: _Search, ref, limits) -> tuple[np.ndarray, np.ndarray]:
+    """The force of the largest limiting torque (`capacity_force`, at ``limits`` =
+    ``(p_lim [Pa], min_force [N])``) and its score: near the capacity the one force that
+    carries the torque may fall between the grid's points."""
+    force = capacity_force(ref, limits[0], search.c_lim, limits[1], search.options)
+    forces = np.atleast_1d(np.asarray(force, dtype=float))
+    return forces, search(forces)[0]
+
+
 def clamp_optimum(
     case: ClampCase, law: OptimalClamp = OptimalClamp(), options: SolverOptions = SolverOptions()
 ) -> ClampOptimum:
@@ -247,6 +260,8 @@ def clamp_optimum(
             f"{np.max(ref.p_max) * (law.min_force / 1000.0) ** (1 / 3):.3g} Pa)",
         )
     forces, eta = _grid(search, f_p, law)
+    if not np.isfinite(eta).any():  # at the capacity only its own force may carry it
+        forces, eta = _capacity_candidate(search, ref, (p_lim, law.min_force))
     feasible = np.isfinite(eta)
     if not feasible.any():
         raise TractionLimitError(

@@ -19,9 +19,10 @@ from ...model.clamping import axial_force
 from ...params.drive import Drive
 from ...performance.efficiency import efficiency, loss_breakdown, power_losses
 from ...performance.validity import validity
-from ...solvers.clamped import capacity_basis, solve_clamped, with_clamp
+from ...solvers.clamped import solve_clamped, with_clamp
 from ...solvers.limit import LimitSearch, limit_search
 from ...solvers.newton import initial_creep, solve_batch
+from ...solvers.optimal_capacity import capacity_basis
 from ...solvers.optimal_clamp import ClampCase, clamp_optimum
 from ...solvers.options import SolverOptions
 from ...status import Status
@@ -285,7 +286,9 @@ def limit_search_curves(curves: OperatingRows, callback=None, limit=None):
     """
     start = np.ones(curves.size) if curves.law is not None else curves.clamp_force
     base = curves.problem(slice(None), 0.0, start)
-    base, follows, creep_limit = capacity_basis(base, curves.law, curves.creep_limit)
+    base, follows, creep_limit = capacity_basis(
+        base, curves.law, curves.creep_limit, curves.options
+    )
     if isinstance(limit, LimitSearch):
         return base, limit
     if limit is not None:

@@ -1,0 +1,115 @@
+"""The optimal clamping law's traction capacity (docs/model.md §11).
+
+The optimiser may pick any clamping force from ``min_force`` up to the force of the
+pressure limit ``F_p``, so its capacity is the largest limiting torque over that range.
+The limiting torque rises with the force while the traction carries the torque, but not
+without end: at very large forces the spin and the rolling losses grow faster, and near
+the Roelands viscosity limit (the bound of ``F_p`` when ``max_pressure`` is ``inf``) the
+equilibrium no longer exists. The search is bounded and deterministic: the limiting
+torques at `GRID` forces in geometric progression from ``min_force`` to ``F_p`` (``F_p``
+itself the top one), then `ZOOM` rounds of `ZOOM_GRID` forces between the neighbours of the
+best one (each round narrows the bracket fourfold: the force to some 1e-3 of itself, the
+torque, flat at its maximum, to about 1e-7). Where the best is ``F_p`` it is kept exactly
+(the limit grows with the force up to the pressure bound: the capacity is then the limit
+at ``F_p``, as before the search).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem
+from .clamped import pressure_bound_force, with_clamp
+from .limit import limit_torque_batch
+from .options import SolverOptions
+
+__all__ = ["capacity_basis", "capacity_force", "GRID", "ZOOM", "ZOOM_GRID"]
+
+#: Forces of the first scan, from ``min_force`` to ``F_p``.
+GRID = 9
+#: Refinement rounds around the best force.
+ZOOM = 6
+#: Forces of each refinement round (between the best force's neighbours).
+ZOOM_GRID = 9
+
+
+def _limits(flat: EquilibriumProblem, forces: np.ndarray, c_lim: float, options) -> np.ndarray:
+    """Limiting torques ``(n, k)`` [N m] of each point at each of its ``forces``, ``-inf``
+    where there is none."""
+    n, k = forces.shape
+    rows = np.repeat(np.arange(n), k)
+    got = limit_torque_batch(with_clamp(flat.take(rows), forces.ravel()), c_lim, options)
+    return np.where(np.isfinite(got), got, -np.inf).reshape(n, k)
+
+
+def capacity_force(
+    problem: EquilibriumProblem, p_lim: float, creep_limit: float, floor: float, options
+) -> np.ndarray:
+    """The clamping force [N] of the largest limiting torque within ``[floor, F_p]``.
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        Operating points (any batch shape; torque and force ignored).
+    p_lim : float
+        Pressure limit [Pa] (``inf``: the Roelands limit bounds the force).
+    creep_limit : float
+        ``C_lim`` [-].
+    floor : float
+        Least force [N] (the law's ``min_force``).
+    options : SolverOptions
+        Solver options.
+
+    Returns
+    -------
+    ndarray
+        Forces [N], the batch shape of ``problem``; ``F_p`` where no force has a limit.
+    """
+    flat = problem.flat()
+    top = np.broadcast_to(pressure_bound_force(problem, p_lim), problem.shape).reshape(-1)
+    low = np.minimum(floor, top)
+    share = np.linspace(0.0, 1.0, GRID)
+    forces = np.exp(np.log(low)[:, None] + np.log(top / low)[:, None] * share)
+    forces[:, -1] = top
+    lim = _limits(flat, forces, creep_limit, options)
+    best = np.argmax(lim, axis=1)
+    inner = np.flatnonzero((best < GRID - 1) & np.isfinite(lim.max(axis=1)))
+    out = top.copy()
+    if inner.size:
+        out[inner] = _zoom(flat.take(inner), forces[inner], best[inner], creep_limit, options)
+    return out.reshape(problem.shape)
+
+
+def _zoom(flat, forces, best, creep_limit: float, options) -> np.ndarray:
+    """Refine the best force of each row of ``forces`` ``(n, k)`` between its neighbours."""
+    rows = np.arange(forces.shape[0])
+    a = forces[rows, np.maximum(best - 1, 0)]
+    b = forces[rows, np.minimum(best + 1, forces.shape[1] - 1)]
+    f_best = forces[rows, best]
+    share = np.linspace(0.0, 1.0, ZOOM_GRID)
+    for _ in range(ZOOM):
+        trial = np.exp(np.log(a)[:, None] + np.log(b / a)[:, None] * share)
+        trial[:, ZOOM_GRID // 2] = f_best  # the best so far stays a candidate
+        lim = _limits(flat, trial, creep_limit, options)
+        k = np.argmax(lim, axis=1)
+        f_best = trial[rows, k]
+        a = trial[rows, np.maximum(k - 1, 0)]
+        b = trial[rows, np.minimum(k + 1, ZOOM_GRID - 1)]
+    return f_best
+
+
+def capacity_basis(problem: EquilibriumProblem, law, creep_limit: float, options=SolverOptions()):
+    """What the limiting torque under ``law`` is searched on: ``(problem, law, creep_limit)``.
+
+    Under ``optimal`` the optimiser may pick any force from ``min_force`` up to the
+    pressure bound, so its capacity is that of the constant law at the force of the
+    largest limiting torque within the law's (or the design's) ``max_pressure``
+    (`capacity_force`), with the law's own ``creep_limit`` if it has one (docs/model.md
+    §11). Any other law is returned unchanged.
+    """
+    if law is None or not law.optimises:
+        return problem, law, creep_limit
+    p_lim = problem.design.max_pressure if law.max_pressure is None else law.max_pressure
+    c_lim = creep_limit if law.creep_limit is None else law.creep_limit
+    force = capacity_force(problem, p_lim, c_lim, law.min_force, options)
+    return with_clamp(problem, force), None, c_lim

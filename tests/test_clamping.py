@@ -68,6 +68,7 @@ def test_input_cam_is_part_of_the_equilibrium(v, cam):
 @example(ratio=1.0, torque=1.0, angle=8.0, preload=200.0)
 @example(ratio=1.0, torque=1.0, angle=10.5, preload=200.0)
 @example(ratio=1.0, torque=1.0, angle=11.0, preload=200.0)
+@example(ratio=0.5, torque=1.0, angle=4.0, preload=2374.0)  # eta 0.58: 1.1e-9 apart
 def test_input_cam_fixed_point_holds(ratio, torque, angle, preload):
     v = Variator()
     law = CamClamp(preload, math.radians(angle), 0.05, 0.005, disc="input")
@@ -78,7 +79,12 @@ def test_input_cam_fixed_point_holds(ratio, torque, angle, preload):
     assert r.converged
     assert abs(r.clamp_force - law.clamp_force(v.design, r.input_torque, torque)) <= \
         1e-10 * r.clamp_force
-    assert r.eta == pytest.approx(r.eta_loss, abs=1e-9)
+    # Eq. 38 = Eq. 39 to the power the equilibrium residual leaves unbalanced (a light
+    # torque under a heavy preload has little input power: a fixed 1e-9 is not a bound)
+    speeds = abs(r.roller_speed) + sum(abs(c.body_speed) for c in r.contacts.values())
+    slack = v.design.n_rollers * r.clamp_force * v.design.roller_radius * r.residual_norm
+    assert abs(r.eta - r.eta_loss) <= 1e-12 + 2.0 * slack * speeds / r.input_power
+    assert r.eta == pytest.approx(r.eta_loss, abs=1e-8)
 
 
 def test_cam_force_rises_with_torque_and_efficiency_beats_overclamping(v):

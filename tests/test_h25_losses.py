@@ -87,4 +87,9 @@ def test_sweep_loss_components_sum_to_total(hub):
     ok = ds.status == 0
     assert bool(ok.any())
     assert np.allclose(parts.where(ok), total.where(ok), rtol=1e-12, equal_nan=True)
-    assert "summing the loss axis counts losses twice" in ds.losses.attrs["long_name"]
+    # the loss axis is the components and one total: summing it counts each loss twice
+    # only through total itself (issue 25: no subtotal on the axis)
+    assert list(ds.loss.values) == [*LOSS_COMPONENTS, "total"]
+    both = ds.losses.where(ok).sum("loss") - 2.0 * total.where(ok)
+    assert np.allclose(both.where(ok), 0.0, atol=1e-9 * float(total.where(ok).max()))
+    assert list(ds.subtotal.values) == ["bearing", "parasitic"]

@@ -87,9 +87,10 @@ def test_sweep_reports_parasitic_kinds(hub):
     ds = hub.sweep(ratio=[0.5, 1.0], output_torque=[20.0], clamp_force=2000.0,
                    input_speed_rpm=2000)
     losses = ds.losses.squeeze()
-    for kind in ("churning", "seals", "disc_bearings", "parasitic"):
+    for kind in ("churning", "seals", "disc_bearings", "user_terms", "total"):
         assert kind in ds.loss.values
-    assert np.all(losses.sel(loss="parasitic") > 0)
+    assert "parasitic" not in ds.loss.values  # a subtotal: in loss_subtotals (issue 25)
+    assert np.all(ds.loss_subtotals.sel(subtotal="parasitic") > 0)
     r = hub.solve(0.5, 20.0, clamp_force=2000.0, input_speed_rpm=2000)
     for kind, value in r.losses.items():
         assert float(losses.sel(loss=kind, ratio=0.5)) == pytest.approx(value, rel=1e-9,

@@ -83,7 +83,7 @@ def main() -> dict:
     r = v.solve(1.0, 20.0, clamp_force=2000.0, input_speed_rpm=2000)
     print(f"solve: lip seal loss {r.losses['lip_seal']:.3f} W of {r.losses['total']:.2f} W")
     ds = v.sweep(ratio=[0.6, 1.0, 1.6], output_torque=[20.0], clamp_force=2000.0, input_speed_rpm=2000)
-    parasitic = ds.losses.sel(loss="parasitic").values.ravel()
+    parasitic = ds.loss_subtotals.sel(subtotal="parasitic").values.ravel()
     print("sweep: parasitic losses (the lip seals) [W]:", np.round(parasitic, 3))
     with_seal = v.limit_torque(1.0, clamp_force=2000.0, input_speed_rpm=2000)
     LOSS_TERMS.unregister(term.name)

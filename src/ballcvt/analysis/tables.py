@@ -81,8 +81,13 @@ def table_arrays(ds) -> dict:
     for name in TABLE_VARIABLES:
         if name in one:
             out[name] = np.broadcast_to(one[name].values, out["status"].shape).copy()
-    for kind in LOSS_KINDS:
-        out[f"loss_{kind}"] = one.losses.sel(loss=kind).values
+    for kind in LOSS_KINDS:  # the components and total, then the subtotals
+        source = (
+            one.losses.sel(loss=kind)
+            if kind in one.loss
+            else one.loss_subtotals.sel(subtotal=kind)
+        )
+        out[f"loss_{kind}"] = source.values
     return out
 
 

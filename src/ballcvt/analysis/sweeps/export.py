@@ -73,7 +73,11 @@ def to_frame(ds: xr.Dataset):
     """One row per operating point; per-contact and per-loss variables become
     ``<name>_<contact>`` and ``loss_<kind>`` columns."""
     flat = ds.copy()
-    for dim, name_of in (("contact", lambda n, c: f"{n}_{c}"), ("loss", lambda n, c: f"loss_{c}")):
+    for dim, name_of in (
+        ("contact", lambda n, c: f"{n}_{c}"),
+        ("loss", lambda n, c: f"loss_{c}"),
+        ("subtotal", lambda n, c: f"loss_{c}"),
+    ):
         if dim not in ds.dims:
             continue
         for name in [n for n in flat.data_vars if dim in flat[n].dims]:

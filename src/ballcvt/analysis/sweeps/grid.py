@@ -32,7 +32,15 @@ from ...params.models import ARCHITECTURES, Design, Fluid
 from ...solvers.limit import LimitSearch, bisection_steps
 from ...solvers.options import SolverOptions
 from .curves import OperatingRows, solve_curves
-from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES, attrs_for
+from .variables import (
+    CONTACT_VARIABLES,
+    LOSS_KINDS,
+    LOSS_SUBTOTALS,
+    POINT_VARIABLES,
+    SWEEP_LOSSES,
+    attrs_for,
+    component_losses,
+)
 
 __all__ = ["sweep", "SweepRequest"]
 
@@ -341,13 +349,18 @@ def _assemble(blocks, archs, axes, shape, contacts, rpm=None):
             d += ("output_torque",)
         if name in CONTACT_VARIABLES:
             d += ("contact",)
-        elif name == "losses":
-            d += ("loss",)
+        elif name == "losses":  # components and one total; the subtotals apart
+            subs = [LOSS_KINDS.index(k) for k in LOSS_SUBTOTALS]
+            data["loss_subtotals"] = xr.Variable(
+                d + ("subtotal",), arr[..., subs], attrs_for("loss_subtotals")
+            )
+            arr, d = component_losses(arr), d + ("loss",)
         data[name] = xr.Variable(d, arr, attrs_for(name))
     coords = {
         "architecture": ("architecture", np.array(archs), {"long_name": "idler architecture"}),
         "contact": ("contact", np.array(contacts), {"long_name": "contact"}),
-        "loss": ("loss", np.array(LOSS_KINDS), {"long_name": "kind of power loss"}),
+        "loss": ("loss", np.array(SWEEP_LOSSES), {"long_name": "kind of power loss"}),
+        "subtotal": ("subtotal", np.array(LOSS_SUBTOTALS), {"long_name": "loss subtotal"}),
     }
     for n, v in axes.items():
         coords[n] = (n, v, attrs_for(n))

@@ -1,8 +1,10 @@
 """Names, units and long names of every variable a sweep writes (CF-style attributes).
 
-The ``loss`` axis of ``losses`` holds components and their subtotals (`LOSS_KINDS`):
-`LOSS_COMPONENTS` are the kinds that sum to ``total`` without the user loss terms' kinds
-(which only ``parasitic`` and ``total`` include).
+The ``loss`` axis of ``losses`` is `SWEEP_LOSSES`: the components (`LOSS_COMPONENTS`, each
+loss counted once, ``user_terms`` what user-registered loss terms dissipate) and one
+``total``, their sum; the subtotals ``bearing`` and ``parasitic`` are the variable
+``loss_subtotals`` on its own ``subtotal`` axis (a sweep's CSV keeps their ``loss_bearing``
+and ``loss_parasitic`` columns).
 """
 
 from __future__ import annotations
@@ -21,13 +23,37 @@ __all__ = [
     "CONTACT_VARIABLES",
     "LOSS_KINDS",
     "LOSS_COMPONENTS",
+    "LOSS_SUBTOTALS",
+    "SWEEP_LOSSES",
+    "component_losses",
     "attrs_for",
     "SWEEP_CODES",
 ]
 
-#: The kinds of the ``loss`` axis that are components (each loss counted once); with the
-#: built-in loss terms only, they sum to ``total`` to round-off.
-LOSS_COMPONENTS = tuple(k for k in LOSS_KINDS if k not in ("bearing", "parasitic", "total"))
+#: The subtotals of `LOSS_KINDS`, kept apart from the ``loss`` axis (``loss_subtotals``).
+LOSS_SUBTOTALS = ("bearing", "parasitic")
+#: The components of a sweep's ``loss`` axis (each loss counted once; ``user_terms`` is
+#: what user-registered loss terms dissipate); they sum to ``total`` to round-off.
+LOSS_COMPONENTS = (
+    *(k for k in LOSS_KINDS if k not in (*LOSS_SUBTOTALS, "total")),
+    "user_terms",
+)
+#: The ``loss`` axis of a sweep: the components, then one ``total``.
+SWEEP_LOSSES = (*LOSS_COMPONENTS, "total")
+
+
+def component_losses(kinds: np.ndarray) -> np.ndarray:
+    """The `SWEEP_LOSSES` [W] from losses by every kind of `LOSS_KINDS` (last axis).
+
+    ``user_terms`` is the parasitic subtotal less the built-in parasitic components (zero,
+    not round-off, where no user term dissipates).
+    """
+    k = {name: kinds[..., i] for i, name in enumerate(LOSS_KINDS)}
+    user = k["parasitic"] - (k["churning"] + k["seals"] + k["disc_bearings"])
+    user = np.where(np.abs(user) <= 1e-12 * np.maximum(1.0, np.abs(k["parasitic"])), 0.0, user)
+    parts = [k[name] for name in LOSS_COMPONENTS[:-1]]
+    return np.stack([*parts, user, k["total"]], axis=-1)
+
 
 #: The ``status`` codes a sweep writes (`ballcvt.status.Status`).
 SWEEP_CODES = (Status.CONVERGED, Status.BEYOND_LIMIT, Status.NOT_CONVERGED)
@@ -59,11 +85,15 @@ VARIABLES = {
     "tilt_deg": ("degree", "ball tilt angle gamma"),
     "losses": (
         "W",
-        "power loss by kind (Eq. 40): components creep, spin, roller_bearings, "
-        "idler_bearings, churning, seals, disc_bearings; subtotals bearing (roller + idler "
-        "bearings) and parasitic (churning + seals + disc bearings + user terms); total. "
-        "Sum over the components only: summing the loss axis counts losses twice",
+        "power loss by kind (Eq. 40): the components creep, spin, roller_bearings, "
+        "idler_bearings, churning, seals, disc_bearings, user_terms, which sum to total",
     ),
+    "loss_subtotals": (
+        "W",
+        "bearing (roller + idler bearings) and parasitic (churning + seals + disc "
+        "bearings + user terms) power loss",
+    ),
+    "subtotal": ("1", "loss subtotal"),
     "warnings": ("1", "validity warnings (bit flags, docs/model.md section 10)"),
     "creep": ("1", "creep coefficient C (Eq. 7)"),
     "spin": ("1", "spin coefficient sigma (Eqs. 11-14)"),

@@ -281,16 +281,13 @@ class Variator(BatchMethods, LifeMethods):
             admissible, the error of the zero-load point).
         """
         if not resolve_mode(mode).is_default:
-            c_lim = self.design.creep_limit if creep_limit is None else float(creep_limit)
-            if not 0.0 < c_lim < 1.0:
-                raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
             return planetary.limit_in_mode(
                 self,
                 resolve_mode(mode),
                 ratio,
                 {"clamp_force": clamp_force, "clamp_law": clamp_law},
                 _speed(input_speed, input_speed_rpm),
-                c_lim,
+                self._creep_limit(creep_limit),
             )
         problem, law, c_lim = self._capacity_basis(
             ratio, clamp_force, clamp_law, (input_speed, input_speed_rpm), creep_limit
@@ -328,12 +325,17 @@ class Variator(BatchMethods, LifeMethods):
         cap = point_capacity(problem, c_lim, self.options, law=law)
         return with_constraints(problem, cap, c_lim, self.options, law)
 
-    def _capacity_basis(self, ratio, clamp_force, clamp_law, speeds, creep_limit):
-        """(problem at zero torque, force-following law or None, creep limit) of the
-        capacity at a point (`ballcvt.solvers.optimal_capacity.capacity_basis`)."""
+    def _creep_limit(self, creep_limit: float | None) -> float:
+        """The creep limit asked for, else the design's [-]; refused outside (0, 1)."""
         c_lim = self.design.creep_limit if creep_limit is None else float(creep_limit)
         if not 0.0 < c_lim < 1.0:
             raise InputError("creep_limit", c_lim, "0 < creep_limit < 1")
+        return c_lim
+
+    def _capacity_basis(self, ratio, clamp_force, clamp_law, speeds, creep_limit):
+        """(problem at zero torque, force-following law or None, creep limit) of the
+        capacity at a point (`ballcvt.solvers.optimal_capacity.capacity_basis`)."""
+        c_lim = self._creep_limit(creep_limit)
         law = self.clamp_law(clamp_law, clamp_force)
         start = ConstantClamp(1.0) if law.optimises else law
         return capacity_basis(self._problem(ratio, 0.0, start, *speeds), law, c_lim, self.options)

@@ -80,9 +80,21 @@ def all_cases() -> list[dict]:
     return [dict(zip(CASE_KEYS, c)) for c in itertools.product(*names)]
 
 
+def weight(case: dict) -> int:
+    """How many times a case is drawn per round: `entries.heavy` cases (seconds a point)
+    once, the others `LIGHT_WEIGHT` times, so that a campaign's points are not spent
+    mostly waiting on a few slow cases while every case is still drawn every round."""
+    return 1 if entries.heavy(case) else LIGHT_WEIGHT
+
+
+#: Draws per round of a case that is not `entries.heavy`.
+LIGHT_WEIGHT = 3
+
+
 def schedule(seed: int) -> list[dict]:
-    """The cases in the seed's order (task ``i`` takes ``schedule[i % len]``)."""
-    cases = all_cases()
+    """One round of cases in the seed's order, each `weight` times (task ``i`` takes
+    ``schedule[i % len]``)."""
+    cases = [c for c in all_cases() for _ in range(weight(c))]
     order = np.random.default_rng([seed, 99991]).permutation(len(cases))
     return [cases[i] for i in order]
 
@@ -95,9 +107,12 @@ def _on_alarm(signum, frame):
     raise _Alarm
 
 
-def run_task(seed: int, index: int, deadline: float, timeout: float) -> dict:
-    """Task ``index``: its case's points, each classified (run in a worker process)."""
-    case = schedule(seed)[index % len(all_cases())]
+def run_task(seed: int, index: int, deadline: float, timeout: float, case=None) -> dict:
+    """Task ``index``: its case's points, each classified (run in a worker process).
+
+    ``case`` (a dict of `CASE_KEYS`) overrides the schedule's case of the task; the
+    draws depend on ``seed`` and ``index`` only (a regression test keeps a task so)."""
+    case = case or (cases := schedule(seed))[index % len(cases)]
     out = {"points": [], "seconds": 0.0, "cpu": 0.0, "cut": False, "entry": case["entry"]}
     if not entries.supported(case):
         out["points"].append(
@@ -237,7 +252,7 @@ def campaign(args) -> Tally:
 
 
 def _crashed(seed: int, index: int, exc: BaseException) -> dict:
-    case = schedule(seed)[index % len(all_cases())]
+    case = (cases := schedule(seed))[index % len(cases)]
     return {
         "points": [
             {

@@ -25,7 +25,7 @@ from ballcvt import (
     load_builtin,
 )
 from ballcvt.errors import NoEquilibriumError
-from ballcvt.registry import CLAMP_LAWS, OPERATING_MODES
+from ballcvt.registry import CLAMP_LAWS, OPERATING_MODES, TRACTION_LAWS
 
 #: The entry points, in the order they are reported.
 ENTRIES = ("solve", "sweep", "limit", "map", "table", "cycle step", "study evaluation")
@@ -48,6 +48,18 @@ def supported(case: dict) -> bool:
         return True
     need = MODE_ENTRIES.get(case["entry"])
     return need == "any" or (need == "fixed" and CLAMP_LAWS.get(case["clamp"]).fixed_force)
+
+
+def heavy(case: dict) -> bool:
+    """Whether a case costs seconds a point: a traction law with more than one equilibrium
+    (every solve a continuation from zero torque, every limit the fold of a branch)."""
+    return TRACTION_LAWS.get(case["law"]).multiple_equilibria
+
+
+def points_per_call(case: dict) -> int:
+    """Torques a task evaluates per grid row: 4 on a `heavy` case, 8 on the others
+    (each point is still checked, and against `Variator.solve`, one by one)."""
+    return 4 if heavy(case) else 8
 
 
 def log_uniform(rng, lo, hi) -> float:

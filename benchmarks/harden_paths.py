@@ -12,6 +12,7 @@ from harden_entries import (
     agree,
     close,
     grid_point_checks,
+    points_per_call,
     reference,
     result_checks,
 )
@@ -49,8 +50,11 @@ def torques(task, v, cond, fractions) -> list[float]:
     return [float(f * top) for f in fractions]
 
 
-def _fractions(rng) -> list[float]:
-    return [0.0, float(rng.uniform(0.05, 0.9)), 0.95, float(rng.uniform(1.0, 1.5))]
+def _fractions(task) -> list[float]:
+    """Shares of the limit: 0, 0.95, one above it and the rest at random below it."""
+    rng, k = task.rng, points_per_call(task.case)
+    below = sorted(float(x) for x in rng.uniform(0.05, 0.9, k - 3))
+    return [0.0, *below, 0.95, float(rng.uniform(1.0, 1.5))]
 
 
 def capacity_of(task, v, cond):
@@ -82,7 +86,7 @@ def _refused_below(task, v, cond, exc, t: float) -> bool:
 
 def run_solve(task, v, cond):
     lim, _ = limit_of(task, v, cond)
-    for t in torques(task, v, cond, _fractions(task.rng)):
+    for t in torques(task, v, cond, _fractions(task)):
         inputs = task.inputs(output_torque=t)
         kind, got = reference(task, v, cond, t)
         if kind != "ok":
@@ -233,7 +237,7 @@ def _grid_call(task, entry, points, call):
 
 
 def run_sweep(task, v, cond):
-    ts = sorted(set(torques(task, v, cond, _fractions(task.rng))))
+    ts = sorted(set(torques(task, v, cond, _fractions(task))))
     ds = _grid_call(
         task,
         "sweep",
@@ -259,11 +263,12 @@ def _ratio_pair(v, r: float) -> tuple[tuple[float, float], int]:
 def run_map(task, v, cond):
     top = torques(task, v, cond, [1.5])[0]
     span, i = _ratio_pair(v, cond["ratio"])
-    grid = MapGrid(ratio_range=span, n_ratio=2, torque_max=top, n_torque=4)
+    n = points_per_call(task.case)
+    grid = MapGrid(ratio_range=span, n_ratio=2, torque_max=top, n_torque=n)
     ds = _grid_call(
         task,
         "map",
-        [top * j / 4 for j in (1, 2, 3, 4)] * 2,  # the points the map would have given
+        [top * j / n for j in range(1, n + 1)] * 2,  # the points the map would have given
         lambda: v.efficiency_map(grid, input_speed_rpm=cond["rpm"], **cond["kw"], progress=False),
     )
     if ds is not None:
@@ -278,14 +283,14 @@ def run_table(task, v, cond):
         ratio_range=span,
         n_ratio=2,
         torque_max=top,
-        n_torque=3,
+        n_torque=points_per_call(task.case) - 1,
         speed_range_rpm=(cond["rpm"], cond["rpm"] * 1.05),
         n_speed=2,
     )
     ds = _grid_call(
         task,
         "table",
-        [0.0, top / 2, top] * 4,
+        list(np.linspace(0.0, top, points_per_call(task.case) - 1)) * 4,
         lambda: v.lookup_table(grid, **cond["kw"], progress=False),
     )
     if ds is not None:
@@ -295,13 +300,19 @@ def run_table(task, v, cond):
 
 
 def run_cycle(task, v, cond):
-    """Three steps of an output-side cycle near the drawn ratio, at a target input speed."""
+    """Steps of an output-side cycle near the drawn ratio (the drawn one first), at a
+    target input speed: torques at random shares of the limit, 0.9 and 1.3 of it."""
     lo, hi = v.ratio_range
-    ratios = np.clip(cond["ratio"] * np.array([1.0, 0.97, 1.03]), lo, hi)
-    ts = torques(task, v, cond, [float(task.rng.uniform(0.05, 0.6)), 0.9, 1.3])
+    k = points_per_call(task.case) - 1
+    near = task.rng.uniform(0.97, 1.03, k - 1)
+    ratios = np.clip(cond["ratio"] * np.concatenate([[1.0], near]), lo, hi)
+    ts = torques(task, v, cond, [*task.rng.uniform(0.05, 0.6, k - 2), 0.9, 1.3])
     w_in = rpm_to_rad_s(cond["rpm"])
     cycle = cycle_from_arrays(
-        time=[0.0, 1.0, 2.0], output_speed=w_in * ratios, output_torque=ts, name="harden"
+        time=np.arange(k, dtype=float),
+        output_speed=w_in * ratios,
+        output_torque=ts,
+        name="harden",
     )
     got = _grid_call(
         task,
@@ -344,7 +355,8 @@ def run_study(task, v, cond):
     """One design through a study's evaluation, against solve and limit_torque."""
     from ballcvt.analysis.studies import StudySpec, evaluate_chunk, make_context
 
-    ts = torques(task, v, cond, [float(task.rng.uniform(0.05, 0.6)), 0.9, 1.3])
+    k = points_per_call(task.case) - 1
+    ts = torques(task, v, cond, [*task.rng.uniform(0.05, 0.6, k - 2), 0.9, 1.3])
     fields = dict(task.base["fields"])
     n = fields.pop("n_rollers")
     operating = {"ratio": [cond["ratio"]], "output_torque": ts, "input_speed_rpm": [cond["rpm"]]}

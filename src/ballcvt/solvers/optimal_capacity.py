@@ -11,7 +11,10 @@ itself the top one), then `ZOOM` rounds of `ZOOM_GRID` forces between the neighb
 best one (each round narrows the bracket fourfold: the force to some 1e-3 of itself, the
 torque, flat at its maximum, to about 1e-7). Where the best is ``F_p`` it is kept exactly
 (the limit grows with the force up to the pressure bound: the capacity is then the limit
-at ``F_p``, as before the search).
+at ``F_p``, as before the search), except under a traction law with more than one
+equilibrium (the thermal law): there the limit, the fold of the branch from zero torque,
+can peak and fall again below ``F_p`` (past the peak of the traction curves), so the
+force between the top two of the scan is refined too, ``F_p`` staying a candidate.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
+from ..model.traction.base import has_multiple_equilibria
 from .clamped import pressure_bound_force, with_clamp
 from .limit import limit_torque_batch
 from .options import SolverOptions
@@ -73,7 +77,10 @@ def capacity_force(
     forces[:, -1] = top
     lim = _limits(flat, forces, creep_limit, options)
     best = np.argmax(lim, axis=1)
-    inner = np.flatnonzero((best < GRID - 1) & np.isfinite(lim.max(axis=1)))
+    below_top = best < GRID - 1
+    if has_multiple_equilibria(problem.fluid):  # the limit may peak below F_p
+        below_top[:] = True
+    inner = np.flatnonzero(below_top & np.isfinite(lim.max(axis=1)))
     out = top.copy()
     if inner.size:
         out[inner] = _zoom(flat.take(inner), forces[inner], best[inner], creep_limit, options)

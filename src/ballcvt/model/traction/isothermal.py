@@ -18,6 +18,7 @@ Then (Eqs. 57-66, lever arms with their semi-axes, docs/model.md §3)
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
@@ -178,7 +179,7 @@ def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool, modulus: f
     """The compiled kernels' sums ``(8, n)``: both rules and their blend in one call."""
     out = np.empty((params.shape[1], kernels.N_OUT))
     par = np.ascontiguousarray(params)
-    fl, tab = _viscosity_table(fluid, float(par[4].max()), modulus)
+    fl, tab = _viscosity_table(fluid, table_pressure(float(par[4].max())), modulus)
     r01, wr, sin_phi, cos_phi = _ray_nodes(q.n_radial, q.n_angular)
     rays = (sin_phi, cos_phi, 2.0 * np.pi / q.n_angular)
     if q.method == "centred":
@@ -218,6 +219,28 @@ def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool, law: Sh
                 values = np.concatenate([np.stack(values[:2]), values[2].T, values[3].T])
             out[:, part] += rule_weight[part] * np.stack(values)
     return out
+
+
+#: Pressure up to which every viscosity table reaches [Pa]: above any rolling contact's
+#: (bearing steels fail near 4-5 GPa), so that the table, and with it every interpolated
+#: viscosity, does not depend on which other contacts share a batch.
+TABLE_PRESSURE = 2.0e10
+
+
+def table_pressure(p_max: float) -> float:
+    """The top of the viscosity table for contacts up to ``p_max`` [Pa]: `TABLE_PRESSURE`,
+    or that doubled as often as needed to cover ``p_max``.
+
+    A table over the batch's own largest pressure would interpolate each contact's
+    viscosity slightly differently (about 1e-11 relative) in different batches; a
+    Newton tolerance of 1e-11 then converges a point near the fold of a branch (the
+    thermal law) in one batch and not in another, and a limit search gave answers a few
+    per cent apart for the same point. With a fixed table a point's answer is the same
+    in every batch.
+    """
+    if not p_max > TABLE_PRESSURE:  # NaN too: the kernels return NaN for it anyway
+        return TABLE_PRESSURE
+    return TABLE_PRESSURE * 2.0 ** math.ceil(math.log2(p_max / TABLE_PRESSURE))
 
 
 @lru_cache(maxsize=32)

@@ -249,7 +249,13 @@ def test_compiled_path_equals_numpy_path_on_random_designs(case):
             c, cr = fast.state.creep[i], ref.state.creep
             assert np.allclose(c, cr, rtol=1e-7, atol=1e-12 * np.max(np.abs(cr)))
             eta = efficiency(pb.take(i), ref.state).overall
-            assert efficiency(pb, fast.state).overall[i] == pytest.approx(eta, abs=1e-9)
+            # both solutions meet their balances to their residual norms (torques over
+            # n F_N0 r_S): each of the n_c balances may move the output torque, and with it
+            # eta, by up to norm x n F_N0 r_S / T_2 relative (0.19 N m at 500 N here made
+            # a fixed 1e-9 depend on the machine's floating-point contractions)
+            norm = fast.residual_norm[i] + ref.residual_norm
+            tol = max(1e-9, c.size * norm * float(pb.take(i).torque_scale) / torque[i])
+            assert efficiency(pb, fast.state).overall[i] == pytest.approx(eta, abs=tol)
 
 
 def test_newton_update_compiled_equals_python_and_handles_singular_steps():

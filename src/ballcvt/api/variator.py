@@ -35,6 +35,7 @@ from .cam_sizing import check_operating
 from .hints import one_speed as _speed
 from .life import LifeMethods
 from .refusals import optimal_refusal, refuse_beyond_capacity
+from .shift import ShiftMethods
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
 
 __all__ = ["Variator"]
@@ -45,7 +46,7 @@ def _default_drive():
 
 
 @dataclass(frozen=True)
-class Variator(BatchMethods, LifeMethods):
+class Variator(BatchMethods, LifeMethods, ShiftMethods):
     """A ball variator of a given design, fluid and idler architecture.
 
     Parameters

@@ -51,6 +51,16 @@ def _command(skew_deg, tilt_rate_deg_s, actuator_moment, options: dict):
             "exactly one of skew_deg, tilt_rate_deg_s or actuator_moment",
         )
     value = float(given[named[0]])  # type: ignore[arg-type]
+    name, unit = {
+        "skew": ("skew_deg", "deg"),
+        "tilt-rate": ("tilt_rate_deg_s", "deg/s"),
+        "actuator-moment": ("actuator_moment", "N m"),
+    }[named[0]]
+    if not (math.isfinite(value) and value > 0):
+        why = ": zero skew holds the ratio, the shift never arrives" if value == 0 else ""
+        raise InputError(name, value, f"> 0 {unit}{why} (the direction follows the ratios)")
+    if named[0] == "skew" and value >= 10.0:
+        raise InputError(name, value, "< 10 deg (a small skew angle)")
     if named[0] != "actuator-moment":
         value = math.radians(value)
     kept = {k: options[k] for k in ("samples", "max_time") if k in options}

@@ -35,8 +35,8 @@ from .cam_sizing import check_operating
 from .hints import one_speed as _speed
 from .life import LifeMethods
 from .refusals import optimal_refusal, refuse_beyond_capacity
-from .shift import ShiftMethods
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
+from .shift import ShiftMethods
 
 __all__ = ["Variator"]
 

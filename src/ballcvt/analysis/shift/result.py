@@ -80,8 +80,12 @@ class ShiftResult:
     def to_dict(self) -> dict[str, Any]:
         """The summary, the inputs and the notes (no time series), JSON-ready."""
         out = {key: getattr(self, key) for key in SUMMARY_KEYS}
-        return {**out, "inputs": dict(self.inputs), "notes": list(self.notes),
-                "version": self.version}
+        return {
+            **out,
+            "inputs": dict(self.inputs),
+            "notes": list(self.notes),
+            "version": self.version,
+        }
 
     def to_json(self) -> str:
         """`to_dict` as strict JSON text (NaN written ``null``)."""

@@ -44,9 +44,7 @@ def _moments(dyn: Any, k: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray
     skew = dyn.command.mechanism == "skew"
     if dyn.drive.moments is None:
         return np.full(n, np.nan), (np.zeros(n) if skew else np.full(n, np.nan))
-    pairs = [
-        dyn.moments(g, 0.0 if skew else r) for g, r in zip(k["gamma"], k["gamma_dot"])
-    ]
+    pairs = [dyn.moments(g, 0.0 if skew else r) for g, r in zip(k["gamma"], k["gamma_dot"])]
     hold, shift = (np.array(col) for col in zip(*pairs))
     return hold, (np.zeros(n) if skew else shift)
 
@@ -106,8 +104,8 @@ def _result(dyn: Any, frame, phases, ratios: tuple[float, float]) -> ShiftResult
     cmd, drive = dyn.command, dyn.drive
     t = frame["time_s"].to_numpy()
     loss = float(np.trapezoid(frame["power_loss_W"].to_numpy(), t))
-    dissipation = drive.design.n_rollers * frame["shift_moment_Nm"] * np.radians(
-        frame["tilt_rate_deg_s"]
+    dissipation = (
+        drive.design.n_rollers * frame["shift_moment_Nm"] * np.radians(frame["tilt_rate_deg_s"])
     )
     work = float(np.trapezoid(dissipation.to_numpy(), t))
     moment = np.abs(frame["shifter_moment_Nm"].to_numpy())
@@ -137,6 +135,8 @@ def _result(dyn: Any, frame, phases, ratios: tuple[float, float]) -> ShiftResult
             "mechanism_value": cmd.value,
             "mechanism_unit": {"skew": "rad", "tilt-rate": "rad/s"}.get(cmd.mechanism, "N m"),
             "actuator_lag_s": cmd.lag,
+            "samples": cmd.samples,
+            "max_time_s": cmd.max_time,
             "input_speed_rpm": rad_s_to_rpm(drive.input_speed),
             "output_torque_Nm": drive.output_torque,
             "n_balls": drive.design.n_rollers,

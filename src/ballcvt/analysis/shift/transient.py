@@ -102,7 +102,9 @@ class ShiftCommand:
             raise InputError("mechanism", self.mechanism, "one of " + ", ".join(MECHANISMS))
         unit = MECHANISMS[self.mechanism]
         if not (np.isfinite(self.value) and self.value > 0):
-            why = " (zero skew keeps the ratio: the shift never arrives)" if self.value == 0 else ""
+            why = (
+                " (zero skew keeps the ratio: the shift never arrives)" if self.value == 0 else ""
+            )
             raise InputError(self.mechanism, self.value, f"> 0 {unit}{why}")
         if self.mechanism == "skew" and self.value >= np.radians(10.0):
             raise InputError("skew", np.degrees(self.value), "< 10 deg (a small skew angle)")
@@ -245,8 +247,9 @@ def _phases(dyn: _Dynamics, g1: float, g2: float, ratios: tuple[float, float]):
         d = dyn.drive.design
         reached = float(ideal_ratio(first.y[0, -1], d.theta0, d.theta2, d.aspect_ratio))
         how = (
-            "leaves the usable tilt range" if first.t_events[0].size else
-            f"is still short of it after max_time {cmd.max_time:g} s"
+            "leaves the usable tilt range"
+            if first.t_events[0].size
+            else f"is still short of it after max_time {cmd.max_time:g} s"
         )
         raise InputError(
             cmd.mechanism,

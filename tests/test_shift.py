@@ -275,3 +275,16 @@ def test_ratio_of_the_samples_is_the_ideal_ratio_of_their_tilt(hub):
         r.samples["ratio"],
         ideal_ratio(np.radians(r.samples["tilt_deg"]), d.theta0, d.theta2, d.aspect_ratio),
         rtol=1e-12)
+
+
+def test_an_actuator_moment_beyond_the_saturated_side_forces_is_refused(hub):
+    def saturating(ratio, output_torque, tilt_rate, input_speed):
+        return 0.001 * output_torque, 0.3 * math.tanh(tilt_rate / 2.0)
+
+    r = hub.shift(0.5, 1.8, 20.0, actuator_moment=1.0, input_speed_rpm=114.0, samples=5,
+                  moment_model=saturating, **CAM)
+    rate = 2.0 * math.atanh((1.0 / 8 - 0.02) / 0.3)
+    assert r.samples["tilt_rate_deg_s"].to_numpy() == pytest.approx(math.degrees(rate))
+    with pytest.raises(InputError, match="saturate"):
+        hub.shift(0.5, 1.8, 20.0, actuator_moment=5.0, input_speed_rpm=114.0, samples=5,
+                  moment_model=saturating, **CAM)

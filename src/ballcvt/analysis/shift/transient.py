@@ -17,6 +17,7 @@ is not integrated) and every output sample is the quasi-static steady point at i
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -179,12 +180,20 @@ class _Dynamics:
         return float(h), float(s)
 
     def rate_under(self, gamma: float, moment: float) -> float:
-        """The tilt rate at which ``n (M_hold + M_shift) = moment`` [rad/s] (Brent)."""
-        from scipy.optimize import brentq
+        """The tilt rate at which ``n (M_hold + M_shift) = moment`` [rad/s]: the secant
+        method from rest (two or three moment evaluations in the linear range), else
+        Brent's method over ``|gamma_dot| <= 10 |omega_b|``."""
+        from scipy.optimize import brentq, root_scalar
 
         n = self.drive.design.n_rollers
         excess = lambda r: n * sum(self.moments(gamma, r)) - moment  # noqa: E731
         top = 10.0 * abs(float(self.ball_speed(gamma)))
+        step = 1e-3 * top
+        with warnings.catch_warnings():  # a secant that diverges (saturation) says so
+            warnings.simplefilter("ignore", RuntimeWarning)
+            guess = root_scalar(excess, x0=0.0, x1=step, method="secant", xtol=1e-13, maxiter=20)
+        if guess.converged and abs(guess.root) <= top:
+            return float(guess.root)
         lo, hi = excess(-top), excess(top)
         if lo * hi > 0:
             raise InputError(

@@ -34,7 +34,7 @@ def shift_figure(samples, title: str = "Shift") -> Figure:
     twin.plot(t, samples["tilt_deg"], color="tab:green", lw=0.9, ls="--", label=r"tilt $\gamma$")
     twin.set_ylabel(r"$\gamma$ [deg]")
     lines = ax1.get_lines() + twin.get_lines()
-    ax1.legend(lines, [ln.get_label() for ln in lines], loc="lower right", fontsize=8)
+    ax1.legend(lines, [ln.get_label() for ln in lines], loc="best", fontsize=8)
     drawn = False
     for column, label, color in (
         ("shifter_moment_Nm", "at the shifter (all balls)", "tab:red"),
@@ -60,6 +60,6 @@ def shift_figure(samples, title: str = "Shift") -> Figure:
     ax3.plot(t, samples["eta"], color="tab:blue", label=r"$\eta$ (quasi-static)")
     ax3.set_ylabel(r"efficiency $\eta$ [-]")
     ax3.set_xlabel("time [s]")
-    ax3.legend(loc="lower right", fontsize=8)
+    ax3.legend(loc="best", fontsize=8)
     fig.suptitle(title)
     return fig

@@ -251,7 +251,8 @@ def test_cli_defaults_come_from_the_hub_operating_table(capsys, tmp_path):
 
 
 @pytest.mark.parametrize("argv, fragment", [
-    (["--from", "0.1", "--to", "1.8", "--skew", "1"], "ratio = 0.1"),
+    (["--from", "0.1", "--to", "1.8", "--skew", "1"], "from_ratio = 0.1"),
+    (["--from", "0.5", "--to", "9", "--skew", "1"], "to_ratio = 9"),
     (["--from", "0.5", "--to", "1.8", "--skew", "0"], "never arrives"),
     (["--from", "0.5", "--to", "1.8", "--skew", "1", "--tilt-rate", "3"], "not allowed with"),
     (["--from", "0.5", "--to", "1.8"], "one of the arguments"),

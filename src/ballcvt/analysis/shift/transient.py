@@ -300,7 +300,11 @@ def run_shift(
     """
     command.check()
     d = drive.design
-    check_ratio(d, [from_ratio, to_ratio])
+    for name, ratio in (("from_ratio", from_ratio), ("to_ratio", to_ratio)):
+        try:
+            check_ratio(d, ratio)
+        except InputError as exc:
+            raise InputError(name, ratio, exc.allowed) from None
     if from_ratio == to_ratio:
         raise InputError("to_ratio", to_ratio, f"a ratio other than from_ratio {from_ratio:g}")
     if command.mechanism == "actuator-moment" and drive.moments is None:

@@ -9,6 +9,7 @@ from ..errors import InputError
 from ..model.architectures import contact_layout
 from ..params.models import Design, Fluid
 from ..solvers.options import SolverOptions
+from ..units import rad_s_to_rpm
 from .hints import one_speed
 
 __all__ = ["ShiftMethods", "default_moment_model"]
@@ -28,7 +29,8 @@ def default_moment_model(variator, clamp: dict):
         return None
 
     def model(ratio, output_torque, tilt_rate, input_speed):
-        m = moments(ratio, output_torque, tilt_rate=tilt_rate, input_speed=input_speed, **clamp)
+        rpm = rad_s_to_rpm(input_speed)
+        m = moments(ratio, output_torque, tilt_rate=tilt_rate, input_speed_rpm=rpm, **clamp)
         return m.holding_moment, m.shift_moment
 
     return model
@@ -127,13 +129,14 @@ class ShiftMethods:
         if not (math.isfinite(speed) and speed > 0):
             raise InputError("input_speed", speed, "> 0 rad/s and finite")
         clamp = {k: options[k] for k in ("clamp_force", "clamp_law") if options.get(k) is not None}
+        rpm = rad_s_to_rpm(speed)  # the points in rpm: no second unit hint per sample
         model = options.get("moment_model") or default_moment_model(self, clamp)
         drive = ShiftDrive(
             self.design,
             contact_layout(self.design, self.architecture),
             speed,
             float(output_torque),
-            lambda r: self.solve(r, output_torque, input_speed=speed, **clamp),  # type: ignore[attr-defined]
+            lambda r: self.solve(r, output_torque, input_speed_rpm=rpm, **clamp),  # type: ignore[attr-defined]
             model,
             {
                 "design": self.design.name,

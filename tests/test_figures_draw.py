@@ -122,6 +122,14 @@ def _cycle_steps():
     return steps
 
 
+def _shift_samples(moments=True):
+    t = np.linspace(0.0, 0.6, 13)
+    hold = np.full(t.size, 0.4 if moments else np.nan)
+    return pd.DataFrame({"time_s": t, "ratio": 0.5 + 2.0 * t, "tilt_deg": -18.0 + 60.0 * t,
+                         "holding_moment_Nm": hold, "shifter_moment_Nm": 8 * hold,
+                         "eta": 0.9 + 0.01 * t})
+
+
 def _curve(law):
     s = np.linspace(0.0, 0.05, 20)
     return types.SimpleNamespace(creep=s, mu=0.08 * np.tanh(100 * s), chi=0.01 * s,
@@ -162,6 +170,7 @@ def _figures(sweep, both):
     tilt = np.linspace(-30.0, 30.0, 13)
     return {
         "cycle_figure": bp.cycle_figure(_cycle_steps()),
+        "shift_figure": bp.shift_figure(_shift_samples()),
         "capacity_figure": bp.capacity_figure(pd.DataFrame({
             "ratio": [0.6, 1.0, 1.6], "limit_torque": [120.0, 160.0, 90.0],
             "lowest_torque": [0.0, 0.0, 5.0],
@@ -199,3 +208,9 @@ def test_every_figure_function_draws_its_data(sweep, both):
              for p in problems(fig, box=(0.8, 1.6, min(TORQUES), max(TORQUES))
                                if "map" in name else None)]
     assert not found, "\n".join(found)
+
+
+def test_shift_figure_without_moments_draws_no_empty_line():
+    fig = bp.shift_figure(_shift_samples(moments=False))
+    assert problems(fig) == []
+    assert "no shift-moment model" in [t.get_text() for t in fig.axes[1].texts]

@@ -17,7 +17,7 @@ ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
 BLOCKS = re.findall(r"```(\w*)\n(.*?)```", README.read_text(), re.S)
 #: Other documents whose command lines must run (continuation lines joined).
-DOCS = [ROOT / "docs" / "cycles.md", ROOT / "docs" / "studies.md"]
+DOCS = [ROOT / "docs" / "cycles.md", ROOT / "docs" / "studies.md", ROOT / "docs" / "shifting.md"]
 
 
 def test_readme_has_examples():

@@ -16,6 +16,7 @@ REQUIRED = {
     "fit-fluid": [TINY_CURVES],
     "explore": [str(TINY_STUDY)],
     "traction-curve": ["--rx", "0.01", "--ry", "0.02", "--load", "1000", "--speed", "10"],
+    "shift": ["--from", "0.8", "--to", "1.2", "--skew", "1"],
 }
 
 

@@ -21,6 +21,7 @@ def strict(text: str):
 
 
 TC = ["--rx", "0.01", "--ry", "0.02", "--speed", "10"]
+SHIFT = ["--from", "0.8", "--to", "1.2", "--samples", "5"]
 #: Every command with --json, at ordinary and at extreme (but accepted) inputs.
 CASES = {
     "point": [[], ["--clamp", "1e6"], ["--speed", "1e5"], ["--torque", "0"],
@@ -39,8 +40,11 @@ CASES = {
     "life": [[], ["--torque", "0"], ["--life-model", "iso-fatigue-limit", "--clamp", "500"],
              ["--design", "hub", "--speed", "1e5"],
              ["--design", "hub", "--cycle", TINY_CYCLE, "--target-speed", "180"]],
+    "shift": [[*SHIFT, "--skew", "1"], [*SHIFT, "--tilt-rate", "20"],
+              [*SHIFT, "--skew", "9.99", "--speed", "1e5", "--torque", "1e6"],
+              ["--design", "hub", "--from", "0.5", "--to", "1.8", "--skew", "0.01"]],
 }
-NEEDS_OUT = ("cycle", "fit-fluid", "explore")
+NEEDS_OUT = ("cycle", "fit-fluid", "explore", "shift")
 
 
 def test_every_json_command_is_covered():

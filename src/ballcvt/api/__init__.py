@@ -38,6 +38,7 @@ from .variator import Variator
 #: Names whose modules load xarray, pandas or Dask: imported on first use (`ballcvt._lazy`).
 _LAZY = {
     "CycleResult": "..analysis.cycles",
+    "ShiftResult": "..analysis.shift",
     "LifeResult": "..analysis.life.result",
     "ElementLife": "..analysis.life.result",
     "LifeSettings": "..analysis.life.core",
@@ -84,6 +85,7 @@ __all__ = [
     "ModeBatch",
     "Cycle",
     "CycleResult",
+    "ShiftResult",
     "LifeResult",
     "ElementLife",
     "LifeSettings",

@@ -17,12 +17,14 @@ from .figures import (
     ratio_vs_tilt,
     save,
 )
+from .shift import shift_figure
 from .studies import maps_figure, parameters_figure, pareto_figure
 from .traction import fit_figure, plot_traction_curve, traction_curve_figure
 
 __all__ = [
     "capacity_figure",
     "cycle_figure",
+    "shift_figure",
     "save",
     "line_panels",
     "map_title",

@@ -44,6 +44,7 @@ from . import (
     options,
     point,
     reproduce,
+    shift,
     table,
     traction_curve,
 )
@@ -60,6 +61,7 @@ COMMANDS = {
     "clamp": clamp,
     "map": efficiency_map,
     "cycle": cycle,
+    "shift": shift,
     "life": life,
     "table": table,
     "reproduce": reproduce,

@@ -320,7 +320,7 @@ def variator(args) -> Variator:
 
 
 #: The commands that run the drive (``traction-curve --speed`` is a rolling speed in m/s).
-DRIVEN = ("point", "limit", "clamp", "map", "table", "cycle", "life", "explore-ui")
+DRIVEN = ("point", "limit", "clamp", "map", "table", "cycle", "life", "shift", "explore-ui")
 #: Option -> (``[operating]`` key, the ``args`` attribute it sets).
 _OPERATING = {
     "--speed": ("input_speed_rpm", "speed"),

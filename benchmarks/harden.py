@@ -88,7 +88,7 @@ def weight(case: dict) -> int:
 
 
 #: Draws per round of a case that is not `entries.heavy`.
-LIGHT_WEIGHT = 3
+LIGHT_WEIGHT = 9
 
 
 def schedule(seed: int) -> list[dict]:

@@ -57,9 +57,9 @@ def heavy(case: dict) -> bool:
 
 
 def points_per_call(case: dict) -> int:
-    """Torques a task evaluates per grid row: 4 on a `heavy` case, 8 on the others
+    """Torques a task evaluates per grid row: 4 on a `heavy` case, 16 on the others
     (each point is still checked, and against `Variator.solve`, one by one)."""
-    return 4 if heavy(case) else 8
+    return 4 if heavy(case) else 16
 
 
 def log_uniform(rng, lo, hi) -> float:

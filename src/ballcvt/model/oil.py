@@ -33,6 +33,7 @@ __all__ = [
     "fluid_at",
     "steady_temperature",
     "transient_step",
+    "housing_coefficient",
     "C_TO_K",
 ]
 
@@ -40,6 +41,11 @@ __all__ = [
 C_TO_K = ZERO_CELSIUS
 #: The constant of Walther's law (ASTM D341) [mm^2/s].
 WALTHER_SHIFT = 0.7
+#: Air near 300 K (Incropera and DeWitt, Fundamentals of Heat and Mass Transfer, Table
+#: A.4): conductivity [W/(m K)], kinematic viscosity [m^2/s], Prandtl number [-].
+AIR = (0.0263, 1.589e-5, 0.707)
+#: Stefan-Boltzmann constant [W/(m^2 K^4)].
+STEFAN_BOLTZMANN = 5.670e-8
 #: Smallest ratio eta_0 / eta_inf at which Roelands' law is evaluated [-].
 MIN_POLE_RATIO = 1.5
 
@@ -197,3 +203,43 @@ def transient_step(temperature: float, loss: float, dt: float, thermal) -> float
     """
     target = steady_temperature(loss, thermal.conductance, thermal.ambient_temperature)
     return target + (temperature - target) * math.exp(-dt / thermal.time_constant)
+
+
+def housing_coefficient(
+    diameter: float, rise: float, ambient: float, air_speed: float = 0.0, emissivity: float = 0.8
+) -> float:
+    """Heat-transfer coefficient of a horizontal cylindrical housing to the air [W/(m^2 K)].
+
+    Convection, natural (Churchill and Chu 1975, Int. J. Heat Mass Transfer 18, 1049: a
+    horizontal cylinder) and forced (Churchill and Bernstein 1977, J. Heat Transfer 99,
+    300: a cylinder in cross flow) combined as ``Nu^3 = Nu_N^3 + Nu_F^3`` (Incropera and
+    DeWitt, §9.9), plus radiation to surroundings at the ambient, ``eps sigma (T_s + T_a)
+    (T_s^2 + T_a^2)`` (ibid., Eq. 1.9); air properties `AIR`.
+
+    Parameters
+    ----------
+    diameter : float
+        Of the housing [m].
+    rise : float
+        Surface temperature over the ambient, > 0 [K].
+    ambient : float
+        Air temperature [K].
+    air_speed : float
+        Speed of the air across the housing (a bicycle's riding speed) [m/s].
+    emissivity : float
+        Of the surface (painted or anodised metal: about 0.8-0.9) [-].
+    """
+    k, nu, pr = AIR
+    film = ambient + 0.5 * rise
+    rayleigh = 9.81 * rise / film * diameter**3 * pr / nu**2
+    natural = (
+        0.60 + 0.387 * rayleigh ** (1 / 6) / (1 + (0.559 / pr) ** (9 / 16)) ** (8 / 27)
+    ) ** 2
+    re = air_speed * diameter / nu
+    forced = 0.3 + 0.62 * re**0.5 * pr ** (1 / 3) / (1 + (0.4 / pr) ** (2 / 3)) ** 0.25 * (
+        1 + (re / 282000.0) ** (5 / 8)
+    ) ** (4 / 5)
+    nusselt = (natural**3 + forced**3) ** (1 / 3)
+    surface = ambient + rise
+    radiation = emissivity * STEFAN_BOLTZMANN * (surface + ambient) * (surface**2 + ambient**2)
+    return nusselt * k / diameter + radiation

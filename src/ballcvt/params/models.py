@@ -376,12 +376,13 @@ class Fluid(FluidTemperatureFields):
     @model_serializer(mode="wrap")
     def _dump(self, handler) -> dict[str, Any]:
         """The fields, without ``law_parameters`` and the temperature fields when not given
-        (so that files and results of fluids without them are as they were)."""
+        (nor the default viscosity law), so that files and results of fluids without them
+        are as they were."""
         data = handler(self)
         if not isinstance(data, dict):
             return data
         for key in ("law_parameters", *FluidTemperatureFields.model_fields):
-            if data.get(key) is None or (key == "viscosity_law" and not self.viscosity_data):
+            if data.get(key) is None or (key == "viscosity_law" and data[key] == "walther"):
                 data.pop(key, None)
         if data.get("viscosity_data") is not None:
             data["viscosity_data"] = [list(p) for p in data["viscosity_data"]]

@@ -295,3 +295,29 @@ def test_cli_point_oil_temperature(capsys):
     assert code == 0 and out["oil_temperature_C"] == pytest.approx(40.0)
     with pytest.raises(SystemExit):
         main(["point", "--oil-temperature", "hot"])
+
+
+def test_given_temperature_in_a_planetary_mode():
+    v = Variator()
+    r = v.solve(0.8, 10.0, clamp_force=1500.0, input_speed_rpm=300,
+                mode="disc2_held_carrier_drives", oil_temperature=330.0)
+    assert r.relative.oil_model == "given" and r.relative.oil_temperature == 330.0
+
+
+def test_cycle_refusals_and_given_temperature():
+    design, fluid = load_builtin("hub")
+    w2 = rpm_to_rad_s(114.0)
+    cycle = cycle_from_arrays(time=[0.0, 10.0, 20.0], output_speed=[w2] * 3,
+                              output_torque=[10.0] * 3)
+    v = Variator(design, fluid)
+    run = {"clamp_law": "cam", "strategy": "target-input-speed", "target_input_speed_rpm": 114.0}
+    hot = v.run_cycle(cycle, oil_temperature=333.15, **run)
+    assert np.allclose(hot.steps["oil_temperature_C"], 60.0)
+    assert hot.summary["oil_temperature"]["model"] == "given"
+    no_mass = Variator(design.replace(thermal=design.thermal.replace(thermal_mass=None)), fluid)
+    with pytest.raises(InputError, match="thermal_mass"):
+        no_mass.run_cycle(cycle, oil_temperature="transient", **run)
+    with pytest.raises(InputError, match="oil_temperature"):
+        v.run_cycle(cycle, oil_temperature="balance", **run)
+    with pytest.raises(InputError, match=r"\[design.thermal\]"):
+        Variator().run_cycle(cycle, clamp_force=2000.0, oil_temperature="transient")

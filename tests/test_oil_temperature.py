@@ -321,3 +321,10 @@ def test_cycle_refusals_and_given_temperature():
         v.run_cycle(cycle, oil_temperature="balance", **run)
     with pytest.raises(InputError, match=r"\[design.thermal\]"):
         Variator().run_cycle(cycle, clamp_force=2000.0, oil_temperature="transient")
+
+
+def test_initial_temperature_needs_the_transient():
+    w2 = rpm_to_rad_s(114.0)
+    cycle = cycle_from_arrays(time=[0.0, 10.0], output_speed=[w2] * 2, output_torque=[10.0] * 2)
+    with pytest.raises(InputError, match="initial_oil_temperature"):
+        Variator().run_cycle(cycle, clamp_force=2000.0, initial_oil_temperature=300.0)

@@ -173,6 +173,11 @@ def cycle_with_oil(variator, cycle, settings, clamp: dict, mode):
     from ..analysis.oil_cycle import OilTransient, run_cycle_with_oil
 
     choice = oil_choice(settings.oil_temperature, ("fixed", "transient"))
+    start = settings.initial_oil_temperature
+    if start is not None and choice != "transient":
+        raise InputError(
+            "initial_oil_temperature", start, "given with oil_temperature 'transient' only"
+        )
     if not mode.is_default:
         raise InputError("oil_temperature", choice, "fixed in a planetary mode (not modelled)")
     request = CycleRequest(
@@ -192,7 +197,6 @@ def cycle_with_oil(variator, cycle, settings, clamp: dict, mode):
         raise InputError(
             "design.thermal.thermal_mass", None, "> 0 J/K (the oil's transient over a cycle)"
         )
-    start = settings.initial_oil_temperature
     if start is not None and not 150.0 < float(start) < MAX_OIL_TEMPERATURE:
         raise InputError("initial_oil_temperature", start, f"150 to {MAX_OIL_TEMPERATURE:g} K")
     oil = OilTransient(thermal=thermal, initial_temperature=start)

@@ -474,8 +474,8 @@ class Variator(BatchMethods, LifeMethods):
         if not isinstance(cycle, Cycle):
             cycle = read_cycle(cycle)
         clamp = {"clamp_force": clamp_force, "clamp_law": clamp_law}
-        if how.oil_temperature != "fixed":  # docs/model.md §15
-            return oil.cycle_with_oil(self, cycle, how, clamp, resolve_mode(mode))
+        if how.oil_temperature != "fixed" or how.initial_oil_temperature is not None:
+            return oil.cycle_with_oil(self, cycle, how, clamp, resolve_mode(mode))  # §15
         if not resolve_mode(mode).is_default:
             return planetary.cycle_in_mode(self, resolve_mode(mode), cycle, how, clamp)
         return run_cycle(

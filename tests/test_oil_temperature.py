@@ -328,3 +328,15 @@ def test_initial_temperature_needs_the_transient():
     cycle = cycle_from_arrays(time=[0.0, 10.0], output_speed=[w2] * 2, output_torque=[10.0] * 2)
     with pytest.raises(InputError, match="initial_oil_temperature"):
         Variator().run_cycle(cycle, clamp_force=2000.0, initial_oil_temperature=300.0)
+
+
+def test_cycle_transient_refuses_a_runaway():
+    design, fluid = load_builtin("hub")
+    tiny = design.replace(thermal=design.thermal.replace(housing_area=1e-3, thermal_mass=10.0))
+    w2 = rpm_to_rad_s(114.0)
+    cycle = cycle_from_arrays(time=np.arange(6) * 100.0, output_speed=[w2] * 6,
+                              output_torque=[16.0] * 6)
+    with pytest.raises(InputError, match="the oil passes 150 C"):
+        Variator(tiny, fluid).run_cycle(cycle, clamp_law="cam", strategy="target-input-speed",
+                                        target_input_speed_rpm=114.0,
+                                        oil_temperature="transient")

@@ -22,8 +22,9 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import InputError
 from ..model.clamping import clamp_law as resolve_law
-from ..model.oil import C_TO_K, fluid_at, transient_step
+from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, transient_step
 from .cycle_files import Cycle
 from .cycle_request import CycleRequest
 from .cycles import CycleResult, _summary, run_cycle
@@ -97,6 +98,14 @@ def run_cycle_with_oil(drive, cycle: Cycle, request: CycleRequest, oil: OilTrans
         rows.append(row)
         loss = 0.0 if row["flag"] == "idle" or not row["status"] == 0 else float(row["loss_total"])
         temps[k + 1] = transient_step(temps[k], loss, float(durations[k]), thermal)
+        if temps[k + 1] > MAX_OIL_TEMPERATURE:
+            raise InputError(
+                "oil_temperature",
+                "transient",
+                "a cycle the housing keeps below 150 C",
+                message=f"the oil passes 150 C at t = {cycle.time[k]:.0f} s (loss "
+                f"{loss:.4g} W, h A = {thermal.conductance:.4g} W/K): beyond the fluid's data",
+            )
     import pandas as pd
 
     steps = pd.DataFrame(rows).reset_index(drop=True)

@@ -16,7 +16,7 @@ from typing import Any
 from scipy.optimize import brentq
 
 from ..errors import InputError
-from ..model.oil import C_TO_K, fluid_at, steady_temperature
+from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
 from ..results.planetary import PlanetaryResult
 
 __all__ = [
@@ -28,9 +28,6 @@ __all__ = [
     "BALANCE_TOL",
 ]
 
-#: Highest bulk oil temperature searched for a balance [K] (150 C: beyond the fluids' data
-#: and the service temperature of lip seals and traction fluids).
-MAX_OIL_TEMPERATURE = 150.0 + C_TO_K
 #: Tolerance of the balance's temperature [K].
 BALANCE_TOL = 0.01
 #: Fixed-point steps to bracket the balance before refusing.

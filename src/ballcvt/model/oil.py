@@ -35,10 +35,14 @@ __all__ = [
     "transient_step",
     "housing_coefficient",
     "C_TO_K",
+    "MAX_OIL_TEMPERATURE",
 ]
 
 #: 0 C in kelvin.
 C_TO_K = ZERO_CELSIUS
+#: Highest bulk oil temperature the balance and the transient go to [K] (150 C: beyond the
+#: fluids' data and the service temperature of lip seals and traction fluids).
+MAX_OIL_TEMPERATURE = 150.0 + ZERO_CELSIUS
 #: The constant of Walther's law (ASTM D341) [mm^2/s].
 WALTHER_SHIFT = 0.7
 #: Air near 300 K (Incropera and DeWitt, Fundamentals of Heat and Mass Transfer, Table

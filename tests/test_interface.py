@@ -49,6 +49,7 @@ def _variants(design, tmp):
         "--arch": ["--arch", "single"], "--ratio": ["--ratio", "1.5"],
         "--torque": ["--torque", "20"], "--clamp": ["--clamp", "2500"],
         "--speed": ["--speed", "1000"], "--design": ["--design", design],
+        "--oil-temperature": ["--oil-temperature", "60"],          # docs/model.md §15
         "--json": None})                                           # --json: base vs table
     planetary = (["point", "--json", "--held", "disc2", "--driver", "carrier", "--ratio", "1.5",
                   "--speed", "300", "--torque", "20"], {
@@ -94,7 +95,12 @@ def _variants(design, tmp):
         "--candidates": ["--candidates", "3"],
         "--ratio-range": ["--ratio-range", "0.9", "1.2"],
         "--out": ["--out", str(tmp / "c1")], "--json": None,
+        "--oil-temperature": ["--oil-temperature", "60"],
         "--workers": ["--workers", "2"]})
+    # the oil's transient needs a housing ([design.thermal]): the hub's
+    cycle_oil = (["cycle", tiny, "--design", "hub", "--target-speed", "180", "--out",
+                  str(tmp / "c4"), "--json", "--oil-temperature", "transient"],
+                 {"--initial-oil-temperature": ["--initial-oil-temperature", "35"]})
     cycle_text = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c3")],
                   {"--quiet": ["--quiet"]})
     cycle_cam = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c2"), "--json",
@@ -179,7 +185,7 @@ def _variants(design, tmp):
             "traction-curve": curve, "traction-curve:pmax": curve_p, "fit-fluid": fit,
             "point": point, "point:planetary": planetary, "limit": limit, "clamp": clamp, "map": mapping,
             "point:cam": point_cam, "limit:cam": limit_cam, "map:cam": map_cam,
-            "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table,
+            "cycle": cycle, "cycle:cam": cycle_cam, "cycle:oil": cycle_oil, "cycle:text": cycle_text, "table": table,
             "life": life, "life:cycle": life_cycle, "life:text": life_text, "life:cam": life_cam,
             "map:life": map_life, "cycle:life": cycle_life,
             "capacity": capacity}

@@ -20,6 +20,9 @@ __all__ = [
     "rad_s_to_rpm",
     "deg_to_rad",
     "rad_to_deg",
+    "celsius_to_kelvin",
+    "kelvin_to_celsius",
+    "ZERO_CELSIUS",
     "RAD_S_PER_RPM",
     "QUANTITY_UNITS",
     "parse_header",
@@ -29,6 +32,20 @@ __all__ = [
 
 #: One revolution per minute in rad/s.
 RAD_S_PER_RPM = math.pi / 30.0
+
+
+#: 0 C in kelvin.
+ZERO_CELSIUS = 273.15
+
+
+def celsius_to_kelvin(temperature_c: float) -> float:
+    """Temperature [C] -> [K]."""
+    return float(temperature_c) + ZERO_CELSIUS
+
+
+def kelvin_to_celsius(temperature: float) -> float:
+    """Temperature [K] -> [C]."""
+    return float(temperature) - ZERO_CELSIUS
 
 
 def rpm_to_rad_s(speed_rpm):

@@ -41,10 +41,15 @@ class SolveSettings:
         Refuse a torque beyond the traction capacity with `TractionLimitError` (default).
     mode : OperatingMode, optional
         The variator as a planetary (docs/model.md §13); the paper's drive by default.
+    oil_temperature : {"fixed", "balance"} or float
+        The oil's bulk temperature (docs/model.md §15): ``"fixed"`` (default: the fluid as
+        given), ``"balance"`` (the housing's steady heat balance, ``[design.thermal]``) or a
+        temperature [K] (the fluid there, `ballcvt.model.oil.fluid_at`).
     """
 
     check_capacity: bool = True
     mode: OperatingMode | None = None
+    oil_temperature: str | float = "fixed"
 
 
 @dataclass(frozen=True)
@@ -95,6 +100,12 @@ class CycleSettings:
         Progress bar (default: when stderr is a terminal).
     workers : int
         Processes to solve the steps on.
+    oil_temperature : {"fixed", "transient"} or float
+        The oil's bulk temperature (docs/model.md §15): ``"fixed"`` (default: the fluid as
+        given), ``"transient"`` (the housing's lumped transient over the cycle,
+        ``[design.thermal]`` with its ``thermal_mass``) or a temperature [K].
+    initial_oil_temperature : float, optional
+        Oil temperature at the cycle's start [K] (``transient``; default: the ambient).
     """
 
     strategy: str | None = None
@@ -104,6 +115,8 @@ class CycleSettings:
     ratio_range: Any = None
     progress: bool | None = None
     workers: int = 1
+    oil_temperature: str | float = "fixed"
+    initial_oil_temperature: float | None = None
 
     def target(self) -> float | None:
         """The target input speed [rad/s], from whichever unit was given."""

@@ -29,7 +29,7 @@ from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum
 from ..solvers.point import SolverOptions, solve_point
 from ..solvers.refusal import point_capacity
 from ..units import rpm_to_rad_s
-from . import grids, planetary
+from . import grids, oil, planetary
 from .batched import BatchMethods
 from .cam_sizing import check_operating
 from .hints import one_speed as _speed
@@ -95,7 +95,7 @@ class Variator(BatchMethods, LifeMethods, ShiftMethods):
 
     def _summary(self) -> tuple[str, list]:
         lo, hi = self.ratio_range
-        d = self.design
+        d, q = self.design, self.options.quadrature
         rows = [
             ("design", d.name, ""),
             ("fluid", self.fluid.name, ""),
@@ -105,13 +105,7 @@ class Variator(BatchMethods, LifeMethods, ShiftMethods):
             ("contact angles", f"{d.theta0_deg:g} / {d.theta2_deg:g}", "deg"),
             ("ratio range", f"{lo:.3f} - {hi:.3f}", "-"),
             ("traction law", self.fluid.traction_law, ""),
-            (
-                "quadrature",
-                str(self.options.quadrature.n_radial)
-                + " x "
-                + str(self.options.quadrature.n_angular),
-                "nodes",
-            ),
+            ("quadrature", f"{q.n_radial} x {q.n_angular}", "nodes"),
         ]
         return "Variator", rows
 
@@ -201,8 +195,10 @@ class Variator(BatchMethods, LifeMethods, ShiftMethods):
             ``input_speed_rpm``) the driver's speed (signed), ``ratio`` still ``tau_ID``
             relative to the carrier, and a `PlanetaryResult` is returned. The default
             (carrier held, disc 0 drives) is the paper's drive.
+            ``oil_temperature``: ``"fixed"`` (default), ``"balance"`` (the housing's heat
+            balance, `ballcvt.api.oil`) or a temperature [K] (docs/model.md §15).
         **legacy
-            ``check_capacity=`` and ``mode=`` as keywords, as before `SolveSettings`.
+            The fields of `SolveSettings` as keywords (``oil_temperature="balance"``).
 
         Returns
         -------
@@ -217,6 +213,10 @@ class Variator(BatchMethods, LifeMethods, ShiftMethods):
             If no equilibrium is found and ``check_capacity`` is False.
         """
         how = merge_settings(SolveSettings, settings, legacy, "solve")
+        if how.oil_temperature != "fixed":
+            point = {"clamp_force": clamp_force, "clamp_law": clamp_law}
+            speeds = {"input_speed": input_speed, "input_speed_rpm": input_speed_rpm}
+            return oil.solve_with_oil(self, how, ratio, output_torque, {**point, **speeds})
         mode = resolve_mode(how.mode)
         if not mode.is_default:
             return planetary.solve_in_mode(
@@ -456,7 +456,7 @@ class Variator(BatchMethods, LifeMethods, ShiftMethods):
         settings : CycleSettings, optional
             Strategy (``"target-input-speed"`` or ``"max-efficiency"``), the target input
             speed [rad/s] or [rpm], candidate ratios per step, the ratio range [-], progress
-            bar and workers.
+            bar, workers and the oil's temperature (docs/model.md §15).
         mode : OperatingMode or str, optional
             As in `solve`: in a planetary mode the cycle's output is the driven member
             and the driver turns at the target input speed
@@ -474,8 +474,10 @@ class Variator(BatchMethods, LifeMethods, ShiftMethods):
         how = merge_settings(CycleSettings, settings, legacy, "run_cycle")
         if not isinstance(cycle, Cycle):
             cycle = read_cycle(cycle)
+        clamp = {"clamp_force": clamp_force, "clamp_law": clamp_law}
+        if how.oil_temperature != "fixed" or how.initial_oil_temperature is not None:
+            return oil.cycle_with_oil(self, cycle, how, clamp, resolve_mode(mode))  # §15
         if not resolve_mode(mode).is_default:
-            clamp = {"clamp_force": clamp_force, "clamp_law": clamp_law}
             return planetary.cycle_in_mode(self, resolve_mode(mode), cycle, how, clamp)
         return run_cycle(
             self,

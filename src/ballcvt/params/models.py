@@ -29,6 +29,7 @@ from .hints import check_unit_mistakes
 from .laws import LAW_FIELDS, check_law
 from .operating import OperatingContext
 from .ratings import BearingRatings
+from .thermal import FluidTemperatureFields, ThermalModel
 
 __all__ = [
     "ParameterModel",
@@ -37,6 +38,7 @@ __all__ = [
     "BearingRatings",
     "CamModel",
     "ParasiticModel",
+    "ThermalModel",
     "Design",
     "Fluid",
     "OperatingPoint",
@@ -230,6 +232,9 @@ class Design(ParameterModel):
     parasitic: ParasiticModel | None = Field(
         None, description="churning, seal and disc bearing losses (optional: none without it)"
     )
+    thermal: ThermalModel | None = Field(
+        None, description="the housing that rejects the losses (optional: the oil's temperature)"
+    )
     operating: OperatingContext | None = Field(
         None,
         description="where the drive runs: the drive file's [operating] table (optional: "
@@ -238,11 +243,12 @@ class Design(ParameterModel):
 
     @model_serializer(mode="wrap")
     def _dump(self, handler) -> dict[str, Any]:
-        """The fields, without ``operating`` when it is not given (so that files and
-        results of drives without it are as they were)."""
+        """The fields, without ``operating`` and ``thermal`` when not given (so that files
+        and results of drives without them are as they were)."""
         data = handler(self)
-        if isinstance(data, dict) and data.get("operating") is None:
-            data.pop("operating", None)
+        for key in ("operating", "thermal"):
+            if isinstance(data, dict) and data.get(key) is None:
+                data.pop(key, None)
         return data
 
     @model_validator(mode="before")
@@ -287,7 +293,7 @@ class Design(ParameterModel):
         return math.radians(self.alpha_deg)
 
 
-class Fluid(ParameterModel):
+class Fluid(FluidTemperatureFields):
     """Traction fluid (Table I, Appendix A, docs/model.md §3, §4)."""
 
     name: str = Field(..., description="label of the fluid")
@@ -369,11 +375,17 @@ class Fluid(ParameterModel):
 
     @model_serializer(mode="wrap")
     def _dump(self, handler) -> dict[str, Any]:
-        """The fields, without ``law_parameters`` when it is not given (so that files and
-        results of the built-in laws are as they were)."""
+        """The fields, without ``law_parameters`` and the temperature fields when not given
+        (nor the default viscosity law), so that files and results of fluids without them
+        are as they were."""
         data = handler(self)
-        if isinstance(data, dict) and data.get("law_parameters") is None:
-            data.pop("law_parameters", None)
+        if not isinstance(data, dict):
+            return data
+        for key in ("law_parameters", *FluidTemperatureFields.model_fields):
+            if data.get(key) is None or (key == "viscosity_law" and data[key] == "walther"):
+                data.pop(key, None)
+        if data.get("viscosity_data") is not None:
+            data["viscosity_data"] = [list(p) for p in data["viscosity_data"]]
         return data
 
     def __hash__(self) -> int:  # law_parameters is a dict (the solvers cache per fluid)

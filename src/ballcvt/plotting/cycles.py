@@ -18,7 +18,8 @@ _FLAG_STYLE = {
 
 def cycle_figure(steps, title: str = "Duty cycle") -> Figure:
     """Three panels over time: ratio and speeds, efficiency (flagged steps marked), and the
-    power losses by kind (stacked).
+    power losses by kind (stacked), with the oil temperature on a second axis when the
+    steps carry it (``oil_temperature_C``, docs/model.md §15).
 
     Parameters
     ----------
@@ -61,5 +62,9 @@ def cycle_figure(steps, title: str = "Duty cycle") -> Figure:
     ax3.set_ylabel("power loss [W]")
     ax3.set_xlabel("time [s]")
     ax3.legend(loc="upper right", fontsize=8)
+    if "oil_temperature_C" in steps:
+        oil = ax3.twinx()
+        oil.plot(t, steps["oil_temperature_C"], color="tab:red", lw=1.2, label="oil")
+        oil.set_ylabel("oil temperature [C]", color="tab:red")
     fig.suptitle(title)
     return fig

@@ -26,7 +26,7 @@ from ..params.models import Design, Fluid
 from ..performance.efficiency import efficiency, loss_breakdown, power_losses
 from ..performance.validity import validity, warning_messages
 from ..solvers.point import PointSolution
-from ..units import rad_s_to_rpm
+from ..units import kelvin_to_celsius, rad_s_to_rpm
 from .io import JsonFile, read_result
 from .losses import LossBreakdown
 
@@ -134,6 +134,14 @@ class OperatingResult:
     clamp_law : str
         The clamping law that set ``clamp_force`` (``constant``, ``cam``, ``optimal``;
         docs/model.md §11).
+    oil_temperature : float or None
+        Bulk oil temperature the fluid was evaluated at [K] (``fluid.inlet_temperature``;
+        None for a fluid without one); ``to_dict`` adds ``oil_temperature_C`` [C].
+    oil_model : str
+        How it was set (docs/model.md §15): ``fixed`` (the fluid as given), ``given`` (a
+        temperature asked for) or ``balance`` (the housing's steady heat balance).
+    thermal_iterations : int
+        Operating points solved to find the balance (0 unless ``balance``).
     version : str
         ballcvt version that computed the result.
     """
@@ -163,6 +171,9 @@ class OperatingResult:
     quadrature: str
     warnings: tuple[str, ...] = ()
     clamp_law: str = "constant"
+    oil_temperature: float | None = None
+    oil_model: str = "fixed"
+    thermal_iterations: int = 0
     version: str = __version__
 
     @property
@@ -209,10 +220,19 @@ class OperatingResult:
             ("min film", min(v.film_thickness for v in c.values()) * 1e6, "um"),
             ("clamp F_N0", self.clamp_force, f"N ({self.clamp_law} law)"),
             ("traction law", self.traction_law, ""),
+            *self._oil_rows(),
             ("converged", f"{self.converged} (residual {self.residual_norm:.1e})", ""),
             ("warnings", len(self.warnings), ""),
         ]
         return f"OperatingResult: {self.architecture} idler, {self.design.name}", rows
+
+    def _oil_rows(self) -> list:
+        """The oil temperature's row, when it was not the fluid's own."""
+        if self.oil_model == "fixed" or self.oil_temperature is None:
+            return []
+        return [
+            ("oil temperature", kelvin_to_celsius(self.oil_temperature), f"C ({self.oil_model})")
+        ]
 
     def __repr__(self) -> str:
         return text_summary(*self._summary())
@@ -258,6 +278,8 @@ class OperatingResult:
         out["traction_law"] = self.traction_law
         out["input_speed_rpm"] = self.input_speed_rpm
         out["axial_force"] = self.axial_force
+        t_oil = self.oil_temperature
+        out["oil_temperature_C"] = None if t_oil is None else kelvin_to_celsius(t_oil)
         ls = LossBreakdown(self.losses)  # subtotals beside the components, not among them
         out["loss_subtotals"] = {"bearing": ls.bearing, "parasitic": ls.parasitic}
         names = list(self.contacts)
@@ -286,8 +308,10 @@ class OperatingResult:
                 "a JSON object",
                 message=f"{source}: not a result (a JSON object is expected)",
             )
-        # files written before the clamping laws (0.1.0) have no clamp_law: constant
-        missing = [f.name for f in fields(cls) if f.name not in data and f.name != "clamp_law"]
+        # files written before the clamping laws (0.1.0) have no clamp_law (constant), and
+        # before the oil's temperature no oil_* keys: the defaults
+        optional = ("clamp_law", "oil_temperature", "oil_model", "thermal_iterations")
+        missing = [f.name for f in fields(cls) if f.name not in data and f.name not in optional]
         if missing:
             raise InputError(
                 missing[0],
@@ -438,6 +462,7 @@ def make_result(
         quadrature=_label(quadrature),
         warnings=tuple(warning_messages(problem, valid, lay.names)),
         clamp_law=clamp_law,
+        oil_temperature=problem.fluid.inlet_temperature,
     )
 
 

@@ -54,12 +54,14 @@ def parameters(ds: xr.Dataset, prefix: str) -> dict:
     ``Design(**parameters(ds, "design"))`` and ``Fluid(**parameters(ds, "fluid"))`` rebuild
     the parameter sets a sweep was computed with.
     """
-    nested = {"design": ("material", "bearings", "cam", "parasitic")}.get(prefix, ())
+    nested = {"design": ("material", "bearings", "cam", "parasitic", "thermal")}.get(prefix, ())
     out: dict = {}
     for key, value in ds.attrs.items():
         if not key.startswith(prefix + "_"):
             continue
         name = key[len(prefix) + 1 :]
+        if name == "viscosity_data":  # rows of (C, mm^2/s), written row after row
+            value = [list(map(float, row)) for row in list(value.reshape(-1, 2))]
         value = value.item() if hasattr(value, "item") else value
         group = next((g for g in nested if name.startswith(g + "_")), None)
         if group:

@@ -265,13 +265,16 @@ def _given_limits(limit_torque, archs, shape):
 
 
 def flat_attrs(prefix: str, data: dict) -> dict:
-    """Nested parameters as flat NetCDF attributes ``<prefix>_<key>[_<subkey>]``."""
+    """Nested parameters as flat NetCDF attributes ``<prefix>_<key>[_<subkey>]`` (a table
+    of rows, the fluid's ``viscosity_data``, row after row: NetCDF attributes are 1-D)."""
     out = {}
     for key, value in data.items():
         if value is None:  # an optional table the design lacks
             continue
         if isinstance(value, dict):
             out.update(flat_attrs(f"{prefix}_{key}", value))
+        elif isinstance(value, list | tuple) and value and isinstance(value[0], list | tuple):
+            out[f"{prefix}_{key}"] = [x for row in value for x in row]
         else:
             out[f"{prefix}_{key}"] = value
     return out

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 from ...api import read_cycle
@@ -10,6 +11,7 @@ from ...files import check_output_dir
 from . import options as o
 from .cycle_options import cycle_options, cycle_settings
 from .modes import add_mode_options, mode_of
+from .oil_option import add_oil_option, oil_setting
 
 
 def add_parser(subparsers) -> None:
@@ -30,6 +32,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("cycle_file", type=Path, metavar="CYCLE.csv", help="the duty cycle")
     o.add(p, "arch", *o.CLAMP_OPTIONS, *o.FLUID_OPTIONS)
     cycle_options(p)
+    add_oil_option(p, "transient")
     o.out(p, "ballcvt-cycle")
     o.add(p, "json", "life", "life-model", "material")
     o.run_options(p)
@@ -44,7 +47,7 @@ def run(args) -> int:
     out = check_output_dir(args.out)
     cycle = read_cycle(args.cycle_file)
     v = o.variator(args)
-    settings = cycle_settings(args, cycle.kind)
+    settings = replace(cycle_settings(args, cycle.kind), **oil_setting(args))
     mode = mode_of(args)
     if args.life and not mode.is_default:
         raise InputError(
@@ -77,5 +80,13 @@ def run(args) -> int:
             f"{s['energy_out_J'] / 3.6e3:.2f} Wh, efficiency {eff}; {s['steps_flagged']} "
             f"steps flagged; {s['run_time_s']:.1f} s on {args.workers} worker(s)"
             + (f"; {o.life_line(s['life'])}" if args.life else "")
+            + _oil_line(s.get("oil_temperature"))
         )
     return 0
+
+
+def _oil_line(oil) -> str:
+    """The oil's temperatures of the summary, when modelled (``--oil-temperature``)."""
+    if oil is None:
+        return ""
+    return f"; oil {oil['max_C']:.1f} C max, {oil['final_C']:.1f} C at the end ({oil['model']})"

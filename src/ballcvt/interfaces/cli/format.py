@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ...api import OperatingResult, PlanetaryResult
-from ...units import rad_s_to_rpm
+from ...units import kelvin_to_celsius, rad_s_to_rpm
 
 __all__ = ["point_table", "planetary_table", "limit_table", "clamp_table"]
 
@@ -62,6 +62,12 @@ def point_table(r: OperatingResult, efficiency: str = "") -> str:
         f"solver      {'converged' if r.converged else 'NOT CONVERGED'}, max|residual| "
         f"{r.residual_norm:.1e}, {r.iterations} evaluations, quadrature {r.quadrature}",
     ]
+    if r.oil_model != "fixed" and r.oil_temperature is not None:
+        how = f", {r.thermal_iterations} points solved" if r.oil_model == "balance" else ""
+        lines.append(
+            f"oil         {kelvin_to_celsius(r.oil_temperature):.2f} C ({r.oil_model}{how}), "
+            f"eta_0 {r.fluid.viscosity * 1e3:.4g} mPa s"
+        )
     lines += [f"warning: {w}" for w in r.warnings] or ["validity    no warnings"]
     return "\n".join(lines)
 

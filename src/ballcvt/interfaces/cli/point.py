@@ -6,6 +6,7 @@ from ...api import PlanetaryResult, SolveSettings
 from . import options as o
 from .format import planetary_table, point_table
 from .modes import add_mode_options, mode_of
+from .oil_option import add_oil_option, oil_setting
 
 
 def add_parser(subparsers) -> None:
@@ -23,6 +24,7 @@ def add_parser(subparsers) -> None:
     )
     o.add(p, "arch", "ratio", "torque", *o.CLAMP_OPTIONS, "speed", *o.FLUID_OPTIONS, "json")
     add_mode_options(p)
+    add_oil_option(p, "balance")
 
 
 def run(args) -> int:
@@ -34,7 +36,7 @@ def run(args) -> int:
         output_torque=args.torque,
         **o.law(args),
         input_speed_rpm=o.rpm(args.speed),
-        settings=SolveSettings(mode=mode),
+        settings=SolveSettings(mode=mode, **oil_setting(args)),
     )
     if args.json:
         o.emit_json_text(r.to_json())

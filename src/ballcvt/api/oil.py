@@ -1,0 +1,200 @@
+"""The oil's temperature in `Variator.solve` and `Variator.run_cycle` (docs/model.md §15).
+
+``oil_temperature="balance"`` solves the housing's steady heat balance
+``P_loss(T) = h A (T - T_amb)``: each evaluation of ``P_loss(T)`` is a full operating point
+with the fluid at ``T`` (`ballcvt.model.oil.fluid_at`). The root is bracketed from the
+ambient upwards by fixed-point steps ``T <- T_amb + P_loss(T) / (h A)`` and then found by
+Brent's method to `BALANCE_TOL`; if the losses still exceed what the housing rejects at
+`MAX_OIL_TEMPERATURE` there is no balance (a runaway) and the point is refused.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any
+
+from scipy.optimize import brentq
+
+from ..errors import InputError
+from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
+from ..results.planetary import PlanetaryResult
+
+__all__ = [
+    "solve_with_oil",
+    "cycle_with_oil",
+    "oil_choice",
+    "thermal_of",
+    "MAX_OIL_TEMPERATURE",
+    "BALANCE_TOL",
+]
+
+#: Tolerance of the balance's temperature [K].
+BALANCE_TOL = 0.01
+#: Fixed-point steps to bracket the balance before refusing.
+MAX_BRACKET_STEPS = 30
+
+
+def oil_choice(value: Any, models: tuple[str, ...]) -> str | float:
+    """``value`` as one of ``models`` or a temperature [K]; `InputError` otherwise."""
+    if isinstance(value, str) and value in models:
+        return value
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        if 150.0 < float(value) < 700.0:
+            return float(value)
+    raise InputError("oil_temperature", value, " or ".join(models) + " or a temperature 150-700 K")
+
+
+def thermal_of(design):
+    """The design's ``[design.thermal]``; `InputError` when it has none."""
+    if design.thermal is None:
+        raise InputError(
+            "design.thermal",
+            None,
+            "a [design.thermal] table (housing_area, heat_transfer_coefficient, "
+            "ambient_temperature) for the oil's heat balance",
+        )
+    return design.thermal
+
+
+def _loss(result) -> float:
+    """Total power loss of a point [W]."""
+    return result.loss if isinstance(result, PlanetaryResult) else result.losses["total"]
+
+
+def _tag(result, model: str, iterations: int):
+    """``result`` with how its oil temperature was set."""
+    if isinstance(result, PlanetaryResult):
+        rel = replace(result.relative, oil_model=model, thermal_iterations=iterations)
+        return replace(result, relative=rel)
+    return replace(result, oil_model=model, thermal_iterations=iterations)
+
+
+def solve_with_oil(variator, settings, ratio: float, output_torque: float, point: dict):
+    """`Variator.solve` under ``settings.oil_temperature`` other than ``"fixed"``.
+
+    Parameters
+    ----------
+    variator : Variator
+        The drive (its fluid as given, at its reference temperature).
+    settings : SolveSettings
+        With ``oil_temperature`` ``"balance"`` or a temperature [K].
+    ratio, output_torque : float
+        As in `Variator.solve` [-], [N m].
+    point : dict
+        The other keywords of `Variator.solve` (clamping and speed).
+
+    Returns
+    -------
+    OperatingResult or PlanetaryResult
+        Solved with the fluid at the oil temperature (``oil_temperature`` [K],
+        ``oil_model``, ``thermal_iterations``).
+
+    Raises
+    ------
+    InputError
+        No ``[design.thermal]``, a fluid without temperature data, or no balance below
+        `MAX_OIL_TEMPERATURE` (the losses outgrow the housing's heat rejection).
+    """
+    choice = oil_choice(settings.oil_temperature, ("fixed", "balance"))
+    fixed = replace(settings, oil_temperature="fixed")
+
+    def at(temperature: float):
+        drive = replace(variator, fluid=fluid_at(variator.fluid, temperature))
+        return drive.solve(ratio, output_torque, settings=fixed, **point)
+
+    if isinstance(choice, float):
+        return _tag(at(choice), "given", 0)
+    thermal = thermal_of(variator.design)
+    temperature, result, evaluations = balance(at, thermal)
+    return _tag(result, "balance", evaluations)
+
+
+def balance(at, thermal) -> tuple[float, Any, int]:
+    """``(T, result at T, points solved)`` of ``P_loss(T) = h A (T - T_amb)``.
+
+    ``at(T)`` solves the point with the fluid at ``T`` [K]; ``thermal`` is the design's
+    `ballcvt.params.thermal.ThermalModel`.
+    """
+    solved: dict[float, Any] = {}
+
+    def excess(temperature: float) -> float:
+        """Loss minus heat rejected at ``temperature`` [W]."""
+        if temperature not in solved:
+            solved[temperature] = at(temperature)
+        rejected = thermal.conductance * (temperature - thermal.ambient_temperature)
+        return _loss(solved[temperature]) - rejected
+
+    lo = thermal.ambient_temperature
+    if excess(lo) <= 0.0:  # no loss: the oil is at the ambient
+        return lo, solved[lo], len(solved)
+    for _ in range(MAX_BRACKET_STEPS):
+        ambient, conductance = thermal.ambient_temperature, thermal.conductance
+        hi = min(steady_temperature(_loss(solved[lo]), conductance, ambient), MAX_OIL_TEMPERATURE)
+        if excess(hi) <= 0.0:
+            break
+        if hi >= MAX_OIL_TEMPERATURE:
+            raise runaway(_loss(solved[hi]), thermal)
+        if hi - lo <= BALANCE_TOL:  # the fixed point converged from below
+            return hi, solved[hi], len(solved)
+        lo = hi
+    else:
+        raise runaway(_loss(solved[lo]), thermal)
+    root = brentq(excess, lo, hi, xtol=BALANCE_TOL)
+    excess(root)
+    return root, solved[root], len(solved)
+
+
+def runaway(loss: float, thermal) -> InputError:
+    """The refusal of a point with no heat balance below `MAX_OIL_TEMPERATURE`."""
+    t_max = MAX_OIL_TEMPERATURE - C_TO_K
+    return InputError(
+        "oil_temperature",
+        "balance",
+        "a point whose losses the housing can reject",
+        message=f"no oil heat balance below {t_max:.0f} C: the losses ({loss:.4g} W at "
+        f"{t_max:.0f} C) exceed what the housing rejects, h A (T - T_amb) = "
+        f"{thermal.conductance:.4g} W/K x {t_max - (thermal.ambient_temperature - C_TO_K):.0f} K "
+        "(a thermal runaway: more housing area or cooling)",
+    )
+
+
+def cycle_with_oil(variator, cycle, settings, clamp: dict, mode):
+    """`Variator.run_cycle` under ``settings.oil_temperature`` other than ``"fixed"``:
+    ``"transient"`` (the housing's lumped transient,
+    `ballcvt.analysis.oil_cycle.run_cycle_with_oil`) or a temperature [K].
+
+    ``clamp`` holds ``clamp_force`` and ``clamp_law`` as given to `Variator.run_cycle`;
+    ``mode`` its operating mode (the carrier-held drive only).
+    """
+    from ..analysis.cycle_request import CycleRequest
+    from ..analysis.oil_cycle import OilTransient, run_cycle_with_oil
+
+    choice = oil_choice(settings.oil_temperature, ("fixed", "transient"))
+    start = settings.initial_oil_temperature
+    if start is not None and choice != "transient":
+        raise InputError(
+            "initial_oil_temperature", start, "given with oil_temperature 'transient' only"
+        )
+    if not mode.is_default:
+        raise InputError("oil_temperature", choice, "fixed in a planetary mode (not modelled)")
+    request = CycleRequest(
+        strategy=settings.strategy,
+        target_input_speed=settings.target(),
+        candidates=settings.candidates,
+        ratio_range=settings.ratio_range,
+        progress=settings.progress,
+        workers=settings.workers,
+        **clamp,
+    )
+    if isinstance(choice, float):
+        oil = OilTransient(thermal=variator.design.thermal, fixed_temperature=choice)
+        return run_cycle_with_oil(variator, cycle, request, oil)
+    thermal = thermal_of(variator.design)
+    if thermal.thermal_mass is None:
+        raise InputError(
+            "design.thermal.thermal_mass", None, "> 0 J/K (the oil's transient over a cycle)"
+        )
+    if start is not None and not 150.0 < float(start) < MAX_OIL_TEMPERATURE:
+        raise InputError("initial_oil_temperature", start, f"150 to {MAX_OIL_TEMPERATURE:g} K")
+    oil = OilTransient(thermal=thermal, initial_temperature=start)
+    return run_cycle_with_oil(variator, cycle, request, oil)

@@ -16,6 +16,7 @@ from ..model.clamping import clamp_law as _clamp_law
 from ..model.kinematics import ratio_range
 from ..model.modes import resolve_mode
 from ..model.traction.quadrature import Quadrature
+from ..params.drive_models import drive_clamp, effective_models
 from ..params.io import load_builtin
 from ..params.models import ARCHITECTURES, Design, Fluid
 from ..results.planetary import PlanetaryResult
@@ -59,9 +60,9 @@ class Variator(BatchMethods, LifeMethods):
     options : SolverOptions
         Solver and quadrature settings.
     traction_law : {"isothermal", "thermal", "viscoelastic"}, optional
-        Shear law of the film (docs/model.md §14); default: the fluid's own
-        (``Fluid.traction_law``, the paper's isothermal law for Table I). The fluid must
-        carry the law's parameters.
+        Shear law of the film (docs/model.md §14); default: the drive file's ``[models]
+        traction_law``, else the fluid's own (``Fluid.traction_law``, the paper's
+        isothermal law for Table I). The fluid must carry the law's parameters.
 
     Examples
     --------
@@ -83,7 +84,9 @@ class Variator(BatchMethods, LifeMethods):
             d, f = _default_drive()
             object.__setattr__(self, "design", self.design or d)
             object.__setattr__(self, "fluid", self.fluid or f)
-        object.__setattr__(self, "fluid", self.fluid.with_traction_law(self.traction_law))
+        named = self.design.models.traction_law if self.design.models is not None else None
+        law = self.traction_law or named  # the call's, else the drive file's
+        object.__setattr__(self, "fluid", self.fluid.with_traction_law(law))
         object.__setattr__(self, "traction_law", self.fluid.traction_law)
         if self.architecture not in ARCHITECTURES:
             raise InputError(
@@ -126,8 +129,18 @@ class Variator(BatchMethods, LifeMethods):
         return ratio_range(self.design)
 
     def clamp_law(self, clamp_law=None, clamp_force=None):
-        """The clamping law named by ``clamp_law`` (see `ballcvt.model.clamping.clamp_law`)."""
-        return _clamp_law(clamp_law, self.design, clamp_force)
+        """The clamping law named by ``clamp_law`` (see `ballcvt.model.clamping.clamp_law`);
+        with neither argument, the drive file's (``[models]`` or ``[operating]``
+        ``clamp_law``, `ballcvt.params.drive_models.drive_clamp`)."""
+        law, force = drive_clamp(self.design, clamp_law, clamp_force)
+        return _clamp_law(law, self.design, force)
+
+    @property
+    def models(self) -> dict[str, str]:
+        """The models this drive is computed with when a call names none: clamping law,
+        traction law, lubrication and oil temperature (a drive file's ``[models]``, else
+        the package's defaults; `ballcvt.params.drive_models.effective_models`)."""
+        return effective_models(self.design, self.fluid, traction_law=self.fluid.traction_law)
 
     def _problem(self, ratio, output_torque, law, input_speed, input_speed_rpm):
         """The operating point, at the law's force for the given torque (a start value for
@@ -387,6 +400,7 @@ class Variator(BatchMethods, LifeMethods):
             )
         from ..analysis.sweeps.grid import sweep
 
+        clamp_law, clamp_force = drive_clamp(self.design, clamp_law, clamp_force)
         rpm = (
             None if input_speed_rpm is None else np.atleast_1d(np.asarray(input_speed_rpm, float))
         )

@@ -246,7 +246,11 @@ def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> 
     dump = design.model_dump()
     tables = {name: dump.pop(name, None) for name in _DRIVE_TABLES}
     _update(doc, "design", dump)
-    _update(doc, "fluid", fluid.model_dump())
+    fluid_dump = fluid.model_dump()
+    named = (tables["models"] or {}).get("traction_law")
+    if named == fluid.traction_law and "traction_law" not in doc.get("fluid", {}):
+        fluid_dump.pop("traction_law")  # stated once, in [models]
+    _update(doc, "fluid", fluid_dump)
     for name, table in tables.items():
         if table is None:
             doc.pop(name, None)

@@ -11,7 +11,7 @@ import numpy as np
 from ..errors import InputError
 from ..model.clamping.base import names_fixed_force
 from ..model.modes import resolve_mode
-from ..params.drive_models import drive_clamp
+from ..params.drive_models import drive_clamp, effective_models
 from ..params.models import Design, Fluid
 from ..solvers.options import SolverOptions
 from ..units import rpm_to_rad_s
@@ -28,6 +28,13 @@ class BatchMethods:
     fluid: Fluid
     architecture: str
     options: SolverOptions
+
+    @property
+    def models(self) -> dict[str, str]:
+        """The models this drive is computed with when a call names none: clamping law,
+        traction law, lubrication and oil temperature (a drive file's ``[models]``, else
+        the package's defaults; `ballcvt.params.drive_models.effective_models`)."""
+        return effective_models(self.design, self.fluid, traction_law=self.fluid.traction_law)
 
     def limit_curve(
         self,

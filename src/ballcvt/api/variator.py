@@ -16,7 +16,7 @@ from ..model.clamping import clamp_law as _clamp_law
 from ..model.kinematics import ratio_range
 from ..model.modes import resolve_mode
 from ..model.traction.quadrature import Quadrature
-from ..params.drive_models import drive_clamp, effective_models
+from ..params.drive_models import drive_clamp
 from ..params.io import load_builtin
 from ..params.models import ARCHITECTURES, Design, Fluid
 from ..results.planetary import PlanetaryResult
@@ -129,18 +129,10 @@ class Variator(BatchMethods, LifeMethods):
         return ratio_range(self.design)
 
     def clamp_law(self, clamp_law=None, clamp_force=None):
-        """The clamping law named by ``clamp_law`` (see `ballcvt.model.clamping.clamp_law`);
-        with neither argument, the drive file's (``[models]`` or ``[operating]``
-        ``clamp_law``, `ballcvt.params.drive_models.drive_clamp`)."""
+        """The clamping law named by ``clamp_law`` (`ballcvt.model.clamping.clamp_law`);
+        with neither argument, the drive file's (`ballcvt.params.drive_models.drive_clamp`)."""
         law, force = drive_clamp(self.design, clamp_law, clamp_force)
         return _clamp_law(law, self.design, force)
-
-    @property
-    def models(self) -> dict[str, str]:
-        """The models this drive is computed with when a call names none: clamping law,
-        traction law, lubrication and oil temperature (a drive file's ``[models]``, else
-        the package's defaults; `ballcvt.params.drive_models.effective_models`)."""
-        return effective_models(self.design, self.fluid, traction_law=self.fluid.traction_law)
 
     def _problem(self, ratio, output_torque, law, input_speed, input_speed_rpm):
         """The operating point, at the law's force for the given torque (a start value for

@@ -71,7 +71,7 @@ def has_hub_bearings(design: Design) -> bool:
 def _shell_bearings(at: DragInputs):
     """Both shell bearings, each under half the wheel load (`palmgren_torque`) [N m]."""
     par = at.design.parasitic
-    assert par is not None and par.hub_bearing_diameter is not None
+    assert par is not None and par.hub_bearing_diameter is not None and par.wheel_load is not None
     one = palmgren_torque(
         at.speed,
         0.5 * par.wheel_load,

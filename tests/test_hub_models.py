@@ -248,3 +248,16 @@ def test_cli_reports_its_models_and_flags_win(capsys):
     assert "models      clamp_law constant, traction_law thermal" in out
     d, f = open_drive("hub", "table1")
     assert f.traction_law == "isothermal"
+
+
+def test_figure_titles_name_the_models_beyond_the_papers():
+    import argparse
+
+    from ballcvt.interfaces.cli.options import clamp_label
+
+    hub = argparse.Namespace(design="hub", fluid=None, traction_law="thermal",
+                             clamp_law="cam", clamp=None)
+    assert clamp_label(hub) == "cam clamping, thermal traction"
+    paper = argparse.Namespace(design=None, fluid=None, traction_law=None,
+                               clamp_law="constant", clamp=None)
+    assert clamp_label(paper) == "$F_{N0}$ = 2000 N"

@@ -390,11 +390,26 @@ def law(args) -> dict:
 
 
 def clamp_label(args) -> str:
-    """The clamping of a figure's title."""
+    """The clamping of a figure's title, then each model that is not the paper's
+    (traction law, lubrication, oil temperature: `models_used`)."""
     if args.clamp_law == "constant":
         force = PAPER_POINT.clamp_force if args.clamp is None else args.clamp
-        return f"$F_{{N0}}$ = {force:g} N"
-    return f"{args.clamp_law} clamping"
+        label = f"$F_{{N0}}$ = {force:g} N"
+    else:
+        label = f"{args.clamp_law} clamping"
+    design, fluid = open_drive(
+        getattr(args, "design", None),
+        getattr(args, "fluid", None),
+        getattr(args, "traction_law", None),
+    )
+    models = effective_models(
+        design, fluid, clamp_law=args.clamp_law, traction_law=fluid.traction_law
+    )
+    paper = {"traction_law": "isothermal", "lubrication": "full-film", "oil_temperature": "fixed"}
+    said = {"traction_law": "traction", "lubrication": "lubrication", "oil_temperature": "oil"}
+    return ", ".join(
+        [label] + [f"{models[k]} {said[k]}" for k, m in paper.items() if models[k] != m]
+    )
 
 
 def show(args) -> bool:

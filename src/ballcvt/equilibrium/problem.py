@@ -128,7 +128,7 @@ class EquilibriumProblem:
         ``output_torque`` is the condition's target and may be negative.
     drag_kinds : tuple of str
         The loss kinds of the last axis of the drags (`ballcvt.model.losses.drag_kinds`):
-        ``churning, seals, disc_bearings``, then those of user loss terms.
+        ``churning, seals, disc_bearings, hub_bearings``, then those of user loss terms.
     """
 
     design: Design

@@ -378,7 +378,8 @@ def parasitic_torques(
         Drag torque on each ball about its spin axis [N m], shape ``(...)``.
     input, output : ndarray
         Drag torques on the input and output shafts by kind (`drag_kinds`; the built-in
-        ``churning, seals, disc_bearings`` first) [N m], shape ``(..., n_kinds)``:
+        ``churning, seals, disc_bearings, hub_bearings`` first) [N m], shape
+        ``(..., n_kinds)``:
         positive where they oppose the shaft's rotation. The disc thrust bearing's torque
         has opposite signs on the two shafts; its power is
         ``M tanh((omega_0 - omega_2) / omega_s) (omega_0 - omega_2) >= 0``

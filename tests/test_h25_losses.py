@@ -13,7 +13,7 @@ from ballcvt.results.losses import LOSS_SUBTOTALS, LossBreakdown
 from ballcvt.results.point import OperatingResult
 
 COMPONENTS = {"creep", "spin", "roller_bearings", "idler_bearings", "churning", "seals",
-              "disc_bearings"}
+              "disc_bearings", "hub_bearings"}  # hub_bearings: the hub's own (issue 27)
 
 
 @pytest.fixture(scope="module")
@@ -43,7 +43,8 @@ def test_old_subtotal_keys_still_answer_with_a_warning(hub):
         bearing = r.losses["bearing"]
     assert bearing == r.losses["roller_bearings"] + r.losses["idler_bearings"]
     assert r.losses.parasitic == pytest.approx(
-        r.losses["churning"] + r.losses["seals"] + r.losses["disc_bearings"])
+        r.losses["churning"] + r.losses["seals"] + r.losses["disc_bearings"]
+        + r.losses["hub_bearings"])
     assert "bearing" not in r.losses and "parasitic" not in dict(r.losses)
     assert r.to_dict()["loss_subtotals"]["bearing"] == r.losses.bearing
 

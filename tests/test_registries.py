@@ -27,8 +27,11 @@ def ball_drag_term():
 
 
 def test_builtin_loss_terms_in_order():
-    assert LOSS_TERMS.names() == ("roller_churning", "disc_churning", "seals", "disc_bearing")
-    assert drag_kinds() == ("churning", "seals", "disc_bearings")
+    assert LOSS_TERMS.names() == (
+        "roller_churning", "disc_churning", "seals", "disc_bearing",
+        "shell_bearings", "driver_bearing",  # the hub's own bearings (issue 27)
+    )
+    assert drag_kinds() == ("churning", "seals", "disc_bearings", "hub_bearings")
     for _, term in LOSS_TERMS.items():
         assert term.parameters.startswith("design.parasitic")
 
@@ -44,7 +47,7 @@ def test_loss_term_is_checked():
 def test_user_term_enters_the_balances_and_the_breakdown(ball_drag_term):
     design, fluid = load_builtin()
     ball, d0, d2 = parasitic_torques(design, fluid, 200.0, 100.0, 600.0, 1e4)
-    assert ball == 1e-3 and d0.shape == (4,) and not d0.any() and not d2.any()
+    assert ball == 1e-3 and d0.shape == (5,) and not d0.any() and not d2.any()
     r = Variator().solve(1.0, 20.0, clamp_force=F, input_speed_rpm=2000)
     ls = r.losses
     assert ls["test_roller_drag"] > 0 and ls["parasitic"] == ls["test_roller_drag"]

@@ -21,7 +21,7 @@ def small(double):
 
 def test_dataset_dims_units_and_flags(small):
     assert dict(small.sizes) == {"architecture": 2, "clamp_force": 1, "input_speed_rpm": 1,
-                                 "ratio": 3, "output_torque": 4, "contact": 5, "loss": 9, "subtotal": 2}
+                                 "ratio": 3, "output_torque": 4, "contact": 5, "loss": 10, "subtotal": 2}
     # the speed coordinate is in the units the user passed, exactly as passed
     assert small.input_speed_rpm.values.tolist() == [2000.0]
     assert small.sel(input_speed_rpm=2000).input_speed.attrs["units"] == "rad/s"

@@ -14,6 +14,7 @@ This module is a leaf: it knows nothing of the physics, only names and objects.
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import dataclass
 from typing import Any, Generic, TypeVar
 
 from .errors import InputError
@@ -26,6 +27,9 @@ __all__ = [
     "OPERATING_MODES",
     "ARCHITECTURES",
     "LIFE_MODELS",
+    "LUBRICATION_MODELS",
+    "OIL_TEMPERATURE_MODELS",
+    "ModelChoice",
 ]
 
 T = TypeVar("T")
@@ -113,3 +117,35 @@ ARCHITECTURES: Registry[Any] = Registry("architecture", "architecture")
 #: Rolling-contact fatigue life models (`ballcvt.model.life.LifeModel` entries; the
 #: built-ins register when `ballcvt.model.life` is imported).
 LIFE_MODELS: Registry[Any] = Registry("life model", "life_model")
+
+
+@dataclass(frozen=True)
+class ModelChoice:
+    """A named choice of model that is a switch of the solvers rather than an object
+    they call (a registry entry of `LUBRICATION_MODELS`, `OIL_TEMPERATURE_MODELS`).
+
+    Attributes
+    ----------
+    name : str
+        Registry name.
+    description : str
+        What the choice computes, for messages and documentation.
+    """
+
+    name: str
+    description: str
+
+
+#: How the contacts are lubricated (a drive file's ``[models] lubrication``): the
+#: built-in ``full-film`` is the paper's (a full fluid film carries the whole load).
+LUBRICATION_MODELS: Registry[Any] = Registry("lubrication model", "lubrication")
+LUBRICATION_MODELS.register(
+    ModelChoice("full-film", "a full fluid film carries the load (the paper's model)")
+)
+#: Where the oil's temperature comes from (a drive file's ``[models] oil_temperature``):
+#: the built-in ``fixed`` is the paper's (the fluid's data temperature, whatever the
+#: losses).
+OIL_TEMPERATURE_MODELS: Registry[Any] = Registry("oil temperature model", "oil_temperature")
+OIL_TEMPERATURE_MODELS.register(
+    ModelChoice("fixed", "the oil stays at the temperature of the fluid's data (the paper's)")
+)

@@ -426,12 +426,13 @@ def _summary(variator, cycle, steps, strategy, law, target, run_time) -> dict:
 def _loss_energies(steps, counted, dt) -> tuple[dict, dict]:
     """Energy lost over the counted steps [J]: by component with ``total`` their sum to
     round-off (`ballcvt.results.losses.LossBreakdown`: ``creep``, ``spin``, ``roller_bearings``,
-    ``idler_bearings``, ``churning``, ``seals``, ``disc_bearings``, and ``user_terms``
+    ``idler_bearings``, ``churning``, ``seals``, ``disc_bearings``, ``hub_bearings``, and ``user_terms``
     when user loss terms dissipate), and the subtotals ``bearing`` and ``parasitic``."""
     energy = {
         k: float(np.sum(np.where(counted, steps[f"loss_{k}"] * dt, 0.0))) for k in LOSS_KINDS
     }
-    user = energy["parasitic"] - (energy["churning"] + energy["seals"] + energy["disc_bearings"])
+    builtin = ("churning", "seals", "disc_bearings", "hub_bearings")
+    user = energy["parasitic"] - sum(energy[k] for k in builtin)
     if abs(user) > 1e-12 * max(1.0, abs(energy["parasitic"])):
         energy["user_terms"] = user
     parts = LossBreakdown(energy)

@@ -13,6 +13,7 @@ from ..model.life import LIFE_MODELS
 from ..model.modes import MEMBERS, OperatingMode
 from ..model.traction.curve import TractionCurve, traction_curve
 from ..params import PAPER_POINT, Design, Drive, Fluid, drive_to_toml, load_builtin, load_drive
+from ..params.drive_models import DriveModels, drive_clamp, effective_models
 from ..params.io import BUILTIN_DRIVES, BUILTIN_FLUIDS, builtin_text, resolve_drive, resolve_fluid
 from ..results.planetary import PlanetaryResult
 from ..results.point import ContactResult, OperatingResult
@@ -77,6 +78,9 @@ __all__ = [
     "CapacityCurve",
     "capacity_curve",
     "CAM_KEYS",
+    "DriveModels",
+    "drive_clamp",
+    "effective_models",
     "OperatingResult",
     "ContactResult",
     "PlanetaryResult",

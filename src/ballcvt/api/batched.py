@@ -11,6 +11,7 @@ import numpy as np
 from ..errors import InputError
 from ..model.clamping.base import names_fixed_force
 from ..model.modes import resolve_mode
+from ..params.drive_models import drive_clamp, effective_models
 from ..params.models import Design, Fluid
 from ..solvers.options import SolverOptions
 from ..units import rpm_to_rad_s
@@ -27,6 +28,13 @@ class BatchMethods:
     fluid: Fluid
     architecture: str
     options: SolverOptions
+
+    @property
+    def models(self) -> dict[str, str]:
+        """The models this drive is computed with when a call names none: clamping law,
+        traction law, lubrication and oil temperature (a drive file's ``[models]``, else
+        the package's defaults; `ballcvt.params.drive_models.effective_models`)."""
+        return effective_models(self.design, self.fluid, traction_law=self.fluid.traction_law)
 
     def limit_curve(
         self,
@@ -62,7 +70,7 @@ class BatchMethods:
             ``limit_torque`` to reuse the search.
         """
         speed = _speeds(input_speed, input_speed_rpm)
-        clamp = _clamp(clamp_force, clamp_law)
+        clamp = _clamp(self.design, clamp_force, clamp_law)
         return grids.limit_curve(self, ratio, speed, clamp, creep_limit, progress)
 
     def efficiency_map(
@@ -111,7 +119,7 @@ class BatchMethods:
                 {"clamp_force": clamp_force, "clamp_law": clamp_law},
             )
         run = {"workers": workers, "progress": progress}
-        clamp = _clamp(clamp_force, clamp_law)
+        clamp = _clamp(self.design, clamp_force, clamp_law)
         return grids.efficiency_map(self, grid or MapGrid(), input_speed_rpm, clamp, run)
 
     def lookup_table(
@@ -145,7 +153,7 @@ class BatchMethods:
         xarray.Dataset
         """
         run = {"workers": workers, "progress": progress}
-        clamp = _clamp(clamp_force, clamp_law)
+        clamp = _clamp(self.design, clamp_force, clamp_law)
         return grids.lookup_table(self, grid or TableGrid(), clamp, run)
 
     def planetary_map(
@@ -242,8 +250,10 @@ class BatchMethods:
 CAM_KEYS = ("disc", "preload", "ramp_angle_deg", "mean_radius", "friction")
 
 
-def _clamp(clamp_force, clamp_law) -> dict:
-    """The clamping keywords of `solve` that were given."""
+def _clamp(design, clamp_force, clamp_law) -> dict:
+    """The clamping keywords of `solve` that were given (with neither, the drive file's,
+    `ballcvt.params.drive_models.drive_clamp`)."""
+    clamp_law, clamp_force = drive_clamp(design, clamp_law, clamp_force)
     if names_fixed_force(clamp_law):
         return {"clamp_force": clamp_force}
     return {

@@ -24,7 +24,8 @@ def open_drive(design=None, fluid=None, traction_law: str | None = None) -> tupl
         A built-in fluid's name or a TOML file with a ``[fluid]`` table, replacing the
         drive's.
     traction_law : str, optional
-        Shear law of the film (docs/model.md §14); the fluid's own by default.
+        Shear law of the film (docs/model.md §14); by default the drive file's ``[models]
+        traction_law`` (also for a replacing fluid), else the fluid's own.
 
     Returns
     -------
@@ -33,7 +34,8 @@ def open_drive(design=None, fluid=None, traction_law: str | None = None) -> tupl
     d, f = resolve_drive(design)
     if fluid is not None:
         f = resolve_fluid(fluid)
-    return d, f.with_traction_law(traction_law)
+    named = d.models.traction_law if d.models is not None else None
+    return d, f.with_traction_law(traction_law or named)
 
 
 def contact_fluid(design=None, fluid=None, traction_law: str | None = None) -> tuple[Fluid, float]:

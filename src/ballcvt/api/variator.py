@@ -7,7 +7,6 @@ from typing import Any
 
 import numpy as np
 
-from .._display import html_summary, text_summary
 from ..equilibrium.problem import build_problem
 from ..errors import ConvergenceError, InputError, TractionLimitError
 from ..model.architectures import check_architecture
@@ -16,6 +15,7 @@ from ..model.clamping import clamp_law as _clamp_law
 from ..model.kinematics import ratio_range
 from ..model.modes import resolve_mode
 from ..model.traction.quadrature import Quadrature
+from ..params.drive_models import drive_clamp
 from ..params.io import load_builtin
 from ..params.models import ARCHITECTURES, Design, Fluid
 from ..results.planetary import PlanetaryResult
@@ -37,6 +37,7 @@ from .life import LifeMethods
 from .refusals import optimal_refusal, refuse_beyond_capacity
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
 from .shift import ShiftMethods
+from .summary import SummaryMethods
 
 __all__ = ["Variator"]
 
@@ -45,8 +46,8 @@ def _default_drive():
     return load_builtin("table1")
 
 
-@dataclass(frozen=True)
-class Variator(BatchMethods, LifeMethods, ShiftMethods):
+@dataclass(frozen=True, repr=False)  # the summary is SummaryMethods'
+class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods):
     """A ball variator of a given design, fluid and idler architecture.
 
     Parameters
@@ -60,9 +61,9 @@ class Variator(BatchMethods, LifeMethods, ShiftMethods):
     options : SolverOptions
         Solver and quadrature settings.
     traction_law : {"isothermal", "thermal", "viscoelastic"}, optional
-        Shear law of the film (docs/model.md §14); default: the fluid's own
-        (``Fluid.traction_law``, the paper's isothermal law for Table I). The fluid must
-        carry the law's parameters.
+        Shear law of the film (docs/model.md §14); default: the drive file's ``[models]
+        traction_law``, else the fluid's own (``Fluid.traction_law``, the paper's
+        isothermal law for Table I). The fluid must carry the law's parameters.
 
     Examples
     --------
@@ -84,7 +85,9 @@ class Variator(BatchMethods, LifeMethods, ShiftMethods):
             d, f = _default_drive()
             object.__setattr__(self, "design", self.design or d)
             object.__setattr__(self, "fluid", self.fluid or f)
-        object.__setattr__(self, "fluid", self.fluid.with_traction_law(self.traction_law))
+        named = self.design.models.traction_law if self.design.models is not None else None
+        law = self.traction_law or named  # the call's, else the drive file's
+        object.__setattr__(self, "fluid", self.fluid.with_traction_law(law))
         object.__setattr__(self, "traction_law", self.fluid.traction_law)
         if self.architecture not in ARCHITECTURES:
             raise InputError(
@@ -93,36 +96,16 @@ class Variator(BatchMethods, LifeMethods, ShiftMethods):
         check_architecture(self.design, self.architecture)
         check_operating(self.design)
 
-    def _summary(self) -> tuple[str, list]:
-        lo, hi = self.ratio_range
-        d, q = self.design, self.options.quadrature
-        rows = [
-            ("design", d.name, ""),
-            ("fluid", self.fluid.name, ""),
-            ("architecture", f"{self.architecture} idler", ""),
-            ("rollers", f"{d.n_rollers} x r_S {d.roller_radius * 1e3:.4g}", "mm"),
-            ("aspect ratio k", d.aspect_ratio, "-"),
-            ("contact angles", f"{d.theta0_deg:g} / {d.theta2_deg:g}", "deg"),
-            ("ratio range", f"{lo:.3f} - {hi:.3f}", "-"),
-            ("traction law", self.fluid.traction_law, ""),
-            ("quadrature", f"{q.n_radial} x {q.n_angular}", "nodes"),
-        ]
-        return "Variator", rows
-
-    def __repr__(self) -> str:
-        return text_summary(*self._summary())
-
-    def _repr_html_(self) -> str:
-        return html_summary(*self._summary())
-
     @property
     def ratio_range(self) -> tuple[float, float]:
         """Usable ideal-ratio range ``(min, max)`` [-]."""
         return ratio_range(self.design)
 
     def clamp_law(self, clamp_law=None, clamp_force=None):
-        """The clamping law named by ``clamp_law`` (see `ballcvt.model.clamping.clamp_law`)."""
-        return _clamp_law(clamp_law, self.design, clamp_force)
+        """The clamping law named by ``clamp_law`` (`ballcvt.model.clamping.clamp_law`);
+        with neither argument, the drive file's (`ballcvt.params.drive_models.drive_clamp`)."""
+        law, force = drive_clamp(self.design, clamp_law, clamp_force)
+        return _clamp_law(law, self.design, force)
 
     def _problem(self, ratio, output_torque, law, input_speed, input_speed_rpm):
         """The operating point, at the law's force for the given torque (a start value for
@@ -388,6 +371,7 @@ class Variator(BatchMethods, LifeMethods, ShiftMethods):
             )
         from ..analysis.sweeps.grid import sweep
 
+        clamp_law, clamp_force = drive_clamp(self.design, clamp_law, clamp_force)
         rpm = (
             None if input_speed_rpm is None else np.atleast_1d(np.asarray(input_speed_rpm, float))
         )

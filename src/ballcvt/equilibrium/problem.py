@@ -128,7 +128,7 @@ class EquilibriumProblem:
         ``output_torque`` is the condition's target and may be negative.
     drag_kinds : tuple of str
         The loss kinds of the last axis of the drags (`ballcvt.model.losses.drag_kinds`):
-        ``churning, seals, disc_bearings``, then those of user loss terms.
+        ``churning, seals, disc_bearings, hub_bearings``, then those of user loss terms.
     """
 
     design: Design
@@ -347,7 +347,13 @@ def make_problem(
     # solved speeds in the residual (docs/model.md §12)
     omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
     drags = drag_magnitudes(
-        design, fluid, w0, omega[..., -1], omega_s, design.n_rollers * fn0 * np.sin(design.theta0)
+        design,
+        fluid,
+        w0,
+        omega[..., -1],
+        omega_s,
+        design.n_rollers * fn0 * np.sin(design.theta0),
+        t2,
     )
     return EquilibriumProblem(
         design=design,

@@ -173,27 +173,47 @@ def parse_drive(text: str, source: str = "design file") -> tuple[Design, Fluid]:
                 "a table",
                 message=f"{source} is incomplete: table [{table}] is missing",
             )
-    extra = sorted(set(data) - {"design", "fluid", "operating"})
+    extra = sorted(set(data) - {"design", "fluid", *_DRIVE_TABLES})
     if extra:
         raise InputError(
             extra[0],
             None,
-            "[design], [fluid] and [operating]",
+            "[design], [fluid], [operating] and [models]",
             message=f"{source}: unknown table [{extra[0]}]",
         )
     design = dict(data["design"])
-    if "operating" in data:
-        if "operating" in design:
-            raise InputError(
-                "operating", None, "one table", message=f"{source}: [operating] given twice"
-            )
-        design["operating"] = data["operating"]
+    for table in _DRIVE_TABLES:
+        if table in data:
+            if table in design:
+                raise InputError(
+                    table, None, "one table", message=f"{source}: [{table}] given twice"
+                )
+            design[table] = data[table]
     try:
-        return Design(**design), Fluid(**data["fluid"])
+        built = Design(**design)
+        return built, _fluid_of(built, data["fluid"])
     except InputError as exc:
         raise InputError(
             exc.quantity, exc.value, exc.allowed, message=f"{source}: {exc}"
         ) from None
+
+
+#: The tables of a drive file read into the design beside ``[design]``.
+_DRIVE_TABLES = ("operating", "models")
+
+
+def _fluid_of(design: Design, table: dict) -> Fluid:
+    """The ``[fluid]`` table under the traction law the drive's ``[models]`` names (as
+    ``--traction-law`` sets it); a different law in ``[fluid]`` itself is refused."""
+    law = design.models.traction_law if design.models is not None else None
+    own = table.get("traction_law")
+    if law is not None and own is not None and own != law:
+        raise InputError(
+            "models.traction_law",
+            law,
+            f"the [fluid] traction_law {own!r} (or one of them only)",
+        )
+    return Fluid(**table).with_traction_law(law)
 
 
 def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> str:
@@ -224,13 +244,18 @@ def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> 
             "template", None, "valid TOML", message=f"design template is not valid TOML: {exc}"
         ) from None
     dump = design.model_dump()
-    operating = dump.pop("operating", None)
+    tables = {name: dump.pop(name, None) for name in _DRIVE_TABLES}
     _update(doc, "design", dump)
-    _update(doc, "fluid", fluid.model_dump())
-    if operating is None:
-        doc.pop("operating", None)
-    else:
-        _update(doc, "operating", {k: _plain(v) for k, v in operating.items()})
+    fluid_dump = fluid.model_dump()
+    named = (tables["models"] or {}).get("traction_law")
+    if named == fluid.traction_law and "traction_law" not in doc.get("fluid", {}):
+        fluid_dump.pop("traction_law")  # stated once, in [models]
+    _update(doc, "fluid", fluid_dump)
+    for name, table in tables.items():
+        if table is None:
+            doc.pop(name, None)
+        else:
+            _update(doc, name, {k: _plain(v) for k, v in table.items()})
     return tomlkit.dumps(doc)
 
 

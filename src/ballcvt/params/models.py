@@ -20,12 +20,15 @@ from pydantic import (
     model_validator,
 )
 
+from ..errors import InputError
 from ..registry import ARCHITECTURES as _ARCHITECTURES
 from ..registry import TRACTION_LAWS
 from ..units import rad_s_to_rpm
 from .base import ParameterModel, _f, _opt
+from .drive_models import DriveModels
 from .feasibility import check_design
 from .hints import check_unit_mistakes
+from .hub_losses import HubBearingParameters
 from .laws import LAW_FIELDS, check_law
 from .operating import OperatingContext
 from .ratings import BearingRatings
@@ -43,6 +46,7 @@ __all__ = [
     "Fluid",
     "OperatingPoint",
     "OperatingContext",
+    "DriveModels",
     "Architecture",
     "ARCHITECTURES",
     "TRACTION_LAWS",
@@ -121,6 +125,35 @@ class CamModel(ParameterModel):
     ramp_angle_deg: float = _f("deg", "ramp angle phi at the mean radius", gt=0, lt=60)
     mean_radius: float = _f("m", "mean radius r_m of the ramp balls", gt=0, lt=10)
     friction: float = _f("-", "ramp friction coefficient mu_r (rolling balls: ~0.005)", ge=0, lt=1)
+    branch: Literal["loading", "unloading"] = Field(
+        "loading",
+        description="which side of the ramp friction's hysteresis the cam is on: 'loading' "
+        "(torque rising, friction resists the ramp's climb: tan(phi + atan mu_r), the "
+        "default) or 'unloading' (torque falling: tan(phi - atan mu_r), a larger thrust) [-]",
+        json_schema_extra={"unit": "-"},
+    )
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler) -> dict[str, Any]:
+        """The fields, without ``branch`` on its default (files and results of cams
+        written before it are as they were)."""
+        data = handler(self)
+        if isinstance(data, dict) and data.get("branch") == "loading":
+            data.pop("branch")
+        return data
+
+    @model_validator(mode="after")
+    def _unloads(self) -> CamModel:
+        if self.branch == "unloading" and math.radians(self.ramp_angle_deg) <= math.atan(
+            self.friction
+        ):
+            raise InputError(
+                "cam.branch",
+                self.branch,
+                "'loading' (the ramp self-locks: ramp_angle_deg <= atan(friction), it never "
+                "unloads)",
+            )
+        return self
 
     @property
     def ramp_angle(self) -> float:
@@ -128,8 +161,10 @@ class CamModel(ParameterModel):
         return math.radians(self.ramp_angle_deg)
 
 
-class ParasiticModel(ParameterModel):
-    """Losses beyond the paper's contacts and bearings (docs/model.md §12); optional."""
+class ParasiticModel(HubBearingParameters):
+    """Losses beyond the paper's contacts and bearings (docs/model.md §12); optional.
+
+    The hub's own bearings (`HubBearingParameters`) are optional keys of the table."""
 
     oil_fraction: float = _f(
         "-",
@@ -241,12 +276,18 @@ class Design(ParameterModel):
         "the paper's operating point without it)",
     )
 
+    models: DriveModels | None = Field(
+        None,
+        description="the models the drive is computed with: the drive file's [models] "
+        "table (optional: the package's defaults without it)",
+    )
+
     @model_serializer(mode="wrap")
     def _dump(self, handler) -> dict[str, Any]:
-        """The fields, without ``operating`` and ``thermal`` when not given (so that files
-        and results of drives without them are as they were)."""
+        """The fields, without ``operating``, ``thermal`` and ``models`` when they are not
+        given (so that files and results of drives without them are as they were)."""
         data = handler(self)
-        for key in ("operating", "thermal"):
+        for key in ("operating", "thermal", "models"):
             if isinstance(data, dict) and data.get(key) is None:
                 data.pop(key, None)
         return data
@@ -267,6 +308,16 @@ class Design(ParameterModel):
     def _buildable(self) -> Design:
         check_unit_mistakes(self)
         check_design(self)
+        said = (
+            getattr(self.models, "clamp_law", None),
+            getattr(self.operating, "clamp_law", None),
+        )
+        if None not in said and said[0] != said[1]:
+            raise InputError(
+                "models.clamp_law",
+                said[0],
+                f"the [operating] clamp_law {said[1]!r} (or one of them only)",
+            )
         return self
 
     @property

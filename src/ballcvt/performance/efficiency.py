@@ -35,6 +35,7 @@ LOSS_KINDS = (
     "churning",
     "seals",
     "disc_bearings",
+    "hub_bearings",
     "parasitic",
     "total",
 )

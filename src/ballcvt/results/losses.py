@@ -2,7 +2,7 @@
 
 The components are the keys of a `LossBreakdown` other than ``total``: ``creep``,
 ``spin``, ``roller_bearings``, ``idler_bearings``, ``churning``, ``seals``,
-``disc_bearings`` and the kind of each user loss term (`ballcvt.registry.LOSS_TERMS`).
+``disc_bearings``, ``hub_bearings`` and the kind of each user loss term (`ballcvt.registry.LOSS_TERMS`).
 Each power is counted in exactly one component, and ``total`` is their sum (Eq. 40 plus
 the parasitic losses, as the model adds them: ``sum(v for k, v in losses.items() if k !=
 "total")`` equals ``losses["total"]`` to round-off, relative 1e-12), so summing the

@@ -113,8 +113,8 @@ class OperatingResult:
         ``(F_Ra, F_Rb)`` on each ball axle [N].
     losses : LossBreakdown
         Power loss by component [W]: ``creep``, ``spin``, ``roller_bearings``,
-        ``idler_bearings``, ``churning``, ``seals``, ``disc_bearings`` (zero without
-        ``design.parasitic``, docs/model.md §12), each user loss term's kind, and
+        ``idler_bearings``, ``churning``, ``seals``, ``disc_bearings``, ``hub_bearings``
+        (zero without ``design.parasitic``, docs/model.md §12), each user loss term's kind, and
         ``total``, their sum (to round-off; `ballcvt.results.losses`). The subtotals are
         ``losses.bearing`` and ``losses.parasitic`` (``losses["bearing"]`` still answers,
         with a deprecation warning).

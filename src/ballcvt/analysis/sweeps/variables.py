@@ -49,7 +49,7 @@ def component_losses(kinds: np.ndarray) -> np.ndarray:
     not round-off, where no user term dissipates).
     """
     k = {name: kinds[..., i] for i, name in enumerate(LOSS_KINDS)}
-    user = k["parasitic"] - (k["churning"] + k["seals"] + k["disc_bearings"])
+    user = k["parasitic"] - (k["churning"] + k["seals"] + k["disc_bearings"] + k["hub_bearings"])
     user = np.where(np.abs(user) <= 1e-12 * np.maximum(1.0, np.abs(k["parasitic"])), 0.0, user)
     parts = [k[name] for name in LOSS_COMPONENTS[:-1]]
     return np.stack([*parts, user, k["total"]], axis=-1)
@@ -86,7 +86,8 @@ VARIABLES = {
     "losses": (
         "W",
         "power loss by kind (Eq. 40): the components creep, spin, roller_bearings, "
-        "idler_bearings, churning, seals, disc_bearings, user_terms, which sum to total",
+        "idler_bearings, churning, seals, disc_bearings, hub_bearings, user_terms, which "
+        "sum to total",
     ),
     "loss_subtotals": (
         "W",

@@ -55,6 +55,7 @@ def point_table(r: OperatingResult, efficiency: str = "") -> str:
             if any(ls.get(k) for k in ("churning", "seals", "disc_bearings"))
             else ""
         )
+        + (f"  hub bearings {ls['hub_bearings']:.2f}" if ls.get("hub_bearings") else "")
         + f"  total {ls['total']:.2f}",
         efficiency
         or f"efficiency  overall {r.eta:.5f} (Eq. 38)  {r.eta_loss:.5f} (Eq. 39)  "

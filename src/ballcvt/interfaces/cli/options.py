@@ -22,6 +22,8 @@ from ...api import (
     LIFE_MODELS,
     PAPER_POINT,
     Variator,
+    drive_clamp,
+    effective_models,
     open_drive,
 )
 from ...errors import InputError
@@ -315,8 +317,18 @@ def variator(args) -> Variator:
     if cam and getattr(args, "clamp_law", "constant") != "cam":
         opt = flags[next(iter(cam))]
         raise InputError(opt, None, "--clamp-law cam", message=f"{opt} needs --clamp-law cam")
-    v = Variator(design, fluid, args.arch)
+    v = Variator(design, fluid, args.arch, traction_law=fluid.traction_law)
     return v.with_cam(cam, flags) if cam else v
+
+
+def models_used(args, v: Variator) -> dict[str, str]:
+    """The models a command ran with (`ballcvt.api.effective_models`): the drive's, with
+    the clamping law the options chose (``--clamp-law``, else the drive file's)."""
+    law = getattr(args, "clamp_law", None)
+    force = getattr(args, "clamp", None)
+    return effective_models(
+        v.design, v.fluid, clamp_law=law, clamp_force=force, traction_law=v.fluid.traction_law
+    )
 
 
 #: The commands that run the drive (``traction-curve --speed`` is a rolling speed in m/s).
@@ -334,32 +346,31 @@ def apply_operating(args, argv: list[str]) -> None:
     """Start where the drive runs: the ``[operating]`` table of ``--design`` (docs/cli.md)
     gives the options a command has and ``argv`` does not type (typed flags always win).
 
-    The clamping law is the table's unless ``--clamp-law`` or ``--clamp`` is typed; the
-    constant law's force is the table's ``clamp_force`` unless ``--clamp`` is typed.
+    The clamping law is the drive file's (``[models]``, else ``[operating]``
+    ``clamp_law``) unless ``--clamp-law`` or ``--clamp`` is typed; the constant law's
+    force is ``[operating] clamp_force`` unless ``--clamp`` is typed. The traction law of
+    ``[models]`` is the fluid's unless ``--traction-law`` is typed (`variator`).
     """
     if getattr(args, "design", None) is None or getattr(args, "command", None) not in DRIVEN:
         return
     design, _ = open_drive(args.design, None, None)
     op = design.operating
-    if op is None:
-        return
     typed = {word.split("=", 1)[0] for word in argv if word.startswith("--")}
     for flag, (key, attr) in _OPERATING.items():
-        value = getattr(op, key)
+        value = getattr(op, key) if op is not None else None
         settable = hasattr(args, attr) or (
             attr == "operating_target_speed" and hasattr(args, "target_speed")
         )
         if settable and flag not in typed and value is not None:
             setattr(args, attr, tuple(value) if isinstance(value, tuple) else value)
             args.from_operating = (*getattr(args, "from_operating", ()), flag)
-    if hasattr(args, "clamp_law") and not typed & {"--clamp-law", "--clamp"} and op.clamp_law:
-        if op.clamp_law not in CLAMP_LAWS.names():
-            raise InputError(
-                "operating.clamp_law", op.clamp_law, "one of " + ", ".join(CLAMP_LAWS.names())
-            )
-        args.clamp_law = op.clamp_law
+    law = drive_clamp(design)[0]  # [models], else [operating] clamp_law
+    if hasattr(args, "clamp_law") and not typed & {"--clamp-law", "--clamp"} and law:
+        if law not in CLAMP_LAWS.names():
+            raise InputError("models.clamp_law", law, "one of " + ", ".join(CLAMP_LAWS.names()))
+        args.clamp_law = law
     if getattr(args, "clamp_law", None) == "constant" and "--clamp" not in typed:
-        if op.clamp_force is not None:
+        if op is not None and op.clamp_force is not None:
             args.clamp = op.clamp_force
 
 
@@ -379,11 +390,26 @@ def law(args) -> dict:
 
 
 def clamp_label(args) -> str:
-    """The clamping of a figure's title."""
+    """The clamping of a figure's title, then each model that is not the paper's
+    (traction law, lubrication, oil temperature: `models_used`)."""
     if args.clamp_law == "constant":
         force = PAPER_POINT.clamp_force if args.clamp is None else args.clamp
-        return f"$F_{{N0}}$ = {force:g} N"
-    return f"{args.clamp_law} clamping"
+        label = f"$F_{{N0}}$ = {force:g} N"
+    else:
+        label = f"{args.clamp_law} clamping"
+    design, fluid = open_drive(
+        getattr(args, "design", None),
+        getattr(args, "fluid", None),
+        getattr(args, "traction_law", None),
+    )
+    models = effective_models(
+        design, fluid, clamp_law=args.clamp_law, traction_law=fluid.traction_law
+    )
+    paper = {"traction_law": "isothermal", "lubrication": "full-film", "oil_temperature": "fixed"}
+    said = {"traction_law": "traction", "lubrication": "lubrication", "oil_temperature": "oil"}
+    return ", ".join(
+        [label] + [f"{models[k]} {said[k]}" for k, m in paper.items() if models[k] != m]
+    )
 
 
 def show(args) -> bool:

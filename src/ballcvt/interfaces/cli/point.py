@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 from ...api import PlanetaryResult, SolveSettings
 from . import options as o
 from .format import planetary_table, point_table
@@ -38,8 +40,10 @@ def run(args) -> int:
         input_speed_rpm=o.rpm(args.speed),
         settings=SolveSettings(mode=mode, **oil_setting(args)),
     )
+    models = o.models_used(args, v)
     if args.json:
-        o.emit_json_text(r.to_json())
+        o.emit_json({**json.loads(r.to_json()), "models": models})
     else:
-        o.emit(planetary_table(r) if isinstance(r, PlanetaryResult) else point_table(r))
+        table = planetary_table(r) if isinstance(r, PlanetaryResult) else point_table(r)
+        o.emit(table + "\nmodels      " + ", ".join(f"{k} {m}" for k, m in models.items()))
     return 0

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from ...api import PAPER_POINT, Variator, operating_ratio_range
+from ...api import PAPER_POINT, Variator, drive_clamp, operating_ratio_range
 from ...errors import BallCVTError
 from ...params import Design, Fluid
 from ...registry import CLAMP_LAWS
@@ -52,7 +52,7 @@ class _State:
         op = design.operating
         given = {} if op is None else op.model_dump(exclude_none=True)
         #: Clamping law: a name of `ballcvt.registry.CLAMP_LAWS` (the constant force: slider).
-        self.clamp_law: str = given.get("clamp_law", "constant")
+        self.clamp_law: str = drive_clamp(design)[0] or "constant"  # [models], [operating]
         lo, hi = given.get("ratio_range", (0.5, 2.0))
         self.values: dict[str, float] = {
             "ratio": min(max(PAPER_POINT.ratio, lo), hi),

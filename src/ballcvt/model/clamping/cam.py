@@ -19,7 +19,7 @@ __all__ = ["CamClamp"]
 class CamClamp(ClampLaw):
     """Torque-sensing loading cam (ball ramp) with a preload spring.
 
-    The thrust is ``F_ax = F_pre + |T| / (r_m tan(phi + atan(mu_r)))``, with ``T`` the
+    The thrust is ``F_ax = F_pre + |T| / (r_m tan(phi + atan(mu_r)))`` (on loading), with ``T`` the
     torque of the disc the cam sits on: the power-screw relation for a load raised by the
     torque (Budynas and Nisbett, Shigley's Mechanical Engineering Design, 10th ed., 2015,
     Eq. 8-1, with the friction angle ``atan(mu_r)``); loading cams of traction drives after
@@ -39,6 +39,14 @@ class CamClamp(ClampLaw):
     disc : {"input", "output"}
         Disc whose torque the cam senses; "input" makes the force depend on the solved
         input torque (solved with the equilibrium).
+    branch : {"loading", "unloading"}
+        Side of the ramp friction's hysteresis: "loading" (the torque rose to its value:
+        the friction resists the ramp's climb, ``tan(phi + atan(mu_r))``, the default)
+        or "unloading" (the torque fell to it: the cam stays clamped until the friction
+        is overcome, ``tan(phi - atan(mu_r))``, a larger thrust at the same torque; the
+        power-screw relation for lowering a load, Budynas and Nisbett, Eq. 8-2). In
+        steady running the two cam halves turn together: the ramp friction dissipates
+        nothing, it only sets which force holds.
     """
 
     preload: float
@@ -47,10 +55,19 @@ class CamClamp(ClampLaw):
     friction: float
     disc: str = "output"
     name: str = "cam"
+    branch: str = "loading"
 
     def __post_init__(self):
         if self.disc not in ("input", "output"):
             raise InputError("cam.disc", self.disc, "'input' or 'output'")
+        if self.branch not in ("loading", "unloading"):
+            raise InputError("cam.branch", self.branch, "'loading' or 'unloading'")
+        if self.branch == "unloading" and self.ramp_angle <= math.atan(self.friction):
+            raise InputError(
+                "cam.branch",
+                self.branch,
+                "'loading' (the ramp self-locks, phi <= atan(mu_r): it never unloads)",
+            )
 
     @classmethod
     def from_design(cls, design: Design) -> CamClamp:
@@ -64,7 +81,9 @@ class CamClamp(ClampLaw):
                 message=f"clamping law 'cam' needs a loading cam: the design "
                 f"'{design.name}' has no [design.cam] table (docs/model.md §11)",
             )
-        return cls(cam.preload, cam.ramp_angle, cam.mean_radius, cam.friction, cam.disc)
+        return cls(
+            cam.preload, cam.ramp_angle, cam.mean_radius, cam.friction, cam.disc, branch=cam.branch
+        )
 
     @property
     def implicit(self) -> bool:  # type: ignore[override]  # the base default is False
@@ -73,8 +92,12 @@ class CamClamp(ClampLaw):
 
     @property
     def gain(self) -> float:
-        """Thrust per unit disc torque ``1 / (r_m tan(phi + atan(mu_r)))`` [1/m]."""
-        return 1.0 / (self.mean_radius * math.tan(self.ramp_angle + math.atan(self.friction)))
+        """Thrust per unit disc torque ``1 / (r_m tan(phi +- atan(mu_r)))`` [1/m] (``+``
+        loading, ``-`` unloading)."""
+        sign = 1.0 if self.branch == "loading" else -1.0
+        return 1.0 / (
+            self.mean_radius * math.tan(self.ramp_angle + sign * math.atan(self.friction))
+        )
 
     def thrust(self, torque):
         """Axial thrust ``F_ax`` [N] for a disc torque [N m] of either sign."""

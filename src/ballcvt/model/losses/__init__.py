@@ -1,4 +1,5 @@
-"""Parasitic losses beyond the paper: churning, seals, disc thrust bearings (docs/model.md §12).
+"""Parasitic losses beyond the paper: churning, seals, disc thrust bearings and a hub's own
+bearings (docs/model.md §12).
 
 Each loss is a `LossTerm` registered in `ballcvt.registry.LOSS_TERMS` (one module per
 built-in term); `parasitic_drags` sums the registered terms. The built-in terms read
@@ -29,6 +30,11 @@ from .churning import BALL_CHURNING, DISC_CHURNING, moment_coefficient, windage_
 from .seals import SEALS, seal_torque
 from .thrust_bearing import DISC_BEARING, thrust_bearing_torque
 
+# isort: split
+# registered after the paper-era terms: the kinds keep their order (churning, seals,
+# disc_bearings), the hub's bearings come after them
+from .hub_bearings import DRIVER_BEARING, SHELL_BEARINGS, palmgren_torque
+
 __all__ = [
     "ACTS_ON",
     "STICK_SPEED",
@@ -49,12 +55,15 @@ __all__ = [
     "windage_torque",
     "seal_torque",
     "thrust_bearing_torque",
+    "palmgren_torque",
     "BALL_CHURNING",
     "DISC_CHURNING",
     "SEALS",
     "DISC_BEARING",
+    "SHELL_BEARINGS",
+    "DRIVER_BEARING",
     "PARASITIC_KINDS",
 ]
 
 #: The built-in kinds of parasitic loss: the first columns of the shaft drag torques.
-PARASITIC_KINDS = ("churning", "seals", "disc_bearings")
+PARASITIC_KINDS = ("churning", "seals", "disc_bearings", "hub_bearings")

@@ -65,12 +65,18 @@ class DragInputs:
         ``omega_0 - omega_2`` between the discs.
     thrust : ndarray
         Axial thrust between the discs ``F_ax = n F_N0 sin(theta_0)`` [N].
+    input_torque : ndarray or float
+        Lossless estimate of the input torque ``T_2 omega_2 / omega_0`` [N m] (the
+        output power at the creep-free speeds over the input speed; it is short of the
+        solved ``T_0`` by the losses, a few per cent), for a term loaded by the drive's
+        torque such as a hub's chain pull; 0 where no torque is given.
     """
 
     design: Design
     fluid: Fluid
     speed: np.ndarray
     thrust: np.ndarray
+    input_torque: Any = 0.0
 
 
 def _always(design: Design) -> bool:
@@ -264,7 +270,13 @@ def drag_power(drags: DragMagnitudes, input_speed, output_speed):
 
 
 def drag_magnitudes(
-    design: Design, fluid: Fluid, input_speed, output_speed, roller_speed, thrust
+    design: Design,
+    fluid: Fluid,
+    input_speed,
+    output_speed,
+    roller_speed,
+    thrust,
+    output_torque=0.0,
 ) -> DragMagnitudes:
     """The registered loss terms' torque magnitudes at given speeds, by kind (§12).
 
@@ -278,22 +290,28 @@ def drag_magnitudes(
         Ball spin speed ``omega_S`` [rad/s].
     thrust : array_like
         Disc axial thrust ``F_ax`` [N].
+    output_torque : array_like
+        Output torque ``T_2`` [N m] (default 0): gives the terms the lossless input torque
+        ``T_2 |omega_2 / omega_0|`` (`DragInputs.input_torque`).
 
     Returns
     -------
     DragMagnitudes
     """
-    w0, w2, ws, fax = (
-        np.asarray(v, dtype=float) for v in (input_speed, output_speed, roller_speed, thrust)
+    w0, w2, ws, fax, t2 = (
+        np.asarray(v, dtype=float)
+        for v in (input_speed, output_speed, roller_speed, thrust, output_torque)
     )
-    shape = np.broadcast_shapes(w0.shape, w2.shape, ws.shape, fax.shape)
+    shape = np.broadcast_shapes(w0.shape, w2.shape, ws.shape, fax.shape, t2.shape)
+    speed_ratio = np.abs(np.divide(w2, w0, out=np.zeros(shape), where=w0 != 0.0))
+    t0 = np.abs(t2) * speed_ratio
     kinds = drag_kinds()
     out = {m: np.zeros(shape + (len(kinds),)) for m in ("roller", "input", "output", "between")}
     speeds = {"roller": ws, "input": w0, "output": w2, "between": w0 - w2}
     for term in active_terms(design):
         col = kinds.index(term.kind)
         for member in _MEMBERS[term.acts_on]:
-            at = DragInputs(design, fluid, speeds[member], fax)
+            at = DragInputs(design, fluid, speeds[member], fax, t0)
             # a magnitude, whatever sign a user's function returns
             out[member][..., col] += np.abs(np.asarray(term.torque(at)))
     return DragMagnitudes(kinds, out["roller"], out["input"], out["output"], out["between"])
@@ -360,7 +378,8 @@ def parasitic_torques(
         Drag torque on each ball about its spin axis [N m], shape ``(...)``.
     input, output : ndarray
         Drag torques on the input and output shafts by kind (`drag_kinds`; the built-in
-        ``churning, seals, disc_bearings`` first) [N m], shape ``(..., n_kinds)``:
+        ``churning, seals, disc_bearings, hub_bearings`` first) [N m], shape
+        ``(..., n_kinds)``:
         positive where they oppose the shaft's rotation. The disc thrust bearing's torque
         has opposite signs on the two shafts; its power is
         ``M tanh((omega_0 - omega_2) / omega_s) (omega_0 - omega_2) >= 0``

@@ -126,11 +126,11 @@ def run_task(seed: int, index: int, deadline: float, timeout: float, case=None) 
         return out
     rng = np.random.default_rng([seed, index])
     stop = min(time.time() + timeout, deadline)
-    signal.signal(signal.SIGALRM, _on_alarm)
-    signal.setitimer(signal.ITIMER_REAL, max(0.01, stop - time.time()))
     t0, c0 = time.perf_counter(), time.process_time()
     task = entries.Task(case, rng, out["points"], {"seed": seed, "task": index})
-    try:
+    signal.signal(signal.SIGALRM, _on_alarm)
+    try:  # the timer starts inside: a short one must not fire before the handler's scope
+        signal.setitimer(signal.ITIMER_REAL, max(0.01, stop - time.time()))
         entries.run_case(task)
     except _Alarm:
         if time.time() >= deadline - 0.05:  # the budget ran out: drop the partial point

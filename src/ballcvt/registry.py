@@ -144,8 +144,15 @@ LUBRICATION_MODELS.register(
 )
 #: Where the oil's temperature comes from (a drive file's ``[models] oil_temperature``):
 #: the built-in ``fixed`` is the paper's (the fluid's data temperature, whatever the
-#: losses).
+#: losses); ``balance`` the housing's heat balance.
 OIL_TEMPERATURE_MODELS: Registry[Any] = Registry("oil temperature model", "oil_temperature")
 OIL_TEMPERATURE_MODELS.register(
     ModelChoice("fixed", "the oil stays at the temperature of the fluid's data (the paper's)")
+)
+OIL_TEMPERATURE_MODELS.register(
+    ModelChoice(
+        "balance",
+        "the housing's heat balance sets the oil's temperature: steady for a point, the "
+        "lumped transient over a cycle (docs/model.md §15, `ballcvt.api.oil`)",
+    )
 )

@@ -34,6 +34,24 @@ BALANCE_TOL = 0.01
 MAX_BRACKET_STEPS = 30
 
 
+def drive_choice(design, value: Any, cycle: bool = False) -> str | float:
+    """The oil-temperature model of a call: ``value`` if given, else the drive file's
+    (``[models] oil_temperature``, `ballcvt.params.drive_models`), else ``"fixed"``.
+
+    A drive that names ``"balance"`` runs a cycle's steps through the housing's lumped
+    transient (``"transient"``, which needs ``thermal_mass``) and a point through the
+    steady balance; without a thermal mass its cycles run at the fixed temperature.
+    """
+    if value is not None:
+        return value
+    models = getattr(design, "models", None)
+    named = getattr(models, "oil_temperature", None) or "fixed"
+    if named == "balance" and cycle:
+        thermal = design.thermal
+        return "transient" if thermal is not None and thermal.thermal_mass else "fixed"
+    return named
+
+
 def oil_choice(value: Any, models: tuple[str, ...]) -> str | float:
     """``value`` as one of ``models`` or a temperature [K]; `InputError` otherwise."""
     if isinstance(value, str) and value in models:

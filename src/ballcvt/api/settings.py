@@ -41,15 +41,16 @@ class SolveSettings:
         Refuse a torque beyond the traction capacity with `TractionLimitError` (default).
     mode : OperatingMode, optional
         The variator as a planetary (docs/model.md §13); the paper's drive by default.
-    oil_temperature : {"fixed", "balance"} or float
-        The oil's bulk temperature (docs/model.md §15): ``"fixed"`` (default: the fluid as
-        given), ``"balance"`` (the housing's steady heat balance, ``[design.thermal]``) or a
+    oil_temperature : {"fixed", "balance"} or float, optional
+        The oil's bulk temperature (docs/model.md §15); None (default): the drive file's
+        ``[models] oil_temperature``, else ``"fixed"``. ``"fixed"``: the fluid as
+        given, ``"balance"`` (the housing's steady heat balance, ``[design.thermal]``) or a
         temperature [K] (the fluid there, `ballcvt.model.oil.fluid_at`).
     """
 
     check_capacity: bool = True
     mode: OperatingMode | None = None
-    oil_temperature: str | float = "fixed"
+    oil_temperature: str | float | None = None
 
 
 @dataclass(frozen=True)
@@ -100,9 +101,11 @@ class CycleSettings:
         Progress bar (default: when stderr is a terminal).
     workers : int
         Processes to solve the steps on.
-    oil_temperature : {"fixed", "transient"} or float
-        The oil's bulk temperature (docs/model.md §15): ``"fixed"`` (default: the fluid as
-        given), ``"transient"`` (the housing's lumped transient over the cycle,
+    oil_temperature : {"fixed", "transient"} or float, optional
+        The oil's bulk temperature (docs/model.md §15); None (default): ``"transient"``
+        for a drive file naming ``[models] oil_temperature = "balance"`` with a
+        ``thermal_mass``, else ``"fixed"``. ``"fixed"``: the fluid as given,
+        ``"transient"`` (the housing's lumped transient over the cycle,
         ``[design.thermal]`` with its ``thermal_mass``) or a temperature [K].
     initial_oil_temperature : float, optional
         Oil temperature at the cycle's start [K] (``transient``; default: the ambient).
@@ -115,7 +118,7 @@ class CycleSettings:
     ratio_range: Any = None
     progress: bool | None = None
     workers: int = 1
-    oil_temperature: str | float = "fixed"
+    oil_temperature: str | float | None = None
     initial_oil_temperature: float | None = None
 
     def target(self) -> float | None:

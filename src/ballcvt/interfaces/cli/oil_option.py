@@ -34,10 +34,11 @@ def add_oil_option(p, model: str) -> None:
     p.add_argument(
         "--oil-temperature",
         type=parse,
-        default="fixed",
+        default=None,
         metavar=f"{{fixed,{model},C}}",
-        help=f"the oil's bulk temperature: fixed (default: the fluid as given), {model} "
-        f"({what}, [design.thermal] of the drive file) or a temperature [C]",
+        help=f"the oil's bulk temperature: fixed (the fluid as given), {model} "
+        f"({what}, [design.thermal] of the drive file) or a temperature [C]; default: the "
+        "drive file's [models] oil_temperature, else fixed",
     )
     if model == "transient":
         p.add_argument(
@@ -52,7 +53,11 @@ def add_oil_option(p, model: str) -> None:
 def oil_setting(args) -> dict:
     """The API's ``oil_temperature`` (and ``initial_oil_temperature``) of the options, in K."""
     value = args.oil_temperature
-    out: dict = {"oil_temperature": value if isinstance(value, str) else celsius_to_kelvin(value)}
+    out: dict = {
+        "oil_temperature": value
+        if value is None or isinstance(value, str)
+        else celsius_to_kelvin(value)
+    }
     start = getattr(args, "initial_oil_temperature", None)
     if start is not None:
         out["initial_oil_temperature"] = celsius_to_kelvin(start)

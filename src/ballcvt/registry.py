@@ -26,6 +26,7 @@ __all__ = [
     "OPERATING_MODES",
     "ARCHITECTURES",
     "LIFE_MODELS",
+    "LUBRICATION_MODELS",
 ]
 
 T = TypeVar("T")
@@ -113,3 +114,6 @@ ARCHITECTURES: Registry[Any] = Registry("architecture", "architecture")
 #: Rolling-contact fatigue life models (`ballcvt.model.life.LifeModel` entries; the
 #: built-ins register when `ballcvt.model.life` is imported).
 LIFE_MODELS: Registry[Any] = Registry("life model", "life_model")
+#: How the load is shared between the film and the asperities
+#: (`ballcvt.model.lubrication.LubricationModel` entries: ``full-film``, ``mixed``).
+LUBRICATION_MODELS: Registry[Any] = Registry("lubrication model", "lubrication")

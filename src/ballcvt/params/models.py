@@ -27,6 +27,7 @@ from .base import ParameterModel, _f, _opt
 from .feasibility import check_design
 from .hints import check_unit_mistakes
 from .laws import LAW_FIELDS, check_law
+from .lubrication import Lubrication
 from .operating import OperatingContext
 from .ratings import BearingRatings
 
@@ -37,6 +38,7 @@ __all__ = [
     "BearingRatings",
     "CamModel",
     "ParasiticModel",
+    "Lubrication",
     "Design",
     "Fluid",
     "OperatingPoint",
@@ -235,15 +237,32 @@ class Design(ParameterModel):
         description="where the drive runs: the drive file's [operating] table (optional: "
         "the paper's operating point without it)",
     )
+    lubrication: Lubrication | None = Field(
+        None,
+        description="lubrication model and asperity parameters (optional: the paper's "
+        "full film without it, docs/model.md §15)",
+    )
 
     @model_serializer(mode="wrap")
     def _dump(self, handler) -> dict[str, Any]:
-        """The fields, without ``operating`` when it is not given (so that files and
-        results of drives without it are as they were)."""
+        """The fields, without ``operating`` and ``lubrication`` when they are not given
+        (so that files and results of drives without them are as they were)."""
         data = handler(self)
-        if isinstance(data, dict) and data.get("operating") is None:
-            data.pop("operating", None)
+        for key in ("operating", "lubrication"):
+            if isinstance(data, dict) and data.get(key) is None:
+                data.pop(key, None)
         return data
+
+    def with_lubrication(self, model: str | None) -> Design:
+        """This design under the lubrication model ``model`` (itself when ``model`` is None
+        or its own): the table's asperity parameters are kept, or the typical ones
+        (`ballcvt.params.lubrication`) given. The name is unchanged: the model is a choice
+        of physics, not of the design's data."""
+        own = self.lubrication.model if self.lubrication is not None else "full-film"
+        if model is None or model == own:
+            return self
+        table = self.lubrication.model_dump() if self.lubrication is not None else {}
+        return self.model_copy(update={"lubrication": Lubrication(**{**table, "model": model})})
 
     @model_validator(mode="before")
     @classmethod

@@ -192,7 +192,7 @@ def load_sharing(film, load, ax, ay, asp: Asperities):
 def _solve_share(lam_s: np.ndarray, scale: np.ndarray) -> np.ndarray:
     """The root ``f`` of ``f - scale F_5/2(lam_s (1 - f)^-e) = 0`` in ``[0, 1)``."""
     e = FILM_SHARE_EXPONENT
-    lo, hi = np.zeros(lam_s.shape), np.ones(lam_s.shape)
+    lo, hi = np.zeros(lam_s.shape), np.full(lam_s.shape, 1.0 - 1e-12)  # f < 1: some film
     f = np.zeros(lam_s.shape)
     for _ in range(100):
         lam = lam_s * (1.0 - f) ** -e

@@ -150,11 +150,17 @@ def warning_messages(
     for name in flag_names(valid.flags):
         if name == "mixed_lubrication":
             i = int(np.argmin(lam))
+            share = float(np.max(valid.asperity_fraction))
             out.append(
                 f"mixed_lubrication: film thickness ratio h_min/sigma = {lam[i]:.3g} < "
                 f"{LAMBDA_MIXED:g} at the {names[i]} contact (surface_roughness "
-                f"{des.surface_roughness:.3g} m): asperities touch, outside the "
-                "full-film traction law"
+                f"{des.surface_roughness:.3g} m): asperities touch, "
+                + (
+                    f"carrying up to {100 * share:.2g} % of a contact's load (mixed "
+                    "lubrication model, docs/model.md §15)"
+                    if share > 0
+                    else "outside the full-film traction law"
+                )
             )
         elif name == "pressure_above_limit":
             i = int(np.argmax(problem.p_max))

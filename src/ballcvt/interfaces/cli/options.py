@@ -239,9 +239,7 @@ def options() -> dict[str, dict]:
         "lubrication": {
             "choices": LUBRICATION_MODELS.names(),
             "default": None,
-            "help": "lubrication model (docs/model.md section 15): the paper's full film, "
-            "or mixed (film and asperities share the load) (default: the drive's "
-            "[design.lubrication], else full-film)",
+            "help": "lubrication model, docs/model.md section 15 (default: the drive's)",
         },
         "fluid": {
             "metavar": "FILE.toml",

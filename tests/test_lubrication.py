@@ -12,6 +12,8 @@ from ballcvt import Variator, load_builtin
 from ballcvt.model.lubrication import (
     LAMBDA_CUTOFF,
     Asperities,
+    _gt,
+    _hermite,
     asperity_integral,
     load_sharing,
     lubricated_coefficients,
@@ -47,6 +49,10 @@ def test_gt_integral_exact():
         assert value == pytest.approx(exact, abs=6e-5)
     v, s = asperity_integral([LAMBDA_CUTOFF - 1e-9, LAMBDA_CUTOFF, 10.0])
     assert np.all(np.abs(v) < 1e-12) and np.all(np.abs(s) < 1e-8)
+    # the tables against the parabolic-cylinder form, between their nodes
+    t = np.linspace(0.0, LAMBDA_CUTOFF, 7919)
+    for n in (2.5, 1.5):
+        assert np.max(np.abs(_hermite(t, n) - _gt(t, n))) < 1e-13
 
 
 def test_limits_of_the_share():

@@ -131,7 +131,31 @@ def _gt(t, n: float):
     return gamma(n + 1.0) / np.sqrt(2.0 * np.pi) * np.exp(-0.25 * t * t) * pbdv(-n - 1.0, t)[0]
 
 
-_F52_CUT, _F32_CUT = float(_gt(LAMBDA_CUTOFF, 2.5)), float(_gt(LAMBDA_CUTOFF, 1.5))
+#: Intervals of the tables of ``F_5/2``, ``F_3/2``, ``F_1/2`` on ``[0, LAMBDA_CUTOFF]``:
+#: cubic Hermite interpolation with the exact slopes ``dF_n/dt = -n F_(n-1)`` is then
+#: within 1e-13 of `_gt` (tested), at a hundredth of its cost.
+_INTERVALS = 2000
+_STEP_T = LAMBDA_CUTOFF / _INTERVALS
+_GRID = np.linspace(0.0, LAMBDA_CUTOFF, _INTERVALS + 1)
+_TABLE = {n: _gt(_GRID, n) for n in (2.5, 1.5, 0.5)}
+
+
+def _hermite(t: np.ndarray, n: float) -> np.ndarray:
+    """``F_n(t)`` for ``0 <= t <= LAMBDA_CUTOFF`` from the table (``n`` 2.5 or 1.5)."""
+    x = np.clip(t / _STEP_T, 0.0, _INTERVALS - 1e-9)
+    i = x.astype(np.intp)
+    s = x - i
+    s2, s3 = s * s, s * s * s
+    v, d = _TABLE[n], -n * _TABLE[n - 1.0] * _STEP_T
+    return (
+        (2 * s3 - 3 * s2 + 1) * v[i]
+        + (s3 - 2 * s2 + s) * d[i]
+        + (3 * s2 - 2 * s3) * v[i + 1]
+        + (s3 - s2) * d[i + 1]
+    )
+
+
+_F52_CUT, _F32_CUT = float(_TABLE[2.5][-1]), float(_TABLE[1.5][-1])
 
 
 def asperity_integral(lam):
@@ -141,7 +165,7 @@ def asperity_integral(lam):
     Parameters
     ----------
     lam : array_like
-        Film parameter ``h / sigma`` [-].
+        Film parameter ``h / sigma`` >= 0 [-].
 
     Returns
     -------
@@ -152,8 +176,8 @@ def asperity_integral(lam):
     lam = np.asarray(lam, dtype=float)
     below = lam < LAMBDA_CUTOFF
     t = np.where(below, lam, LAMBDA_CUTOFF)
-    value = _gt(t, 2.5) - _F52_CUT + 2.5 * _F32_CUT * (t - LAMBDA_CUTOFF)
-    slope = -2.5 * (_gt(t, 1.5) - _F32_CUT)
+    value = _hermite(t, 2.5) - _F52_CUT + 2.5 * _F32_CUT * (t - LAMBDA_CUTOFF)
+    slope = -2.5 * (_hermite(t, 1.5) - _F32_CUT)
     return np.where(below, value, 0.0), np.where(below, slope, 0.0)
 
 
@@ -190,21 +214,27 @@ def load_sharing(film, load, ax, ay, asp: Asperities):
 
 
 def _solve_share(lam_s: np.ndarray, scale: np.ndarray) -> np.ndarray:
-    """The root ``f`` of ``f - scale F_5/2(lam_s (1 - f)^-e) = 0`` in ``[0, 1)``."""
+    """The root ``f`` of ``f - scale F_5/2(lam_s (1 - f)^-e) = 0`` in ``[0, 1)``.
+
+    Each contact iterates until its own step is below 1e-15 and then stops, so that its
+    root does not depend on the other contacts of the batch."""
     e = FILM_SHARE_EXPONENT
     lo, hi = np.zeros(lam_s.shape), np.full(lam_s.shape, 1.0 - 1e-12)  # f < 1: some film
     f = np.zeros(lam_s.shape)
+    on = np.arange(lam_s.size)
     for _ in range(100):
-        lam = lam_s * (1.0 - f) ** -e
+        x, ls, sc = f[on], lam_s[on], scale[on]
+        lam = ls * (1.0 - x) ** -e
         value, slope = asperity_integral(lam)
-        phi = f - scale * value
-        lo, hi = np.where(phi <= 0.0, f, lo), np.where(phi >= 0.0, f, hi)
-        step = phi / (1.0 - scale * slope * e * lam / (1.0 - f))
-        new = f - step
-        new = np.where((new > lo) & (new < hi), new, 0.5 * (lo + hi))
-        if np.all(np.abs(phi) < 1e-15) or np.all(np.abs(new - f) < 1e-16):
+        phi = x - sc * value
+        lo[on] = np.where(phi <= 0.0, x, lo[on])
+        hi[on] = np.where(phi >= 0.0, x, hi[on])
+        new = x - phi / (1.0 - sc * slope * e * lam / (1.0 - x))
+        new = np.where((new > lo[on]) & (new < hi[on]), new, 0.5 * (lo[on] + hi[on]))
+        f[on] = new
+        on = on[np.abs(new - x) > 1e-15]
+        if on.size == 0:
             break
-        f = new
     return f
 
 
@@ -263,10 +293,13 @@ def _mixed_values(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrat
 def _mixed(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrature, d: bool):
     """``mu, chi`` (and derivatives) of the mixed model, without the film-thickness column."""
     frac, film, boundary = _mixed_values(state, fluid, asp, q, d)
-    keep = 1.0 - frac
-    out = [keep * a + frac * b for a, b in zip(film[:2], boundary[:2], strict=True)]
+    keep, wet = 1.0 - frac, frac > 0.0  # where no asperity touches: the film's, exactly
+    out = [np.where(wet, keep * a + frac * b, a) for a, b in zip(film[:2], boundary[:2])]
     if d:
-        out += [keep[..., None] * a + frac[..., None] * b for a, b in zip(film[2:], boundary[2:])]
+        wet_d, keep_d, frac_d = wet[..., None], keep[..., None], frac[..., None]
+        out += [
+            np.where(wet_d, keep_d * a + frac_d * b, a) for a, b in zip(film[2:], boundary[2:])
+        ]
     return tuple(out), frac
 
 
@@ -284,11 +317,12 @@ def mixed_coefficients(
     if not derivatives:
         return mu, chi
     dmu, dchi = (np.concatenate([g, np.zeros(g.shape[:-1] + (1,))], axis=-1) for g in rest)
-    if np.any(frac > 0.0):
+    wet = frac > 0.0
+    if np.any(wet):
         up = state.replace(film=state.film * (1 + _STEP), u_ref=state.u_ref * (1 + _STEP))
         (mu_up, chi_up), _ = _mixed(up, fluid, asp, quadrature, False)
-        dmu[..., 3] = (mu_up - mu) / np.log1p(_STEP)
-        dchi[..., 3] = (chi_up - chi) / np.log1p(_STEP)
+        dmu[..., 3] = np.where(wet, (mu_up - mu) / np.log1p(_STEP), 0.0)
+        dchi[..., 3] = np.where(wet, (chi_up - chi) / np.log1p(_STEP), 0.0)
     return mu, chi, dmu, dchi
 
 

@@ -226,6 +226,8 @@ def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> 
     dump = design.model_dump()
     operating = dump.pop("operating", None)
     _update(doc, "design", dump)
+    if "lubrication" not in dump:  # the template's table, of a drive that has none
+        doc["design"].pop("lubrication", None)
     _update(doc, "fluid", fluid.model_dump())
     if operating is None:
         doc.pop("operating", None)

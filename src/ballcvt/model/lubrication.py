@@ -42,6 +42,7 @@ summits, dropped), so that above it ``f_a = 0`` and the result is exactly the fu
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
@@ -210,7 +211,18 @@ def load_sharing(film, load, ax, ay, asp: Asperities):
     on = lam_s < LAMBDA_CUTOFF
     if np.any(on):
         frac[on] = _solve_share(lam_s[on], scale[on])
-    return frac, lam_s * (1.0 - frac) ** -FILM_SHARE_EXPONENT
+    return frac, lam_s * _film_factor(1.0 - frac)
+
+
+def _film_factor(keep) -> np.ndarray:
+    """``keep^-e`` (``keep = 1 - f_a``), element by element with `math.pow`: the same bits
+    whatever the batch (NumPy's vectorised power rounds by an element's position), so that
+    a point's result does not depend on the points solved with it."""
+    keep = np.asarray(keep, dtype=float)
+    out = np.ones(keep.shape)
+    wet = keep < 1.0
+    out[wet] = [math.pow(k, -FILM_SHARE_EXPONENT) for k in keep[wet]]
+    return out
 
 
 def _solve_share(lam_s: np.ndarray, scale: np.ndarray) -> np.ndarray:
@@ -224,7 +236,7 @@ def _solve_share(lam_s: np.ndarray, scale: np.ndarray) -> np.ndarray:
     on = np.arange(lam_s.size)
     for _ in range(100):
         x, ls, sc = f[on], lam_s[on], scale[on]
-        lam = ls * (1.0 - x) ** -e
+        lam = ls * _film_factor(1.0 - x)
         value, slope = asperity_integral(lam)
         phi = x - sc * value
         lo[on] = np.where(phi <= 0.0, x, lo[on])
@@ -281,7 +293,7 @@ def _mixed_values(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrat
     film_state = state.replace(
         load=state.load * keep,
         p_max=state.p_max * keep,
-        film=state.film * keep**-FILM_SHARE_EXPONENT,
+        film=state.film * _film_factor(keep),
     )
     film = contact_coefficients(film_state, fluid, q, d)
     boundary = boundary_coefficients(

@@ -151,6 +151,16 @@ def _variants(design, tmp):
              "--traction-law": ["--traction-law", "viscoelastic"]}
     for _, changes in (point, limit, clamp, mapping, cycle, table, life, capacity):
         changes.update(fluid)
+    # the lubrication model (docs/model.md section 15), on a drive rough enough for the
+    # asperities to touch (Table I's film is too thick at its speeds: the same output)
+    rough = tmp / "rough.toml"
+    rough.write_text(Path(design).read_text().replace("surface_roughness = 0.07e-6",
+                                                      "surface_roughness = 1.0e-6"))
+    mixed = {"--lubrication": ["--lubrication", "mixed"]}
+    on_rough = {name: ([*base[:1], *(["--design", str(rough)]), *base[1:]], dict(mixed))
+                for name, (base, _) in (("point", point), ("limit", limit), ("clamp", clamp),
+                                        ("map", mapping), ("cycle", cycle), ("table", table),
+                                        ("life", life), ("capacity", capacity))}
     soft = tmp / "soft.toml"                         # another material: another E'
     soft.write_text(Path(design).read_text().replace("youngs_modulus = 210.0e9",
                                                      "youngs_modulus = 190.0e9"))
@@ -188,7 +198,7 @@ def _variants(design, tmp):
             "cycle": cycle, "cycle:cam": cycle_cam, "cycle:oil": cycle_oil, "cycle:text": cycle_text, "table": table,
             "life": life, "life:cycle": life_cycle, "life:text": life_text, "life:cam": life_cam,
             "map:life": map_life, "cycle:life": cycle_life,
-            "capacity": capacity}
+            "capacity": capacity, **{f"{k}:mixed": v for k, v in on_rough.items()}}
 
 
 def _shift_variants(design, tmp, law, cam, fluid):
@@ -336,9 +346,11 @@ def test_explore_ui_flags_reach_the_server(capsys, small_design, monkeypatch):
         json.dumps({"design": design.model_dump_json(), "fluid": fluid.name,
                     "law": fluid.traction_law, **kw}, sort_keys=True)))
     assert _options(_subcommands()["explore-ui"]) == {
-        "--arch", "--design", "--fluid", "--traction-law", "--port", "--address", "--show"}
+        "--arch", "--design", "--fluid", "--traction-law", "--port", "--address", "--show",
+        "--lubrication"}
     variants = [[], ["--arch", "single"], ["--design", small_design],
                 ["--fluid", "mineral-oil"], ["--traction-law", "thermal"], ["--port", "0"],
+                ["--lubrication", "mixed"],
                 ["--address", "0.0.0.0"], ["--show"]]
     for extra in variants:
         assert run(capsys, ["explore-ui", *extra])[0] == 0
@@ -350,7 +362,10 @@ def test_design_flag_and_path(capsys, tmp_path, small_design):
     assert code == 0 and "n_rollers = 6" in shown
     code, builtin, _ = run(capsys, ["design", "show"])
     assert builtin != shown
-    assert _options(_subcommands()["design"]) == {"--design", "--fluid", "--traction-law"}
+    assert _options(_subcommands()["design"]) == {"--design", "--fluid", "--traction-law",
+                                                  "--lubrication"}
+    code, mixed, _ = run(capsys, ["design", "show", "--lubrication", "mixed"])
+    assert code == 0 and 'model = "mixed"' in mixed
     path = tmp_path / "out.toml"
     assert run(capsys, ["design", "export", str(path)])[0] == 0
     assert path.read_text() == builtin

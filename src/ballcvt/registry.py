@@ -136,12 +136,9 @@ class ModelChoice:
     description: str
 
 
-#: How the contacts are lubricated (a drive file's ``[models] lubrication``): the
-#: built-in ``full-film`` is the paper's (a full fluid film carries the whole load).
+#: How the load is shared between the film and the asperities
+#: (`ballcvt.model.lubrication.LubricationModel` entries: ``full-film``, ``mixed``).
 LUBRICATION_MODELS: Registry[Any] = Registry("lubrication model", "lubrication")
-LUBRICATION_MODELS.register(
-    ModelChoice("full-film", "a full fluid film carries the load (the paper's model)")
-)
 #: Where the oil's temperature comes from (a drive file's ``[models] oil_temperature``):
 #: the built-in ``fixed`` is the paper's (the fluid's data temperature, whatever the
 #: losses); ``balance`` the housing's heat balance.

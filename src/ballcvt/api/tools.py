@@ -45,18 +45,22 @@ def contact_fluid(design=None, fluid=None, traction_law: str | None = None) -> t
     return f, d.material.reduced_modulus
 
 
-def drive_text(design=None, fluid=None, traction_law: str | None = None) -> str:
+def drive_text(
+    design=None, fluid=None, traction_law: str | None = None, lubrication: str | None = None
+) -> str:
     """TOML text of a drive definition: the built-in or given file as it is (with its
-    sources), or rewritten with another fluid or law (`open_drive`'s arguments)."""
+    sources), or rewritten with another fluid or law (`open_drive`'s arguments) or
+    lubrication model (`Design.with_lubrication`)."""
     d, f = resolve_drive(design)  # validated first
     if design is None or (design in BUILTIN_DRIVES and not Path(design).exists()):
         template = builtin_text(design or "table1")
     else:
         template = Path(design).read_text(encoding="utf-8")
     new_fluid = (f if fluid is None else resolve_fluid(fluid)).with_traction_law(traction_law)
-    if new_fluid == f and design in (None, *BUILTIN_DRIVES):
+    new_design = d.with_lubrication(lubrication)
+    if new_fluid == f and new_design is d and design in (None, *BUILTIN_DRIVES):
         return template
-    return drive_to_toml(d, new_fluid, template=template)
+    return drive_to_toml(new_design, new_fluid, template=template)
 
 
 def read_study(path, *, traction_law: str | None = None) -> StudySpec:

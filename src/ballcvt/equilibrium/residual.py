@@ -31,7 +31,8 @@ from ..model.bearings import load_dependent_torque, speed_dependent_torque
 from ..model.film import SPEED_EXPONENT, central_film_thickness
 from ..model.kinematics import body_speeds, creep_term, entrainment_factor, spin
 from ..model.losses import DragMagnitudes, shaft_drags
-from ..model.traction.contact import ContactState, contact_coefficients
+from ..model.lubrication import asperities, lubricated_coefficients
+from ..model.traction.contact import ContactState
 from ..model.traction.quadrature import Quadrature
 from .problem import EquilibriumProblem
 
@@ -133,7 +134,7 @@ def evaluate(
     """
     creep = np.asarray(creep, dtype=float)
     at = _contact_inputs(problem, creep)
-    mu, chi = contact_coefficients(
+    mu, chi = lubricated_coefficients(
         ContactState(
             creep_term(creep),
             at.spin,
@@ -146,9 +147,15 @@ def evaluate(
             at.film,
         ),
         problem.fluid,
+        _asperities(problem),
         quadrature,
     )
     return _balances(problem, creep, at, mu, chi)
+
+
+def _asperities(problem: EquilibriumProblem):
+    """The problem's lubrication model and asperity parameters (`ballcvt.model.lubrication`)."""
+    return problem.memo("asperities", lambda: asperities(problem.design))
 
 
 def evaluate_with_jacobian(
@@ -189,7 +196,7 @@ def evaluate_with_jacobian(
     sg, u, hf = wide_at.spin, wide_at.u_ref, wide_at.film
     c = creep_term(pert)
     at = (slice(None),) * len(problem.shape) + (0,)  # row 0 of the wide axis
-    mu, chi, dmu, dchi = contact_coefficients(
+    mu, chi, dmu, dchi = lubricated_coefficients(
         ContactState(
             c[at],
             sg[at],
@@ -202,14 +209,17 @@ def evaluate_with_jacobian(
             hf[at],
         ),
         problem.fluid,
+        _asperities(problem),
         quadrature,
         derivatives=True,
     )
     ex = lambda v: v[..., None, :]  # noqa: E731
-    delta = np.empty(c.shape + (3,))
+    delta = np.empty(c.shape + (dmu.shape[-1],))
     delta[..., 0] = c - ex(c[at])
     delta[..., 1] = sg - ex(sg[at])
     delta[..., 2] = np.log((u * ex(hf[at])) / (ex(u[at]) * hf))  # d log u - d log h
+    if dmu.shape[-1] == 4:  # a lubrication model's own film dependence (§16)
+        delta[..., 3] = np.log(hf / ex(hf[at]))
     mu_p = ex(mu) + (dmu[..., None, :, :] * delta).sum(axis=-1)
     chi_p = ex(chi) + (dchi[..., None, :, :] * delta).sum(axis=-1)
     mu_p[at], chi_p[at] = mu, chi

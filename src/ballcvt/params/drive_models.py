@@ -29,6 +29,7 @@ from ..registry import (
     Registry,
 )
 from .base import ParameterModel, _opt
+from .lubrication import Lubrication
 
 __all__ = ["DriveModels", "MODEL_KEYS", "PACKAGE_DEFAULTS", "effective_models", "drive_clamp"]
 
@@ -134,3 +135,40 @@ def effective_models(design: Any, fluid: Any = None, **chosen: Any) -> dict[str,
     for key in ("lubrication", "oil_temperature"):
         out[key] = chosen.get(key) or file.get(key) or PACKAGE_DEFAULTS[key]
     return out
+
+
+def reconcile_models(design) -> None:
+    """Check a design's ``[models]`` against its other tables, and apply its lubrication.
+
+    A clamping law named in both ``[models]`` and ``[operating]`` must be the same. A
+    ``[models] lubrication`` becomes the model of ``[design.lubrication]`` (the table's
+    asperity parameters kept, the typical ones without it), so that the solvers read one
+    place; a table stating another model is refused (one place only).
+
+    Parameters
+    ----------
+    design : Design
+        A validated design (its ``lubrication`` is set in place: called by its validator).
+    """
+    said = (
+        getattr(design.models, "clamp_law", None),
+        getattr(design.operating, "clamp_law", None),
+    )
+    if None not in said and said[0] != said[1]:
+        raise InputError(
+            "models.clamp_law",
+            said[0],
+            f"the [operating] clamp_law {said[1]!r} (or one of them only)",
+        )
+    named = getattr(design.models, "lubrication", None)
+    own = design.lubrication
+    if named is None or (own is not None and own.model == named):
+        return
+    if own is not None and "model" in own.model_fields_set:
+        raise InputError(
+            "design.lubrication.model",
+            own.model,
+            f"the [models] lubrication {named!r} (or one of them only)",
+        )
+    table = own.model_dump() if own is not None else {}
+    object.__setattr__(design, "lubrication", Lubrication(**{**table, "model": named}))

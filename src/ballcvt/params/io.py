@@ -246,6 +246,8 @@ def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> 
     dump = design.model_dump()
     tables = {name: dump.pop(name, None) for name in _DRIVE_TABLES}
     _update(doc, "design", dump)
+    if "lubrication" not in dump:  # the template's table, of a drive that has none
+        doc["design"].pop("lubrication", None)
     fluid_dump = fluid.model_dump()
     named = (tables["models"] or {}).get("traction_law")
     if named == fluid.traction_law and "traction_law" not in doc.get("fluid", {}):

@@ -25,11 +25,12 @@ from ..registry import ARCHITECTURES as _ARCHITECTURES
 from ..registry import TRACTION_LAWS
 from ..units import rad_s_to_rpm
 from .base import ParameterModel, _f, _opt
-from .drive_models import DriveModels
+from .drive_models import DriveModels, reconcile_models
 from .feasibility import check_design
 from .hints import check_unit_mistakes
 from .hub_losses import HubBearingParameters
 from .laws import LAW_FIELDS, check_law
+from .lubrication import Lubrication
 from .operating import OperatingContext
 from .ratings import BearingRatings
 from .thermal import FluidTemperatureFields, ThermalModel
@@ -42,6 +43,7 @@ __all__ = [
     "CamModel",
     "ParasiticModel",
     "ThermalModel",
+    "Lubrication",
     "Design",
     "Fluid",
     "OperatingPoint",
@@ -275,6 +277,11 @@ class Design(ParameterModel):
         description="where the drive runs: the drive file's [operating] table (optional: "
         "the paper's operating point without it)",
     )
+    lubrication: Lubrication | None = Field(
+        None,
+        description="lubrication model and asperity parameters (optional: the paper's "
+        "full film without it, docs/model.md §15)",
+    )
 
     models: DriveModels | None = Field(
         None,
@@ -284,13 +291,28 @@ class Design(ParameterModel):
 
     @model_serializer(mode="wrap")
     def _dump(self, handler) -> dict[str, Any]:
-        """The fields, without ``operating``, ``thermal`` and ``models`` when they are not
-        given (so that files and results of drives without them are as they were)."""
+        """The fields, without ``operating``, ``thermal``, ``models`` and ``lubrication``
+        when they are not given (so that files and results of drives without them are as
+        they were)."""
         data = handler(self)
-        for key in ("operating", "thermal", "models"):
+        for key in ("operating", "thermal", "models", "lubrication"):
             if isinstance(data, dict) and data.get(key) is None:
                 data.pop(key, None)
         return data
+
+    def with_lubrication(self, model: str | None) -> Design:
+        """This design under the lubrication model ``model`` (itself when ``model`` is None
+        or its own): the table's asperity parameters are kept, or the typical ones
+        (`ballcvt.params.lubrication`) given. The name is unchanged: the model is a choice
+        of physics, not of the design's data."""
+        own = self.lubrication.model if self.lubrication is not None else "full-film"
+        if model is None or model == own:
+            return self
+        table = self.lubrication.model_dump() if self.lubrication is not None else {}
+        update: dict[str, Any] = {"lubrication": Lubrication(**{**table, "model": model})}
+        if getattr(self.models, "lubrication", None) is not None:  # [models] says it too
+            update["models"] = self.models.model_copy(update={"lubrication": model})
+        return self.model_copy(update=update)
 
     @model_validator(mode="before")
     @classmethod
@@ -308,16 +330,7 @@ class Design(ParameterModel):
     def _buildable(self) -> Design:
         check_unit_mistakes(self)
         check_design(self)
-        said = (
-            getattr(self.models, "clamp_law", None),
-            getattr(self.operating, "clamp_law", None),
-        )
-        if None not in said and said[0] != said[1]:
-            raise InputError(
-                "models.clamp_law",
-                said[0],
-                f"the [operating] clamp_law {said[1]!r} (or one of them only)",
-            )
+        reconcile_models(self)
         return self
 
     @property

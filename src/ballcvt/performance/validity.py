@@ -15,6 +15,7 @@ from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState
 from ..model.film import minimum_film_thickness
 from ..model.kinematics import entrainment_factor
+from ..model.lubrication import LUBRICATION_MODELS, asperities
 
 __all__ = [
     "WARNINGS",
@@ -56,11 +57,19 @@ class Validity:
         Mean rolling speed per contact, ``(..., n_c)`` [m/s].
     flags : ndarray of int
         Bitwise OR of the `WARNINGS` that hold, ``(...)``.
+    asperity_fraction : ndarray
+        Fraction of the normal load the asperities carry, ``(..., n_c)`` (zero under the
+        full-film model; docs/model.md §15) [-].
+    film_parameter : ndarray
+        ``h / sigma`` of the lubrication model, ``h`` the central film at the film's
+        share of the load, ``(..., n_c)`` [-].
     """
 
     lambda_ratio: np.ndarray
     entrainment_speed: np.ndarray
     flags: np.ndarray
+    asperity_fraction: np.ndarray
+    film_parameter: np.ndarray
 
 
 def validity(problem: EquilibriumProblem, state: EquilibriumState) -> Validity:
@@ -98,7 +107,16 @@ def validity(problem: EquilibriumProblem, state: EquilibriumState) -> Validity:
         ("speed_beyond_fluid_data", speed > fl.max_rolling_speed),
     ):
         flags |= np.asarray(hit).any(axis=-1) * WARNINGS[name]
-    return Validity(lambda_ratio=lam, entrainment_speed=speed, flags=flags)
+    asp = asperities(des)
+    share = LUBRICATION_MODELS.get(asp.model).sharing
+    frac, film_parameter = share(state.film, problem.load, problem.ax, problem.ay, asp)
+    return Validity(
+        lambda_ratio=lam,
+        entrainment_speed=speed,
+        flags=flags,
+        asperity_fraction=frac,
+        film_parameter=film_parameter,
+    )
 
 
 def flag_names(flags) -> list[str]:
@@ -132,11 +150,17 @@ def warning_messages(
     for name in flag_names(valid.flags):
         if name == "mixed_lubrication":
             i = int(np.argmin(lam))
+            share = float(np.max(valid.asperity_fraction))
             out.append(
                 f"mixed_lubrication: film thickness ratio h_min/sigma = {lam[i]:.3g} < "
                 f"{LAMBDA_MIXED:g} at the {names[i]} contact (surface_roughness "
-                f"{des.surface_roughness:.3g} m): asperities touch, outside the "
-                "full-film traction law"
+                f"{des.surface_roughness:.3g} m): asperities touch, "
+                + (
+                    f"carrying up to {100 * share:.2g} % of a contact's load (mixed "
+                    "lubrication model, docs/model.md §16)"
+                    if share > 0
+                    else "outside the full-film traction law"
+                )
             )
         elif name == "pressure_above_limit":
             i = int(np.argmax(problem.p_max))

@@ -59,6 +59,11 @@ class ContactResult:
         Power dissipated by creep and by spin [W].
     lambda_ratio : float
         Film thickness ratio ``h_min / sigma`` (docs/model.md §10) [-].
+    asperity_fraction : float
+        Fraction of the normal load the asperities carry (0 under the full-film
+        lubrication model, docs/model.md §16) [-].
+    film_parameter : float
+        ``h / sigma`` of the lubrication model (central film at the film's share) [-].
     """
 
     creep: float
@@ -76,6 +81,8 @@ class ContactResult:
     creep_loss: float
     spin_loss: float
     lambda_ratio: float
+    asperity_fraction: float = 0.0
+    film_parameter: float = float("nan")
 
 
 #: Units of the `ContactResult` fields (`OperatingResult.to_dataframe`).
@@ -83,7 +90,7 @@ CONTACT_UNITS = {
     "creep": "-", "spin": "-", "mu": "-", "chi": "-", "normal_load": "N", "p_max": "Pa",
     "semi_axis_x": "m", "semi_axis_y": "m", "film_thickness": "m", "tangential_force": "N",
     "spin_moment": "N m", "body_speed": "rad/s", "creep_loss": "W", "spin_loss": "W",
-    "lambda_ratio": "-",
+    "lambda_ratio": "-", "asperity_fraction": "-", "film_parameter": "-",
 }  # fmt: skip
 
 
@@ -429,6 +436,8 @@ def make_result(
             ("creep_loss", loss.creep),
             ("spin_loss", loss.spin),
             ("lambda_ratio", valid.lambda_ratio),
+            ("asperity_fraction", valid.asperity_fraction),
+            ("film_parameter", valid.film_parameter),
         )
     }
     contacts = {

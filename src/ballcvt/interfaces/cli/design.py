@@ -71,7 +71,7 @@ def run(args) -> int:
         )
     if out is not None:
         check_output_file(out, "PATH" if args.action == "export" else "--out")
-    text = drive_text(args.design, args.fluid, args.traction_law)
+    text = drive_text(args.design, args.fluid, args.traction_law, args.lubrication)
     v = o.variator(argparse.Namespace(**{**vars(args), "arch": "double"}))
     if args.action == "size-cam":
         sized = size_cam(v, margin=args.margin)

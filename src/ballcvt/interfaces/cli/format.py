@@ -21,6 +21,11 @@ _ROWS = [  # (label, attribute, unit, scale, format)
     ("creep loss", "creep_loss", "W", 1.0, "{:.2f}"),
     ("spin loss", "spin_loss", "W", 1.0, "{:.2f}"),
 ]
+#: Rows shown under a mixed lubrication model (docs/model.md §16).
+_MIXED_ROWS = [
+    ("film param. h/sigma", "film_parameter", "-", 1.0, "{:.2f}"),
+    ("asperity load share", "asperity_fraction", "%", 100.0, "{:.3f}"),
+]
 
 
 def point_table(r: OperatingResult, efficiency: str = "") -> str:
@@ -41,7 +46,9 @@ def point_table(r: OperatingResult, efficiency: str = "") -> str:
         "",
         f"{'contact':<22}" + "".join(f"{n:>{w}}" for n in names),
     ]
-    for label, attr, unit, scale, fmt in _ROWS:
+    lub = r.design.lubrication
+    mixed = lub is not None and lub.model != "full-film"
+    for label, attr, unit, scale, fmt in _ROWS + (_MIXED_ROWS if mixed else []):
         cells = "".join(f"{fmt.format(getattr(r.contacts[n], attr) * scale):>{w}}" for n in names)
         lines.append(f"{label + ' [' + unit + ']':<22}{cells}")
     ls = r.losses

@@ -27,11 +27,11 @@ from ...api import (
     open_drive,
 )
 from ...errors import InputError
-from ...registry import ARCHITECTURES, CLAMP_LAWS, TRACTION_LAWS
+from ...registry import ARCHITECTURES, CLAMP_LAWS, LUBRICATION_MODELS, TRACTION_LAWS
 
 #: The paper's operating point: the defaults of ``point``, ``limit`` and ``clamp``.
 #: The drive and fluid options of every command that solves the drive.
-FLUID_OPTIONS = ("design", "fluid", "traction-law")
+FLUID_OPTIONS = ("design", "fluid", "traction-law", "lubrication")
 #: The clamping-law options.
 CLAMP_OPTIONS = (
     "clamp",
@@ -238,6 +238,11 @@ def options() -> dict[str, dict]:
             "isothermal law, thermal or viscoelastic (default: the fluid's "
             "own, isothermal for the built-in drives)",
         },
+        "lubrication": {
+            "choices": LUBRICATION_MODELS.names(),
+            "default": None,
+            "help": "lubrication model, docs/model.md section 15 (default: the drive's)",
+        },
         "fluid": {
             "metavar": "FILE.toml",
             "help": "fluid replacing the drive's: a TOML file with a [fluid] table (a "
@@ -308,6 +313,7 @@ def variator(args) -> Variator:
     """The drive of ``--design``, ``--fluid``, ``--traction-law``, ``--arch`` and the cam
     options (which need ``--clamp-law cam``)."""
     design, fluid = open_drive(args.design, args.fluid, getattr(args, "traction_law", None))
+    design = design.with_lubrication(getattr(args, "lubrication", None))
     flags = {key: "--" + opt for opt, key in zip(CAM_OPTIONS, CAM_KEYS)}
     cam = {
         key: getattr(args, opt.replace("-", "_"))

@@ -1,0 +1,402 @@
+"""Lubrication models: how the load of a contact is shared by the film and the asperities.
+
+A lubrication model is a `LubricationModel` entry of
+`ballcvt.registry.LUBRICATION_MODELS` (docs/model.md §16). It wraps the fluid's traction
+law (any law of `ballcvt.registry.TRACTION_LAWS`), so that the two choices are
+independent:
+
+``full-film``
+    The paper's: the film carries the whole load; the traction law's coefficients as they
+    are (the default, and the only model of the paper's drive).
+``mixed``
+    The asperities carry a fraction ``f_a`` of the load, found from the film parameter
+    ``lambda = h / sigma`` by the load-sharing idea of Johnson, Greenwood and Poon, Wear 19
+    (1972) 91-108, with the asperity pressure of Greenwood and Tripp, Proc. Instn Mech.
+    Engrs 185 (1970-71) 625-633 (as in the mixed-lubrication model of Gelinck and
+    Schipper, Tribol. Int. 33 (2000) 175-181). The film carries ``(1 - f_a)`` of the load
+    and shears by the fluid's law; the asperities carry ``f_a`` with a boundary friction
+    coefficient ``mu_b``, along the local sliding (so they add to the spin moment too):
+
+        ``mu = (1 - f_a) mu_film + f_a mu_b M``, ``chi = (1 - f_a) chi_film + f_a mu_b N``,
+
+    ``M``, ``N`` the traction and spin coefficients of a unit Coulomb shear over the
+    Hertz pressure (`boundary_coefficients`).
+
+Load sharing (Johnson, Greenwood and Poon 1972): the film carries the pressure
+``p / gamma_1`` and forms as a smooth EHL film of load ``F / gamma_1`` on a modulus
+``E' / gamma_1``; the asperities carry ``p / gamma_2``, with ``1/gamma_1 + 1/gamma_2 = 1``,
+so ``f_a = 1 / gamma_2``. With the Hamrock-Dowson film of Eq. 56 (``h ~ U^0.67 G^0.53
+W^-0.067`` with ``U ~ 1/E'``, ``G ~ E'``, ``W ~ F/E'``) the film is
+``h = h_s gamma_1^0.14 = h_s (1 - f_a)^-0.14`` (``h_s`` the smooth film of the whole load),
+and Greenwood-Tripp's asperity pressure at the separation ``h`` over the Hertz area
+``A = pi a_x a_y`` closes the balance
+
+    ``f_a = K E' F_5/2(h / sigma) / p_mean``, ``p_mean = F_N / A``,
+    ``K = (16 sqrt(2) / 15) pi (eta beta sigma)^2 sqrt(sigma / beta)``,
+
+``F_n(t) = (2 pi)^-1/2 int_t^inf (s - t)^n exp(-s^2/2) ds`` (Gaussian summit heights),
+solved for ``f_a`` per contact (`load_sharing`). ``F_5/2`` is truncated at
+``lambda = LAMBDA_CUTOFF`` (a C1 join: the Gaussian tail above 4 sigma, 3e-5 of the
+summits, dropped), so that above it ``f_a = 0`` and the result is exactly the full film's.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from scipy.special import gamma, pbdv
+
+from ..params.models import Design, Fluid
+from ..registry import LUBRICATION_MODELS
+from .traction.contact import ContactState, contact_coefficients
+from .traction.isothermal import shear_coefficients
+from .traction.quadrature import Quadrature
+
+__all__ = [
+    "Asperities",
+    "LubricationModel",
+    "LUBRICATION_MODELS",
+    "LAMBDA_CUTOFF",
+    "FILM_SHARE_EXPONENT",
+    "asperities",
+    "asperity_integral",
+    "load_sharing",
+    "boundary_coefficients",
+    "lubricated_coefficients",
+]
+
+#: Film parameter ``h / sigma`` above which no asperity touches (``f_a = 0`` exactly) [-].
+LAMBDA_CUTOFF = 4.0
+#: ``h = h_s (1 - f_a)^-e``: ``e = 0.67 - 0.53`` from the speed and material exponents of
+#: Eq. 56 under the scaling of Johnson, Greenwood and Poon (1972) [-].
+FILM_SHARE_EXPONENT = 0.14
+#: Relative step of the derivative with respect to the film thickness [-].
+_STEP = 1e-6
+
+
+@dataclass(frozen=True)
+class Asperities:
+    """A drive's lubrication model and what it needs beyond the `ContactState`.
+
+    Attributes
+    ----------
+    model : str
+        Name in `LUBRICATION_MODELS`.
+    roughness : float
+        Composite RMS roughness ``sigma`` [m] (``Design.surface_roughness``).
+    modulus : float
+        ``E' = E / (1 - nu^2)`` [Pa].
+    boundary_friction : float
+        ``mu_b`` [-].
+    density_product, slope : float
+        ``eta beta sigma`` and ``sigma / beta`` [-].
+    """
+
+    model: str
+    roughness: float
+    modulus: float
+    boundary_friction: float = 0.0
+    density_product: float = 0.0
+    slope: float = 0.0
+
+    @property
+    def pressure_scale(self) -> float:
+        """``K E'`` of Greenwood and Tripp's asperity pressure ``K E' F_5/2`` [Pa]."""
+        k = 16.0 * np.sqrt(2.0) / 15.0 * np.pi * self.density_product**2 * np.sqrt(self.slope)
+        return float(k * self.modulus)
+
+
+def asperities(design: Design) -> Asperities:
+    """The lubrication of ``design`` (``full-film`` without ``[design.lubrication]``)."""
+    lub, e = design.lubrication, design.material.reduced_modulus
+    if lub is None:
+        return Asperities("full-film", design.surface_roughness, e)
+    return Asperities(
+        lub.model,
+        design.surface_roughness,
+        e,
+        lub.boundary_friction,
+        lub.asperity_density_product,
+        lub.asperity_slope,
+    )
+
+
+def _gt(t, n: float):
+    """Greenwood-Tripp's ``F_n(t)`` through the parabolic cylinder function:
+    ``F_n(t) = Gamma(n + 1) (2 pi)^-1/2 exp(-t^2/4) D_-(n+1)(t)`` [-]."""
+    t = np.asarray(t, dtype=float)
+    return gamma(n + 1.0) / np.sqrt(2.0 * np.pi) * np.exp(-0.25 * t * t) * pbdv(-n - 1.0, t)[0]
+
+
+#: Intervals of the tables of ``F_5/2``, ``F_3/2``, ``F_1/2`` on ``[0, LAMBDA_CUTOFF]``:
+#: cubic Hermite interpolation with the exact slopes ``dF_n/dt = -n F_(n-1)`` is then
+#: within 1e-13 of `_gt` (tested), at a hundredth of its cost.
+_INTERVALS = 2000
+_STEP_T = LAMBDA_CUTOFF / _INTERVALS
+_GRID = np.linspace(0.0, LAMBDA_CUTOFF, _INTERVALS + 1)
+_TABLE = {n: _gt(_GRID, n) for n in (2.5, 1.5, 0.5)}
+
+
+def _hermite(t: np.ndarray, n: float) -> np.ndarray:
+    """``F_n(t)`` for ``0 <= t <= LAMBDA_CUTOFF`` from the table (``n`` 2.5 or 1.5)."""
+    x = np.clip(t / _STEP_T, 0.0, _INTERVALS - 1e-9)
+    i = x.astype(np.intp)
+    s = x - i
+    s2, s3 = s * s, s * s * s
+    v, d = _TABLE[n], -n * _TABLE[n - 1.0] * _STEP_T
+    return (
+        (2 * s3 - 3 * s2 + 1) * v[i]
+        + (s3 - 2 * s2 + s) * d[i]
+        + (3 * s2 - 2 * s3) * v[i + 1]
+        + (s3 - s2) * d[i + 1]
+    )
+
+
+_F52_CUT, _F32_CUT = float(_TABLE[2.5][-1]), float(_TABLE[1.5][-1])
+
+
+def asperity_integral(lam):
+    """Greenwood-Tripp's ``F_5/2(lambda)`` joined C1 to zero at `LAMBDA_CUTOFF`, and its
+    derivative (``dF_5/2 / dt = -5/2 F_3/2``).
+
+    Parameters
+    ----------
+    lam : array_like
+        Film parameter ``h / sigma`` >= 0 [-].
+
+    Returns
+    -------
+    value, slope : ndarray
+        ``F_5/2(l) - F_5/2(l_c) + 5/2 F_3/2(l_c) (l - l_c)`` for ``l < l_c``, else 0, and
+        its derivative [-].
+    """
+    lam = np.asarray(lam, dtype=float)
+    below = lam < LAMBDA_CUTOFF
+    t = np.where(below, lam, LAMBDA_CUTOFF)
+    value = _hermite(t, 2.5) - _F52_CUT + 2.5 * _F32_CUT * (t - LAMBDA_CUTOFF)
+    slope = -2.5 * (_hermite(t, 1.5) - _F32_CUT)
+    return np.where(below, value, 0.0), np.where(below, slope, 0.0)
+
+
+def load_sharing(film, load, ax, ay, asp: Asperities):
+    """Asperity load fraction ``f_a`` and film parameter ``h / sigma`` of contacts.
+
+    Solves ``f = g(lambda_s (1 - f)^-e)``, ``g = K E' F_5/2 / p_mean`` (module docstring;
+    Johnson, Greenwood and Poon 1972) by safeguarded Newton in ``[0, 1)``: the left side
+    rises and the right falls with ``f``, so the root is unique.
+
+    Parameters
+    ----------
+    film : array_like
+        Smooth central film thickness of the whole load ``h_s`` [m] (Eq. 56).
+    load, ax, ay : array_like
+        Normal load [N] and Hertz semi-axes [m].
+    asp : Asperities
+        The asperity parameters.
+
+    Returns
+    -------
+    fraction : ndarray
+        ``f_a`` [-], 0 where ``h_s / sigma >= LAMBDA_CUTOFF``.
+    lam : ndarray
+        ``h / sigma`` with ``h = h_s (1 - f_a)^-e`` the film at its share [-].
+    """
+    lam_s = np.asarray(film, dtype=float) / asp.roughness
+    scale = np.broadcast_to(asp.pressure_scale * np.pi * ax * ay / load, lam_s.shape)
+    frac = np.zeros(lam_s.shape)
+    on = lam_s < LAMBDA_CUTOFF
+    if np.any(on):
+        frac[on] = _solve_share(lam_s[on], scale[on])
+    return frac, lam_s * _film_factor(1.0 - frac)
+
+
+def _film_factor(keep) -> np.ndarray:
+    """``keep^-e`` (``keep = 1 - f_a``), element by element with `math.pow`: the same bits
+    whatever the batch (NumPy's vectorised power rounds by an element's position), so that
+    a point's result does not depend on the points solved with it."""
+    keep = np.asarray(keep, dtype=float)
+    out = np.ones(keep.shape)
+    wet = keep < 1.0
+    out[wet] = [math.pow(k, -FILM_SHARE_EXPONENT) for k in keep[wet]]
+    return out
+
+
+def _solve_share(lam_s: np.ndarray, scale: np.ndarray) -> np.ndarray:
+    """The root ``f`` of ``f - scale F_5/2(lam_s (1 - f)^-e) = 0`` in ``[0, 1)``.
+
+    Each contact iterates until its own step is below 1e-15 and then stops, so that its
+    root does not depend on the other contacts of the batch."""
+    e = FILM_SHARE_EXPONENT
+    lo, hi = np.zeros(lam_s.shape), np.full(lam_s.shape, 1.0 - 1e-12)  # f < 1: some film
+    f = np.zeros(lam_s.shape)
+    on = np.arange(lam_s.size)
+    for _ in range(100):
+        x, ls, sc = f[on], lam_s[on], scale[on]
+        lam = ls * _film_factor(1.0 - x)
+        value, slope = asperity_integral(lam)
+        phi = x - sc * value
+        lo[on] = np.where(phi <= 0.0, x, lo[on])
+        hi[on] = np.where(phi >= 0.0, x, hi[on])
+        new = x - phi / (1.0 - sc * slope * e * lam / (1.0 - x))
+        new = np.where((new > lo[on]) & (new < hi[on]), new, 0.5 * (lo[on] + hi[on]))
+        f[on] = new
+        on = on[np.abs(new - x) > 1e-15]
+        if on.size == 0:
+            break
+    return f
+
+
+@lru_cache(maxsize=16)
+def _coulomb_fluid(fluid: Fluid, friction: float) -> Fluid:
+    """The isothermal law with the limiting shear stress ``1 Pa + friction x p`` (the
+    Coulomb law's zero intercept kept positive for the kernels' logarithms: 1 Pa against
+    ``mu_b p`` of order 1e8 Pa)."""
+    return fluid.model_copy(
+        update={
+            "traction_law": "isothermal",
+            "limiting_shear_stress": 1.0,
+            "limiting_shear_slope": friction,
+        }
+    )
+
+
+def boundary_coefficients(
+    state: ContactState, fluid: Fluid, friction: float, quadrature: Quadrature, derivatives: bool
+):
+    """Traction and spin coefficients of the asperities' boundary shear, per unit load.
+
+    The asperity shear is the boundary friction ``mu_b`` times the (Hertz) pressure, along
+    the local sliding ``V`` (Eq. 55), as in a dry contact in full sliding: it is Eq. 53
+    with the limiting shear stress ``mu_b p`` (Briscoe and Tabor's boundary-film shear
+    strength ``tau_0 + alpha p`` with ``tau_0 = 0``), whose saturation reaches the
+    Coulomb stress ``mu_b p V / |V|`` once ``eta |V| / h >> mu_b p``; the film's shear rate
+    sets only the smooth passage through zero sliding at the pole. So ``|mu| <= mu_b``,
+    and the spin moment is that of a dry contact with the Hertz pressure (for a circle in
+    pure spin, ``(3 pi / 16) mu_b F a``; Johnson, *Contact Mechanics* (1985) §8.4).
+
+    Returns
+    -------
+    As `ballcvt.model.traction.isothermal.shear_coefficients` (``mu, chi`` and with
+    ``derivatives`` their derivatives by ``creep_term``, ``spin``, ``log u_ref``).
+    """
+    return shear_coefficients(state, _coulomb_fluid(fluid, friction), quadrature, derivatives)
+
+
+def _mixed_values(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrature, d: bool):
+    """``f_a`` and the film and boundary coefficients of the mixed model."""
+    frac, _ = load_sharing(state.film, state.load, state.ax, state.ay, asp)
+    keep = 1.0 - frac
+    film_state = state.replace(
+        load=state.load * keep,
+        p_max=state.p_max * keep,
+        film=state.film * _film_factor(keep),
+    )
+    film = contact_coefficients(film_state, fluid, q, d)
+    boundary = boundary_coefficients(
+        state.replace(film=film_state.film), fluid, asp.boundary_friction, q, d
+    )
+    return frac, film, boundary
+
+
+def _mixed(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrature, d: bool):
+    """``mu, chi`` (and derivatives) of the mixed model, without the film-thickness column."""
+    frac, film, boundary = _mixed_values(state, fluid, asp, q, d)
+    keep, wet = 1.0 - frac, frac > 0.0  # where no asperity touches: the film's, exactly
+    out = [np.where(wet, keep * a + frac * b, a) for a, b in zip(film[:2], boundary[:2])]
+    if d:
+        wet_d, keep_d, frac_d = wet[..., None], keep[..., None], frac[..., None]
+        out += [
+            np.where(wet_d, keep_d * a + frac_d * b, a) for a, b in zip(film[2:], boundary[2:])
+        ]
+    return tuple(out), frac
+
+
+def mixed_coefficients(
+    state: ContactState, fluid: Fluid, asp: Asperities, quadrature: Quadrature, derivatives: bool
+):
+    """``mu, chi`` of the mixed model (module docstring; docs/model.md §16).
+
+    With ``derivatives``, ``dmu``, ``dchi`` have four columns: the creep term, the spin,
+    ``log u_ref`` at a fixed film (the law's, weighted by the shares: ``f_a`` depends on the
+    film alone) and ``log h_s`` at a fixed ``u_ref / h_s`` (the load sharing's, by a
+    difference of step `_STEP`; zero where no asperity touches).
+    """
+    (mu, chi, *rest), frac = _mixed(state, fluid, asp, quadrature, derivatives)
+    if not derivatives:
+        return mu, chi
+    dmu, dchi = (np.concatenate([g, np.zeros(g.shape[:-1] + (1,))], axis=-1) for g in rest)
+    wet = frac > 0.0
+    if np.any(wet):
+        up = state.replace(film=state.film * (1 + _STEP), u_ref=state.u_ref * (1 + _STEP))
+        (mu_up, chi_up), _ = _mixed(up, fluid, asp, quadrature, False)
+        dmu[..., 3] = np.where(wet, (mu_up - mu) / np.log1p(_STEP), 0.0)
+        dchi[..., 3] = np.where(wet, (chi_up - chi) / np.log1p(_STEP), 0.0)
+    return mu, chi, dmu, dchi
+
+
+def _full_film(state, fluid, asp, quadrature, derivatives):
+    """The fluid's law as it is (the paper's model)."""
+    return contact_coefficients(state, fluid, quadrature, derivatives)
+
+
+def _no_asperities(film, load, ax, ay, asp):
+    """``f_a = 0`` and ``h / sigma`` of the smooth film."""
+    lam = np.asarray(film, dtype=float) / asp.roughness
+    return np.zeros(lam.shape), lam
+
+
+@dataclass(frozen=True)
+class LubricationModel:
+    """A lubrication model: what `LUBRICATION_MODELS` holds for it.
+
+    Parameters
+    ----------
+    name : str
+        The value of ``[design.lubrication] model``.
+    coefficients : callable
+        ``(state, fluid, asperities, quadrature, derivatives)`` -> ``mu, chi`` and with
+        ``derivatives`` ``dmu, dchi`` of 3 columns (as a traction law's) or 4 (a fourth:
+        by ``log h_s`` at a fixed ``u_ref / h_s``).
+    sharing : callable
+        ``(film, load, ax, ay, asperities)`` -> ``f_a, h / sigma`` (reported per contact).
+    description : str
+        One line, with the model's source.
+    """
+
+    name: str
+    coefficients: Callable[..., tuple]
+    sharing: Callable[..., tuple]
+    description: str = ""
+
+
+LUBRICATION_MODELS.register(
+    LubricationModel(
+        "full-film", _full_film, _no_asperities, "the paper's: the film carries the whole load"
+    )
+)
+LUBRICATION_MODELS.register(
+    LubricationModel(
+        "mixed",
+        mixed_coefficients,
+        load_sharing,
+        "film and asperities share the load (Johnson, Greenwood and Poon 1972; Greenwood "
+        "and Tripp 1970), boundary friction on the asperities",
+    )
+)
+
+
+def lubricated_coefficients(
+    state: ContactState,
+    fluid: Fluid,
+    asp: Asperities,
+    quadrature: Quadrature = Quadrature(),
+    derivatives: bool = False,
+):
+    """``mu, chi`` (and derivatives) of contacts under ``asp.model`` and the fluid's law."""
+    return LUBRICATION_MODELS.get(asp.model).coefficients(
+        state, fluid, asp, quadrature, derivatives
+    )

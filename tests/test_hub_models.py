@@ -185,7 +185,11 @@ def test_the_paper_keeps_the_papers_models():
 
 def test_the_hub_names_its_models(hub):
     assert Variator(*hub).models["clamp_law"] == "cam"
-    assert hub[0].models.given() == {"clamp_law": "cam", "traction_law": "isothermal"}
+    assert hub[0].models.given() == {
+        "clamp_law": "cam",
+        "traction_law": "isothermal",
+        "lubrication": "mixed",
+    }
 
 
 def test_precedence_call_over_file_over_package(hub):
@@ -194,7 +198,8 @@ def test_precedence_call_over_file_over_package(hub):
     assert effective_models(design, fluid, clamp_law="optimal")["clamp_law"] == "optimal"
     assert effective_models(design, fluid, clamp_force=1500.0)["clamp_law"] == "constant"
     assert effective_models(design, fluid, traction_law="thermal")["traction_law"] == "thermal"
-    assert effective_models(design, fluid)["lubrication"] == "full-film"
+    assert effective_models(design, fluid)["lubrication"] == "mixed"
+    assert effective_models(design, fluid, lubrication="full-film")["lubrication"] == "full-film"
     v = Variator(*hub)
     assert v.solve(1.0, 8.0, clamp_force=1500.0, input_speed_rpm=114.0).clamp_law == "constant"
     with pytest.raises(InputError, match="one of"):
@@ -213,7 +218,7 @@ def test_traction_law_from_the_file_sets_the_fluid_and_flags_win():
 
 def test_models_are_checked_against_the_registries():
     with pytest.raises(InputError, match="one of: full-film"):
-        parse_drive(edited("# lubrication = \"mixed\"", 'lubrication = "mixed"'))
+        parse_drive(edited('lubrication = "mixed" ', 'lubrication = "dry" '))
     with pytest.raises(InputError, match="clamp_law"):
         parse_drive(edited('clamp_law = "cam" ', 'clamp_law = "spring" '))
     with pytest.raises(InputError, match="operating"):
@@ -222,7 +227,7 @@ def test_models_are_checked_against_the_registries():
         parse_drive(edited("[models]", "[models]\nviscosity = \"walther\""))
     LUBRICATION_MODELS.register(ModelChoice("test-mixed", "a test entry"))
     try:
-        design, _ = parse_drive(edited('# lubrication = "mixed"', 'lubrication = "test-mixed"'))
+        design, _ = parse_drive(edited('lubrication = "mixed" ', 'lubrication = "test-mixed" '))
         assert Variator(design, load_builtin("hub")[1]).models["lubrication"] == "test-mixed"
     finally:
         LUBRICATION_MODELS.unregister("test-mixed")
@@ -240,7 +245,7 @@ def test_cli_reports_its_models_and_flags_win(capsys):
                  "114", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["models"] == {"clamp_law": "cam", "traction_law": "isothermal",
-                              "lubrication": "full-film", "oil_temperature": "fixed"}
+                              "lubrication": "mixed", "oil_temperature": "fixed"}
     assert data["clamp_law"] == "cam"
     assert main(["point", "--design", "hub", "--ratio", "1", "--torque", "8", "--speed",
                  "114", "--clamp-law", "constant", "--traction-law", "thermal"]) == 0
@@ -257,7 +262,7 @@ def test_figure_titles_name_the_models_beyond_the_papers():
 
     hub = argparse.Namespace(design="hub", fluid=None, traction_law="thermal",
                              clamp_law="cam", clamp=None)
-    assert clamp_label(hub) == "cam clamping, thermal traction"
+    assert clamp_label(hub) == "cam clamping, thermal traction, mixed lubrication"
     paper = argparse.Namespace(design=None, fluid=None, traction_law=None,
                                clamp_law="constant", clamp=None)
     assert clamp_label(paper) == "$F_{N0}$ = 2000 N"

@@ -245,6 +245,8 @@ def drive_to_toml(design: Design, fluid: Fluid, template: str | None = None) -> 
         ) from None
     dump = design.model_dump()
     tables = {name: dump.pop(name, None) for name in _DRIVE_TABLES}
+    if (tables.get("models") or {}).get("lubrication") and dump.get("lubrication"):
+        dump["lubrication"].pop("model", None)  # stated once, in [models]
     _update(doc, "design", dump)
     if "lubrication" not in dump:  # the template's table, of a drive that has none
         doc["design"].pop("lubrication", None)

@@ -46,6 +46,7 @@ from . import (
     reproduce,
     table,
     traction_curve,
+    uncertainty,
 )
 from . import map as efficiency_map
 
@@ -68,6 +69,7 @@ COMMANDS = {
     "explore": explore,
     "explore-ui": explore_ui,
     "design": design,
+    "uncertainty": uncertainty,
 }
 
 

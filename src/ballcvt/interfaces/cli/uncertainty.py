@@ -59,6 +59,28 @@ def add_parser(subparsers) -> None:
         metavar="R",
         help="ideal ratios tau_ID (default: 1)",
     )
+    _points(p)
+    o.add(p, "arch")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument(
+        "--workers",
+        type=o.count(1, 256),
+        default=None,
+        help="evaluate on a local Dask cluster of this many processes (default: in this process)",
+    )
+    where.add_argument(
+        "--scheduler",
+        default=None,
+        metavar="ADDRESS",
+        help="address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786",
+    )
+    o.out(p, "ballcvt-uncertainty")
+    p.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
+    o.add(p, "json")
+
+
+def _points(p) -> None:
+    """``--power`` or ``--torque``, and ``--speed``."""
     load = p.add_mutually_exclusive_group()
     load.add_argument(
         "--power",
@@ -81,26 +103,10 @@ def add_parser(subparsers) -> None:
         type=o.quantity("speed", "rpm", above=0.0, most=o.MOST_RPM),
         nargs="+",
         default=None,
+        dest="speeds",
         metavar="RPM",
         help="input speeds [rpm] (default: the drive's [operating] input_speed_rpm, else 2000)",
     )
-    o.add(p, "arch")
-    where = p.add_mutually_exclusive_group()
-    where.add_argument(
-        "--workers",
-        type=o.count(1, 256),
-        default=None,
-        help="evaluate on a local Dask cluster of this many processes (default: in this process)",
-    )
-    where.add_argument(
-        "--scheduler",
-        default=None,
-        metavar="ADDRESS",
-        help="address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786",
-    )
-    o.out(p, "ballcvt-uncertainty")
-    p.add_argument("--quiet", action="store_true", help="no progress bar and no summary")
-    o.add(p, "json")
 
 
 def run(args) -> int:
@@ -118,7 +124,7 @@ def run(args) -> int:
         ratio=tuple(args.ratio),
         input_power=None if args.power is None else tuple(args.power),
         output_torque=None if args.torque is None else tuple(args.torque),
-        input_speed_rpm=None if args.speed is None else tuple(args.speed),
+        input_speed_rpm=None if args.speeds is None else tuple(args.speeds),
         architecture=args.arch,
         workers=args.workers,
         scheduler=args.scheduler,

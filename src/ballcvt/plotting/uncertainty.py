@@ -42,10 +42,9 @@ def uncertainty_figure(band, ranking, title: str = "Uncertainty", top: int = 12)
 
 
 def _label(output: str) -> str:
-    """A band's output name without its quantity (``eta at ratio 1, ...`` -> ``ratio 1,
-    ...``), on two lines."""
-    text = output.split(" at ", 1)[-1]
-    return text.replace(", ", "\n", 1)
+    """A band's output name without its quantity (``eta at ratio 1, ...`` -> ``ratio 1``,
+    ...), one term a line."""
+    return output.split(" at ", 1)[-1].replace(", ", "\n")
 
 
 def _band(ax, rows, ylabel: str) -> None:

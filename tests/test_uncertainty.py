@@ -220,3 +220,41 @@ def test_dask_gives_the_in_process_numbers(linear):
     np.testing.assert_array_equal(on.eta, uncertainty(path, samples=8, seed=2,
                                                       output_torque=(10.0,), **POINT).eta)
     assert on.execution.startswith("Dask client")
+
+
+def test_every_cli_flag_reaches_the_computation(tmp_path, monkeypatch, capsys):
+    import ballcvt.api
+    from ballcvt.interfaces.cli import uncertainty as command
+
+    calls = []
+
+    def fake(design, **kw):
+        calls.append({"design": design, **kw})
+        return _toy(8)
+
+    monkeypatch.setattr(ballcvt.api, "uncertainty", fake)
+    monkeypatch.setattr(command, "check_scheduler", lambda address: None)
+    base = ["uncertainty", "--out", str(tmp_path / "a"), "--json"]
+    variants = {
+        "--design": ["--design", "table1"], "--samples": ["--samples", "9"],
+        "--seed": ["--seed", "3"], "--method": ["--method", "lhs"],
+        "--ratio": ["--ratio", "0.5", "1.8"], "--power": ["--power", "50", "200"],
+        "--torque": ["--torque", "20"], "--speed": ["--speed", "114"],
+        "--arch": ["--arch", "single"], "--workers": ["--workers", "2"],
+        "--scheduler": ["--scheduler", "tcp://127.0.0.1:8786"],
+    }
+    parser = cli.build_parser()
+    sub = next(a for a in parser._subparsers._group_actions[0].choices.items()
+               if a[0] == "uncertainty")[1]
+    flags = {s for a in sub._actions for s in a.option_strings if s.startswith("--")}
+    assert flags - {"--help"} == set(variants) | {"--out", "--json", "--quiet"}
+    assert cli.main(base) == 0
+    reference = calls[-1]
+    for flag, extra in variants.items():
+        assert cli.main(base + extra) == 0, flag
+        assert calls[-1] != reference, flag
+    capsys.readouterr()
+    assert cli.main(["uncertainty", "--out", str(tmp_path / "b"), "--quiet"]) == 0
+    assert capsys.readouterr().out == "" and (tmp_path / "b" / "band.csv").is_file()
+    assert cli.main(["uncertainty", "--out", str(tmp_path / "c")]) == 0
+    assert "most influential" in capsys.readouterr().out

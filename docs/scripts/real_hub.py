@@ -273,7 +273,7 @@ def render(design, text, v, solved, unc, run) -> str:
         "",
         "## Loss breakdown [W]",
         "",
-        "`result.losses` at each point (docs/model.md §5, §12).",
+        "`result.losses` at each point (docs/model.md §7, §12).",
         "",
         loss_section(solved),
         "",

@@ -39,8 +39,10 @@ CASES = {
     "life": [[], ["--torque", "0"], ["--life-model", "iso-fatigue-limit", "--clamp", "500"],
              ["--design", "hub", "--speed", "1e5"],
              ["--design", "hub", "--cycle", TINY_CYCLE, "--target-speed", "180"]],
+    "uncertainty": [["--samples", "4", "--power", "100", "--speed", "114"],
+                    ["--samples", "2", "--torque", "1e6", "--speed", "1e5"]],
 }
-NEEDS_OUT = ("cycle", "fit-fluid", "explore")
+NEEDS_OUT = ("cycle", "fit-fluid", "explore", "uncertainty")
 
 
 def test_every_json_command_is_covered():

@@ -97,7 +97,7 @@ class UncertainValue:
     """An uncertain value bound to its drive: path, nominal value and the resolved
     distribution parameters (SI, as the drive file's units).
 
-    Attributes
+    Parameters
     ----------
     path : str
         Dotted path, e.g. ``"design.cam.preload"``.

@@ -70,14 +70,18 @@ class UncertaintyRequest:
             raise InputError("method", self.method, "one of " + ", ".join(METHODS))
         if self.output_torque is not None and self.input_power is not None:
             raise InputError("input_power", self.input_power, "not with output_torque")
-        checks = [("ratio", self.ratio, 0.0), ("input_speed_rpm", self.input_speed_rpm, 0.0)]
-        checks.append(("output_torque", self.output_torque, -1e-300))
-        checks.append(("input_power", self.input_power, 0.0))
-        for name, values, above in checks:
+        checks = [
+            ("ratio", self.ratio, "finite numbers > 0"),
+            ("input_speed_rpm", self.input_speed_rpm, "finite numbers > 0"),
+            ("output_torque", self.output_torque, "finite numbers >= 0"),
+            ("input_power", self.input_power, "finite numbers > 0"),
+        ]
+        for name, values, allowed in checks:
+            low = 0.0 if ">=" in allowed else np.nextafter(0.0, 1.0)
             if values is not None and not (
-                len(values) and all(np.isfinite(v) and v > above for v in values)
+                len(values) and all(np.isfinite(v) and v >= low for v in values)
             ):
-                raise InputError(name, values, "one or more finite numbers > 0")
+                raise InputError(name, values, "one or more " + allowed)
         if not 1 <= self.chunk <= 10_000:
             raise InputError("chunk", self.chunk, "1 to 10000")
 

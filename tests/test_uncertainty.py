@@ -258,3 +258,18 @@ def test_every_cli_flag_reaches_the_computation(tmp_path, monkeypatch, capsys):
     assert capsys.readouterr().out == "" and (tmp_path / "b" / "band.csv").is_file()
     assert cli.main(["uncertainty", "--out", str(tmp_path / "c")]) == 0
     assert "most influential" in capsys.readouterr().out
+
+
+def test_real_hub_page_script_writes_its_page(tmp_path):
+    import runpy
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[1] / "docs" / "scripts" / "real_hub.py"
+    page = runpy.run_path(str(script))["page"]
+    text = page("hub", 4, 0, tmp_path).read_text()
+    for heading in ("## Models used", "## Efficiency", "## Loss breakdown",
+                    "## Film parameter lambda", "## Uncertainty band", "## Assumptions"):
+        assert heading in text
+    assert "`operating.clamp_law` = `cam`" in text and "`design.cam.preload`" in text
+    assert (tmp_path / "real-hub-efficiency.png").is_file()
+    assert (tmp_path / "real-hub-band.png").is_file()

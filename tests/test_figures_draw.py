@@ -197,7 +197,23 @@ def _figures(sweep, both):
                                                                          ax)),
         "traction_curve_figure": bp.traction_curve_figure([_curve("isothermal"),
                                                            _curve("thermal")]),
+        "uncertainty_figure": bp.uncertainty_figure(*_uncertainty()),
     }
+
+
+def _uncertainty():
+    """A band and a ranking as `UncertaintyResult.band` and `ranking` give them."""
+    outputs = ["eta at ratio 0.5, P 100 W, 114 rpm", "eta at ratio 1, P 100 W, 114 rpm",
+               "capacity at ratio 1, 114 rpm"]
+    band = pd.DataFrame({"output": outputs, "unit": ["-", "-", "N m"],
+                         "nominal": [0.9, 0.93, 380.0], "q05": [0.88, np.nan, 270.0],
+                         "q50": [0.9, np.nan, 390.0], "q95": [0.92, np.nan, 500.0]})
+    ranking = pd.DataFrame({"score_eta": [0.5, 0.2, 0.0], "score_capacity": [0.1, 0.9, np.nan],
+                            outputs[0]: [0.5, -0.2, 0.0], outputs[1]: [np.nan] * 3,
+                            outputs[2]: [0.1, 0.9, np.nan]},
+                           index=["design.cam.preload", "design.cam.ramp_angle_deg",
+                                  "fluid.density"])
+    return band, ranking
 
 
 def test_every_figure_function_draws_its_data(sweep, both):

@@ -18,7 +18,8 @@ TINY_CYCLE = str(Path(__file__).parent / "data" / "tiny_cycle.csv")
 CHEAP = {"map": {"--n-ratio": ["2"], "--n-torque": ["2"], "--quiet": []},
          "table": {"--n-ratio": ["2"], "--n-speed": ["2"], "--n-torque": ["2"],
                    "--quiet": []},
-         "cycle": {"": [TINY_CYCLE], "--target-speed": ["180"], "--quiet": []}}
+         "cycle": {"": [TINY_CYCLE], "--target-speed": ["180"], "--quiet": []},
+         "uncertainty": {"--samples": ["2"], "--speed": ["114"], "--quiet": []}}
 
 
 def _cheap(command, flag):
@@ -83,11 +84,15 @@ def _no_server(monkeypatch):
 def test_bad_numbers_exit_2(capsys, tmp_path, command, flag, nargs, value):
     values = [value] * (nargs if isinstance(nargs, int) else 1)
     argv = [command, flag, *values, *_cheap(command, flag)]
-    if command in ("map", "reproduce", "cycle", "table"):
+    if command in ("map", "reproduce", "cycle", "table", "uncertainty"):
         argv += ["--out", str(tmp_path / "out")]
     code, out, err = run(capsys, argv)
-    if value == "0" and flag == "--torque" and command in ("point", "clamp", "life"):
+    if value == "0" and flag == "--torque" and command in ("point", "clamp", "life",
+                                                           "uncertainty"):
         assert code == 0                           # zero torque is a valid operating point
+        return
+    if value == "0" and flag == "--seed" and command == "uncertainty":
+        assert code == 0                           # seed 0, the default
         return
     if value == "0" and flag == "--port" and command == "explore-ui":
         assert code == 0                           # port 0: any free port

@@ -250,7 +250,8 @@ def test_every_flag_changes_the_output(capsys, tmp_path, small_design, monkeypat
         covered.setdefault(name.split(":")[0], set()).update(changes)
     # every subcommand but reproduce, design, explore and explore-ui (tested below) is
     # covered here
-    assert set(covered) == set(subs) - {"reproduce", "design", "explore", "explore-ui"}
+    assert set(covered) == set(subs) - {"reproduce", "design", "explore", "explore-ui",
+                                        "uncertainty"}  # tests/test_uncertainty.py
     for command, flags in covered.items():
         # every flag covered (the cam options act alike everywhere: one suffices for the
         # commands that only pass them on)

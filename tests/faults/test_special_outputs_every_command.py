@@ -19,6 +19,8 @@ COMMANDS = {
                        "traction_curve.csv"),
     "fit-fluid": (["fit-fluid", str(DATA / "tiny_curves.csv")], "fluid.toml"),
     "explore": (["explore", str(DATA / "study_tiny.toml"), "--in-process"], "designs.csv"),
+    "uncertainty": (["uncertainty", "--samples", "2", "--power", "100", "--speed", "114"],
+                    "band.csv"),
 }
 
 
@@ -29,7 +31,7 @@ def _run(argv) -> int:
         return int(exc.code)
 
 
-QUIET = {"map", "table", "cycle", "explore"}
+QUIET = {"map", "table", "cycle", "explore", "uncertainty"}
 
 
 def _one_line(err: str) -> bool:
@@ -48,7 +50,7 @@ def test_a_fifo_as_out_is_refused_and_kept(tmp_path, capsys, command):
     assert stat.S_ISFIFO(os.lstat(fifo).st_mode)
 
 
-@pytest.mark.parametrize("command", ["map", "cycle", "traction-curve"])
+@pytest.mark.parametrize("command", ["map", "cycle", "traction-curve", "uncertainty"])
 def test_a_fifo_where_an_output_file_goes_is_refused_and_kept(tmp_path, capsys, command):
     argv, name = COMMANDS[command]
     out = tmp_path / "out"

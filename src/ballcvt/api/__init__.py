@@ -60,6 +60,9 @@ _LAZY = {
     "read_modelica_tables": "..analysis.tables",
     "table_arrays": "..analysis.tables",
     "write_tables": "..analysis.tables",
+    "UncertaintyResult": "..analysis.uncertainty",
+    "UncertaintyRequest": "..analysis.uncertainty",
+    "uncertainty": ".propagate",
 }
 __getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
@@ -137,4 +140,7 @@ __all__ = [
     "check_operating",
     "operating_ratio_range",
     "operating_speed_rpm",
+    "uncertainty",
+    "UncertaintyResult",
+    "UncertaintyRequest",
 ]

@@ -1,7 +1,8 @@
 """Read and write drive definitions (design + fluid) as TOML.
 
 A drive file has two tables, ``[design]`` (with ``[design.material]`` and
-``[design.bearings]``) and ``[fluid]``. Every key is required; unknown keys are
+``[design.bearings]``) and ``[fluid]``, and optionally ``[operating]`` and ``[uncertainty]``
+(`ballcvt.params.uncertainty`). Every key is required; unknown keys are
 rejected. The built-in Table I drive ships as ``data/table1.toml`` with its citations, and
 the same drive built as a hub (cam and parasitic losses, ASSUMED) as ``data/hub.toml``.
 """
@@ -16,6 +17,7 @@ import tomlkit
 
 from ..errors import InputError
 from .models import Design, Fluid
+from .uncertainty import UncertaintyTable, parse_uncertainty
 
 __all__ = [
     "BUILTIN_DRIVES",
@@ -33,6 +35,8 @@ __all__ = [
     "parse_toml",
     "resolve_drive",
     "resolve_fluid",
+    "parse_uncertain_drive",
+    "uncertain_drive_text",
 ]
 
 #: Named, cited drive definitions shipped with the package.
@@ -173,12 +177,12 @@ def parse_drive(text: str, source: str = "design file") -> tuple[Design, Fluid]:
                 "a table",
                 message=f"{source} is incomplete: table [{table}] is missing",
             )
-    extra = sorted(set(data) - {"design", "fluid", *_DRIVE_TABLES})
+    extra = sorted(set(data) - {"design", "fluid", "uncertainty", *_DRIVE_TABLES})
     if extra:
         raise InputError(
             extra[0],
             None,
-            "[design], [fluid], [operating] and [models]",
+            "[design], [fluid], [operating], [models] and [uncertainty]",
             message=f"{source}: unknown table [{extra[0]}]",
         )
     design = dict(data["design"])
@@ -191,11 +195,29 @@ def parse_drive(text: str, source: str = "design file") -> tuple[Design, Fluid]:
             design[table] = data[table]
     try:
         built = Design(**design)
-        return built, _fluid_of(built, data["fluid"])
+        drive = built, _fluid_of(built, data["fluid"])
     except InputError as exc:
         raise InputError(
             exc.quantity, exc.value, exc.allowed, message=f"{source}: {exc}"
         ) from None
+    parse_uncertainty(data.get("uncertainty"), *drive, source=source)  # checked, kept aside
+    return drive
+
+
+def parse_uncertain_drive(
+    text: str, source: str = "design file"
+) -> tuple[Design, Fluid, UncertaintyTable]:
+    """Parse a drive definition and its ``[uncertainty]`` table (empty if it has none)."""
+    design, fluid = parse_drive(text, source)
+    table = parse_toml(text, source).get("uncertainty")
+    return design, fluid, parse_uncertainty(table, design, fluid, source)
+
+
+def uncertain_drive_text(name: str | Path) -> tuple[str, str]:
+    """``(text, source)`` of a built-in drive by name or of a drive file (as `resolve_drive`)."""
+    if str(name) in BUILTIN_DRIVES and not Path(name).exists():
+        return builtin_text(str(name)), f"built-in drive '{name}'"
+    return read_text(name, "design file"), f"design file {name}"
 
 
 #: The tables of a drive file read into the design beside ``[design]``.

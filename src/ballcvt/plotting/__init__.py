@@ -20,6 +20,7 @@ from .figures import (
 from .shift import shift_figure
 from .studies import maps_figure, parameters_figure, pareto_figure
 from .traction import fit_figure, plot_traction_curve, traction_curve_figure
+from .uncertainty import uncertainty_figure
 
 __all__ = [
     "capacity_figure",
@@ -41,4 +42,5 @@ __all__ = [
     "pareto_figure",
     "plot_traction_curve",
     "traction_curve_figure",
+    "uncertainty_figure",
 ]

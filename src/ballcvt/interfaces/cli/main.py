@@ -47,6 +47,7 @@ from . import (
     shift,
     table,
     traction_curve,
+    uncertainty,
 )
 from . import map as efficiency_map
 
@@ -70,6 +71,7 @@ COMMANDS = {
     "explore": explore,
     "explore-ui": explore_ui,
     "design": design,
+    "uncertainty": uncertainty,
 }
 
 

@@ -270,6 +270,6 @@ def test_real_hub_page_script_writes_its_page(tmp_path):
     for heading in ("## Models used", "## Efficiency", "## Loss breakdown",
                     "## Film parameter lambda", "## Uncertainty band", "## Assumptions"):
         assert heading in text
-    assert "`operating.clamp_law` = `cam`" in text and "`design.cam.preload`" in text
+    assert "`models.clamp_law` = `cam`" in text and "`design.cam.preload`" in text
     assert (tmp_path / "real-hub-efficiency.png").is_file()
     assert (tmp_path / "real-hub-band.png").is_file()

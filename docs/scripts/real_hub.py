@@ -32,7 +32,13 @@ from matplotlib.figure import Figure  # noqa: E402
 
 import ballcvt  # noqa: E402
 from ballcvt import BallCVTError, Variator  # noqa: E402
-from ballcvt.api import BUILTIN_DRIVES, builtin_text, resolve_drive, uncertainty  # noqa: E402
+from ballcvt.api import (  # noqa: E402
+    BUILTIN_DRIVES,
+    builtin_text,
+    drive_clamp,
+    resolve_drive,
+    uncertainty,
+)
 from ballcvt.plotting import uncertainty_figure  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -223,10 +229,10 @@ def page(design: str, samples: int, seed: int, out: Path) -> Path:
     text = drive_text(design)
     d, f = resolve_drive(design)
     v = Variator(d, f)
-    op = d.operating
-    law = {"clamp_law": op.clamp_law} if op is not None and op.clamp_law else {}
-    if op is not None and op.clamp_law == "constant" and op.clamp_force:
-        law["clamp_force"] = op.clamp_force
+    name, force = drive_clamp(d)  # the drive file's ([models], else [operating])
+    law = {"clamp_law": name} if name else {}
+    if force is not None:
+        law["clamp_force"] = force
     solved = points(v, law)
     start = time.perf_counter()
     unc = uncertainty(design, samples=samples, seed=seed, ratio=RATIOS, input_power=POWERS,

@@ -9,6 +9,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..model.clamping.base import names_fixed_force
 from ..params import PAPER_POINT, Drive
+from ..params.drive_models import drive_clamp
 from ..params.io import parse_uncertain_drive, uncertain_drive_text
 from ..units import rad_s_to_rpm
 from .variator import Variator
@@ -81,11 +82,10 @@ def uncertainty(design: str | Path = "hub", request=None, compute=None, **keywor
     dask = any(asked.get(k) is not None for k in ("workers", "scheduler", "client"))
     base = compute or Compute(in_process=not dask)
     comp = replace(base, **{"in_process": not dask, **asked}) if asked else base
-    op = d.operating
-    law = (op.clamp_law if op is not None and op.clamp_law else None) or "constant"
-    force = None
+    law, force = drive_clamp(d)  # the drive file's ([models], else [operating])
+    law = law or "constant"
     if names_fixed_force(law):
-        force = (op.clamp_force if op is not None else None) or PAPER_POINT.clamp_force
+        force = force or PAPER_POINT.clamp_force
     target = UncertainDrive(
         Drive(v.design, v.fluid, architecture), table, law, force, v.options, str(design)
     )

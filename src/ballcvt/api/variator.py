@@ -36,6 +36,7 @@ from .hints import one_speed as _speed
 from .life import LifeMethods
 from .refusals import optimal_refusal, refuse_beyond_capacity
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
+from .shift_moments import ShiftMethods
 
 __all__ = ["Variator"]
 
@@ -45,7 +46,7 @@ def _default_drive():
 
 
 @dataclass(frozen=True)
-class Variator(BatchMethods, LifeMethods):
+class Variator(BatchMethods, LifeMethods, ShiftMethods):
     """A ball variator of a given design, fluid and idler architecture.
 
     Parameters

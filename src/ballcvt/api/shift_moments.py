@@ -7,7 +7,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import InputError
 from ..params.models import Design, Fluid
+from ..results.point import OperatingResult
 from ..solvers.options import SolverOptions
 
 __all__ = ["ShiftMoments", "ShiftMethods"]
@@ -102,9 +104,6 @@ class ShiftMethods:
         -------
         ShiftMoments
         """
-        from ..analysis.shift_effort import point_tilt_moments
-        from ..model.architectures import CONTACT_NAMES
-
         r = self.solve(  # type: ignore[attr-defined]
             ratio,
             output_torque,
@@ -113,8 +112,18 @@ class ShiftMethods:
             input_speed=input_speed,
             input_speed_rpm=input_speed_rpm,
         )
-        got = point_tilt_moments(r, float(tilt_rate), self.options.quadrature)
-        n = self.design.n_rollers
+        return self.shift_moments_at(r, tilt_rate=tilt_rate)
+
+    def shift_moments_at(self, result, *, tilt_rate: float = 0.0) -> ShiftMoments:
+        """`shift_moments` of a point already solved (an `OperatingResult` of `solve`,
+        carrier held), at ``tilt_rate`` [rad/s]."""
+        from ..analysis.shift_effort import point_tilt_moments
+        from ..model.architectures import CONTACT_NAMES
+
+        if not isinstance(result, OperatingResult):
+            raise InputError("result", type(result).__name__, "an OperatingResult (carrier held)")
+        got = point_tilt_moments(result, float(tilt_rate), self.options.quadrature)
+        n = result.design.n_rollers
         holding, shift = float(got.holding[0]), float(got.shift[0])
         return ShiftMoments(
             holding_moment=holding,
@@ -124,7 +133,7 @@ class ShiftMethods:
             lateral_force=tuple(float(v) for v in np.ravel(got.lateral_force)),
             tilt_rate=float(tilt_rate),
             saturated=bool(np.any(got.saturated)),
-            contacts=tuple(CONTACT_NAMES[r.architecture]),
+            contacts=tuple(CONTACT_NAMES[result.architecture]),
             n_balls=n,
         )
 

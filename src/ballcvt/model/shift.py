@@ -172,7 +172,7 @@ def tilt_moments(contacts: TiltContacts, tilt_rate) -> TiltMoments:
     slip = tilt_side_slip(rate, rs, np.asarray(st.u_ref), k)
     if not np.any(rate):
         zero = np.zeros_like(slip)
-        return TiltMoments(holding, holding * 0.0, zero, mu_y0 * load, zero[..., 0] > 0)
+        return TiltMoments(holding, np.zeros_like(holding), zero, mu_y0 * load, zero[..., 0] > 0)
     _, mu_y, _ = contacts.lateral(slip)
     ref = np.sign(slip) * LINEAR_SLIP
     _, mu_lin, _ = contacts.lateral(ref)

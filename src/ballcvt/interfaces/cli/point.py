@@ -54,9 +54,8 @@ def run(args) -> int:
         input_speed_rpm=o.rpm(args.speed),
         settings=SolveSettings(mode=mode),
     )
-    planetary = isinstance(r, PlanetaryResult)
     shift = None
-    if not planetary and (args.json or args.tilt_rate is not None):
+    if not isinstance(r, PlanetaryResult) and (args.json or args.tilt_rate is not None):
         shift = v.shift_moments_at(r, tilt_rate=deg_to_rad(args.tilt_rate or 0.0))
     if args.json:
         data = json.loads(r.to_json())
@@ -64,7 +63,7 @@ def run(args) -> int:
             data.update(_shift_json(shift, args.tilt_rate))
         o.emit_json(data)
     else:
-        o.emit(planetary_table(r) if planetary else point_table(r))
+        o.emit(planetary_table(r) if isinstance(r, PlanetaryResult) else point_table(r))
         if shift is not None:
             o.emit(_shift_line(shift, args.tilt_rate))
     return 0

@@ -60,9 +60,9 @@ def solved_tilt_contacts(drive: Drive, inputs, creep, quadrature: Quadrature) ->
         st.u_ref,
         st.film,
     )
-    return TiltContacts(
-        state, pb.layout.kappa, drive.design.roller_radius, drive.fluid, quadrature
-    )
+    kappa = pb.layout.kappa
+    entry = np.sign(kappa * pb.rho * np.asarray(st.omega_s)[..., None])
+    return TiltContacts(state, kappa, drive.design.roller_radius, drive.fluid, quadrature, entry)
 
 
 def point_tilt_moments(result, tilt_rate: float, quadrature: Quadrature) -> TiltMoments:

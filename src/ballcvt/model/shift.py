@@ -33,6 +33,7 @@ combined creep and spin, Johnson (1985, Contact Mechanics, §8.4).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -106,6 +107,11 @@ class TiltContacts:
         Traction fluid (its law, with its side-slip form).
     quadrature : Quadrature
         Rule of the traction integrals.
+    entry : array_like
+        Rolling direction of each contact along Eq. 55's ``x``, ``kappa_c i``:
+        ``sign(kappa_c rho_c omega_S)`` (the ball's surface moves at
+        ``omega_S r_S rho_c`` along ``i``) [-]; the edge where a Maxwell film enters
+        (`ballcvt.model.traction.lateral.lateral_shear_coefficients`).
     """
 
     state: ContactState
@@ -113,10 +119,11 @@ class TiltContacts:
     roller_radius: float
     fluid: Fluid
     quadrature: Quadrature = Quadrature()
+    entry: Any = 1.0
 
     def lateral(self, slip):
         """``mu, mu_y, chi`` of the contacts at lateral creeps ``slip`` [-]."""
-        return lateral_coefficients(self.state, self.fluid, slip, self.quadrature)
+        return lateral_coefficients(self.state, self.fluid, slip, self.quadrature, self.entry)
 
 
 @dataclass(frozen=True)

@@ -103,7 +103,7 @@ class TractionLaw:
     fit_parameters: tuple[str, ...] = ("limiting_shear_stress", "limiting_shear_slope")
     with_rise: Callable[[ContactState, Fluid, Quadrature], tuple] | None = None
     multiple_equilibria: bool = False
-    lateral: Callable[[ContactState, Fluid, Any, Quadrature], tuple] | None = None
+    lateral: Callable[[ContactState, Fluid, Any, Quadrature, Any], tuple] | None = None
 
 
 def _viscoelastic(state: ContactState, fluid: Fluid, quadrature: Quadrature, derivatives: bool):
@@ -113,17 +113,19 @@ def _viscoelastic(state: ContactState, fluid: Fluid, quadrature: Quadrature, der
     return shear_coefficients(state, fluid, quadrature, derivatives, modulus)
 
 
-def _isothermal_lateral(state: ContactState, fluid: Fluid, lateral, quadrature: Quadrature):
+def _isothermal_lateral(state: ContactState, fluid: Fluid, lateral, quadrature: Quadrature, entry):
     """Eq. 53 with side slip (docs/model.md §15)."""
-    return lateral_shear_coefficients(state, fluid, lateral, quadrature)
+    return lateral_shear_coefficients(state, fluid, lateral, quadrature, entry=entry)
 
 
-def _viscoelastic_lateral(state: ContactState, fluid: Fluid, lateral, quadrature: Quadrature):
+def _viscoelastic_lateral(
+    state: ContactState, fluid: Fluid, lateral, quadrature: Quadrature, entry
+):
     """Eq. 53 with Maxwell elasticity and side slip (docs/model.md §14, §15)."""
     modulus = fluid.shear_modulus
     assert modulus is not None  # a required field of the law (`Fluid` validation)
     law = ShearLaw(modulus=modulus)
-    return lateral_shear_coefficients(state, fluid, lateral, quadrature, law)
+    return lateral_shear_coefficients(state, fluid, lateral, quadrature, law, entry)
 
 
 _THERMAL_FIELDS = (
@@ -174,7 +176,11 @@ def traction_law(fluid: Fluid) -> TractionLaw:
 
 
 def lateral_coefficients(
-    state: ContactState, fluid: Fluid, lateral, quadrature: Quadrature = Quadrature()
+    state: ContactState,
+    fluid: Fluid,
+    lateral,
+    quadrature: Quadrature = Quadrature(),
+    entry=1.0,
 ):
     """``mu``, ``mu_y`` and ``chi`` [-] of contacts with a lateral creep, under ``fluid``'s
     law (docs/model.md §15).
@@ -190,6 +196,10 @@ def lateral_coefficients(
         Lateral creep ``s_lat`` (lateral sliding speed over ``u_ref``) [-].
     quadrature : Quadrature
         Rule and node counts.
+    entry : array_like
+        Rolling direction along Eq. 55's ``x`` (+1: the surfaces enter at ``X = -1``, the
+        solvers' assumption; -1: at ``X = +1``) [-]; only a Maxwell film's ``mu_y``
+        depends on it (`lateral_shear_coefficients`).
 
     Returns
     -------
@@ -203,7 +213,7 @@ def lateral_coefficients(
         raise InputError(
             "traction_law", law.name, "a law with side slip: " + ", ".join(with_lateral)
         )
-    return law.lateral(state, fluid, lateral, quadrature)
+    return law.lateral(state, fluid, lateral, quadrature, entry)
 
 
 def traction_rises_with_creep(fluid: Fluid) -> bool:

@@ -89,6 +89,7 @@ def lateral_shear_coefficients(
     lateral,
     quadrature: Quadrature = Quadrature(),
     law: ShearLaw = ShearLaw(),
+    entry=1.0,
 ):
     """``mu``, ``mu_y`` and ``chi`` of contacts with a lateral creep (module docstring).
 
@@ -107,6 +108,11 @@ def lateral_shear_coefficients(
     law : ShearLaw
         The node-local shear law: Eq. 53 by default; ``ShearLaw(modulus=G)`` for the
         visco-elastic law (docs/model.md §14).
+    entry : array_like
+        Direction of the rolling along ``x`` [-]: +1, the surfaces move along ``+x`` and
+        enter at ``X = -1`` (the solvers' Maxwell law assumes it at every contact, where
+        ``mu`` and ``chi`` do not depend on it); -1, they enter at ``X = +1``. Only the
+        Maxwell film's ``mu_y`` depends on it.
 
     Returns
     -------
@@ -123,6 +129,7 @@ def lateral_shear_coefficients(
         params[i, ...] = value
     params = params.reshape(9, -1)
     lat = np.broadcast_to(np.asarray(lateral, dtype=float), shape).ravel()
+    side = np.broadcast_to(np.asarray(entry, dtype=float), shape).ravel()
     out = np.zeros((3, lat.size))
     xp, yp = _pole(params, lat)
     q = quadrature
@@ -136,15 +143,17 @@ def lateral_shear_coefficients(
                 if kind == "pole"
                 else centred_rule(q.n_radial, n_centred, (int(part.sum()),))
             )
-            values = _integrate(nodes, params[:, part], lat[part], fluid, law)
+            values = _integrate(nodes, params[:, part], (lat[part], side[part]), fluid, law)
             out[:, part] += rule_weight[part] * np.stack(values)
     return tuple(v.reshape(shape) for v in out)
 
 
-def _integrate(nodes, params, lateral, fluid: Fluid, law: ShearLaw):
+def _integrate(nodes, params, slip, fluid: Fluid, law: ShearLaw):
     """``mu, mu_y, chi`` of flat contacts on the given nodes (Eqs. 53, 57-66 with the
-    lateral creep), the integrand of `ballcvt.model.traction.isothermal._integrate`."""
+    lateral creep), the integrand of `ballcvt.model.traction.isothermal._integrate`;
+    ``slip``: the lateral creeps and the rolling directions (``entry``)."""
     x, y, w = nodes
+    lateral, entry = slip
     c, sg, ax, ay, pm, fn, rc, u, h = params
     ex = lambda v: v[..., None]  # noqa: E731  (broadcast over the nodes)
     p = ex(pm) * np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
@@ -157,7 +166,7 @@ def _integrate(nodes, params, lateral, fluid: Fluid, law: ShearLaw):
     arg = eta * np.hypot(vx, vy) / (ex(h) * tau_l)
     g = eta / ex(h) * law.factor(arg)  # tau = g V
     if law.modulus > 0.0:  # Maxwell elasticity (docs/model.md §14)
-        t_in = ex(ax) * (x + np.sqrt(np.maximum(1.0 - y * y, 0.0))) / ex(u)
+        t_in = ex(ax) * (ex(entry) * x + np.sqrt(np.maximum(1.0 - y * y, 0.0))) / ex(u)
         g = g * -np.expm1(-law.modulus * t_in / (ex(h) * g))
     area = ax * ay
     tx, ty = g * vx, g * vy
@@ -184,7 +193,7 @@ def limiting_traction(state: ContactState, fluid: Fluid):
 
 
 def thermal_lateral_coefficients(
-    state: ContactState, fluid: Fluid, lateral, quadrature: Quadrature = Quadrature()
+    state: ContactState, fluid: Fluid, lateral, quadrature: Quadrature = Quadrature(), entry=1.0
 ):
     """``mu``, ``mu_y``, ``chi`` [-] under the thermal law with a lateral creep.
 
@@ -196,17 +205,21 @@ def thermal_lateral_coefficients(
     ``[0, R q(0)]`` (the heat falls as the film warms). Parameters as in
     `lateral_shear_coefficients`.
     """
-    values = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (*state, lateral)))
+    values = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (*state, lateral, entry)))
     shape = values[0].shape
     flat = [v.ravel() for v in values]
     con = _Contacts(flat[:9], fluid)
-    lat = flat[9]
+    lat, side = flat[9], flat[10]
     fl_state = ContactState(*flat[:9])
 
     def at(dt):
         f_t = np.exp(-con.beta_l * dt)
         got = lateral_shear_coefficients(
-            fl_state.replace(film=con.h * np.exp(con.b * dt)), fluid, lat, quadrature
+            fl_state.replace(film=con.h * np.exp(con.b * dt)),
+            fluid,
+            lat,
+            quadrature,
+            entry=side,
         )
         return tuple(f_t * v for v in got)
 

@@ -144,3 +144,12 @@ def test_point_json_and_tilt_rate(capsys):
     assert data["shift_moment_Nm"] == pytest.approx(1.4611, rel=1e-3)
     assert data["tilt_rate_deg_s"] == 30.0
     assert "N m per ball" in _cli(capsys, "point", "--tilt-rate", "30")
+
+
+def test_map_cli_shift_effort(capsys, tmp_path):
+    out = _cli(capsys, "map", "--out", str(tmp_path), "--n-ratio", "2", "--n-torque", "2",
+               "--clamp", "2000", "--speed", "2000", "--shift-effort", "--tilt-rate", "30")
+    assert "shift effort at 30 deg/s" in out
+    assert (tmp_path / "shift_effort.png").exists()
+    header = (tmp_path / "map.csv").read_text().splitlines()[0]
+    assert "shift_moment [N m]" in header and "holding_moment [N m]" in header

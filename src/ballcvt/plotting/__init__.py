@@ -17,6 +17,7 @@ from .figures import (
     ratio_vs_tilt,
     save,
 )
+from .shift import shift_effort_map
 from .studies import maps_figure, parameters_figure, pareto_figure
 from .traction import fit_figure, plot_traction_curve, traction_curve_figure
 
@@ -27,6 +28,7 @@ __all__ = [
     "line_panels",
     "map_title",
     "efficiency_map",
+    "shift_effort_map",
     "draw_efficiency_map",
     "draw_life_contours",
     "plot_efficiency_map",

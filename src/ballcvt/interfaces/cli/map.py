@@ -26,7 +26,8 @@ def add_parser(subparsers) -> None:
         "system fatigue life L10 of every point (variable l10_hours [h]) and its "
         "contours at the decades of hours (docs/life.md). With --shift-effort, the moment "
         "per ball that holds the tilt and the moment to tilt the balls at --tilt-rate "
-        "(holding_moment, shift_moment, shifter_moment [N m], docs/model.md section 15).",
+        "(holding_moment, shift_moment, shifter_moment [N m], docs/model.md section 15) "
+        "and their figure shift_effort.png.",
         "ballcvt map --out map_dir --clamp 2000 --speed 2000 --n-ratio 31 --n-torque 35",
     )
     o.add(p, "arch", *o.CLAMP_OPTIONS, "speed", *o.FLUID_OPTIONS, "life", "life-model", "material")
@@ -83,7 +84,8 @@ def run(args) -> int:
             f"shift effort at {args.tilt_rate or 0.0:g} deg/s: shift moment up to "
             f"{float(np.nanmax(np.abs(ds.shift_moment.values))):.4g} N m per ball, "
             f"{float(np.nanmax(np.abs(ds.shifter_moment.values))):.4g} N m at the shifter; "
-            f"{int(np.nansum(ds.shift_saturated.values))} point(s) with a contact saturated"
+            f"{int(np.nansum(ds.shift_saturated.values))} point(s) with a contact saturated; "
+            f"wrote {out}/shift_effort.png, shift_effort.svg"
         )
     if (st == 1).sum() > st.size / 2:
         print(
@@ -99,7 +101,7 @@ def _write(ds, out, args) -> None:
     import matplotlib
 
     matplotlib.use("Agg")  # the CLI writes files only
-    from ...plotting import efficiency_map, save
+    from ...plotting import efficiency_map, save, shift_effort_map
 
     to_netcdf(ds, out / "map.nc")
     to_csv(ds, out / "map.csv")
@@ -119,6 +121,19 @@ def _write(ds, out, args) -> None:
         out,
         "map",
     )
+    if args.shift_effort:
+        save(
+            shift_effort_map(
+                one.ratio.values,
+                one.output_torque.values,
+                one.shift_moment.transpose("ratio", "output_torque").values,
+                one.limit_torque.values,
+                f"{ds.attrs.get('design_name', '')}\nShift moment per ball at "
+                f"{args.tilt_rate or 0.0:g} deg/s (tilt-direct), {args.speed:g} rpm",
+            ),
+            out,
+            "shift_effort",
+        )
 
 
 def _mode_summary(ds, out, design: str) -> str:

@@ -20,6 +20,13 @@ the body slides over the ball laterally at ``gamma_dot r_S`` and the contact's l
 creep (Eq. 55's frame) is ``s_c = kappa_c gamma_dot r_S / u_c`` (``u_c`` the rolling
 speed ``|Omega_c| r_c``).
 
+**Skew.** An axle skewed by a small ``zeta`` about ``-k`` (``s -> s + zeta cos gamma i``)
+adds ``omega_S zeta cos gamma i`` to the ball's angular velocity: the pattern of a tilt, so
+the side slips of a skewed ball tilting at ``gamma_dot`` are those of the effective tilt rate
+``gamma_dot - omega_S zeta cos gamma`` (zero when ``gamma_dot = omega_S zeta cos gamma``,
+the skew-steered tilt rate); `tilt_moments` at that rate gives its moment (to first order in
+``zeta``).
+
 **Moment to hold or to tilt.** With ``F_y,c = mu_y,c F_Nc`` on the ball, the moment the
 contacts exert about ``-i`` (the direction of increasing ``gamma``) is
 ``-r_S sum_c kappa_c mu_y,c F_Nc``; the shifter holds or drives the tilt with its

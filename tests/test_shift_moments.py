@@ -153,3 +153,53 @@ def test_map_cli_shift_effort(capsys, tmp_path):
     assert (tmp_path / "shift_effort.png").exists()
     header = (tmp_path / "map.csv").read_text().splitlines()[0]
     assert "shift_moment [N m]" in header and "holding_moment [N m]" in header
+
+
+@pytest.mark.parametrize("arch", ["double", "single"])
+def test_contact_frame_from_rigid_body_kinematics(arch):
+    """The body's velocity over the ball, from the rigid motions of the bodies and of a
+    ball tilting at gamma_dot, is Eq. 55's field in the frame e_x = kappa i, e_z = -z_c,
+    e_y = kappa (i x z_c): its x part the creep term, its y part the side slip of
+    `tilt_side_slip`, its gradient the spin; the surfaces roll along ``entry`` e_x."""
+    from ballcvt.analysis.shift_effort import solved_tilt_contacts
+    from ballcvt.model.architectures import contact_layout
+    from ballcvt.model.kinematics import creep_term
+    from ballcvt.model.shift import tilt_side_slip
+    from ballcvt.model.traction import Quadrature
+    from ballcvt.params.drive import Drive
+
+    v = Variator(architecture=arch)
+    r = v.solve(1.3, 40.0, **POINT)
+    lay, rs = contact_layout(v.design, arch), v.design.roller_radius
+    i, j, k = np.eye(3)
+    centre = rs * (1.0 + v.design.aspect_ratio) * k
+    rate = 0.7  # [rad/s]
+    spin_axis = np.cos(r.tilt) * j - np.sin(r.tilt) * k
+    ball = r.roller_speed * spin_axis - rate * i  # tilting by +d gamma turns about -i
+    names = list(r.contacts)
+    creep = np.array([[r.contacts[n].creep for n in names]])
+    inputs = [np.array([x]) for x in (r.ratio, r.output_torque, r.clamp_force, r.input_speed)]
+    tc = solved_tilt_contacts(Drive(v.design, v.fluid, arch), inputs, creep, Quadrature())
+    u_ref = np.asarray(tc.state.u_ref)
+    slips = tilt_side_slip(rate, rs, u_ref, lay.kappa)[0]
+    for n, name in enumerate(names):
+        z = lay.z_j[n] * j + lay.z_k[n] * k
+        ex, ez = lay.kappa[n] * i, -z
+        ey = np.cross(ez, ex)
+        assert np.allclose(ey, lay.kappa[n] * np.cross(i, z))
+        omega = r.contacts[name].body_speed
+        point = centre + rs * z
+
+        def rel(q, omega=omega):  # the body's velocity over the ball's at q
+            return omega * np.cross(j, q) - np.cross(ball, q - centre)
+
+        u, d = abs(omega) * (point @ k), 1e-6
+        here = rel(point)
+        assert here @ ex / u == pytest.approx(creep_term(creep)[0, n], rel=1e-9, abs=1e-14)
+        assert here @ ey / u == pytest.approx(slips[n], rel=1e-9)
+        sigma_over_r = r.contacts[name].spin / (point @ k)
+        assert (rel(point + d * ey) - here) @ ex / (u * d) == pytest.approx(-sigma_over_r, 1e-6)
+        assert (rel(point + d * ex) - here) @ ey / (u * d) == pytest.approx(sigma_over_r, 1e-6)
+        rolling = np.cross(r.roller_speed * spin_axis, rs * z) @ ex
+        assert np.sign(rolling) == tc.entry[0, n]
+        assert u == pytest.approx(u_ref[0, n], rel=1e-12)

@@ -143,3 +143,17 @@ def test_viscoelastic_entry_edge_flips_the_spin_lateral_force(paper_contacts):
     np.testing.assert_allclose(minus[1], -plus[1], rtol=1e-9)
     np.testing.assert_allclose(minus[0], plus[0], rtol=1e-12)
     np.testing.assert_allclose(minus[2], plus[2], rtol=1e-9)
+
+
+def test_default_rule_near_the_reference_as_the_pole_moves(paper_contacts):
+    """The pole moves to X_p = -s_lat / s_x; the default rule stays within 2e-3 of the
+    converged rule across it (inside, in the blend, outside)."""
+    from ballcvt.model.traction import REFERENCE
+
+    state, fluid = paper_contacts
+    sx = np.asarray(state.spin) * np.asarray(state.ax) / np.asarray(state.radius)
+    for xp in (0.3, 0.6, 0.9, 1.2):
+        got = lateral_coefficients(state, fluid, -xp * sx)
+        ref = lateral_coefficients(state, fluid, -xp * sx, REFERENCE)
+        for a, b in zip(got, ref, strict=True):
+            assert np.all(np.abs(a - b) <= 2e-3 * np.abs(b) + 1e-12)

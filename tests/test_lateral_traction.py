@@ -157,3 +157,20 @@ def test_default_rule_near_the_reference_as_the_pole_moves(paper_contacts):
         ref = lateral_coefficients(state, fluid, -xp * sx, REFERENCE)
         for a, b in zip(got, ref, strict=True):
             assert np.all(np.abs(a - b) <= 2e-3 * np.abs(b) + 1e-12)
+
+
+def test_a_law_without_a_side_slip_form_is_refused(paper_contacts):
+    import dataclasses
+
+    from ballcvt.errors import InputError
+    from ballcvt.registry import TRACTION_LAWS
+
+    state, fluid = paper_contacts
+    law = dataclasses.replace(TRACTION_LAWS.get("isothermal"), name="no_side_slip", lateral=None)
+    TRACTION_LAWS.register(law)
+    try:
+        fl = fluid.with_traction_law("no_side_slip")
+        with pytest.raises(InputError, match="a law with side slip: isothermal"):
+            lateral_coefficients(state, fl, 1e-3)
+    finally:
+        TRACTION_LAWS.unregister("no_side_slip")

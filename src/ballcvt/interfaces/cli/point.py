@@ -15,11 +15,12 @@ def add_tilt_rate(p) -> None:
     """``--tilt-rate DEG_PER_S``: the balls' tilt rate of a tilt-direct shift."""
     p.add_argument(
         "--tilt-rate",
-        type=o.quantity("tilt_rate", "deg/s", most=1e5),
+        type=o.quantity("tilt_rate", "deg/s", above=0.0, most=1e5),
         default=None,
         metavar="DEG_PER_S",
-        help="tilt rate of a tilt-direct shift [deg/s]: adds the moment per ball to tilt "
-        "the balls at that rate, shift_moment_Nm (docs/model.md section 15)",
+        help="tilt rate of a tilt-direct shift [deg/s] (> 0, towards a higher ratio; "
+        "the Python API takes either sign): adds the moment per ball to tilt the balls at "
+        "that rate, shift_moment_Nm (docs/model.md section 15)",
     )
 
 

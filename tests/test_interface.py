@@ -131,6 +131,11 @@ def _variants(design, tmp):
                    "--life"], dict(lives))
     mapping[1]["--life"] = ["--life"]
     cycle[1]["--life"] = ["--life"]
+    # issue 29: the holding and shift moments (docs/model.md section 15)
+    map_shift = (["map", "--out", str(tmp / "m5"), *small, "--shift-effort"],
+                 {"--tilt-rate": ["--tilt-rate", "30"]})
+    mapping[1]["--shift-effort"] = ["--shift-effort"]
+    point[1]["--tilt-rate"] = ["--tilt-rate", "30"]
     # issue 25: the capacity over a ratio range (its cam options act as in map)
     capacity = (["capacity", "--out", str(tmp / "k0"), "--points", "2", "--ratio-range", "0.8",
                  "1.2"], {
@@ -181,6 +186,7 @@ def _variants(design, tmp):
             "cycle": cycle, "cycle:cam": cycle_cam, "cycle:text": cycle_text, "table": table,
             "life": life, "life:cycle": life_cycle, "life:text": life_text, "life:cam": life_cam,
             "map:life": map_life, "cycle:life": cycle_life,
+            "map:shift": map_shift,
             "capacity": capacity}
 
 

@@ -20,7 +20,8 @@ def shift_effort_map(ratio, torque, moment, limit, title="Shift effort") -> Figu
     ratio, torque : array_like
         The grid's ratios [-] and output torques [N m].
     moment : array_like
-        Shift moment per ball [N m], ``(n_ratio, n_torque)`` (NaN: no solution, blank).
+        Shift moment per ball [N m], ``(n_ratio, n_torque)`` (NaN, or a torque above the
+        limit: blank).
     limit : array_like
         Limiting torque at each ratio [N m] (``(n_ratio,)``).
     title : str
@@ -28,7 +29,9 @@ def shift_effort_map(ratio, torque, moment, limit, title="Shift effort") -> Figu
     """
     fig = Figure(figsize=(6.6, 4.8), layout="constrained")
     ax = fig.add_subplot()
-    z = np.ma.masked_invalid(np.abs(np.asarray(moment, dtype=float)).T)
+    z = np.abs(np.asarray(moment, dtype=float)).T  # (n_torque, n_ratio)
+    beyond = np.asarray(torque, dtype=float)[:, None] > np.asarray(limit, dtype=float)[None, :]
+    z = np.ma.masked_where(beyond | ~np.isfinite(z), z)  # nothing above the limit
     if z.count() >= 4:
         filled = ax.contourf(ratio, torque, z, levels=12, cmap="viridis")
         fig.colorbar(filled, ax=ax, label="shift moment per ball [N m]")

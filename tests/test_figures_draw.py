@@ -185,6 +185,11 @@ def _figures(sweep, both):
             ax, one.ratio.values, one.output_torque.values,
             10.0 ** np.add.outer(np.linspace(2.0, 5.0, one.ratio.size),
                                  -np.linspace(0.0, 1.0, one.output_torque.size)))),
+        "shift_effort_map": bp.shift_effort_map(
+            one.ratio.values, one.output_torque.values,
+            np.add.outer(np.linspace(1.0, 2.0, one.ratio.size),
+                         np.linspace(0.0, 3.0, one.output_torque.size)),
+            one.limit_torque.values),
         "plot_curves": on_axes(lambda ax: bp.plot_curves(both, y="eta", x="ratio", ax=ax)),
         "ratio_vs_tilt": bp.ratio_vs_tilt([(tilt, np.exp(tilt / 30), "45 deg",
                                             np.abs(tilt) < 25)]),

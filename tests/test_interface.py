@@ -138,6 +138,11 @@ def _variants(design, tmp):
                    "--life"], dict(lives))
     mapping[1]["--life"] = ["--life"]
     cycle[1]["--life"] = ["--life"]
+    # issue 29: the holding and shift moments (docs/model.md section 15)
+    map_shift = (["map", "--out", str(tmp / "m5"), *small, "--shift-effort"],
+                 {"--tilt-rate": ["--tilt-rate", "30"]})
+    mapping[1]["--shift-effort"] = ["--shift-effort"]
+    point[1]["--tilt-rate"] = ["--tilt-rate", "30"]
     # issue 25: the capacity over a ratio range (its cam options act as in map)
     capacity = (["capacity", "--out", str(tmp / "k0"), "--points", "2", "--ratio-range", "0.8",
                  "1.2"], {
@@ -198,6 +203,7 @@ def _variants(design, tmp):
             "cycle": cycle, "cycle:cam": cycle_cam, "cycle:oil": cycle_oil, "cycle:text": cycle_text, "table": table,
             "life": life, "life:cycle": life_cycle, "life:text": life_text, "life:cam": life_cam,
             "map:life": map_life, "cycle:life": cycle_life,
+            "map:shift": map_shift,
             "capacity": capacity, **{f"{k}:mixed": v for k, v in on_rough.items()}}
 
 
@@ -219,12 +225,6 @@ def _shift_variants(design, tmp, law, cam, fluid):
             "shift:cam": ([*base, "--out", str(tmp / "s3"), "--json", *law], dict(cam))}
 
 
-def _stand_in_moments(self, ratio, output_torque, *, tilt_rate=0.0, **point):
-    """Variator.shift_moments until issue 29's contact model is merged (tests only)."""
-    return types.SimpleNamespace(holding_moment=0.01 * output_torque,
-                                 shift_moment=0.05 * tilt_rate)
-
-
 def _output(code, out, err, argv):
     """What a command produced: stdout, and the data of the map it wrote (if any)."""
     assert code == 0, (argv, err)
@@ -240,9 +240,7 @@ def _output(code, out, err, argv):
     return re.sub(r"\d+\.\d s on", "", out) + files
 
 
-def test_every_flag_changes_the_output(capsys, tmp_path, small_design, monkeypatch):
-    if not hasattr(Variator, "shift_moments"):  # --actuator-moment needs the moment model
-        monkeypatch.setattr(Variator, "shift_moments", _stand_in_moments, raising=False)
+def test_every_flag_changes_the_output(capsys, tmp_path, small_design):
     variants = _variants(small_design, tmp_path)
     subs = _subcommands()
     covered = {}

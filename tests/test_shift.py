@@ -185,17 +185,6 @@ def test_the_contact_model_moments_are_used_when_the_variator_has_them(hub, monk
     assert calls[0] == {"clamp_law": "cam", "input_speed_rpm": pytest.approx(114.0)}
 
 
-def test_without_a_moment_model_the_moments_are_unknown_not_made_up(hub):
-    if hasattr(Variator, "shift_moments"):
-        pytest.skip("the contact model's shift moments are merged")
-    r = hub.shift(0.6, 1.6, 20.0, tilt_rate_deg_s=40.0, input_speed_rpm=114.0, samples=5,
-                  **CAM)
-    assert math.isnan(r.peak_shift_moment_Nm) and math.isnan(r.energy_lost_J)
-    assert any("no shift-moment model" in n for n in r.notes)
-    with pytest.raises(InputError, match="shift_moments"):
-        hub.shift(0.6, 1.6, 20.0, actuator_moment=2.0, input_speed_rpm=114.0, **CAM)
-
-
 @pytest.mark.parametrize("kwargs, fragment", [
     ({}, "exactly one of"),
     ({"skew_deg": 1.0, "tilt_rate_deg_s": 5.0}, "exactly one of"),

@@ -30,6 +30,7 @@ from .api import (
     ModeBatch,
     OperatingMode,
     PlanetaryResult,
+    ShiftMoments,
     SolveSettings,
     SweepSettings,
     TableGrid,
@@ -99,6 +100,8 @@ __all__ = [
     "MEMBERS",
     "PlanetaryResult",
     "ModeBatch",
+    # shifting (docs/model.md §15)
+    "ShiftMoments",
     # duty cycles, tables and data files
     "Cycle",
     "CycleResult",

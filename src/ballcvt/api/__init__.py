@@ -33,6 +33,7 @@ from .capacity import CapacityCurve, capacity_curve
 from .grids import LimitCurve
 from .life import life_settings
 from .settings import CycleSettings, MapGrid, SolveSettings, SweepSettings, TableGrid
+from .shift_moments import ShiftMoments
 from .tools import contact_fluid, drive_text, open_drive, read_study
 from .variator import Variator
 
@@ -97,6 +98,7 @@ __all__ = [
     "ElementLife",
     "LifeSettings",
     "LIFE_MODELS",
+    "ShiftMoments",
     "life_settings",
     "cycle_life",
     "sweep_life",

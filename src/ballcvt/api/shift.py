@@ -21,12 +21,10 @@ _SHIFT_KEYS = ("actuator_lag", "moment_model", "samples", "max_time")
 
 
 def default_moment_model(variator, clamp: dict):
-    """The holding and shift moments of the contact model (``Variator.shift_moments``) as
-    a `ballcvt.analysis.shift.MomentModel` at the clamping ``clamp``; None when this build
-    has no such model (the moments are then reported unknown, never made up)."""
-    moments = getattr(variator, "shift_moments", None)
-    if moments is None:
-        return None
+    """The holding and shift moments of the contact model (``Variator.shift_moments``,
+    docs/model.md §17) as a `ballcvt.analysis.shift.MomentModel` at the clamping
+    ``clamp``."""
+    moments = variator.shift_moments
 
     def model(ratio, output_torque, tilt_rate, input_speed):
         rpm = rad_s_to_rpm(input_speed)

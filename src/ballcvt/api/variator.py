@@ -37,6 +37,7 @@ from .life import LifeMethods
 from .refusals import optimal_refusal, refuse_beyond_capacity
 from .settings import CycleSettings, SolveSettings, SweepSettings, merge_settings
 from .shift import ShiftMethods
+from .shift_moments import ShiftMomentMethods
 from .summary import SummaryMethods
 
 __all__ = ["Variator"]
@@ -47,7 +48,7 @@ def _default_drive():
 
 
 @dataclass(frozen=True, repr=False)  # the summary is SummaryMethods'
-class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods):
+class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMomentMethods):
     """A ball variator of a given design, fluid and idler architecture.
 
     Parameters

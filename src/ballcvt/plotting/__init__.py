@@ -18,6 +18,7 @@ from .figures import (
     save,
 )
 from .shift import shift_figure
+from .shift_effort import shift_effort_map
 from .studies import maps_figure, parameters_figure, pareto_figure
 from .traction import fit_figure, plot_traction_curve, traction_curve_figure
 from .uncertainty import uncertainty_figure
@@ -30,6 +31,7 @@ __all__ = [
     "line_panels",
     "map_title",
     "efficiency_map",
+    "shift_effort_map",
     "draw_efficiency_map",
     "draw_life_contours",
     "plot_efficiency_map",

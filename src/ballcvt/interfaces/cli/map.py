@@ -8,8 +8,10 @@ import numpy as np
 
 from ...api import MapGrid, to_csv, to_netcdf
 from ...files import check_output_dir
+from ...units import deg_to_rad
 from . import options as o
 from .modes import add_mode_options, mode_of
+from .point import add_tilt_rate
 
 
 def add_parser(subparsers) -> None:
@@ -22,10 +24,20 @@ def add_parser(subparsers) -> None:
         "with the limiting-torque curve: map.png, map.svg, map.nc (NetCDF-4, CF) and "
         "map.csv in --out. Points beyond the limit have status 1. With --life, the "
         "system fatigue life L10 of every point (variable l10_hours [h]) and its "
-        "contours at the decades of hours (docs/life.md).",
+        "contours at the decades of hours (docs/life.md). With --shift-effort, the moment "
+        "per ball that holds the tilt and the moment to tilt the balls at --tilt-rate "
+        "(holding_moment, shift_moment, shifter_moment [N m], docs/model.md section 15) "
+        "and their figure shift_effort.png.",
         "ballcvt map --out map_dir --clamp 2000 --speed 2000 --n-ratio 31 --n-torque 35",
     )
     o.add(p, "arch", *o.CLAMP_OPTIONS, "speed", *o.FLUID_OPTIONS, "life", "life-model", "material")
+    p.add_argument(
+        "--shift-effort",
+        action="store_true",
+        help="add the holding and tilt-direct shift moments of every point "
+        "(docs/model.md section 15)",
+    )
+    add_tilt_rate(p)
     o.out(p, "ballcvt-map")
     o.grid_options(
         p, n_ratio=31, n_torque=35, most=1000, torque_max="1.02 x the largest limiting torque"
@@ -50,6 +62,8 @@ def run(args) -> int:
     )
     if args.life:
         ds = v.map_life(ds, life_model=args.life_model, material=args.material)
+    if args.shift_effort:
+        ds = v.map_shift_effort(ds, tilt_rate=deg_to_rad(args.tilt_rate or 0.0))
     _write(ds, out, args)
     if args.quiet:
         return 0
@@ -65,6 +79,14 @@ def run(args) -> int:
         f"{float(ds.eta.max()):.4f}; {ds.attrs['run_time_s']:.1f} s on "
         f"{args.workers} worker(s)"
     )
+    if args.shift_effort:
+        o.emit(
+            f"shift effort at {args.tilt_rate or 0.0:g} deg/s: shift moment up to "
+            f"{float(np.nanmax(np.abs(ds.shift_moment.values))):.4g} N m per ball, "
+            f"{float(np.nanmax(np.abs(ds.shifter_moment.values))):.4g} N m at the shifter; "
+            f"{int(np.nansum(ds.shift_saturated.values))} point(s) with a contact saturated; "
+            f"wrote {out}/shift_effort.png, shift_effort.svg"
+        )
     if (st == 1).sum() > st.size / 2:
         print(
             f"note: most points lie beyond the limiting torque (max "
@@ -79,7 +101,7 @@ def _write(ds, out, args) -> None:
     import matplotlib
 
     matplotlib.use("Agg")  # the CLI writes files only
-    from ...plotting import efficiency_map, save
+    from ...plotting import efficiency_map, save, shift_effort_map
 
     to_netcdf(ds, out / "map.nc")
     to_csv(ds, out / "map.csv")
@@ -99,6 +121,19 @@ def _write(ds, out, args) -> None:
         out,
         "map",
     )
+    if args.shift_effort:
+        save(
+            shift_effort_map(
+                one.ratio.values,
+                one.output_torque.values,
+                one.shift_moment.transpose("ratio", "output_torque").values,
+                one.limit_torque.values,
+                f"{ds.attrs.get('design_name', '')}\nShift moment per ball at "
+                f"{args.tilt_rate or 0.0:g} deg/s (tilt-direct), {args.speed:g} rpm",
+            ),
+            out,
+            "shift_effort",
+        )
 
 
 def _mode_summary(ds, out, design: str) -> str:

@@ -9,7 +9,7 @@ from ...registry import TRACTION_LAWS
 from ..film import central_film_thickness
 from ..hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
 from ..rheology import limiting_shear_stress, roelands_viscosity, saturation_factor
-from .base import LAWS, TractionLaw, law_coefficients, traction_law
+from .base import LAWS, TractionLaw, lateral_coefficients, law_coefficients, traction_law
 from .contact import ContactState, contact_coefficients
 from .isothermal import (
     ShearLaw,
@@ -18,6 +18,7 @@ from .isothermal import (
     shear_law_coefficients,
     traction_coefficients,
 )
+from .lateral import lateral_shear_coefficients, limiting_traction
 from .quadrature import METHODS, REFERENCE, Quadrature, centred_rule, inner_pole_rule
 from .thermal import (
     film_temperature_rise,
@@ -44,6 +45,9 @@ __all__ = [
     "TractionLaw",
     "TRACTION_LAWS",
     "contact_coefficients",
+    "lateral_coefficients",
+    "lateral_shear_coefficients",
+    "limiting_traction",
     "shear_coefficients",
     "ShearLaw",
     "shear_law_coefficients",

@@ -29,10 +29,12 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..._compat import warn_renamed
+from ...errors import InputError
 from ...params.models import Fluid
 from ...registry import TRACTION_LAWS
 from .contact import ContactState, contact_coefficients, legacy_arguments
-from .isothermal import shear_coefficients
+from .isothermal import ShearLaw, shear_coefficients
+from .lateral import lateral_shear_coefficients, thermal_lateral_coefficients
 from .quadrature import Quadrature
 from .thermal import thermal_law_coefficients, thermal_law_rise
 
@@ -42,6 +44,7 @@ __all__ = [
     "LAWS",
     "MONOTONE",
     "contact_coefficients",
+    "lateral_coefficients",
     "law_coefficients",
     "traction_law",
     "traction_rises_with_creep",
@@ -100,6 +103,7 @@ class TractionLaw:
     fit_parameters: tuple[str, ...] = ("limiting_shear_stress", "limiting_shear_slope")
     with_rise: Callable[[ContactState, Fluid, Quadrature], tuple] | None = None
     multiple_equilibria: bool = False
+    lateral: Callable[[ContactState, Fluid, Any, Quadrature, Any], tuple] | None = None
 
 
 def _viscoelastic(state: ContactState, fluid: Fluid, quadrature: Quadrature, derivatives: bool):
@@ -107,6 +111,21 @@ def _viscoelastic(state: ContactState, fluid: Fluid, quadrature: Quadrature, der
     modulus = fluid.shear_modulus
     assert modulus is not None  # a required field of the law (`Fluid` validation)
     return shear_coefficients(state, fluid, quadrature, derivatives, modulus)
+
+
+def _isothermal_lateral(state: ContactState, fluid: Fluid, lateral, quadrature: Quadrature, entry):
+    """Eq. 53 with side slip (docs/model.md §17)."""
+    return lateral_shear_coefficients(state, fluid, lateral, quadrature, entry=entry)
+
+
+def _viscoelastic_lateral(
+    state: ContactState, fluid: Fluid, lateral, quadrature: Quadrature, entry
+):
+    """Eq. 53 with Maxwell elasticity and side slip (docs/model.md §14, §17)."""
+    modulus = fluid.shear_modulus
+    assert modulus is not None  # a required field of the law (`Fluid` validation)
+    law = ShearLaw(modulus=modulus)
+    return lateral_shear_coefficients(state, fluid, lateral, quadrature, law, entry)
 
 
 _THERMAL_FIELDS = (
@@ -122,6 +141,7 @@ for _law in (
         "isothermal",
         shear_coefficients,
         "the paper's rigid-plastic law, Eq. 53 (Tomaselli et al. 2020)",
+        lateral=_isothermal_lateral,
     ),
     TractionLaw(
         "thermal",
@@ -136,6 +156,7 @@ for _law in (
         ),
         with_rise=thermal_law_rise,
         multiple_equilibria=True,
+        lateral=thermal_lateral_coefficients,
     ),
     TractionLaw(
         "viscoelastic",
@@ -143,6 +164,7 @@ for _law in (
         "Eq. 53 with Maxwell elasticity (Johnson and Tevaarwerk 1977)",
         fields=("shear_modulus",),
         fit_parameters=("limiting_shear_stress", "limiting_shear_slope", "shear_modulus"),
+        lateral=_viscoelastic_lateral,
     ),
 ):
     TRACTION_LAWS.register(_law)
@@ -151,6 +173,47 @@ for _law in (
 def traction_law(fluid: Fluid) -> TractionLaw:
     """The registered law ``fluid`` names (`InputError` listing the laws if none)."""
     return TRACTION_LAWS.get(fluid.traction_law)
+
+
+def lateral_coefficients(
+    state: ContactState,
+    fluid: Fluid,
+    lateral,
+    quadrature: Quadrature = Quadrature(),
+    entry=1.0,
+):
+    """``mu``, ``mu_y`` and ``chi`` [-] of contacts with a lateral creep, under ``fluid``'s
+    law (docs/model.md §17).
+
+    Parameters
+    ----------
+    state : ContactState
+        The contacts, as for `contact_coefficients`.
+    fluid : Fluid
+        Traction fluid; its law must have a side-slip form (`TractionLaw.lateral`: the
+        built-in laws have).
+    lateral : array_like
+        Lateral creep ``s_lat`` (lateral sliding speed over ``u_ref``) [-].
+    quadrature : Quadrature
+        Rule and node counts.
+    entry : array_like
+        Rolling direction along Eq. 55's ``x`` (+1: the surfaces enter at ``X = -1``, the
+        solvers' assumption; -1: at ``X = +1``) [-]; only a Maxwell film's ``mu_y``
+        depends on it (`lateral_shear_coefficients`).
+
+    Returns
+    -------
+    mu, mu_y, chi : ndarray
+        Longitudinal and lateral traction coefficients, spin-moment coefficient [-].
+        Without side slip use `contact_coefficients` (the solvers' path, unchanged).
+    """
+    law = traction_law(fluid)
+    if law.lateral is None:
+        with_lateral = [n for n in TRACTION_LAWS if TRACTION_LAWS.get(n).lateral is not None]
+        raise InputError(
+            "traction_law", law.name, "a law with side slip: " + ", ".join(with_lateral)
+        )
+    return law.lateral(state, fluid, lateral, quadrature, entry)
 
 
 def traction_rises_with_creep(fluid: Fluid) -> bool:

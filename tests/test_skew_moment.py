@@ -20,7 +20,7 @@ from ballcvt.model.architectures import contact_layout
 from ballcvt.model.shift import skew_axis_moment
 
 POINT = {"clamp_force": 2000.0, "input_speed_rpm": 2000.0}
-I, J, K = np.eye(3)
+EI, EJ, EK = np.eye(3)
 
 
 @pytest.fixture(scope="module")
@@ -32,8 +32,8 @@ def _vector_moment(r, lay, rs):
     """The contacts' moment on the ball as a 3-vector, from ``r x F`` and the spin moments."""
     total = np.zeros(3)
     for n, c in enumerate(r.contacts.values()):
-        z = lay.z_j[n] * J + lay.z_k[n] * K
-        total += np.cross(rs * z, c.tangential_force * I) + c.spin_moment * z
+        z = lay.z_j[n] * EJ + lay.z_k[n] * EK
+        total += np.cross(rs * z, c.tangential_force * EI) + c.spin_moment * z
     return total
 
 
@@ -45,8 +45,8 @@ def test_hand_check_one_contact():
     zj, zk = -math.sin(th), math.cos(th)
     got = skew_axis_moment(np.array([f]), np.array([t]), np.array([zj]), np.array([zk]), rs)
     assert got == pytest.approx(1.1172, abs=1e-4)
-    z = zj * J + zk * K
-    assert got == pytest.approx((np.cross(rs * z, f * I) + t * z) @ K, rel=1e-14)
+    z = zj * EJ + zk * EK
+    assert got == pytest.approx((np.cross(rs * z, f * EI) + t * z) @ EK, rel=1e-14)
 
 
 def test_lateral_forces_have_no_skew_part():
@@ -56,14 +56,14 @@ def test_lateral_forces_have_no_skew_part():
     for arch in ("double", "single"):
         lay = contact_layout(v.design, arch)
         for n in range(lay.z_j.size):
-            z = lay.z_j[n] * J + lay.z_k[n] * K
-            m = np.cross(0.03 * z, 7.0 * lay.kappa[n] * np.cross(I, z))
-            assert m @ K == pytest.approx(0.0, abs=1e-15)
-            assert m @ I == pytest.approx(lay.kappa[n] * 0.03 * 7.0, rel=1e-12)
+            z = lay.z_j[n] * EJ + lay.z_k[n] * EK
+            m = np.cross(0.03 * z, 7.0 * lay.kappa[n] * np.cross(EI, z))
+            assert m @ EK == pytest.approx(0.0, abs=1e-15)
+            assert m @ EI == pytest.approx(lay.kappa[n] * 0.03 * 7.0, rel=1e-12)
 
 
 def test_double_idler_ratio_one_symmetry(paper):
-    """Table I at ratio 1 (theta_0 = theta_2 = 45 deg, gamma = 0): the two idler contacts
+    """Table EI at ratio 1 (theta_0 = theta_2 = 45 deg, gamma = 0): the two idler contacts
     are mirror images across the ball's equator (z_j = -/+ sin alpha, equal z_k), with equal
     tractions and opposite spin moments, so their contributions cancel; the discs'
     tractions (input along +i at z_j < 0, output along -i at z_j > 0) add into a couple
@@ -105,8 +105,8 @@ def test_closes_the_ball_moment_balance(arch, ratio):
     r = v.solve(ratio, 40.0, **POINT)
     rs, lay = v.design.roller_radius, contact_layout(v.design, arch)
     m = _vector_moment(r, lay, rs)
-    assert r.skew_moment == pytest.approx(m @ K, rel=1e-10)
-    u = math.sin(r.tilt) * J + math.cos(r.tilt) * K
+    assert r.skew_moment == pytest.approx(m @ EK, rel=1e-10)
+    u = math.sin(r.tilt) * EJ + math.cos(r.tilt) * EK
     f_a, f_b = r.axle_reactions
     assert m @ u == pytest.approx(rs * (f_a - f_b) / 2.0, rel=1e-9)
     assert r.skew_moment > 0.0  # the discs' traction couple dominates (see above)

@@ -328,8 +328,8 @@ class OperatingResult:
         # files written before the clamping laws (0.1.0) have no clamp_law (constant), and
         # before the oil's temperature no oil_* keys: the defaults
         # and before the moments (docs/model.md §17) no holding_moment, skew_moment: NaN
-        optional = ("clamp_law", "oil_temperature", "oil_model", "thermal_iterations")
-        optional += ("holding_moment", "skew_moment")
+        optional: tuple[str, ...] = ("clamp_law", "oil_temperature", "oil_model")
+        optional += ("thermal_iterations", "holding_moment", "skew_moment")
         missing = [f.name for f in fields(cls) if f.name not in data and f.name not in optional]
         if missing:
             raise InputError(

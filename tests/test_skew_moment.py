@@ -152,3 +152,22 @@ def test_point_json(capsys):
     data = json.loads(capsys.readouterr().out)
     assert abs(data["holding_moment"]) < 1e-12
     assert data["skew_moment_Nm"] == pytest.approx(2.2096, rel=1e-3)
+
+
+def test_a_law_without_a_side_slip_form_still_solves():
+    """A registered law without ``lateral``: the point solves, its holding moment is NaN
+    (unknown) and its skew moment (from the solved forces) is the isothermal law's."""
+    import dataclasses
+
+    from ballcvt.registry import TRACTION_LAWS
+
+    law = dataclasses.replace(TRACTION_LAWS.get("isothermal"), name="no_side_slip", lateral=None)
+    TRACTION_LAWS.register(law)
+    try:
+        v = Variator()
+        plain = v.solve(1.0, 40.0, **POINT)
+        r = Variator(fluid=v.fluid.with_traction_law("no_side_slip")).solve(1.0, 40.0, **POINT)
+    finally:
+        TRACTION_LAWS.unregister("no_side_slip")
+    assert math.isnan(r.holding_moment)
+    assert r.skew_moment == pytest.approx(plain.skew_moment, rel=1e-12)

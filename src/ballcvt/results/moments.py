@@ -13,6 +13,7 @@ from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState
 from ..model.kinematics import creep_term
 from ..model.shift import TiltContacts, skew_axis_moment, tilt_moments
+from ..model.traction.base import traction_law
 from ..model.traction.contact import ContactState
 from ..model.traction.quadrature import Quadrature
 
@@ -57,13 +58,17 @@ def steady_moments(
     """Holding moment and moment about the skew axis per ball at zero tilt rate [N m].
 
     The holding moment is `ballcvt.model.shift.tilt_moments` at rate 0 (the film's
-    lateral force at zero side slip); the skew moment is
+    lateral force at zero side slip; NaN under a registered traction law without a
+    side-slip form, ``TractionLaw.lateral``); the skew moment is
     `ballcvt.model.shift.skew_axis_moment` of the solver's own tractions and spin moments
     (``state.force``, ``state.moment``), so it closes the ball's moment balance:
     ``M_k = -sin(gamma) M_s + cos(gamma) M_u``.
     """
-    holding = tilt_moments(tilt_contacts(problem, state, quadrature), 0.0).holding
     lay = problem.layout
+    if getattr(traction_law(problem.fluid), "lateral", None) is None:
+        holding = np.full(np.shape(state.omega_s), np.nan)
+    else:
+        holding = tilt_moments(tilt_contacts(problem, state, quadrature), 0.0).holding
     skew = skew_axis_moment(
         state.force, state.moment, lay.z_j, lay.z_k, problem.design.roller_radius
     )

@@ -3,7 +3,7 @@
 The contacts of solved points (their creeps, evaluated once by
 `ballcvt.equilibrium.evaluate`) with the lateral creep of a tilt rate
 (`ballcvt.model.shift`): per point or over a sweep or efficiency map (the variables
-``holding_moment``, ``shift_moment`` and ``shifter_moment``, like ``l10_hours`` of
+``holding_moment``, ``shift_moment``, ``shifter_moment`` and ``skew_moment``, like ``l10_hours`` of
 ``map --life``).
 """
 
@@ -14,11 +14,10 @@ import numpy as np
 from ..equilibrium.problem import build_problem
 from ..equilibrium.residual import evaluate
 from ..model.architectures import CONTACT_NAMES
-from ..model.kinematics import creep_term
 from ..model.shift import TiltContacts, TiltMoments, tilt_moments
-from ..model.traction.contact import ContactState
 from ..model.traction.quadrature import Quadrature
 from ..params.drive import Drive
+from ..results.moments import tilt_contacts
 from ..status import Status
 
 __all__ = ["solved_tilt_contacts", "point_tilt_moments", "sweep_shift_effort", "SHIFT_VARIABLES"]
@@ -29,6 +28,7 @@ SHIFT_VARIABLES = {
     "shift_moment": ("N m", "extra moment per ball to tilt at the tilt rate (tilt-direct)"),
     "shifter_moment": ("N m", "holding plus shift moment of all the balls, at the shifter"),
     "shift_saturated": ("1", "1 where a contact's lateral force is at its traction limit"),
+    "skew_moment": ("N m", "moment per ball about its skew (radial) axis at the tilt rate"),
 }
 
 
@@ -48,21 +48,7 @@ def solved_tilt_contacts(drive: Drive, inputs, creep, quadrature: Quadrature) ->
         Rule of the traction integrals.
     """
     pb = build_problem(drive.design, drive.fluid, drive.architecture, *inputs)
-    st = evaluate(pb, creep, quadrature)
-    state = ContactState(
-        creep_term(st.creep),
-        st.spin,
-        pb.ax,
-        pb.ay,
-        pb.p_max,
-        pb.load,
-        pb.radius,
-        st.u_ref,
-        st.film,
-    )
-    kappa = pb.layout.kappa
-    entry = np.sign(kappa * pb.rho * np.asarray(st.omega_s)[..., None])
-    return TiltContacts(state, kappa, drive.design.roller_radius, drive.fluid, quadrature, entry)
+    return tilt_contacts(pb, evaluate(pb, creep, quadrature), quadrature)
 
 
 def point_tilt_moments(result, tilt_rate: float, quadrature: Quadrature) -> TiltMoments:
@@ -98,7 +84,7 @@ def sweep_shift_effort(ds, drive, tilt_rate: float, quadrature: Quadrature | Non
         point is beyond the capacity or not converged) and ``tilt_rate`` in its attributes.
     """
     q = quadrature or Quadrature()
-    names = ("holding_moment", "shift_moment", "shifter_moment", "shift_saturated")
+    names = tuple(SHIFT_VARIABLES)
     out_values = {k: np.full(ds.status.shape, np.nan) for k in names}
     for i, arch in enumerate(ds.architecture.values):
         sub = ds.isel(architecture=i)
@@ -121,6 +107,7 @@ def sweep_shift_effort(ds, drive, tilt_rate: float, quadrature: Quadrature | Non
             "shift_moment": got.shift,
             "shifter_moment": n * (got.holding + got.shift),
             "shift_saturated": got.saturated.astype(float),
+            "skew_moment": got.skew,
         }
         for k, v in each.items():
             flat = np.full(ok.size, np.nan)

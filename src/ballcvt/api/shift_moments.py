@@ -48,6 +48,11 @@ class ShiftMoments:
         The contacts' names (``input``, ``idler_a``, ...).
     n_balls : int
         Number of balls ``n``.
+    skew_moment : float
+        Per ball, the contacts' moment about the ball's skew axis (radial, outward ``k``)
+        at ``tilt_rate``: the moment the carrier applies about the direction of
+        increasing skew (``ballcvt.model.shift.skew_axis_moment``) [N m]; at rate 0 the
+        steady point's, ``OperatingResult.skew_moment``.
     """
 
     holding_moment: float
@@ -59,6 +64,7 @@ class ShiftMoments:
     saturated: bool
     contacts: tuple[str, ...] = ()
     n_balls: int = 0
+    skew_moment: float = float("nan")
 
 
 class ShiftMomentMethods:
@@ -135,12 +141,14 @@ class ShiftMomentMethods:
             saturated=bool(np.any(got.saturated)),
             contacts=tuple(CONTACT_NAMES[result.architecture]),
             n_balls=n,
+            skew_moment=float(got.skew[0]),
         )
 
     def map_shift_effort(self, ds, *, tilt_rate: float = 0.0):
         """``ds`` (a sweep or `efficiency_map` of this drive) with the moments of each
         converged point: ``holding_moment``, ``shift_moment`` (per ball, at ``tilt_rate``
-        [rad/s]), ``shifter_moment`` (all balls) [N m] and ``shift_saturated``
+        [rad/s]), ``shifter_moment`` (all balls), ``skew_moment`` (per ball, about its
+        skew axis) [N m] and ``shift_saturated``
         (`ballcvt.analysis.shift_effort.sweep_shift_effort`)."""
         from ..analysis.shift_effort import sweep_shift_effort
 

@@ -27,6 +27,18 @@ the side slips of a skewed ball tilting at ``gamma_dot`` are those of the effect
 the skew-steered tilt rate); `tilt_moments` at that rate gives its moment (to first order in
 ``zeta``).
 
+**Moment about the skew axis.** The skew axis of a ball is ``k`` (radial, in the meridian
+plane of ``j``, the centre and every contact normal); ``zeta`` turns the axle about
+``-k``. With the traction ``F_c = kappa_c mu_c F_Nc`` along ``+i`` at ``r_S z_c`` and the
+spin moment ``T_c = -chi_c F_Nc r_c`` about ``z_c`` (docs/model.md §5), the contacts'
+moment on the ball about ``+k`` is
+``M_k = sum_c (-r_S (z_c . j) F_c + (z_c . k) T_c)`` (``(z_c x i) . k = -z_c . j``: the
+traction's lever is the contact's axial offset ``r_S z_c . j``). A lateral force lies in
+the meridian plane, tangent at a point of it: its moment is along ``i``, none about ``k``.
+The carrier holds it with the moment ``M_k`` about ``-k``, the direction of increasing
+skew (conjugate to ``zeta``: power ``M_k zeta_dot``); ``k = -sin gamma s + cos gamma u``
+splits it into the axle bearings' drag about ``s`` and the axle-end couple about ``u``.
+
 **Moment to hold or to tilt.** With ``F_y,c = mu_y,c F_Nc`` on the ball, the moment the
 contacts exert about ``-i`` (the direction of increasing ``gamma``) is
 ``-r_S sum_c kappa_c mu_y,c F_Nc``; the shifter holds or drives the tilt with its
@@ -49,7 +61,14 @@ from .traction.base import lateral_coefficients
 from .traction.contact import ContactState
 from .traction.quadrature import Quadrature
 
-__all__ = ["tilt_side_slip", "tilt_axis_moment", "TiltContacts", "TiltMoments", "tilt_moments"]
+__all__ = [
+    "tilt_side_slip",
+    "tilt_axis_moment",
+    "skew_axis_moment",
+    "TiltContacts",
+    "TiltMoments",
+    "tilt_moments",
+]
 
 #: A contact is at its lateral traction limit when its lateral force is below this share
 #: of its linear-range extrapolation (``(1 - e^-x)/x = 0.5`` at ``x = 1.59``: the force at
@@ -98,6 +117,29 @@ def tilt_axis_moment(mu_y, load, kappa, roller_radius):
     return roller_radius * np.sum(np.asarray(kappa) * np.asarray(mu_y) * load, axis=-1)
 
 
+def skew_axis_moment(traction, spin_moment, normal_j, normal_k, roller_radius):
+    """Moment of the contacts on a ball about its skew axis ``k`` [N m].
+
+    ``M_k = sum_c (-r_S (z_c . j) F_c + (z_c . k) T_c)`` (module docstring): about the
+    outward radial axis ``+k``; the carrier holds the ball with the same moment about the
+    direction of increasing skew ``-k``. The lateral forces have no part in it.
+
+    Parameters
+    ----------
+    traction : array_like
+        Traction on the ball along ``+i``, ``F_c = kappa_c mu_c F_Nc`` ``(..., n_c)`` [N].
+    spin_moment : array_like
+        Spin moment on the ball about ``z_c``, ``T_c = -chi_c F_Nc r_c`` ``(..., n_c)``
+        [N m].
+    normal_j, normal_k : array_like
+        Components ``z_c . j`` and ``z_c . k`` of the outward ball normals ``(n_c,)`` [-].
+    roller_radius : float
+        ``r_S`` [m].
+    """
+    lever = -roller_radius * np.asarray(normal_j) * np.asarray(traction)
+    return np.sum(lever + np.asarray(normal_k) * np.asarray(spin_moment), axis=-1)
+
+
 @dataclass(frozen=True)
 class TiltContacts:
     """The contacts of solved points and what tilting them needs to know.
@@ -119,6 +161,9 @@ class TiltContacts:
         ``sign(kappa_c rho_c omega_S)`` (the ball's surface moves at
         ``omega_S r_S rho_c`` along ``i``) [-]; the edge where a Maxwell film enters
         (`ballcvt.model.traction.lateral.lateral_shear_coefficients`).
+    normal : tuple of array_like or None
+        ``(z_c . j, z_c . k)`` of the contacts' outward normals, ``(n_c,)`` each [-]; None
+        (not known): the moments about the skew axis are NaN.
     """
 
     state: ContactState
@@ -127,10 +172,21 @@ class TiltContacts:
     fluid: Fluid
     quadrature: Quadrature = Quadrature()
     entry: Any = 1.0
+    normal: Any = None
 
     def lateral(self, slip):
         """``mu, mu_y, chi`` of the contacts at lateral creeps ``slip`` [-]."""
         return lateral_coefficients(self.state, self.fluid, slip, self.quadrature, self.entry)
+
+    def skew(self, mu, chi):
+        """`skew_axis_moment` of the contacts at coefficients ``mu, chi`` [N m]."""
+        st = self.state
+        load = np.asarray(st.load)
+        if self.normal is None:
+            return np.full(load.shape[:-1], np.nan)
+        traction = self.kappa * np.asarray(mu) * load
+        spin_moment = -np.asarray(chi) * load * np.asarray(st.radius)
+        return skew_axis_moment(traction, spin_moment, *self.normal, self.roller_radius)
 
 
 @dataclass(frozen=True)
@@ -150,6 +206,9 @@ class TiltMoments:
     saturated : ndarray
         Whether a contact's lateral force is at its traction limit (below
         ``SATURATION_SHARE`` of its linear-range extrapolation).
+    skew : ndarray
+        Moment about the skew axis at the rate (`skew_axis_moment`; the side slip changes
+        the contacts' ``mu`` and ``chi``) [N m]; NaN when the normals are not known.
     """
 
     holding: np.ndarray
@@ -157,6 +216,7 @@ class TiltMoments:
     side_slip: np.ndarray
     lateral_force: np.ndarray
     saturated: np.ndarray
+    skew: np.ndarray
 
 
 def tilt_moments(contacts: TiltContacts, tilt_rate) -> TiltMoments:
@@ -180,18 +240,21 @@ def tilt_moments(contacts: TiltContacts, tilt_rate) -> TiltMoments:
     """
     st, k, rs = contacts.state, contacts.kappa, contacts.roller_radius
     load = np.asarray(st.load)
-    _, mu_y0, _ = contacts.lateral(0.0)
+    mu0, mu_y0, chi0 = contacts.lateral(0.0)
     holding = tilt_axis_moment(mu_y0, load, k, rs)
     rate = np.asarray(tilt_rate, dtype=float)
     slip = tilt_side_slip(rate, rs, np.asarray(st.u_ref), k)
     if not np.any(rate):
         zero = np.zeros_like(slip)
-        return TiltMoments(holding, np.zeros_like(holding), zero, mu_y0 * load, zero[..., 0] > 0)
-    _, mu_y, _ = contacts.lateral(slip)
+        skew = contacts.skew(mu0, chi0)
+        return TiltMoments(
+            holding, np.zeros_like(holding), zero, mu_y0 * load, zero[..., 0] > 0, skew
+        )
+    mu, mu_y, chi = contacts.lateral(slip)
     ref = np.sign(slip) * LINEAR_SLIP
     _, mu_lin, _ = contacts.lateral(ref)
     linear = (mu_lin - mu_y0) / np.where(ref != 0.0, ref, 1.0) * slip
     extra = mu_y - mu_y0
     saturated = np.any(np.abs(extra) < SATURATION_SHARE * np.abs(linear), axis=-1)
     shift = tilt_axis_moment(mu_y, load, k, rs) - holding
-    return TiltMoments(holding, shift, slip, mu_y * load, saturated)
+    return TiltMoments(holding, shift, slip, mu_y * load, saturated, contacts.skew(mu, chi))

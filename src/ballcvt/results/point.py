@@ -29,6 +29,7 @@ from ..solvers.point import PointSolution
 from ..units import kelvin_to_celsius, rad_s_to_rpm
 from .io import JsonFile, read_result
 from .losses import LossBreakdown
+from .moments import steady_moments
 
 __all__ = ["ContactResult", "OperatingResult", "make_result"]
 
@@ -149,6 +150,12 @@ class OperatingResult:
         temperature asked for) or ``balance`` (the housing's steady heat balance).
     thermal_iterations : int
         Operating points solved to find the balance (0 unless ``balance``).
+    holding_moment, skew_moment : float
+        Per ball, at the steady point (zero tilt rate): the moment the shifter applies
+        about the tilt axis (the direction of increasing tilt) and the contacts' moment
+        about the skew axis (radial, outward; the carrier's about the direction of
+        increasing skew) [N m] (docs/model.md §17; `ballcvt.results.moments`). NaN in a
+        file written before them; ``to_dict`` adds ``skew_moment_Nm``, the CLI's key.
     version : str
         ballcvt version that computed the result.
     """
@@ -181,6 +188,8 @@ class OperatingResult:
     oil_temperature: float | None = None
     oil_model: str = "fixed"
     thermal_iterations: int = 0
+    holding_moment: float = float("nan")
+    skew_moment: float = float("nan")
     version: str = __version__
 
     @property
@@ -289,6 +298,7 @@ class OperatingResult:
         out["oil_temperature_C"] = None if t_oil is None else kelvin_to_celsius(t_oil)
         ls = LossBreakdown(self.losses)  # subtotals beside the components, not among them
         out["loss_subtotals"] = {"bearing": ls.bearing, "parasitic": ls.parasitic}
+        out["skew_moment_Nm"] = self.skew_moment
         names = list(self.contacts)
         for key in ("creep", "spin", "mu", "chi", "p_max", "film_thickness"):
             out[key] = {n: getattr(self.contacts[n], key) for n in names}
@@ -317,7 +327,9 @@ class OperatingResult:
             )
         # files written before the clamping laws (0.1.0) have no clamp_law (constant), and
         # before the oil's temperature no oil_* keys: the defaults
-        optional = ("clamp_law", "oil_temperature", "oil_model", "thermal_iterations")
+        # and before the moments (docs/model.md §17) no holding_moment, skew_moment: NaN
+        optional: tuple[str, ...] = ("clamp_law", "oil_temperature", "oil_model")
+        optional += ("thermal_iterations", "holding_moment", "skew_moment")
         missing = [f.name for f in fields(cls) if f.name not in data and f.name not in optional]
         if missing:
             raise InputError(
@@ -445,6 +457,7 @@ def make_result(
         for i, name in enumerate(lay.names)
     }
     losses = {kind: f(value) for kind, value in loss_breakdown(loss).items()}
+    holding, skew = steady_moments(problem, st, quadrature)
     return OperatingResult(
         architecture=lay.architecture,
         design=problem.design,
@@ -472,6 +485,8 @@ def make_result(
         warnings=tuple(warning_messages(problem, valid, lay.names)),
         clamp_law=clamp_law,
         oil_temperature=problem.fluid.inlet_temperature,
+        holding_moment=f(holding),
+        skew_moment=f(skew),
     )
 
 

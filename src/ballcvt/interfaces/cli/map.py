@@ -25,8 +25,9 @@ def add_parser(subparsers) -> None:
         "map.csv in --out. Points beyond the limit have status 1. With --life, the "
         "system fatigue life L10 of every point (variable l10_hours [h]) and its "
         "contours at the decades of hours (docs/life.md). With --shift-effort, the moment "
-        "per ball that holds the tilt and the moment to tilt the balls at --tilt-rate "
-        "(holding_moment, shift_moment, shifter_moment [N m], docs/model.md section 15) "
+        "per ball that holds the tilt, the moment to tilt the balls at --tilt-rate and the "
+        "moment about the balls' skew axes (holding_moment, shift_moment, shifter_moment, "
+        "skew_moment [N m], docs/model.md section 17) "
         "and their figure shift_effort.png.",
         "ballcvt map --out map_dir --clamp 2000 --speed 2000 --n-ratio 31 --n-torque 35",
     )
@@ -34,8 +35,8 @@ def add_parser(subparsers) -> None:
     p.add_argument(
         "--shift-effort",
         action="store_true",
-        help="add the holding and tilt-direct shift moments of every point "
-        "(docs/model.md section 15)",
+        help="add the holding, tilt-direct shift and skew-axis moments of every point "
+        "(docs/model.md section 17)",
     )
     add_tilt_rate(p)
     o.out(p, "ballcvt-map")

@@ -21,7 +21,7 @@ def add_tilt_rate(p) -> None:
         metavar="DEG_PER_S",
         help="tilt rate of a tilt-direct shift [deg/s] (> 0, towards a higher ratio; "
         "the Python API takes either sign): adds the moment per ball to tilt the balls at "
-        "that rate, shift_moment_Nm (docs/model.md section 15)",
+        "that rate, shift_moment_Nm (docs/model.md section 17)",
     )
 
 
@@ -35,7 +35,8 @@ def add_parser(subparsers) -> None:
         "pressure and film at every contact, the losses and the efficiency (Eq. 38 and "
         "Eq. 39), with validity warnings. A torque beyond the traction capacity is "
         "refused with the limiting torque. The JSON has the moment per ball that holds "
-        "the tilt (holding_moment [N m]) and, with --tilt-rate, the moment to shift.",
+        "the tilt (holding_moment [N m]), the moment about its skew axis (skew_moment_Nm) "
+        "and, with --tilt-rate, the moment to shift.",
         "ballcvt point --arch double --ratio 1.76 --torque 40 --clamp 2000 --speed 2000\n"
         "  ballcvt point --design hub --ratio 1.8 --torque 60 --tilt-rate 30 --json\n"
         "  ballcvt point --held disc0 --driver carrier --ratio 0.8 --torque 20 --speed 600",
@@ -59,8 +60,8 @@ def run(args) -> int:
     )
     models = o.models_used(args, v)
     shift = None
-    if not isinstance(r, PlanetaryResult) and (args.json or args.tilt_rate is not None):
-        shift = v.shift_moments_at(r, tilt_rate=deg_to_rad(args.tilt_rate or 0.0))
+    if not isinstance(r, PlanetaryResult) and args.tilt_rate is not None:
+        shift = v.shift_moments_at(r, tilt_rate=deg_to_rad(args.tilt_rate))
     if args.json:
         data = {**json.loads(r.to_json()), "models": models}
         if shift is not None:
@@ -75,17 +76,15 @@ def run(args) -> int:
 
 
 def _shift_json(shift, tilt_rate_deg) -> dict:
-    """The moments about the tilt axis in the point's JSON [N m]."""
-    out = {"holding_moment": shift.holding_moment}
-    if tilt_rate_deg is not None:
-        out.update(
-            tilt_rate_deg_s=tilt_rate_deg,
-            shift_moment_Nm=shift.shift_moment,
-            shifter_moment_Nm=shift.shifter_moment,
-            shift_saturated=shift.saturated,
-            side_slip=dict(zip(shift.contacts, shift.side_slip, strict=True)),
-        )
-    return out
+    """The moments of a tilt at ``tilt_rate_deg`` in the point's JSON [N m] (the steady
+    ``holding_moment`` and ``skew_moment_Nm`` are the result's own)."""
+    return {
+        "tilt_rate_deg_s": tilt_rate_deg,
+        "shift_moment_Nm": shift.shift_moment,
+        "shifter_moment_Nm": shift.shifter_moment,
+        "shift_saturated": shift.saturated,
+        "side_slip": dict(zip(shift.contacts, shift.side_slip, strict=True)),
+    }
 
 
 def _shift_line(shift, tilt_rate_deg) -> str:

@@ -166,6 +166,9 @@ def _variants(design, tmp):
                 for name, (base, _) in (("point", point), ("limit", limit), ("clamp", clamp),
                                         ("map", mapping), ("cycle", cycle), ("table", table),
                                         ("life", life), ("capacity", capacity))}
+    on_rough["shift"] = (["shift", "--design", str(rough), "--from", "0.8", "--to", "1.2",
+                          "--samples", "5", "--tilt-rate", "20", "--out", str(tmp / "s4"),
+                          "--json"], dict(mixed))
     soft = tmp / "soft.toml"                         # another material: another E'
     soft.write_text(Path(design).read_text().replace("youngs_modulus = 210.0e9",
                                                      "youngs_modulus = 190.0e9"))

@@ -2,13 +2,23 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from .._display import html_summary, text_summary
+from ..params.models import Design, Fluid
 
 __all__ = ["SummaryMethods"]
 
 
 class SummaryMethods:
-    """The summary of a `Variator` (its design, fluid, architecture, range and law)."""
+    """The summary of a `Variator` (its design, fluid, architecture, range and law); its
+    fields are declared here for typing."""
+
+    design: Design
+    fluid: Fluid
+    architecture: str
+    options: Any
+    ratio_range: Any
 
     def _summary(self) -> tuple[str, list]:
         lo, hi = self.ratio_range

@@ -310,7 +310,7 @@ class Design(ParameterModel):
             return self
         table = self.lubrication.model_dump() if self.lubrication is not None else {}
         update: dict[str, Any] = {"lubrication": Lubrication(**{**table, "model": model})}
-        if getattr(self.models, "lubrication", None) is not None:  # [models] says it too
+        if self.models is not None and self.models.lubrication is not None:  # [models] too
             update["models"] = self.models.model_copy(update={"lubrication": model})
         return self.model_copy(update=update)
 

@@ -355,7 +355,7 @@ def main(argv=None) -> int:
     parser.add_argument("--budget", type=float, default=300.0, help="seconds (wall clock)")
     parser.add_argument("--points", type=int, default=None, help="stop after N points")
     parser.add_argument("--workers", type=int, default=2)
-    parser.add_argument("--timeout", type=float, default=120.0, help="seconds per task")
+    parser.add_argument("--timeout", type=float, default=600.0, help="seconds per task")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("--failures", default=None, help="JSONL file of silent/bug points")
     parser.add_argument("--task", default=None, help="SEED:INDEX: re-run one task, print it")

@@ -191,6 +191,31 @@ def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool, modulus: f
     return out.T
 
 
+def node_rheology(p_max, x, y, fluid: Fluid):
+    """Roelands viscosity [Pa s] and limiting shear stress [Pa] at quadrature nodes.
+
+    Parameters
+    ----------
+    p_max : ndarray
+        Hertz peak pressure of each contact ``(m,)`` [Pa].
+    x, y : ndarray
+        Node coordinates on the unit disc ``X = x / a_x``, ``Y = y / a_y`` [-].
+    fluid : Fluid
+        Traction fluid.
+
+    Returns
+    -------
+    eta, tau_l : ndarray
+        At the node's Hertz pressure ``p_max sqrt(1 - X^2 - Y^2)`` (Eq. 50): Eq. 51 and
+        Eq. 54, shape ``(m, nodes)``.
+    """
+    p = p_max[..., None] * np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
+    eta = roelands_viscosity(
+        p, fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure, fluid.roelands_index
+    )
+    return eta, limiting_shear_stress(p, fluid.limiting_shear_stress, fluid.limiting_shear_slope)
+
+
 def _numpy_rules(params, fluid: Fluid, q: Quadrature, derivatives: bool, law: ShearLaw):
     """The NumPy reference path's sums ``(8 or 2, n)``: each rule on its contacts, blended
     (the same sums as `_compiled`)."""
@@ -280,11 +305,7 @@ def _integrate(nodes, params, fluid: Fluid, derivatives: bool, law: ShearLaw):
     x, y, w = nodes
     c, sg, ax, ay, pm, fn, rc, u, h = params
     ex = lambda v: v[..., None]  # noqa: E731  (broadcast over the nodes)
-    p = ex(pm) * np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
-    eta = roelands_viscosity(
-        p, fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure, fluid.roelands_index
-    )
-    tau_l = limiting_shear_stress(p, fluid.limiting_shear_stress, fluid.limiting_shear_slope)
+    eta, tau_l = node_rheology(pm, x, y, fluid)
     vx = ex(u) * (ex(c) - ex(sg * ay / rc) * y)
     vy = ex(u * sg * ax / rc) * x
     speed = np.hypot(vx, vy)

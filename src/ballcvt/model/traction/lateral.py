@@ -31,9 +31,8 @@ from __future__ import annotations
 import numpy as np
 
 from ...params.models import Fluid
-from ..rheology import limiting_shear_stress, roelands_viscosity
 from .contact import ContactState
-from .isothermal import ShearLaw, _pole_weight
+from .isothermal import ShearLaw, _pole_weight, node_rheology
 from .quadrature import Quadrature, centred_rule, radial_rule
 from .thermal import _Contacts
 
@@ -156,11 +155,7 @@ def _integrate(nodes, params, slip, fluid: Fluid, law: ShearLaw):
     lateral, entry = slip
     c, sg, ax, ay, pm, fn, rc, u, h = params
     ex = lambda v: v[..., None]  # noqa: E731  (broadcast over the nodes)
-    p = ex(pm) * np.sqrt(np.maximum(1.0 - x * x - y * y, 0.0))
-    eta = roelands_viscosity(
-        p, fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure, fluid.roelands_index
-    )
-    tau_l = limiting_shear_stress(p, fluid.limiting_shear_stress, fluid.limiting_shear_slope)
+    eta, tau_l = node_rheology(pm, x, y, fluid)
     vx = ex(u) * (ex(c) - ex(sg * ay / rc) * y)
     vy = ex(u) * (ex(lateral) + ex(sg * ax / rc) * x)
     arg = eta * np.hypot(vx, vy) / (ex(h) * tau_l)

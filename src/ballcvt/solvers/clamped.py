@@ -93,19 +93,27 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):
     sol = solve(pb, x0)
     if not law.implicit:
         return pb, sol
+    settled = np.zeros(np.shape(sol.converged), dtype=bool)
     for _ in range(MAX_CLAMP_ITERATIONS):
         new = law.clamp_force(pb.design, sol.state.input_torque, t2)
+        # a point whose clamping equation holds is settled: its force moves no more, so a
+        # point of a batch gets the answer it gets alone, however long the others take
+        # (re-solving it at forces within round-off of its own let its input torque's
+        # noise fail the clamping equation)
+        settled |= np.asarray(sol.converged) & (
+            np.abs(new - pb.clamp_force) <= CLAMP_RTOL * pb.clamp_force
+        )
         # points whose creeps did not converge keep their force (their torque means
         # nothing); no force beyond the model's pressure range is tried (such a point
         # then fails the clamping equation below and is flagged, never clipped silently)
-        move = np.asarray(sol.converged) & np.isfinite(new)
-        if np.all(~move | (np.abs(new - pb.clamp_force) <= CLAMP_RTOL * pb.clamp_force)):
+        move = np.asarray(sol.converged) & np.isfinite(new) & ~settled
+        if not np.any(move):
             break
         ceiling = pressure_bound_force(pb, np.inf)
         pb = with_clamp(problem, np.where(move, np.minimum(new, ceiling), pb.clamp_force))
         sol = solve(pb, sol.state.creep)
     new = law.clamp_force(pb.design, sol.state.input_torque, t2)
-    held = np.abs(new - pb.clamp_force) <= CLAMP_RTOL * pb.clamp_force
+    held = settled | (np.abs(new - pb.clamp_force) <= CLAMP_RTOL * pb.clamp_force)
     converged = np.asarray(sol.converged) & held
     if np.ndim(sol.converged) == 0:
         converged = bool(converged)

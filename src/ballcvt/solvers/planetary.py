@@ -136,6 +136,11 @@ def solve_mode(
         pb, sign = carrier_frame_problem(drive, mode, fixed, speeds)
         sign = float(sign)
         sol = solve_point(pb, options, x)
+        if not sol.converged and x is not None:
+            # the last pass's creeps can be a poor start (the first pass, at the ideal
+            # ratio, may land on a far root): retry from the cold start, which is where
+            # the batched path's fallback starts (`solve_mode_batch`), so both agree
+            sol = solve_point(pb, options)
         if not sol.converged:
             raise ConvergenceError(f"{mode.label}: {sol.message}")
         x = sol.state.creep

@@ -6,7 +6,8 @@ the input disc) makes ``F_N0`` an unknown of the equilibrium: it is found by a f
 iteration ``F_N0 <- law(T_0(F_N0))`` around the creep solver, warm-started from the last
 creeps. The map is a strong contraction (``T_0`` changes with ``F_N0`` only through the
 losses), and a point counts as converged only when its equilibrium residual meets the
-solver's tolerance *and* the clamping equation holds to ``CLAMP_RTOL``.
+solver's tolerance *and* the clamping equation holds to ``CLAMP_RTOL`` (or its fixed point
+has reached the noise floor of ``T_0``, within ``CLAMP_NOISE_RTOL``).
 """
 
 from __future__ import annotations
@@ -31,8 +32,21 @@ __all__ = [
 #: torques), which leaves ``T_0`` uncertain to some 1e-10 of itself: a tighter tolerance
 #: let the fixed point wander in that noise and fail points that had converged.
 CLAMP_RTOL = 1e-10
+#: Relative step of the clamping force below which a fixed point whose step stops
+#: shrinking has reached that noise floor [-]: the steps of a contraction shrink every
+#: iteration, and the noise floor (2e-10 to 6e-10 of the force, seen as a two-cycle of
+#: the steps) lies far below it, so every path that solves a point settles it, wherever
+#: in the noise its sequence happens to be (issue 23, harden 3:444 and 2026:4129).
+CLAMP_NOISE_RTOL = 1e-8
 #: Fixed-point iterations allowed for a law that senses the input torque.
 MAX_CLAMP_ITERATIONS = 30
+
+
+def _settles(step, last, force) -> np.ndarray:
+    """Whether a fixed point's force ``force`` [N] is settled, from its step ``step``
+    (``|law(T_0(F)) - F|``) and the previous step ``last`` [N]: within `CLAMP_RTOL`, or
+    within `CLAMP_NOISE_RTOL` and no smaller than the step before (the noise floor)."""
+    return (step <= CLAMP_RTOL * force) | ((step <= CLAMP_NOISE_RTOL * force) & (step >= last))
 
 
 def with_clamp(problem: EquilibriumProblem, clamp_force) -> EquilibriumProblem:
@@ -94,15 +108,15 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):
     if not law.implicit:
         return pb, sol
     settled = np.zeros(np.shape(sol.converged), dtype=bool)
+    last = np.full(np.shape(sol.converged), np.inf)
     for _ in range(MAX_CLAMP_ITERATIONS):
         new = law.clamp_force(pb.design, sol.state.input_torque, t2)
-        # a point whose clamping equation holds is settled: its force moves no more, so a
-        # point of a batch gets the answer it gets alone, however long the others take
-        # (re-solving it at forces within round-off of its own let its input torque's
-        # noise fail the clamping equation)
-        settled |= np.asarray(sol.converged) & (
-            np.abs(new - pb.clamp_force) <= CLAMP_RTOL * pb.clamp_force
-        )
+        # a point whose clamping equation holds, or whose fixed point has reached the
+        # noise floor of its input torque, is settled: its force moves no more, so a point
+        # of a batch gets the answer it gets alone, however long the others take
+        step = np.abs(new - pb.clamp_force)
+        settled |= np.asarray(sol.converged) & _settles(step, last, pb.clamp_force)
+        last = step
         # points whose creeps did not converge keep their force (their torque means
         # nothing); no force beyond the model's pressure range is tried (such a point
         # then fails the clamping equation below and is flagged, never clipped silently)

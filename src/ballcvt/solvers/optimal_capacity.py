@@ -22,12 +22,13 @@ from __future__ import annotations
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
+from ..errors import InputError
 from ..model.traction.base import has_multiple_equilibria
 from .clamped import pressure_bound_force, with_clamp
 from .limit import limit_torque_batch
 from .options import SolverOptions
 
-__all__ = ["capacity_basis", "capacity_force", "GRID", "ZOOM", "ZOOM_GRID"]
+__all__ = ["capacity_basis", "capacity_force", "force_range_top", "GRID", "ZOOM", "ZOOM_GRID"]
 
 #: Forces of the first scan, from ``min_force`` to ``F_p``.
 GRID = 9
@@ -35,6 +36,36 @@ GRID = 9
 ZOOM = 6
 #: Forces of each refinement round (between the best force's neighbours).
 ZOOM_GRID = 9
+
+
+def force_range_top(problem: EquilibriumProblem, p_lim: float, min_force: float) -> np.ndarray:
+    """The top ``F_p`` [N] of the optimiser's force range ``[min_force, F_p]`` at every point.
+
+    ``F_p`` is the force whose peak Hertz pressure reaches ``p_lim`` (`pressure_bound_force`,
+    Eqs. 48-50: ``p_max ~ F^(1/3)``). Every path of the optimal law (its solve, the limiting
+    torque, a map, a table, a sweep, a cycle) refuses a point whose range is empty alike.
+
+    Raises
+    ------
+    InputError
+        ``max_pressure``, where ``F_p <= min_force`` (the peak pressure at ``min_force``
+        already exceeds ``p_lim``), naming that pressure and what to change.
+    """
+    top = np.broadcast_to(pressure_bound_force(problem, p_lim), problem.shape)
+    empty = ~(top > min_force)
+    if np.any(empty):
+        k = np.unravel_index(int(np.argmax(empty)), problem.shape)
+        p_max = np.broadcast_to(np.max(problem.p_max, axis=-1), problem.shape)[k]
+        force = np.broadcast_to(problem.clamp_force, problem.shape)[k]
+        p_at_min = float(p_max * (min_force / force) ** (1.0 / 3.0))
+        ratio = float(np.broadcast_to(problem.ratio, problem.shape)[k])
+        raise InputError(
+            "max_pressure",
+            p_lim,
+            f"> {p_at_min:.3g} Pa, the peak pressure at the optimal law's min_force = "
+            f"{min_force:g} N (ratio {ratio:g}): raise max_pressure or lower min_force",
+        )
+    return np.array(top, dtype=float)
 
 
 def _limits(flat: EquilibriumProblem, forces: np.ndarray, c_lim: float, options) -> np.ndarray:
@@ -70,8 +101,8 @@ def capacity_force(
         Forces [N], the batch shape of ``problem``; ``F_p`` where no force has a limit.
     """
     flat = problem.flat()
-    top = np.broadcast_to(pressure_bound_force(problem, p_lim), problem.shape).reshape(-1)
-    low = np.minimum(floor, top)
+    top = force_range_top(problem, p_lim, floor).reshape(-1)
+    low = np.full(top.shape, float(floor))
     share = np.linspace(0.0, 1.0, GRID)
     forces = np.exp(np.log(low)[:, None] + np.log(top / low)[:, None] * share)
     forces[:, -1] = top

@@ -1,0 +1,70 @@
+"""Regressions of the optimal clamping law found by the hardening campaign (issue 23,
+``python benchmarks/harden.py --task 2026:N``): every path refuses alike, and the
+capacity search finds the force of the largest limiting torque."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from ballcvt import Variator, load_builtin
+from ballcvt.errors import InputError
+
+# A design whose peak pressure at the optimal law's min_force (100 N) already exceeds
+# max_pressure (3 GPa): tasks 2026:2877 (isothermal) and 2026:3480 (viscoelastic).
+TASK_2877 = (
+    '{"aspect_ratio": 33.647626207683146, "roller_radius": 0.0022066813559994273, '
+    '"theta0_deg": 46.881057537785516, "theta2_deg": 78.23997660054411, '
+    '"alpha_deg": 48.60641267328379, "n_rollers": 4, '
+    '"roller_bearing_diameter": 0.00011925566089517184, '
+    '"idler_bearing_diameter": 0.00047355996363177276, "disc_groove_ratio": 40.33929771574016, '
+    '"idler_groove_ratio": 1.8903422706133852, "single_idler_groove_ratio": Infinity, '
+    '"tilt_safety_factor": 0.7618636441924336, "creep_limit": 0.05932476996469723, '
+    '"min_roller_gap": 7.2017228401158265e-06}'
+)
+TASK_3480 = (
+    '{"aspect_ratio": 1.7298191799674418, "roller_radius": 0.005825628936619141, '
+    '"theta0_deg": 29.569929052471753, "theta2_deg": 14.688033641794831, '
+    '"alpha_deg": 73.5559182207278, "n_rollers": 7, '
+    '"roller_bearing_diameter": 0.0023630258104654915, '
+    '"idler_bearing_diameter": 0.00029961552618995016, "disc_groove_ratio": 69.63546992520158, '
+    '"idler_groove_ratio": 3.8892207118316886, "single_idler_groove_ratio": Infinity, '
+    '"tilt_safety_factor": 0.24160154902920516, "creep_limit": 0.02373071086164815, '
+    '"min_roller_gap": 3.228252009188315e-05}'
+)
+
+
+def _variator(fields: str, law: str) -> Variator:
+    d, f = load_builtin("table1")
+    return Variator(d.replace(name="random", **json.loads(fields)), f, "double", traction_law=law)
+
+
+@pytest.mark.parametrize(
+    "fields, law, ratio, rpm",
+    [
+        (TASK_2877, "isothermal", 0.18167843062938144, 13148.992456407552),
+        (TASK_3480, "viscoelastic", 0.9777208182091114, 413.1221411730119),
+    ],
+)
+def test_optimal_refuses_empty_force_range_on_every_path(fields, law, ratio, rpm):
+    """2026:2877, 2026:3480: `solve` refused (peak pressure at min_force above
+    max_pressure) but `limit_torque` reported 0.28 / 0.82 N m."""
+    v = _variator(fields, law)
+    kw = {"clamp_law": "optimal", "input_speed_rpm": rpm}
+    calls = {
+        "solve": lambda: v.solve(ratio, 0.1, **kw),
+        "limit_torque": lambda: v.limit_torque(ratio, **kw),
+        "capacity": lambda: v.capacity(ratio, **kw),
+        "sweep": lambda: v.sweep(ratio=ratio, output_torque=[0.0, 0.1], **kw),
+    }
+    messages = set()
+    for name, call in calls.items():
+        with pytest.raises(InputError) as err:
+            call()
+        assert type(err.value) is InputError, name
+        messages.add(str(err.value))
+    (message,) = messages  # one message, the same from every path
+    assert "\n" not in message
+    assert "max_pressure" in message and "min_force = 100 N" in message
+    assert "raise max_pressure or lower min_force" in message

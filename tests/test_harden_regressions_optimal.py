@@ -6,10 +6,11 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 
 from ballcvt import Variator, load_builtin
-from ballcvt.errors import InputError
+from ballcvt.errors import InputError, TractionLimitError
 
 # A design whose peak pressure at the optimal law's min_force (100 N) already exceeds
 # max_pressure (3 GPa): tasks 2026:2877 (isothermal) and 2026:3480 (viscoelastic).
@@ -68,3 +69,35 @@ def test_optimal_refuses_empty_force_range_on_every_path(fields, law, ratio, rpm
     assert "\n" not in message
     assert "max_pressure" in message and "min_force = 100 N" in message
     assert "raise max_pressure or lower min_force" in message
+
+
+# 2026:4546: the limiting torque peaks at about 68 kN, below the pressure bound F_p
+# (96.7 kN); the scan's best force was F_p and was kept.
+TASK_4546 = (
+    '{"aspect_ratio": 4.673148467852668, "roller_radius": 0.0729194384669077, '
+    '"theta0_deg": 45.296065226165155, "theta2_deg": 45.39526044909398, '
+    '"alpha_deg": 29.0524009259784, "n_rollers": 10, '
+    '"roller_bearing_diameter": 0.010287296312787214, '
+    '"idler_bearing_diameter": 0.02152426811470828, "disc_groove_ratio": 1.7517581408872416, '
+    '"idler_groove_ratio": 2.2573338876124494, "single_idler_groove_ratio": 4.686741569908589, '
+    '"tilt_safety_factor": 0.7396640943185151, "creep_limit": 0.0809571601738469, '
+    '"min_roller_gap": 0.0009233873085799592}'
+)
+
+
+def test_optimal_capacity_finds_peak_below_pressure_bound():
+    """2026:4546: solve converged at 1789.58 N m, 1.031 x the reported limit 1735.35 N m
+    (the limit at F_p); the limit peaks near 68 kN at about 1836.4 N m."""
+    v = _variator(TASK_4546, "isothermal")
+    ratio, rpm = 3.9329923939731093, 84.08804415981695
+    limit = v.limit_torque(ratio, clamp_law="optimal", input_speed_rpm=rpm)
+    assert limit >= 1836.4
+    # no constant force up to the pressure bound carries more (to 1e-3)
+    constant = [
+        v.limit_torque(ratio, clamp_force=f, input_speed_rpm=rpm)
+        for f in np.geomspace(40e3, 96e3, 9)
+    ]
+    assert max(constant) <= limit * (1 + 1e-3)
+    assert v.solve(ratio, 1789.5799942363294, clamp_law="optimal", input_speed_rpm=rpm).converged
+    with pytest.raises(TractionLimitError):
+        v.solve(ratio, 1.001 * limit, clamp_law="optimal", input_speed_rpm=rpm)

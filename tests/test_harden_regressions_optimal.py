@@ -101,3 +101,50 @@ def test_optimal_capacity_finds_peak_below_pressure_bound():
     assert v.solve(ratio, 1789.5799942363294, clamp_law="optimal", input_speed_rpm=rpm).converged
     with pytest.raises(TractionLimitError):
         v.solve(ratio, 1.001 * limit, clamp_law="optimal", input_speed_rpm=rpm)
+
+
+# 2026:124 (thermal, single idler): a lookup table (four points batched) chose other forces
+# than limit_torque (one point) and reported 30.8 N m where limit_torque gave 233 N m.
+TASK_124 = (
+    '{"aspect_ratio": 3.4670130275144313, "roller_radius": 0.030299734257498417, '
+    '"theta0_deg": 47.21773513241391, "theta2_deg": 43.885068642803375, '
+    '"alpha_deg": 11.511802721120487, "n_rollers": 7, '
+    '"roller_bearing_diameter": 0.00852226012126403, '
+    '"idler_bearing_diameter": 0.0067434542965305955, "disc_groove_ratio": 1.4529350234168292, '
+    '"idler_groove_ratio": 4.657299799465973, "single_idler_groove_ratio": 4.8406152410665415, '
+    '"tilt_safety_factor": 0.7158780411344113, "creep_limit": 0.14585105376837615, '
+    '"min_roller_gap": 0.0021050649170601832}'
+)
+
+
+def test_thermal_capacity_force_does_not_depend_on_the_batch(monkeypatch):
+    """2026:124: under the thermal law the limit at a force (a continuation to the fold,
+    stopped by a step failing at the solver's tolerance) depends on the batch it is
+    solved in (the batched Newton's predictor stage and shared Jacobian skip). Here the
+    limits are a stand-in that does so; the force found for each point of a batch must be
+    the one found for it alone, as `limit_torque` does."""
+    from ballcvt.equilibrium.problem import build_problem
+    from ballcvt.solvers import optimal_capacity
+    from ballcvt.units import rpm_to_rad_s
+
+    d, f = load_builtin("table1")
+    v = Variator(d.replace(name="random", **json.loads(TASK_124)), f, "single",
+                 traction_law="thermal")  # fmt: skip
+    ratio, rpm = 0.2319683468011616, 5136.558372831595
+    ratios = np.array([ratio, ratio, ratio * 1.001, ratio * 1.001])
+    speeds = rpm_to_rad_s(np.array([rpm, rpm * 1.05, rpm, rpm * 1.05]))
+    pb = build_problem(v.design, v.fluid, v.architecture, ratios, 0.0, np.ones(4), speeds)
+
+    def limits(flat, forces, c_lim, options):  # peaks at 6 kN alone, elsewhere batched
+        peak = 6000.0 * (1.0 + 0.05 * (flat.size - 1)) * flat.ratio[:, None] / ratio
+        return forces * (2.0 - forces / peak)
+
+    monkeypatch.setattr(optimal_capacity, "_limits", limits)
+    p_lim, c_lim = v.design.max_pressure, v.design.creep_limit
+    batch = optimal_capacity.capacity_force(pb, p_lim, c_lim, 100.0, v.options)
+    alone = [
+        float(optimal_capacity.capacity_force(pb.take(np.array([i])), p_lim, c_lim, 100.0,
+                                              v.options)[0])
+        for i in range(4)
+    ]  # fmt: skip
+    assert batch.tolist() == alone

@@ -5,16 +5,20 @@ pressure limit ``F_p``, so its capacity is the largest limiting torque over that
 The limiting torque rises with the force while the traction carries the torque, but not
 without end: at very large forces the spin and the rolling losses grow faster, and near
 the Roelands viscosity limit (the bound of ``F_p`` when ``max_pressure`` is ``inf``) the
-equilibrium no longer exists. The search is bounded and deterministic: the limiting
-torques at `GRID` forces in geometric progression from ``min_force`` to ``F_p`` (``F_p``
-itself the top one), then `ZOOM` rounds of `ZOOM_GRID` forces between the neighbours of the
-best one (each round narrows the bracket fourfold: the force to some 1e-3 of itself, the
-torque, flat at its maximum, to about 1e-7). Where the best is ``F_p`` it is kept exactly
-(the limit grows with the force up to the pressure bound: the capacity is then the limit
-at ``F_p``, as before the search), except under a traction law with more than one
-equilibrium (the thermal law): there the limit, the fold of the branch from zero torque,
-can peak and fall again below ``F_p`` (past the peak of the traction curves), so the
-force between the top two of the scan is refined too, ``F_p`` staying a candidate.
+equilibrium no longer exists, so the limit may peak below ``F_p`` (an isothermal drive
+whose spin losses grow with the force: harden task 2026:4546 peaks at 68 kN, ``F_p`` 97
+kN). The search is bounded and deterministic: the limiting torques at `GRID` forces in
+geometric progression from ``min_force`` to ``F_p`` and one more at ``F_p (1 - EDGE)``,
+then `ZOOM` rounds of `ZOOM_GRID` forces between the neighbours of the best one (each
+round narrows the bracket fourfold: the force to some 1e-3 of itself, the torque, flat at
+its maximum, to about 1e-7). Where the best is ``F_p`` (the limit still rising there) it is
+kept exactly, except under a traction law with more than one equilibrium (the thermal
+law): there the limit, the fold of the branch from zero torque, can peak and fall again
+below ``F_p`` (past the peak of the traction curves), and is noisy near it (a continuation
+step failing at the solver's tolerance ends the branch early), so the best force is always
+refined, ``F_p`` staying a candidate, and each point is searched on its own: the batched
+Newton's path depends on the batch (its predictor stage, its shared Jacobian skip), and
+the force must not (a table and `limit_torque` gave 30.8 and 233 N m on task 2026:124).
 """
 
 from __future__ import annotations
@@ -22,19 +26,61 @@ from __future__ import annotations
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
+from ..errors import InputError
 from ..model.traction.base import has_multiple_equilibria
 from .clamped import pressure_bound_force, with_clamp
 from .limit import limit_torque_batch
 from .options import SolverOptions
 
-__all__ = ["capacity_basis", "capacity_force", "GRID", "ZOOM", "ZOOM_GRID"]
+__all__ = [
+    "capacity_basis",
+    "capacity_force",
+    "force_range_top",
+    "EDGE",
+    "GRID",
+    "ZOOM",
+    "ZOOM_GRID",
+]
 
-#: Forces of the first scan, from ``min_force`` to ``F_p``.
+#: Forces of the first scan, from ``min_force`` to ``F_p`` (one more at ``F_p (1 - EDGE)``).
 GRID = 9
+#: Relative step below ``F_p`` [-] of the scan's last force but one: where the limit there
+#: is the larger, it falls towards ``F_p`` and its peak below is refined.
+EDGE = 1e-3
 #: Refinement rounds around the best force.
 ZOOM = 6
 #: Forces of each refinement round (between the best force's neighbours).
 ZOOM_GRID = 9
+
+
+def force_range_top(problem: EquilibriumProblem, p_lim: float, min_force: float) -> np.ndarray:
+    """The top ``F_p`` [N] of the optimiser's force range ``[min_force, F_p]`` at every point.
+
+    ``F_p`` is the force whose peak Hertz pressure reaches ``p_lim`` (`pressure_bound_force`,
+    Eqs. 48-50: ``p_max ~ F^(1/3)``). Every path of the optimal law (its solve, the limiting
+    torque, a map, a table, a sweep, a cycle) refuses a point whose range is empty alike.
+
+    Raises
+    ------
+    InputError
+        ``max_pressure``, where ``F_p <= min_force`` (the peak pressure at ``min_force``
+        already exceeds ``p_lim``), naming that pressure and what to change.
+    """
+    top = np.broadcast_to(pressure_bound_force(problem, p_lim), problem.shape)
+    empty = ~(top > min_force)
+    if np.any(empty):
+        k = np.unravel_index(int(np.argmax(empty)), problem.shape)
+        p_max = np.broadcast_to(np.max(problem.p_max, axis=-1), problem.shape)[k]
+        force = np.broadcast_to(problem.clamp_force, problem.shape)[k]
+        p_at_min = float(p_max * (min_force / force) ** (1.0 / 3.0))
+        ratio = float(np.broadcast_to(problem.ratio, problem.shape)[k])
+        raise InputError(
+            "max_pressure",
+            p_lim,
+            f"> {p_at_min:.3g} Pa, the peak pressure at the optimal law's min_force = "
+            f"{min_force:g} N (ratio {ratio:g}): raise max_pressure or lower min_force",
+        )
+    return np.array(top, dtype=float)
 
 
 def _limits(flat: EquilibriumProblem, forces: np.ndarray, c_lim: float, options) -> np.ndarray:
@@ -70,25 +116,43 @@ def capacity_force(
         Forces [N], the batch shape of ``problem``; ``F_p`` where no force has a limit.
     """
     flat = problem.flat()
-    top = np.broadcast_to(pressure_bound_force(problem, p_lim), problem.shape).reshape(-1)
-    low = np.minimum(floor, top)
-    share = np.linspace(0.0, 1.0, GRID)
-    forces = np.exp(np.log(low)[:, None] + np.log(top / low)[:, None] * share)
-    forces[:, -1] = top
-    lim = _limits(flat, forces, creep_limit, options)
-    best = np.argmax(lim, axis=1)
-    below_top = best < GRID - 1
-    if has_multiple_equilibria(problem.fluid):  # the limit may peak below F_p
-        below_top[:] = True
-    inner = np.flatnonzero(below_top & np.isfinite(lim.max(axis=1)))
-    out = top.copy()
-    if inner.size:
-        out[inner] = _zoom(flat.take(inner), forces[inner], best[inner], creep_limit, options)
+    top = force_range_top(problem, p_lim, floor).reshape(-1)
+    if not has_multiple_equilibria(problem.fluid):
+        out = _search(flat, top, floor, creep_limit, options)
+    else:  # point by point: the same force from every path, whatever the batch
+        out = np.array(
+            [
+                _search(flat.take(np.array([i])), top[i : i + 1], floor, creep_limit, options)[0]
+                for i in range(flat.size)
+            ]
+        ).reshape(-1)
     return out.reshape(problem.shape)
 
 
+def _search(flat, top: np.ndarray, floor: float, creep_limit: float, options) -> np.ndarray:
+    """`capacity_force` of the 1-D batch ``flat`` (forces ``(n,)`` [N])."""
+    low = np.full(top.shape, float(floor))
+    share = np.append(np.linspace(0.0, 1.0, GRID), 1.0)
+    forces = np.exp(np.log(low)[:, None] + np.log(top / low)[:, None] * share)
+    forces[:, -2] = top * (1.0 - EDGE)  # is the limit still rising at F_p?
+    forces[:, -1] = top
+    lim = _limits(flat, forces, creep_limit, options)
+    best = np.argmax(lim, axis=1)
+    zoom = best < GRID  # the best force is below F_p: refine it
+    if has_multiple_equilibria(flat.fluid):  # the limit may peak and fall, noisily
+        zoom[:] = True
+    inner = np.flatnonzero(zoom & np.isfinite(lim.max(axis=1)))
+    out = top.copy()
+    if inner.size:
+        out[inner] = _zoom(flat.take(inner), forces[inner], best[inner], creep_limit, options)
+    return out
+
+
 def _zoom(flat, forces, best, creep_limit: float, options) -> np.ndarray:
-    """Refine the best force of each row of ``forces`` ``(n, k)`` between its neighbours."""
+    """Refine the best force of each row of ``forces`` ``(n, k)`` (ascending) between its
+    neighbours: `ZOOM` rounds of `ZOOM_GRID` forces in geometric progression across the
+    bracket, the one nearest the best so far replaced by it (it stays a candidate, the
+    row ascending), the bracket then the neighbours of the round's best."""
     rows = np.arange(forces.shape[0])
     a = forces[rows, np.maximum(best - 1, 0)]
     b = forces[rows, np.minimum(best + 1, forces.shape[1] - 1)]
@@ -96,7 +160,8 @@ def _zoom(flat, forces, best, creep_limit: float, options) -> np.ndarray:
     share = np.linspace(0.0, 1.0, ZOOM_GRID)
     for _ in range(ZOOM):
         trial = np.exp(np.log(a)[:, None] + np.log(b / a)[:, None] * share)
-        trial[:, ZOOM_GRID // 2] = f_best  # the best so far stays a candidate
+        near = np.argmin(np.abs(np.log(trial / f_best[:, None])), axis=1)
+        trial[rows, near] = f_best
         lim = _limits(flat, trial, creep_limit, options)
         k = np.argmax(lim, axis=1)
         f_best = trial[rows, k]

@@ -24,9 +24,8 @@ from ..errors import InputError, TractionLimitError
 from ..model.clamping import OptimalClamp
 from ..params.models import Design, Fluid
 from ..performance.efficiency import efficiency
-from .clamped import pressure_bound_force
 from .newton import solve_batch
-from .optimal_capacity import capacity_force
+from .optimal_capacity import capacity_force, force_range_top
 from .options import SolverOptions
 from .refusal import CREEP_RTOL
 
@@ -250,15 +249,7 @@ def clamp_optimum(
     ref = build_problem(
         case.design, case.fluid, case.architecture, case.ratio, 0.0, 1000.0, case.input_speed
     )
-    f_p = float(pressure_bound_force(ref, p_lim))
-    if f_p <= law.min_force:
-        raise InputError(
-            "max_pressure",
-            p_lim,
-            f"a value reached above min_force = "
-            f"{law.min_force:g} N (p_max at {law.min_force:g} N is "
-            f"{np.max(ref.p_max) * (law.min_force / 1000.0) ** (1 / 3):.3g} Pa)",
-        )
+    f_p = float(force_range_top(ref, p_lim, law.min_force))  # refused where empty
     forces, eta = _grid(search, f_p, law)
     if not np.isfinite(eta).any():  # at the capacity only its own force may carry it
         forces, eta = _capacity_candidate(search, ref, (p_lim, law.min_force))

@@ -1,0 +1,150 @@
+"""Regressions of the optimal clamping law found by the hardening campaign (issue 23,
+``python benchmarks/harden.py --task 2026:N``): every path refuses alike, and the
+capacity search finds the force of the largest limiting torque."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from ballcvt import Variator, load_builtin
+from ballcvt.errors import InputError, TractionLimitError
+
+# A design whose peak pressure at the optimal law's min_force (100 N) already exceeds
+# max_pressure (3 GPa): tasks 2026:2877 (isothermal) and 2026:3480 (viscoelastic).
+TASK_2877 = (
+    '{"aspect_ratio": 33.647626207683146, "roller_radius": 0.0022066813559994273, '
+    '"theta0_deg": 46.881057537785516, "theta2_deg": 78.23997660054411, '
+    '"alpha_deg": 48.60641267328379, "n_rollers": 4, '
+    '"roller_bearing_diameter": 0.00011925566089517184, '
+    '"idler_bearing_diameter": 0.00047355996363177276, "disc_groove_ratio": 40.33929771574016, '
+    '"idler_groove_ratio": 1.8903422706133852, "single_idler_groove_ratio": Infinity, '
+    '"tilt_safety_factor": 0.7618636441924336, "creep_limit": 0.05932476996469723, '
+    '"min_roller_gap": 7.2017228401158265e-06}'
+)
+TASK_3480 = (
+    '{"aspect_ratio": 1.7298191799674418, "roller_radius": 0.005825628936619141, '
+    '"theta0_deg": 29.569929052471753, "theta2_deg": 14.688033641794831, '
+    '"alpha_deg": 73.5559182207278, "n_rollers": 7, '
+    '"roller_bearing_diameter": 0.0023630258104654915, '
+    '"idler_bearing_diameter": 0.00029961552618995016, "disc_groove_ratio": 69.63546992520158, '
+    '"idler_groove_ratio": 3.8892207118316886, "single_idler_groove_ratio": Infinity, '
+    '"tilt_safety_factor": 0.24160154902920516, "creep_limit": 0.02373071086164815, '
+    '"min_roller_gap": 3.228252009188315e-05}'
+)
+
+
+def _variator(fields: str, law: str) -> Variator:
+    d, f = load_builtin("table1")
+    return Variator(d.replace(name="random", **json.loads(fields)), f, "double", traction_law=law)
+
+
+@pytest.mark.parametrize(
+    "fields, law, ratio, rpm",
+    [
+        (TASK_2877, "isothermal", 0.18167843062938144, 13148.992456407552),
+        (TASK_3480, "viscoelastic", 0.9777208182091114, 413.1221411730119),
+    ],
+)
+def test_optimal_refuses_empty_force_range_on_every_path(fields, law, ratio, rpm):
+    """2026:2877, 2026:3480: `solve` refused (peak pressure at min_force above
+    max_pressure) but `limit_torque` reported 0.28 / 0.82 N m."""
+    v = _variator(fields, law)
+    kw = {"clamp_law": "optimal", "input_speed_rpm": rpm}
+    calls = {
+        "solve": lambda: v.solve(ratio, 0.1, **kw),
+        "limit_torque": lambda: v.limit_torque(ratio, **kw),
+        "capacity": lambda: v.capacity(ratio, **kw),
+        "sweep": lambda: v.sweep(ratio=ratio, output_torque=[0.0, 0.1], **kw),
+    }
+    messages = set()
+    for name, call in calls.items():
+        with pytest.raises(InputError) as err:
+            call()
+        assert type(err.value) is InputError, name
+        messages.add(str(err.value))
+    (message,) = messages  # one message, the same from every path
+    assert "\n" not in message
+    assert "max_pressure" in message and "min_force = 100 N" in message
+    assert "raise max_pressure or lower min_force" in message
+
+
+# 2026:4546: the limiting torque peaks at about 68 kN, below the pressure bound F_p
+# (96.7 kN); the scan's best force was F_p and was kept.
+TASK_4546 = (
+    '{"aspect_ratio": 4.673148467852668, "roller_radius": 0.0729194384669077, '
+    '"theta0_deg": 45.296065226165155, "theta2_deg": 45.39526044909398, '
+    '"alpha_deg": 29.0524009259784, "n_rollers": 10, '
+    '"roller_bearing_diameter": 0.010287296312787214, '
+    '"idler_bearing_diameter": 0.02152426811470828, "disc_groove_ratio": 1.7517581408872416, '
+    '"idler_groove_ratio": 2.2573338876124494, "single_idler_groove_ratio": 4.686741569908589, '
+    '"tilt_safety_factor": 0.7396640943185151, "creep_limit": 0.0809571601738469, '
+    '"min_roller_gap": 0.0009233873085799592}'
+)
+
+
+def test_optimal_capacity_finds_peak_below_pressure_bound():
+    """2026:4546: solve converged at 1789.58 N m, 1.031 x the reported limit 1735.35 N m
+    (the limit at F_p); the limit peaks near 68 kN at about 1836.4 N m."""
+    v = _variator(TASK_4546, "isothermal")
+    ratio, rpm = 3.9329923939731093, 84.08804415981695
+    limit = v.limit_torque(ratio, clamp_law="optimal", input_speed_rpm=rpm)
+    assert limit >= 1836.4
+    # no constant force up to the pressure bound carries more (to 1e-3)
+    constant = [
+        v.limit_torque(ratio, clamp_force=f, input_speed_rpm=rpm)
+        for f in np.geomspace(40e3, 96e3, 9)
+    ]
+    assert max(constant) <= limit * (1 + 1e-3)
+    assert v.solve(ratio, 1789.5799942363294, clamp_law="optimal", input_speed_rpm=rpm).converged
+    with pytest.raises(TractionLimitError):
+        v.solve(ratio, 1.001 * limit, clamp_law="optimal", input_speed_rpm=rpm)
+
+
+# 2026:124 (thermal, single idler): a lookup table (four points batched) chose other forces
+# than limit_torque (one point) and reported 30.8 N m where limit_torque gave 233 N m.
+TASK_124 = (
+    '{"aspect_ratio": 3.4670130275144313, "roller_radius": 0.030299734257498417, '
+    '"theta0_deg": 47.21773513241391, "theta2_deg": 43.885068642803375, '
+    '"alpha_deg": 11.511802721120487, "n_rollers": 7, '
+    '"roller_bearing_diameter": 0.00852226012126403, '
+    '"idler_bearing_diameter": 0.0067434542965305955, "disc_groove_ratio": 1.4529350234168292, '
+    '"idler_groove_ratio": 4.657299799465973, "single_idler_groove_ratio": 4.8406152410665415, '
+    '"tilt_safety_factor": 0.7158780411344113, "creep_limit": 0.14585105376837615, '
+    '"min_roller_gap": 0.0021050649170601832}'
+)
+
+
+def test_thermal_capacity_force_does_not_depend_on_the_batch(monkeypatch):
+    """2026:124: under the thermal law the limit at a force (a continuation to the fold,
+    stopped by a step failing at the solver's tolerance) depends on the batch it is
+    solved in (the batched Newton's predictor stage and shared Jacobian skip). Here the
+    limits are a stand-in that does so; the force found for each point of a batch must be
+    the one found for it alone, as `limit_torque` does."""
+    from ballcvt.equilibrium.problem import build_problem
+    from ballcvt.solvers import optimal_capacity
+    from ballcvt.units import rpm_to_rad_s
+
+    d, f = load_builtin("table1")
+    v = Variator(d.replace(name="random", **json.loads(TASK_124)), f, "single",
+                 traction_law="thermal")  # fmt: skip
+    ratio, rpm = 0.2319683468011616, 5136.558372831595
+    ratios = np.array([ratio, ratio, ratio * 1.001, ratio * 1.001])
+    speeds = rpm_to_rad_s(np.array([rpm, rpm * 1.05, rpm, rpm * 1.05]))
+    pb = build_problem(v.design, v.fluid, v.architecture, ratios, 0.0, np.ones(4), speeds)
+
+    def limits(flat, forces, c_lim, options):  # peaks at 6 kN alone, elsewhere batched
+        peak = 6000.0 * (1.0 + 0.05 * (flat.size - 1)) * flat.ratio[:, None] / ratio
+        return forces * (2.0 - forces / peak)
+
+    monkeypatch.setattr(optimal_capacity, "_limits", limits)
+    p_lim, c_lim = v.design.max_pressure, v.design.creep_limit
+    batch = optimal_capacity.capacity_force(pb, p_lim, c_lim, 100.0, v.options)
+    alone = [
+        float(optimal_capacity.capacity_force(pb.take(np.array([i])), p_lim, c_lim, 100.0,
+                                              v.options)[0])
+        for i in range(4)
+    ]  # fmt: skip
+    assert batch.tolist() == alone

@@ -33,7 +33,7 @@ PEAK_RTOL = 1e-5
 #: there, and fails at ``1.001`` times it.
 FOLD_MARGIN = 2e-4
 #: Smallest creep step of the march to the fold, as a share of ``C_lim`` [-].
-FOLD_CREEP_RTOL = 1e-5
+FOLD_CREEP_RTOL = 1e-4
 #: Residual norm, in solver tolerances, up to which a held-creep step counts [-]: the
 #: thermal residual has a noise floor near the tolerance at large loads, and only the
 #: torque of the step is used (exact far within the limit's 1e-3).
@@ -64,7 +64,7 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
     keep = np.flatnonzero(np.isfinite(torque))
     if keep.size:
         sub = flat.take(keep)
-        top, xt, fold = _march_to_fold(sub, pin, options, torque[keep], x[keep])
+        top, fold = _march_to_fold(sub, pin, options, torque[keep], x[keep])
         top = np.where(fold, top * (1.0 - FOLD_MARGIN), top)
         more = top > torque[keep]
         if np.any(more):  # the solve's own path must reach it: checked
@@ -82,11 +82,11 @@ def _march_to_fold(flat, pin, options, torque, x):
     quartered where the torque does not rise (or the step fails, or a creep passes
     ``pin``), until it is below `FOLD_CREEP_RTOL` of ``pin``.
 
-    Returns the torques ``(n,)`` [N m], the creeps there and whether the torque is that of
-    a fold (not of a creep at ``pin``).
+    Returns the torques ``(n,)`` [N m] and whether each is that of a fold (not of a
+    creep at ``pin``).
     """
     nc = flat.layout.n_contacts
-    best_t, best_x = torque.copy(), x.copy()
+    best_t = torque.copy()
     fold = np.zeros(flat.size, dtype=bool)
     for k in (0, nc - 1):
         t, xk = torque.copy(), x.copy()
@@ -113,6 +113,6 @@ def _march_to_fold(flat, pin, options, torque, x):
             step[acc] *= 2.0
             step[rej] *= -0.25
         better = t > best_t
-        best_t, best_x = np.where(better, t, best_t), np.where(better[:, None], xk, best_x)
+        best_t = np.where(better, t, best_t)
         fold = np.where(better, ~at_pin, fold)
-    return best_t, best_x, fold
+    return best_t, fold

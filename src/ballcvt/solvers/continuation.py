@@ -23,7 +23,7 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 
-__all__ = ["continue_in_torque", "FIRST_STEP", "MIN_STEP", "OPEN_STEP"]
+__all__ = ["continue_in_torque", "solve_twice", "FIRST_STEP", "MIN_STEP", "OPEN_STEP"]
 
 #: First torque step after zero torque, as a share of each point's torque [-].
 FIRST_STEP = 0.25
@@ -90,7 +90,7 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
         trial = np.where(np.abs(goal - t) <= step[active], goal, t + np.sign(goal) * step[active])
         beyond = (np.abs(trial) >= np.abs(bad)) & (trial != goal)  # the goal: from closer
         trial = np.where(beyond, 0.5 * (t + bad), trial)
-        good, xt, its = _solve_twice(solve, replace(flat.take(active), output_torque=trial),
+        good, xt, its = solve_twice(solve, replace(flat.take(active), output_torque=trial),
                                      x[active])  # fmt: skip
         if admissible is not None:
             good = good & admissible(xt)
@@ -106,7 +106,7 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
     return x, iterations, torque
 
 
-def _solve_twice(solve: Solve, flat: EquilibriumProblem, x0: np.ndarray):
+def solve_twice(solve: Solve, flat: EquilibriumProblem, x0: np.ndarray):
     """``solve`` from ``x0``, then once more from where it stopped for the points that
     did not converge: next to a fold Newton converges only linearly (its Jacobian turns
     singular there) and runs out of iterations short of the tolerance, but on its way."""

@@ -298,23 +298,24 @@ def limit_search(
     """Limiting output torque of every point of a batch, and the creeps there.
 
     Under a constant clamping force the limit is found directly: the creep of a disc
-    contact is held at ``creep_limit`` (`PIN_MARGIN` below it) and the output torque that
-    goes with it solved for (`solve_pinned`), first at the disc contact with the lower
-    traction ceiling, then at the other one for the points where that answer is
+    contact is held at ``creep_limit`` (`PIN_MARGIN` below it) and the output torque
+    that goes with it solved for (`solve_pinned`), first at the disc contact with the
+    lower traction ceiling, then at the other one for the points where that answer is
     inadmissible (the other disc's creep beyond the limit). The creeps grow with the
-    torque, so a non-negative torque found so, with every creep within the limit, is the largest admissible one, exact to the solver
-    tolerance. Under a torque-following law the admissible torques need not start at zero
-    nor be one range (a cam with a small preload): they are scanned and their ends
-    bisected (`ballcvt.solvers.capacity.interval_search`), ``torque`` is the largest and
-    ``intervals`` holds them all. The other points of a constant force are solved
-    at ``T_2 = 0``: inadmissible there, they have no limit (NaN); otherwise the pinned
+    torque, so a non-negative torque found so, with every creep within the limit, is the
+    largest admissible one, exact to the solver tolerance. Under a torque-following law
+    the admissible torques need not start at zero nor be one range (a cam with a small
+    preload): they are scanned and their ends bisected
+    (`ballcvt.solvers.capacity.interval_search`), ``torque`` is the largest and
+    ``intervals`` holds them all. The other points of a constant force are solved at
+    ``T_2 = 0``: inadmissible there, they have no limit (NaN); otherwise the pinned
     solve is tried again from those creeps and, failing that (a non-monotone creep, a
     failed solve), the bisection on ``T_2`` of `limit_torque_bisection` decides. The two
-    methods agree within ``rtol`` (tests/test_fast_solver.py). Under a traction law whose
-    traction can fall with the creep (the thermal law), the torque at the creep limit may
-    lie past the peak of the curve ``T_2(C)``: there the limit is the fold of the branch
-    followed from zero torque, or where a creep reaches the limit first (a torque
-    continuation, then a march in a disc's held creep to the fold;
+    methods agree within ``rtol`` (tests/test_fast_solver.py). Under a traction law
+    whose traction can fall with the creep (the thermal law), the torque at the creep
+    limit may lie past the peak of the curve ``T_2(C)``: there the limit is the fold of
+    the branch followed from zero torque, or where a creep reaches the limit first (a
+    torque continuation, then a march in a disc's held creep to the fold;
     `ballcvt.solvers.peak.peak_limits`, docs/model.md §8, §14). A creep is held
     `PIN_MARGIN` below ``creep_limit``, on the admissible side.
 

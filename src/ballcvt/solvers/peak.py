@@ -13,15 +13,18 @@ the creep: from where the continuation stopped, a disc contact's creep is held a
 stepped (`ballcvt.solvers.newton.solve_pinned`, regular through the fold), the step
 reversed and shrunk wherever the torque stops rising, until the step is below
 `FOLD_CREEP_RTOL` of ``C_lim``: the largest torque met is the fold. A limit at a fold is
-reported `FOLD_MARGIN` below it (a solve exactly at a fold does not converge), checked by
-the solve's own continuation. Used by `ballcvt.solvers.limit.limit_search`.
+reported `FOLD_MARGIN` below it (a solve exactly at a fold does not converge), once a
+solve converges there (Newton from where the continuation stopped, else the solve's own
+continuation from zero torque). Used by `ballcvt.solvers.limit.limit_search`.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
-from .continuation import continue_in_torque
+from .continuation import continue_in_torque, solve_twice
 from .newton import branch_solver, solve_pinned
 
 __all__ = ["peak_limits", "PEAK_RTOL", "FOLD_MARGIN", "FOLD_CREEP_RTOL"]
@@ -67,11 +70,18 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
         top, fold = _march_to_fold(sub, pin, options, torque[keep], x[keep])
         top = np.where(fold, top * (1.0 - FOLD_MARGIN), top)
         more = top > torque[keep]
-        if np.any(more):  # the solve's own path must reach it: checked
-            idx = np.flatnonzero(more)
-            xr, _, reached = continue_in_torque(sub.take(idx), solve, top[idx], PEAK_RTOL)
-            ok = (reached == top[idx]) & admissible(xr)
-            torque[keep[idx[ok]]], x[keep[idx[ok]]] = top[idx[ok]], xr[ok]
+        idx = np.flatnonzero(more)
+        if idx.size:  # a solve must converge there: Newton from where the continuation
+            # stopped, else the solve's own continuation from zero torque
+            good, xr, _ = solve_twice(
+                solve, replace(sub.take(idx), output_torque=top[idx]), x[keep[idx]]
+            )
+            good &= admissible(xr)
+            far = np.flatnonzero(~good)
+            if far.size:
+                xf, _, reached = continue_in_torque(sub.take(idx[far]), solve, top[idx[far]])
+                good[far], xr[far] = (reached == top[idx[far]]) & admissible(xf), xf
+            torque[keep[idx[good]]], x[keep[idx[good]]] = top[idx[good]], xr[good]
     keep = np.isfinite(torque)
     return np.where(keep, torque, np.nan), np.where(keep[:, None], x, np.nan)
 

@@ -6,8 +6,9 @@ torque, and one past the fold of that branch, with more creep and a different ef
 (docs/model.md §14). Newton's method lands on either, depending on where it starts. The
 drive, loaded from rest at its speed, follows the first: each point is solved at zero
 torque, then at rising shares of its torque, each solve started from the last accepted
-one, the step doubled after a success and halved after a failure, never past a torque
-that failed other than the target, which is tried again from closer (batched over the
+one, the step doubled after a success and halved after a failure (a step that failed is
+first resumed once from where its Newton run stopped: next to the fold Newton converges
+slowly), never past a torque that failed other than the target, which is tried again from closer (batched over the
 points). A point whose step or bracket narrows below `MIN_STEP` is past the fold of its
 branch: no equilibrium of the drive carries its torque, and it is reported unconverged. Used by
 `ballcvt.solvers.newton.solve_batch` for a law with ``multiple_equilibria``.
@@ -22,7 +23,7 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 
-__all__ = ["continue_in_torque", "FIRST_STEP", "MIN_STEP", "OPEN_STEP"]
+__all__ = ["continue_in_torque", "solve_twice", "FIRST_STEP", "MIN_STEP", "OPEN_STEP"]
 
 #: First torque step after zero torque, as a share of each point's torque [-].
 FIRST_STEP = 0.25
@@ -89,7 +90,8 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
         trial = np.where(np.abs(goal - t) <= step[active], goal, t + np.sign(goal) * step[active])
         beyond = (np.abs(trial) >= np.abs(bad)) & (trial != goal)  # the goal: from closer
         trial = np.where(beyond, 0.5 * (t + bad), trial)
-        good, xt, its = solve(replace(flat.take(active), output_torque=trial), x[active], False)
+        good, xt, its = solve_twice(solve, replace(flat.take(active), output_torque=trial),
+                                     x[active])  # fmt: skip
         if admissible is not None:
             good = good & admissible(xt)
         iterations[active] += its
@@ -102,3 +104,17 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
         going = (np.abs(width) >= least[active]) & (step[active] >= least[active])
         active = active[(torque[active] != target[active]) & going]
     return x, iterations, torque
+
+
+def solve_twice(solve: Solve, flat: EquilibriumProblem, x0: np.ndarray):
+    """``solve`` from ``x0``, then once more from where it stopped for the points that
+    did not converge: next to a fold Newton converges only linearly (its Jacobian turns
+    singular there) and runs out of iterations short of the tolerance, but on its way."""
+    good, xt, its = solve(flat, x0, False)
+    good, xt, its = np.array(good, dtype=bool), np.array(xt, dtype=float), np.array(its)
+    again = np.flatnonzero(~good & np.all(np.isfinite(xt), axis=-1))
+    if again.size:
+        ok, xa, ia = solve(flat.take(again), xt[again], False)
+        its[again] += ia
+        good[again], xt[again] = ok, np.where(np.asarray(ok)[:, None], xa, xt[again])
+    return good, xt, its

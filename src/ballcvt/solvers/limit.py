@@ -44,6 +44,11 @@ __all__ = [
 LIMIT_RTOL = 1e-4
 #: Most bisection steps of `limit_torque_batch` (a bracket of 2^-60 of the ceiling).
 MAX_BISECTIONS = 60
+#: Relative margin below ``C_lim`` at which the limit search pins a disc creep [-]: a
+#: solve at the torque found meets its creeps only to its tolerance (some 1e-9
+#: relative), so the limit is taken on the admissible side of ``C_lim``, where a solve
+#: at it keeps every ``|C| <= C_lim`` (the torque lower by about as much, relative).
+PIN_MARGIN = 1e-7
 
 
 def bisection_steps(rtol: float = LIMIT_RTOL) -> int:
@@ -293,23 +298,26 @@ def limit_search(
     """Limiting output torque of every point of a batch, and the creeps there.
 
     Under a constant clamping force the limit is found directly: the creep of a disc
-    contact is held at ``creep_limit`` and the output torque that goes with it solved for
-    (`solve_pinned`), first at the disc contact with the lower traction ceiling, then at
-    the other one for the points where that answer is inadmissible (the other disc's creep
-    beyond the limit). The creeps grow with the torque, so a non-negative torque found so,
-    with every creep within the limit, is the largest admissible one, exact to the solver
-    tolerance. Under a torque-following law the admissible torques need not start at zero
-    nor be one range (a cam with a small preload): they are scanned and their ends
-    bisected (`ballcvt.solvers.capacity.interval_search`), ``torque`` is the largest and
-    ``intervals`` holds them all. The other points of a constant force are solved
-    at ``T_2 = 0``: inadmissible there, they have no limit (NaN); otherwise the pinned
+    contact is held at ``creep_limit`` (`PIN_MARGIN` below it) and the output torque
+    that goes with it solved for (`solve_pinned`), first at the disc contact with the
+    lower traction ceiling, then at the other one for the points where that answer is
+    inadmissible (the other disc's creep beyond the limit). The creeps grow with the
+    torque, so a non-negative torque found so, with every creep within the limit, is the
+    largest admissible one, exact to the solver tolerance. Under a torque-following law
+    the admissible torques need not start at zero nor be one range (a cam with a small
+    preload): they are scanned and their ends bisected
+    (`ballcvt.solvers.capacity.interval_search`), ``torque`` is the largest and
+    ``intervals`` holds them all. The other points of a constant force are solved at
+    ``T_2 = 0``: inadmissible there, they have no limit (NaN); otherwise the pinned
     solve is tried again from those creeps and, failing that (a non-monotone creep, a
     failed solve), the bisection on ``T_2`` of `limit_torque_bisection` decides. The two
-    methods agree within ``rtol`` (tests/test_fast_solver.py). Under a traction law whose
-    traction can fall with the creep (the thermal law), the torque at the creep limit may
-    lie past the peak of the curve ``T_2(C)``: there the limit is the largest admissible
-    torque over each disc contact's pinned creep, found by a scan and a golden-section
-    search (`ballcvt.solvers.peak.peak_limits`, docs/model.md §8, §14).
+    methods agree within ``rtol`` (tests/test_fast_solver.py). Under a traction law
+    whose traction can fall with the creep (the thermal law), the torque at the creep
+    limit may lie past the peak of the curve ``T_2(C)``: there the limit is the fold of
+    the branch followed from zero torque, or where a creep reaches the limit first (a
+    torque continuation, then a march in a disc's held creep to the fold;
+    `ballcvt.solvers.peak.peak_limits`, docs/model.md §8, §14). A creep is held
+    `PIN_MARGIN` below ``creep_limit``, on the admissible side.
 
     Parameters
     ----------
@@ -400,20 +408,21 @@ def _pinned_limits(flat, creep_limit, options, x_zero):
     cap = (flat.load * flat.radius * saturated_traction(flat))[:, [0, -1]]
     cap[:, 0] /= flat.ratio
     first = np.where(cap[:, 0] <= cap[:, 1], 0, nc - 1)
+    pin = creep_limit * (1.0 - PIN_MARGIN)
     for attempt in range(2):
         for k in (0, nc - 1):
             idx = np.flatnonzero(np.isnan(torque) & ((first == k) == (attempt == 0)))
             if idx.size == 0:
                 continue
             x0 = x_zero[idx].copy()
-            x0[:, [0, -1]] = creep_limit
+            x0[:, [0, -1]] = pin
             t, sol = solve_pinned(flat.take(idx), k, x0, options)
             x = sol.state.creep
             good = (
                 sol.converged
                 & np.isfinite(t)
                 & (t >= 0.0)
-                & (np.max(np.abs(x), axis=-1) <= creep_limit * (1.0 + 1e-9))
+                & (np.max(np.abs(x), axis=-1) <= pin * (1.0 + 1e-9))
             )
             torque[idx[good]], creep[idx[good]] = t[good], x[good]
     return torque, creep

@@ -205,8 +205,11 @@ to it (`tests/test_validation_mixed.py`).
 A Stribeck curve of lubricated steel rises, as the speed falls, from the film's traction
 towards the boundary friction of the asperities (about 0.1: Bowden and Tabor's value, the
 model's own `mu_b`); He, Zhu, Wang and Wang ("Experimental and numerical investigations
-of the Stribeck curves for lubricated counterformal contacts", J. Tribol.) measured such
-complete curves, boundary to full film, on a rolling-sliding ball-on-disc machine. In the
+of the Stribeck curves for lubricated counterformal contacts"; abstract only read) measured
+such complete curves, boundary to full film, for counterformal contacts on a
+rolling-sliding apparatus from 0.00006 to 60 m/s, and report that in the full film the
+friction still falls as the speed rises (flash heating lowers the limiting shear stress):
+the isothermal law here rises instead; the thermal law of §14 is the one to compare. In the
 model the traction coefficient *falls* as the speed falls, at every creep and every
 asperity parameter above: it has no boundary branch, and below `h_s / sigma` of about 2
 the mixed model's traction is *lower* than the full film's. Two reasons, each checked by a test:
@@ -245,8 +248,9 @@ Khonsari and Gelinck (2006, J. Tribol. 128:789), Gelinck and Schipper (2000, Tri
 33:175), Schipper (1988), Zhu and Hu (2001), Kalin, Velkavrh and Vizintin (2009), Björling,
 Larsson and Marklund, Guegan, Kadiric, Gabelli and Spikes, PCS Instruments MTM Stribeck
 tests, open-access MDPI *Lubricants* papers, and CSV / WebPlotDigitizer data. Found:
-abstracts and reference lists only (Gelinck and Schipper's starved line contacts, J.
-Tribol. 129:181; He, Zhu, Wang and Wang's counterformal Stribeck curves; Kalin and
+abstracts and reference lists only ("Stribeck curve for starved line contacts", J.
+Tribol. 129:181, which compares with measurements but gives no values in its abstract;
+He, Zhu, Wang and Wang's counterformal Stribeck curves; Kalin and
 Velkavrh's DLC Stribeck curves, Wear 297:911; Popovici and Schipper's elliptical-contact
 model), mixed-EHL solvers without measured data, and no tabulated friction values.
 For the housing: ISO/TR 14179-1/-2 (only summaries without their coefficients), the

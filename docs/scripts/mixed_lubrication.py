@@ -248,7 +248,8 @@ Khonsari and Gelinck (2006, J. Tribol. 128:789), Gelinck and Schipper (2000, Tri
 33:175), Schipper (1988), Zhu and Hu (2001), Kalin, Velkavrh and Vizintin (2009), Björling,
 Larsson and Marklund, Guegan, Kadiric, Gabelli and Spikes, PCS Instruments MTM Stribeck
 tests, open-access MDPI *Lubricants* papers, and CSV / WebPlotDigitizer data. Found:
-abstracts and reference lists only ("Stribeck curve for starved line contacts", J.
+abstracts and reference lists only (Lu, Khonsari and Gelinck's is a journal bearing, a
+conformal contact, against a line-contact model; "Stribeck curve for starved line contacts", J.
 Tribol. 129:181, which compares with measurements but gives no values in its abstract;
 He, Zhu, Wang and Wang's counterformal Stribeck curves; Kalin and
 Velkavrh's DLC Stribeck curves, Wear 297:911; Popovici and Schipper's elliptical-contact

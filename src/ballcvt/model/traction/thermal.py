@@ -40,8 +40,9 @@ from __future__ import annotations
 import numpy as np
 
 from ...params.models import Fluid
+from . import kernels, thermal_kernels
 from .contact import ContactState, legacy_arguments
-from .isothermal import shear_coefficients
+from .isothermal import kernel_rule, kernel_table, shear_coefficients
 from .quadrature import Quadrature
 
 __all__ = [
@@ -158,14 +159,36 @@ def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature):
 
     Newton converges on `TEMPERATURE_RULE`; one Newton step on ``quadrature`` then moves
     the rise to that rule's fixed point, and the coefficients with it (to first order:
-    the remaining error is the square of a step of a fraction of a kelvin).
+    the remaining error is the square of a step of a fraction of a kelvin). In one
+    compiled call (`ballcvt.model.traction.thermal_kernels`) when both rules use the
+    compiled engine; the NumPy path (`_solve_rise`) otherwise.
     """
+    compiled = quadrature.engine == TEMPERATURE_RULE.engine == "auto"
+    if compiled and kernels.AVAILABLE and con.c.size:
+        return _compiled(con, quadrature)
     dt = _solve_rise(con, TEMPERATURE_RULE)
     mu, chi, dmu, dchi = con.at(dt, quadrature)
     r = con.resistance
     step = -(dt - r * con.flux(mu, chi)) / (1.0 - r * con.flux(dmu[:, 3], dchi[:, 3]))
     step = np.maximum(step, -dt)  # the rise stays >= 0
     return dt + step, mu + dmu[:, 3] * step, chi + dchi[:, 3] * step, dmu, dchi
+
+
+def _compiled(con: _Contacts, quadrature: Quadrature):
+    """`_rise_and_coefficients` by the compiled kernel (the same steps, per contact)."""
+    par = np.ascontiguousarray(
+        np.stack(np.broadcast_arrays(con.c, con.s, con.ax, con.ay, con.pm, con.fn, con.rc,
+                                     con.u, con.h)), dtype=float
+    )  # fmt: skip
+    out = np.empty((par.shape[1], thermal_kernels.N_THERMAL))
+    contact = (
+        np.ascontiguousarray(con.load_flux * con.u, dtype=float),
+        np.ascontiguousarray(con.resistance, dtype=float),
+    )
+    rules = (kernel_rule(TEMPERATURE_RULE), kernel_rule(quadrature))
+    table = kernel_table(con.fluid, float(par[4].max()))
+    thermal_kernels.thermal_kernel(par, contact, rules, table, (con.beta_l, con.b), out)
+    return out[:, 0], out[:, 1], out[:, 2], out[:, 3:7], out[:, 7:11]
 
 
 def temperature_rise(

@@ -276,16 +276,17 @@ if AVAILABLE:
         return a0, a1, a2, a3, a4, a5, a6, a7
 
     @njit(cache=True, fastmath=_FAST, inline="always")
-    def contact_sums(par, i, h, rule, fl, tab, deriv, ve):
+    def contact_sums(par, i, h, rule, table, deriv, ve):
         """The scaled sums of contact ``i`` (a column of ``par``) at the film ``h`` [m]: the
         pole-centred rule while the pole is well inside, the centred rule once it is
         outside, blended in between with the weight ``w = t^2 (3 - 2 t)``, ``t = (blend[1] -
         |Y_p|) / (blend[1] - blend[0])`` clipped to [0, 1]
         (`ballcvt.model.traction.isothermal`); ``blend[1] <= blend[0]``: the centred rule
         alone. A NaN pole gives NaN sums. ``rule``: ``(r01, wr, pole_rays, centred_rays,
-        blend)`` (`traction_kernel`). The thermal law's kernel calls it at its own films
-        (`ballcvt.model.traction.thermal_kernels`)."""
+        blend)``, ``table``: ``(fl, tab)`` (`traction_kernel`). The thermal law's kernel
+        calls it at its own films (`ballcvt.model.traction.thermal_kernels`)."""
         pow2 = _POW2
+        fl, tab = table
         r01, wr, pole_rays, centred_rays, blend = rule
         sp, cp, dp = pole_rays
         sc, cc, dc = centred_rays
@@ -321,7 +322,7 @@ if AVAILABLE:
     def _blended(par, rule, fl, tab, deriv, ve, out):
         """Every contact's scaled sums (rows of ``out``, `contact_sums`)."""
         for i in range(par.shape[1]):
-            s = contact_sums(par, i, par[8, i], rule, fl, tab, deriv, ve)
+            s = contact_sums(par, i, par[8, i], rule, (fl, tab), deriv, ve)
             for j in range(N_OUT):
                 out[i, j] = s[j]
 

@@ -263,6 +263,7 @@ def test_newton_update_compiled_equals_python_and_handles_singular_steps():
     points (steps, caps, back-offs, confirmations), and a singular Jacobian takes the
     capped least-squares step instead of failing."""
     from ballcvt.solvers import newton as B
+    from ballcvt.solvers import newton_step as S  # the compiled update's module
 
     rng = np.random.default_rng(11)
     n, nc = 40, 4
@@ -277,7 +278,7 @@ def test_newton_update_compiled_equals_python_and_handles_singular_steps():
         res[3], best[3] = 1e-2, np.inf  # the singular point steps
         prev_dx = rng.normal(scale=1e-3, size=(n, nc))
         outs = []
-        for fn in (B._advance_compiled, B._advance_python):
+        for fn in (S.advance_compiled, S.advance_python):
             arrays = [x.copy(), best.copy(), x.copy() - prev_dx, prev_dx.copy(), np.ones(n, bool)]
             keep, singular = np.zeros(n, bool), np.zeros(n, bool)
             near = fn(np.arange(n), res, jac, arrays[0], free, *arrays[1:], 1e-11, confirm,

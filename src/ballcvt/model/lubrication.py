@@ -51,7 +51,7 @@ import numpy as np
 from scipy.special import gamma, pbdv
 
 from ..params.models import Design, Fluid
-from ..registry import LUBRICATION_MODELS
+from ..registry import LUBRICATION_MODELS, TRACTION_LAWS
 from .traction.contact import ContactState, contact_coefficients
 from .traction.isothermal import shear_coefficients
 from .traction.quadrature import Quadrature
@@ -339,7 +339,11 @@ def mixed_coefficients(
 
 
 def _full_film(state, fluid, asp, quadrature, derivatives):
-    """The fluid's law as it is (the paper's model)."""
+    """The fluid's law as it is (the paper's model); with ``derivatives``, the fourth
+    column of a law that has one (`TractionLaw.film_coefficients`)."""
+    film = TRACTION_LAWS.get(fluid.traction_law).film_coefficients
+    if derivatives and film is not None:
+        return film(state, fluid, quadrature)
     return contact_coefficients(state, fluid, quadrature, derivatives)
 
 

@@ -17,9 +17,7 @@ evaluated afresh on the final creeps, meets the tolerance; the others are flagge
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
-from typing import Any
 
 import numpy as np
 
@@ -32,20 +30,19 @@ from ..equilibrium.residual import (
 )
 from ..model.traction.base import has_multiple_equilibria
 from .continuation import continue_in_torque
+from .newton_step import COMPILED, MAX_STEP, advance_compiled, advance_python, cap
 from .options import CREEP_BOUNDS, SolverOptions
 from .robust import solve_robust
 
-njit: Any
-try:
-    from numba import njit
-except ImportError:  # pragma: no cover - numba is a declared dependency
-    njit = None
-
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "branch_solver"]
-__all__ += ["CREEP_BOUNDS"]
+__all__ += ["CREEP_BOUNDS", "MAX_STEP", "PATIENCE"]
 
-#: Largest change of any creep in one Newton step [-].
-MAX_STEP = 0.05
+#: Consecutive Newton iterations without a lower residual after which a step of the
+#: torque continuation gives up (`branch_solver`); the continuation then tries that
+#: torque again from closer. A point past the fold of its branch never converges and
+#: otherwise backs off for all ``max_iterations``; on the thermal sweeps no step that
+#: converges went 6 iterations without progress (the results were the same to the bit).
+PATIENCE = 6
 
 
 @dataclass(frozen=True)
@@ -128,10 +125,11 @@ def solve_batch(
     )
 
 
-def _solve_flat(flat, x, options, fallback, predict) -> BatchSolution:
-    """`solve_batch` of the 1-D batch ``flat`` from the creeps ``x`` (``(n, n_c)``)."""
+def _solve_flat(flat, x, options, fallback, predict, patience=None) -> BatchSolution:
+    """`solve_batch` of the 1-D batch ``flat`` from the creeps ``x`` (``(n, n_c)``);
+    ``patience``: as in `_newton`."""
     iterations = np.zeros(flat.size, dtype=int)
-    x, state = _staged_newton(flat, x, iterations, options, predict=predict)
+    x, state = _staged_newton(flat, x, iterations, options, predict=predict, patience=patience)
     norm = _norm(state.residual)
     bad = np.flatnonzero(~(norm <= options.tol))
     if fallback and bad.size:
@@ -155,13 +153,14 @@ def _flat_solution(state, iterations, tol) -> BatchSolution:
 def branch_solver(options: SolverOptions, predict: bool = True):
     """The solver each step of `continue_in_torque` calls (its ``Solve``): Newton from
     the cold start (the output creep at 0) with the point solver at zero torque, Newton
-    alone from the last step's creeps after it (``options``, ``predict`` as in
+    alone from the last step's creeps after it (a point giving up after `PATIENCE`
+    iterations without progress) (``options``, ``predict`` as in
     `solve_batch`)."""
 
     def solve(flat, x0, cold):
         x = np.array(initial_creep(flat) if x0 is None else x0, dtype=float)
         x[:, -1] = 0.0 if x0 is None else x[:, -1]  # from 1e-3 it ran off at high ratios
-        sol = _solve_flat(flat, x, options, cold, predict)
+        sol = _solve_flat(flat, x, options, cold, predict, None if cold else PATIENCE)
         return sol.converged, sol.state.creep, sol.iterations
 
     return solve
@@ -207,16 +206,16 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     )
 
 
-def _staged_newton(flat, x, iterations, options, pinned=None, predict=True):
+def _staged_newton(flat, x, iterations, options, pinned=None, predict=True, patience=None):
     """The predictor stage on the coarse rule (where it pays, `_predicts`), then Newton on
     the requested rule; a point whose coarse run went non-finite restarts from ``x``.
     Returns the final creeps (updated in place where possible) and state."""
     if predict and _predicts(options, flat.size):
         coarse = replace(options, quadrature=options.predictor, tol=options.predictor_tol)
         start = x.copy()
-        _newton(flat, x, iterations, coarse, pinned=pinned)
+        _newton(flat, x, iterations, coarse, pinned, patience)
         x = np.where(np.all(np.isfinite(x), axis=-1, keepdims=True), x, start)
-    return x, _newton(flat, x, iterations, options, pinned=pinned)
+    return x, _newton(flat, x, iterations, options, pinned, patience)
 
 
 def _predicts(options, n_points: int) -> bool:
@@ -236,12 +235,13 @@ def _predicts(options, n_points: int) -> bool:
 CONFIRM_NORM = 1e-6
 
 
-def _newton(flat, x, iterations, options, pinned=None):
+def _newton(flat, x, iterations, options, pinned=None, patience=None):
     """Damped Newton on the points of the 1-D batch ``flat``; updates ``x`` in place.
 
     ``pinned``: the index of a contact whose creep stays at its value in ``x``; the
     output balance (the last residual) is then dropped, the output torque being the
-    unknown it defines (`solve_pinned`).
+    unknown it defines (`solve_pinned`). ``patience``: a point stops (unconverged) after
+    that many consecutive iterations without a lower residual norm; None: never.
 
     Returns the state at the final ``x`` of every point: each point's last evaluation,
     or a fresh one for the points whose last move was not evaluated.
@@ -258,6 +258,7 @@ def _newton(flat, x, iterations, options, pinned=None):
         fresh=np.zeros(n, dtype=bool),
     )
     fresh = it.fresh
+    stall = np.zeros(n, dtype=int)  # iterations since each point's norm last fell
     confirm = False  # every active point is expected to converge: no Jacobian needed
     m = free.size
     for _ in range(options.max_iterations):
@@ -276,9 +277,15 @@ def _newton(flat, x, iterations, options, pinned=None):
         final = state if final is None or whole else _scatter(final, state, active)
         fresh[active] = True
         res = np.ascontiguousarray(state.residual[:, :m])
-        active, confirm = _advance(
+        before = it.best[active]
+        kept, confirm = _advance(
             it, active, res, np.ascontiguousarray(jac), free, options.tol, confirm
         )
+        if patience is not None:
+            stall[active] = np.where(it.best[active] < before, 0, stall[active] + 1)
+            going = kept[stall[kept] < patience]
+            kept, confirm = going, confirm and going.size == kept.size
+        active = kept
     stale = np.flatnonzero(~fresh)
     if final is None or stale.size == n:
         return evaluate(flat, x, options.quadrature)
@@ -332,7 +339,7 @@ def _advance(it: _Iterates, active, res, jac, free, tol, confirm):
     (``confirm``) the others go round again at the same creeps. Otherwise a point whose
     norm did not fall below its best goes back along half its previous step (and stops
     if that step is below 1e-14), and the others take the Newton step, capped in size and
-    kept inside `CREEP_BOUNDS` (`_cap`; least squares where the matrix is singular).
+    kept inside `CREEP_BOUNDS` (`ballcvt.solvers.newton_step.cap`; least squares where the matrix is singular).
 
     Returns the points still iterating and whether the next evaluation only confirms
     convergence (every step taken from a norm at most `CONFIRM_NORM`, none went back).
@@ -340,7 +347,7 @@ def _advance(it: _Iterates, active, res, jac, free, tol, confirm):
     lo, hi = CREEP_BOUNDS
     keep = np.zeros(active.size, dtype=np.bool_)
     singular = np.zeros(active.size, dtype=np.bool_)
-    step = _advance_compiled if COMPILED else _advance_python
+    step = advance_compiled if COMPILED else advance_python
     x, prev_x, prev_dx, fresh = it.x, it.prev_x, it.prev_dx, it.fresh
     near = step(
         active, res, jac, x, free, it.best, prev_x, prev_dx, fresh, tol, confirm,
@@ -348,135 +355,12 @@ def _advance(it: _Iterates, active, res, jac, free, tol, confirm):
     )  # fmt: skip
     for k in np.flatnonzero(singular):  # rare: a least-squares step, capped
         i = active[k]
-        dx = _cap(_lstsq(jac[k], res[k])[None, :], x[i, free][None, :])[0]
+        dx = cap(_lstsq(jac[k], res[k])[None, :], x[i, free][None, :])[0]
         prev_x[i] = x[i]
         prev_dx[i] = dx
         x[i, free] += dx
         fresh[i] = False
     return active[keep], bool(near)
-
-
-def _gauss_python(a, b, dx):
-    """Solve ``a dx = b`` (``m x m``) by Gaussian elimination with partial pivoting, in
-    place (``a`` and ``b`` are overwritten); False, with ``dx`` untouched, if singular."""
-    m = b.size
-    for c in range(m):
-        p = c
-        for r in range(c + 1, m):
-            if abs(a[r, c]) > abs(a[p, c]):
-                p = r
-        if a[p, c] == 0.0:
-            return False
-        if p != c:
-            for q in range(m):
-                a[c, q], a[p, q] = a[p, q], a[c, q]
-            b[c], b[p] = b[p], b[c]
-        for r in range(c + 1, m):
-            f = a[r, c] / a[c, c]
-            for q in range(c, m):
-                a[r, q] -= f * a[c, q]
-            b[r] -= f * b[c]
-    for r in range(m - 1, -1, -1):
-        v = b[r]
-        for q in range(r + 1, m):
-            v -= a[r, q] * dx[q]
-        dx[r] = v / a[r, r]
-    return True
-
-
-_gauss = njit(cache=True)(_gauss_python) if njit is not None else _gauss_python
-
-
-# many parameters: compiled by numba, which takes arrays and scalars (an object would not
-# compile); `_advance` is the typed entry point.
-def _advance_python(
-    active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm, max_step, lo, hi,
-    confirm_norm, keep, singular,
-):  # fmt: skip
-    """`_advance`'s loop: Gaussian elimination with partial pivoting for the steps, then
-    the caps of `_cap`; writes ``keep`` and ``singular`` per point. Compiled by numba
-    (`_advance_compiled`); this plain-Python form runs only without numba."""
-    m = free.size
-    a = np.empty((m, m))
-    b = np.empty(m)
-    dx = np.empty(m)
-    any_back = False
-    all_near = True
-    for k in range(active.size):
-        i = active[k]
-        norm = 0.0
-        for r in range(m):
-            norm = max(norm, abs(res[k, r]))
-        if not math.isfinite(norm):
-            norm = math.inf
-        if norm <= tol:
-            continue  # done
-        if confirm:
-            keep[k] = True
-            continue
-        if not norm < best[i]:  # worse (or NaN): half the previous step back
-            any_back = True
-            big = 0.0
-            for r in range(m):
-                prev_dx[i, r] *= 0.5
-                x[i, free[r]] = prev_x[i, free[r]] + prev_dx[i, r]
-                big = max(big, abs(prev_dx[i, r]))
-            fresh[i] = False
-            keep[k] = big > 1e-14
-            continue
-        keep[k] = True
-        all_near = all_near and norm <= confirm_norm
-        best[i] = norm
-        for r in range(m):
-            b[r] = -res[k, r]
-            for c in range(m):
-                a[r, c] = jac[k, r, c]
-        if not _gauss(a, b, dx):
-            singular[k] = True
-            continue
-        big = 0.0  # the caps of `_cap`
-        for r in range(m):
-            if not math.isfinite(dx[r]):
-                dx[r] = 0.0
-            big = max(big, abs(dx[r]))
-        scale = min(1.0, max_step / max(big, 1e-300))
-        for r in range(m):
-            dx[r] *= scale
-        scale = 1.0
-        for r in range(m):
-            xr = x[i, free[r]]
-            room = 0.5 * (hi - xr) if dx[r] > 0 else 0.5 * (xr - lo)
-            if abs(dx[r]) > room:
-                scale = min(scale, room / max(abs(dx[r]), 1e-300))
-        for r in range(m):
-            prev_dx[i, r] = dx[r] * scale
-        for q in range(x.shape[1]):
-            prev_x[i, q] = x[i, q]
-        for r in range(m):
-            x[i, free[r]] += prev_dx[i, r]
-        fresh[i] = False
-    return not confirm and all_near and not any_back  # after a confirmation: the Jacobian
-
-
-def _cap(dx, x):
-    """Steps ``(n, m)`` with non-finite components set to 0, the largest ``|dx|`` capped at
-    `MAX_STEP`, and no component more than half-way to a bound of `CREEP_BOUNDS` (NumPy)."""
-    dx = np.where(np.isfinite(dx), dx, 0.0)
-    big = np.max(np.abs(dx), axis=-1, keepdims=True)
-    dx = dx * np.minimum(1.0, MAX_STEP / np.maximum(big, 1e-300))
-    lo, hi = CREEP_BOUNDS
-    # Never step more than half-way to a bound.
-    room = np.where(dx > 0, 0.5 * (hi - x), 0.5 * (x - lo))
-    scale = np.min(
-        np.where(np.abs(dx) > room, room / np.maximum(np.abs(dx), 1e-300), 1.0),
-        axis=-1,
-        keepdims=True,
-    )
-    return dx * scale
-
-
-COMPILED = njit is not None
-_advance_compiled: Any = njit(cache=True)(_advance_python) if COMPILED else None
 
 
 def _lstsq(jac, res):

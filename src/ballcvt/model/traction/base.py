@@ -36,7 +36,7 @@ from .contact import ContactState, contact_coefficients, legacy_arguments
 from .isothermal import ShearLaw, shear_coefficients
 from .lateral import lateral_shear_coefficients, thermal_lateral_coefficients
 from .quadrature import Quadrature
-from .thermal import thermal_law_coefficients, thermal_law_rise
+from .thermal import thermal_law_coefficients, thermal_law_film_coefficients, thermal_law_rise
 
 __all__ = [
     "TractionLaw",
@@ -92,6 +92,12 @@ class TractionLaw:
         return the one the drive reaches, followed continuously in torque from zero torque
         at the point's speed (`ballcvt.solvers.continuation`, docs/model.md §14); a law
         opts in by this attribute alone. False (the paper's law): Newton from any start.
+    film_coefficients : callable, optional
+        ``(state, fluid, quadrature)`` -> ``mu, chi, dmu, dchi`` with a fourth derivative
+        column, by ``log h`` at a fixed ``u_ref / h`` (as a lubrication model's,
+        `ballcvt.model.lubrication`): for a law whose coefficients depend on the film
+        otherwise than through ``u_ref / h`` (the thermal law's film temperature), so that
+        Newton's Jacobians include it. None: through ``u_ref / h`` only (Eq. 53).
     """
 
     name: str
@@ -104,6 +110,7 @@ class TractionLaw:
     with_rise: Callable[[ContactState, Fluid, Quadrature], tuple] | None = None
     multiple_equilibria: bool = False
     lateral: Callable[[ContactState, Fluid, Any, Quadrature, Any], tuple] | None = None
+    film_coefficients: Callable[[ContactState, Fluid, Quadrature], tuple] | None = None
 
 
 def _viscoelastic(state: ContactState, fluid: Fluid, quadrature: Quadrature, derivatives: bool):
@@ -157,6 +164,7 @@ for _law in (
         with_rise=thermal_law_rise,
         multiple_equilibria=True,
         lateral=thermal_lateral_coefficients,
+        film_coefficients=thermal_law_film_coefficients,
     ),
     TractionLaw(
         "viscoelastic",

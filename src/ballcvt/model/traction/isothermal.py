@@ -179,7 +179,14 @@ def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool, modulus: f
     """The compiled kernels' sums ``(8, n)``: both rules and their blend in one call."""
     out = np.empty((params.shape[1], kernels.N_OUT))
     par = np.ascontiguousarray(params)
-    fl, tab = _viscosity_table(fluid, table_pressure(float(par[4].max())), modulus)
+    table = kernel_table(fluid, float(par[4].max()), modulus)
+    kernels.traction_kernel(par, kernel_rule(q), table, derivatives, out)
+    return out.T
+
+
+def kernel_rule(q: Quadrature) -> tuple:
+    """The rule ``q`` as the compiled kernels take it: ``(r01, wr, pole_rays,
+    centred_rays, blend)`` (`ballcvt.model.traction.kernels.traction_kernel`)."""
     r01, wr, sin_phi, cos_phi = _ray_nodes(q.n_radial, q.n_angular)
     rays = (sin_phi, cos_phi, 2.0 * np.pi / q.n_angular)
     if q.method == "centred":
@@ -187,8 +194,13 @@ def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool, modulus: f
     else:
         _, _, sin_c, cos_c = _ray_nodes(q.n_radial, q.n_centred)
         centred, blend = (sin_c, cos_c, 2.0 * np.pi / q.n_centred), BLEND
-    kernels.traction_kernel(par, (r01, wr, rays, centred, blend), (fl, tab), derivatives, out)
-    return out.T
+    return r01, wr, rays, centred, blend
+
+
+def kernel_table(fluid: Fluid, p_max: float, modulus: float = 0.0) -> tuple:
+    """The viscosity table ``(fl, tab)`` the compiled kernels use for contacts up to
+    ``p_max`` [Pa] (`table_pressure`; cached)."""
+    return _viscosity_table(fluid, table_pressure(p_max), modulus)
 
 
 def node_rheology(p_max, x, y, fluid: Fluid):

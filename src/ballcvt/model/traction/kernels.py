@@ -45,7 +45,7 @@ try:
 except ImportError:  # pragma: no cover - numba is a declared dependency
     njit = None
 
-__all__ = ["AVAILABLE", "traction_kernel", "N_OUT", "viscosity_table", "exp_neg"]
+__all__ = ["AVAILABLE", "traction_kernel", "N_OUT", "viscosity_table", "exp_neg", "contact_sums"]
 
 AVAILABLE = njit is not None
 #: Fast-math flags that keep IEEE NaN and infinity semantics (a NaN must propagate).
@@ -276,62 +276,55 @@ if AVAILABLE:
         return a0, a1, a2, a3, a4, a5, a6, a7
 
     @njit(cache=True, fastmath=_FAST, inline="always")
-    def _blended(par, rule, fl, tab, deriv, ve, out):
-        """Every contact's scaled sums (rows of ``out``): the pole-centred rule while the
-        pole is well inside, the centred rule once it is outside, blended in between with
-        the weight ``w = t^2 (3 - 2 t)``, ``t = (blend[1] - |Y_p|) / (blend[1] - blend[0])``
-        clipped to [0, 1] (`ballcvt.model.traction.isothermal`); ``blend[1] <= blend[0]``: the
-        centred rule alone. A NaN pole gives NaN sums. ``rule``: ``(r01, wr, pole_rays,
-        centred_rays, blend)`` (`traction_kernel`)."""
+    def contact_sums(par, i, h, rule, table, deriv, ve):
+        """The scaled sums of contact ``i`` (a column of ``par``) at the film ``h`` [m]: the
+        pole-centred rule while the pole is well inside, the centred rule once it is
+        outside, blended in between with the weight ``w = t^2 (3 - 2 t)``, ``t = (blend[1] -
+        |Y_p|) / (blend[1] - blend[0])`` clipped to [0, 1]
+        (`ballcvt.model.traction.isothermal`); ``blend[1] <= blend[0]``: the centred rule
+        alone. A NaN pole gives NaN sums. ``rule``: ``(r01, wr, pole_rays, centred_rays,
+        blend)``, ``table``: ``(fl, tab)`` (`traction_kernel`). The thermal law's kernel
+        calls it at its own films (`ballcvt.model.traction.thermal_kernels`)."""
         pow2 = _POW2
+        fl, tab = table
         r01, wr, pole_rays, centred_rays, blend = rule
         sp, cp, dp = pole_rays
         sc, cc, dc = centred_rays
         lo, hi = blend
+        cr, sg, ax, ay, pm = par[0, i], par[1, i], par[2, i], par[3, i], par[4, i]
+        fn, rc, u = par[5, i], par[6, i], par[7, i]
+        c = (u * sg * ay / rc, u * sg * ax / rc, u * ay / rc, u * ax / rc, u, 1.0 / h, pm, ax, ay)
+        sy = sg * ay / rc
+        yp = cr / sy if abs(sy) > 1e-300 else math.inf  # Y_p (`pole_position`)
+        w = 0.0
+        if hi > lo:
+            t = (hi - abs(yp)) / (hi - lo)
+            if t > 1.0:
+                t = 1.0
+            elif t < 0.0:
+                t = 0.0
+            w = t * t * (3.0 - 2.0 * t)  # NaN stays NaN
+        b0 = b1 = b2 = b3 = b4 = b5 = b6 = b7 = 0.0
+        if w > 0.0:
+            s = _contact(True, yp, 0.0, c, r01, wr, sp, cp, dp, fl, tab, pow2, deriv, ve)
+            b0, b1, b2, b3 = w * s[0], w * s[1], w * s[2], w * s[3]
+            b4, b5, b6, b7 = w * s[4], w * s[5], w * s[6], w * s[7]
+        if not w >= 1.0:
+            k = 1.0 - w
+            s = _contact(False, 0.0, cr * u, c, r01, wr, sc, cc, dc, fl, tab, pow2, deriv, ve)
+            b0, b1, b2, b3 = b0 + k * s[0], b1 + k * s[1], b2 + k * s[2], b3 + k * s[3]
+            b4, b5, b6, b7 = b4 + k * s[4], b5 + k * s[5], b6 + k * s[6], b7 + k * s[7]
+        f = ax * ay / fn
+        fc = f / rc
+        return b0 * f, b1 * fc, b2 * f, b3 * f, b4 * f, b5 * fc, b6 * fc, b7 * fc
+
+    @njit(cache=True, fastmath=_FAST, inline="always")
+    def _blended(par, rule, fl, tab, deriv, ve, out):
+        """Every contact's scaled sums (rows of ``out``, `contact_sums`)."""
         for i in range(par.shape[1]):
-            cr, sg, ax, ay, pm = par[0, i], par[1, i], par[2, i], par[3, i], par[4, i]
-            fn, rc, u, h = par[5, i], par[6, i], par[7, i], par[8, i]
-            c = (
-                u * sg * ay / rc,
-                u * sg * ax / rc,
-                u * ay / rc,
-                u * ax / rc,
-                u,
-                1.0 / h,
-                pm,
-                ax,
-                ay,
-            )
-            sy = sg * ay / rc
-            yp = cr / sy if abs(sy) > 1e-300 else math.inf  # Y_p (`pole_position`)
-            w = 0.0
-            if hi > lo:
-                t = (hi - abs(yp)) / (hi - lo)
-                if t > 1.0:
-                    t = 1.0
-                elif t < 0.0:
-                    t = 0.0
-                w = t * t * (3.0 - 2.0 * t)  # NaN stays NaN
-            b0 = b1 = b2 = b3 = b4 = b5 = b6 = b7 = 0.0
-            if w > 0.0:
-                s = _contact(True, yp, 0.0, c, r01, wr, sp, cp, dp, fl, tab, pow2, deriv, ve)
-                b0, b1, b2, b3 = w * s[0], w * s[1], w * s[2], w * s[3]
-                b4, b5, b6, b7 = w * s[4], w * s[5], w * s[6], w * s[7]
-            if not w >= 1.0:
-                k = 1.0 - w
-                s = _contact(False, 0.0, cr * u, c, r01, wr, sc, cc, dc, fl, tab, pow2, deriv, ve)
-                b0, b1, b2, b3 = b0 + k * s[0], b1 + k * s[1], b2 + k * s[2], b3 + k * s[3]
-                b4, b5, b6, b7 = b4 + k * s[4], b5 + k * s[5], b6 + k * s[6], b7 + k * s[7]
-            f = ax * ay / fn
-            fc = f / rc
-            out[i, 0] = b0 * f
-            out[i, 1] = b1 * fc
-            out[i, 2] = b2 * f
-            out[i, 3] = b3 * f
-            out[i, 4] = b4 * f
-            out[i, 5] = b5 * fc
-            out[i, 6] = b6 * fc
-            out[i, 7] = b7 * fc
+            s = contact_sums(par, i, par[8, i], rule, (fl, tab), deriv, ve)
+            for j in range(N_OUT):
+                out[i, j] = s[j]
 
     # the four specialisations (derivatives, visco-elastic): flags fixed at compile time
     @njit(cache=True, fastmath=_FAST)
@@ -374,4 +367,4 @@ if AVAILABLE:
 
 
 else:  # pragma: no cover
-    traction_kernel = exp_neg = None  # type: ignore[assignment]
+    traction_kernel = exp_neg = contact_sums = None  # type: ignore[assignment]

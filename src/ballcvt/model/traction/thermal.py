@@ -40,12 +40,14 @@ from __future__ import annotations
 import numpy as np
 
 from ...params.models import Fluid
+from . import kernels, thermal_kernels
 from .contact import ContactState, legacy_arguments
-from .isothermal import shear_coefficients
+from .isothermal import kernel_rule, kernel_table, shear_coefficients
 from .quadrature import Quadrature
 
 __all__ = [
     "thermal_law_coefficients",
+    "thermal_law_film_coefficients",
     "thermal_law_rise",
     "temperature_rise",
     "thermal_coefficients",
@@ -158,14 +160,36 @@ def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature):
 
     Newton converges on `TEMPERATURE_RULE`; one Newton step on ``quadrature`` then moves
     the rise to that rule's fixed point, and the coefficients with it (to first order:
-    the remaining error is the square of a step of a fraction of a kelvin).
+    the remaining error is the square of a step of a fraction of a kelvin). In one
+    compiled call (`ballcvt.model.traction.thermal_kernels`) when both rules use the
+    compiled engine; the NumPy path (`_solve_rise`) otherwise.
     """
+    compiled = quadrature.engine == TEMPERATURE_RULE.engine == "auto"
+    if compiled and kernels.AVAILABLE and con.c.size:
+        return _compiled(con, quadrature)
     dt = _solve_rise(con, TEMPERATURE_RULE)
     mu, chi, dmu, dchi = con.at(dt, quadrature)
     r = con.resistance
     step = -(dt - r * con.flux(mu, chi)) / (1.0 - r * con.flux(dmu[:, 3], dchi[:, 3]))
     step = np.maximum(step, -dt)  # the rise stays >= 0
     return dt + step, mu + dmu[:, 3] * step, chi + dchi[:, 3] * step, dmu, dchi
+
+
+def _compiled(con: _Contacts, quadrature: Quadrature):
+    """`_rise_and_coefficients` by the compiled kernel (the same steps, per contact)."""
+    par = np.ascontiguousarray(
+        np.stack(np.broadcast_arrays(con.c, con.s, con.ax, con.ay, con.pm, con.fn, con.rc,
+                                     con.u, con.h)), dtype=float
+    )  # fmt: skip
+    out = np.empty((par.shape[1], thermal_kernels.N_THERMAL))
+    contact = (
+        np.ascontiguousarray(con.load_flux * con.u, dtype=float),
+        np.ascontiguousarray(con.resistance, dtype=float),
+    )
+    rules = (kernel_rule(TEMPERATURE_RULE), kernel_rule(quadrature))
+    table = kernel_table(con.fluid, float(par[4].max()))
+    thermal_kernels.thermal_kernel(par, contact, rules, table, (con.beta_l, con.b), out)
+    return out[:, 0], out[:, 1], out[:, 2], out[:, 3:7], out[:, 7:11]
 
 
 def temperature_rise(
@@ -207,6 +231,37 @@ def thermal_law_coefficients(
     _, mu, chi, dmu, dchi = _rise_and_coefficients(con, quadrature)
     if not derivatives:
         return mu.reshape(shape), chi.reshape(shape)
+    return _with_derivatives(con, (mu, chi, dmu, dchi), shape, film=False)
+
+
+def thermal_law_film_coefficients(
+    state: ContactState, fluid: Fluid, quadrature: Quadrature = Quadrature()
+):
+    """`thermal_law_coefficients` with its derivatives, and a fourth column: by ``log h``
+    at a fixed ``u_ref / h`` (the lubrication models' fourth column,
+    `ballcvt.model.lubrication`).
+
+    Eq. 53 depends on the speed and the film through ``u_ref / h`` only, the film
+    temperature does not: the thermal resistance grows with ``h`` (the film's, ``h / 8
+    k``) and falls as ``u^(-1/2)`` (the flash's), and the heat grows with ``u``. Moving
+    ``log u`` and ``log h`` together (``d log h`` at fixed ``u / h``) leaves Eq. 53 at a
+    fixed rise and moves the rise by ``d dT = q (2 R - 3 R_flash / 2) / (1 - R dq/ddT)``
+    (implicit function theorem). With it Newton's Jacobian has the film thickness's
+    dependence on the creeps too, and converges quadratically.
+
+    Parameters as in `thermal_law_coefficients`; returns ``mu, chi`` [-] and ``dmu,
+    dchi`` of shape ``(..., 4)``.
+    """
+    con, shape = _Contacts.from_state(state, fluid)
+    _, mu, chi, dmu, dchi = _rise_and_coefficients(con, quadrature)
+    return _with_derivatives(con, (mu, chi, dmu, dchi), shape, film=True)
+
+
+def _with_derivatives(con: _Contacts, values, shape, film: bool):
+    """``mu, chi`` and their total derivatives (the rise's response included) by the creep
+    term, the spin, ``log u`` at a fixed film and, with ``film``, ``log h`` at a fixed
+    ``u / h``; ``values``: ``mu, chi`` and their 4-column partials at a fixed rise."""
+    mu, chi, dmu, dchi = values
     q = con.flux(mu, chi)
     k = con.load_flux * con.u
     r = con.resistance
@@ -214,14 +269,20 @@ def thermal_law_coefficients(
     # d q / d(c, sigma, log u): q is also linear in c, sigma and proportional to u
     dq = slopes[:, :3] + np.column_stack([k * mu, k * chi, q])
     dr = np.column_stack([np.zeros_like(q), np.zeros_like(q), -0.5 * con.r_flash])
+    if film:  # d log h at fixed u / h: dq = q, dR = R - 3 R_flash / 2 (the docstring)
+        dq = np.column_stack([dq, q])
+        dr = np.column_stack([dr, r - 1.5 * con.r_flash])
     d_dt = (r[:, None] * dq + q[:, None] * dr) / (1.0 - r * slopes[:, 3])[:, None]
-    dmu_total = dmu[:, :3] + dmu[:, 3:] * d_dt
-    dchi_total = dchi[:, :3] + dchi[:, 3:] * d_dt
+    n = d_dt.shape[1]
+    dmu_total = dmu[:, 3:] * d_dt
+    dchi_total = dchi[:, 3:] * d_dt
+    dmu_total[:, :3] += dmu[:, :3]  # Eq. 53 at a fixed rise: no d log h at fixed u / h
+    dchi_total[:, :3] += dchi[:, :3]
     return (
         mu.reshape(shape),
         chi.reshape(shape),
-        dmu_total.reshape(shape + (3,)),
-        dchi_total.reshape(shape + (3,)),
+        dmu_total.reshape(shape + (n,)),
+        dchi_total.reshape(shape + (n,)),
     )
 
 

@@ -1,0 +1,112 @@
+"""Compiled (numba) film-temperature solve of the thermal law: the same steps as its NumPy
+path (`ballcvt.model.traction.thermal`), one contact at a time.
+
+The NumPy path iterates Newton on the rise ``dT = R q(dT)`` over whole arrays, calling the
+traction kernel once per iteration on the contacts not yet converged (four to six times
+per evaluation of the law), with the array bookkeeping of each call in Python. Here each
+contact runs its own iterations inside one compiled call, on the traction sums of
+`ballcvt.model.traction.kernels.contact_sums` at the film ``h exp((beta - beta_L) dT)``:
+the same safeguarded Newton on the cheap rule, the same stopping test, then the same one
+step on the requested rule. A contact's iterations never depended on the others', so the
+results are those of the NumPy path to round-off (tests compare the two).
+
+Each contact's row of ``out`` holds ``(dT, mu, chi, dmu/dc, dmu/dsigma, dmu/dlog u,
+dmu/ddT, dchi/dc, dchi/dsigma, dchi/dlog u, dchi/ddT)`` (`thermal_kernel`).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from .kernels import _FAST, AVAILABLE, contact_sums
+
+njit: Any
+try:
+    from numba import njit
+except ImportError:  # pragma: no cover - numba is a declared dependency
+    njit = None
+
+__all__ = ["thermal_kernel", "N_THERMAL"]
+
+#: Columns of the thermal kernel's output per contact.
+N_THERMAL = 11
+
+if AVAILABLE:
+
+    @njit(cache=True, fastmath=_FAST, inline="always")
+    def _at(par, i, dt, rule, table, heat):
+        """``mu, chi``, their partials ``(c, sigma, log u)`` and ``d/ddT`` of contact ``i`` at
+        the rise ``dt`` [K] (``_Contacts.at`` of the NumPy path); ``heat``: ``(beta_L,
+        beta - beta_L)`` [1/K]."""
+        beta_l, b = heat
+        f_t = math.exp(-beta_l * dt)
+        s = contact_sums(
+            par, i, par[8, i] * math.exp(b * dt), rule, table[0], table[1], True, False
+        )
+        mu, chi = f_t * s[0], f_t * s[1]
+        m0, m1, m2 = f_t * s[2], f_t * s[3], f_t * s[4]
+        c0, c1, c2 = f_t * s[5], f_t * s[6], f_t * s[7]
+        return mu, chi, m0, m1, m2, -beta_l * mu - b * m2, c0, c1, c2, -beta_l * chi - b * c2
+
+    @njit(cache=True, fastmath=_FAST, inline="always")
+    def _rise(par, i, k, r, cheap, table, heat):
+        """Safeguarded Newton on ``dT = r q(dT)`` on the rule ``cheap``, kept inside the
+        bracket ``[0, r q(0)]`` (``_solve_rise``: tolerance 1e-6, 60 iterations) [K]."""
+        cr, sg = par[0, i], par[1, i]
+        dt, lo, hi = 0.0, 0.0, math.inf
+        for _ in range(60):
+            v = _at(par, i, dt, cheap, table, heat)
+            q = k * (cr * v[0] + sg * v[1])
+            q_t = k * (cr * v[5] + sg * v[9])
+            g = dt - r * q
+            if g <= 0.0:
+                lo = dt
+            if g >= 0.0:
+                hi = dt
+            slope = 1.0 - r * q_t
+            new = dt - g / (slope if slope > 0.0 else math.inf)
+            if (new <= lo) or (new >= hi) or (slope <= 0.0):
+                new = 0.5 * (lo + hi) if math.isfinite(hi) else r * q
+            step = abs(new - dt)
+            dt = new
+            if not step > 1e-6 * (1.0 + abs(new)):
+                break
+        return dt
+
+    @njit(cache=True, fastmath=_FAST)
+    def _thermal(par, contact, cheap, rule, table, heat, out):
+        """Every contact's rise and coefficients (rows of ``out``, module docstring)."""
+        k_all, r_all = contact
+        for i in range(par.shape[1]):
+            cr, sg, k, r = par[0, i], par[1, i], k_all[i], r_all[i]
+            dt = _rise(par, i, k, r, cheap, table, heat)
+            v = _at(par, i, dt, rule, table, heat)
+            q = k * (cr * v[0] + sg * v[1])
+            q_t = k * (cr * v[5] + sg * v[9])
+            step = -(dt - r * q) / (1.0 - r * q_t)
+            if step < -dt:  # the rise stays >= 0 (NaN stays NaN)
+                step = -dt
+            out[i, 0] = dt + step
+            out[i, 1] = v[0] + v[5] * step
+            out[i, 2] = v[1] + v[9] * step
+            for j in range(4):
+                out[i, 3 + j] = v[2 + j]
+                out[i, 7 + j] = v[6 + j]
+
+    def thermal_kernel(par, contact, rules, table, heat, out):
+        """The film temperature rise and the coefficients of every contact (rows of
+        ``out``, ``(n, N_THERMAL)``, module docstring).
+
+        ``par``: the contacts' ``(c, sigma, a_x, a_y, p_max, F_N, r_c, u, h)`` as rows
+        ``(9, n)``; ``contact``: ``(F_N u / (pi a_x a_y) [W/m^2], R [K m^2/W])`` per
+        contact, the flux per unit of ``c mu + sigma chi`` and the thermal resistance;
+        ``rules``: the cheap rule the rise converges on and the requested one, each as
+        `ballcvt.model.traction.kernels.traction_kernel` takes it; ``table``: ``(fl, tab)``
+        of the rigid-plastic film (`viscosity_table`); ``heat``: ``(beta_L, beta -
+        beta_L)`` [1/K].
+        """
+        _thermal(par, contact, rules[0], rules[1], table, heat, out)
+
+else:  # pragma: no cover
+    thermal_kernel = None  # type: ignore[assignment]

@@ -1,0 +1,147 @@
+"""The compiled update of the batched Newton solver (`ballcvt.solvers.newton._advance`):
+per point, the ``n_c x n_c`` Newton system by Gaussian elimination with partial pivoting,
+the caps of the step and the back-off of a step whose residual grew. A plain-Python form
+runs where numba is missing."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .options import CREEP_BOUNDS
+
+njit: Any
+try:
+    from numba import njit
+except ImportError:  # pragma: no cover - numba is a declared dependency
+    njit = None
+
+__all__ = ["COMPILED", "MAX_STEP", "advance_compiled", "advance_python", "cap"]
+
+#: Largest change of any creep in one Newton step [-].
+MAX_STEP = 0.05
+
+
+def _gauss_python(a, b, dx):
+    """Solve ``a dx = b`` (``m x m``) by Gaussian elimination with partial pivoting, in
+    place (``a`` and ``b`` are overwritten); False, with ``dx`` untouched, if singular."""
+    m = b.size
+    for c in range(m):
+        p = c
+        for r in range(c + 1, m):
+            if abs(a[r, c]) > abs(a[p, c]):
+                p = r
+        if a[p, c] == 0.0:
+            return False
+        if p != c:
+            for q in range(m):
+                a[c, q], a[p, q] = a[p, q], a[c, q]
+            b[c], b[p] = b[p], b[c]
+        for r in range(c + 1, m):
+            f = a[r, c] / a[c, c]
+            for q in range(c, m):
+                a[r, q] -= f * a[c, q]
+            b[r] -= f * b[c]
+    for r in range(m - 1, -1, -1):
+        v = b[r]
+        for q in range(r + 1, m):
+            v -= a[r, q] * dx[q]
+        dx[r] = v / a[r, r]
+    return True
+
+
+_gauss = njit(cache=True)(_gauss_python) if njit is not None else _gauss_python
+
+
+# many parameters: compiled by numba, which takes arrays and scalars (an object would not
+# compile); `_advance` is the typed entry point.
+def advance_python(
+    active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm, max_step, lo, hi,
+    confirm_norm, keep, singular,
+):  # fmt: skip
+    """`_advance`'s loop: Gaussian elimination with partial pivoting for the steps, then
+    the caps of `cap`; writes ``keep`` and ``singular`` per point. Compiled by numba
+    (`advance_compiled`); this plain-Python form runs only without numba."""
+    m = free.size
+    a = np.empty((m, m))
+    b = np.empty(m)
+    dx = np.empty(m)
+    any_back = False
+    all_near = True
+    for k in range(active.size):
+        i = active[k]
+        norm = 0.0
+        for r in range(m):
+            norm = max(norm, abs(res[k, r]))
+        if not math.isfinite(norm):
+            norm = math.inf
+        if norm <= tol:
+            continue  # done
+        if confirm:
+            keep[k] = True
+            continue
+        if not norm < best[i]:  # worse (or NaN): half the previous step back
+            any_back = True
+            big = 0.0
+            for r in range(m):
+                prev_dx[i, r] *= 0.5
+                x[i, free[r]] = prev_x[i, free[r]] + prev_dx[i, r]
+                big = max(big, abs(prev_dx[i, r]))
+            fresh[i] = False
+            keep[k] = big > 1e-14
+            continue
+        keep[k] = True
+        all_near = all_near and norm <= confirm_norm
+        best[i] = norm
+        for r in range(m):
+            b[r] = -res[k, r]
+            for c in range(m):
+                a[r, c] = jac[k, r, c]
+        if not _gauss(a, b, dx):
+            singular[k] = True
+            continue
+        big = 0.0  # the caps of `cap`
+        for r in range(m):
+            if not math.isfinite(dx[r]):
+                dx[r] = 0.0
+            big = max(big, abs(dx[r]))
+        scale = min(1.0, max_step / max(big, 1e-300))
+        for r in range(m):
+            dx[r] *= scale
+        scale = 1.0
+        for r in range(m):
+            xr = x[i, free[r]]
+            room = 0.5 * (hi - xr) if dx[r] > 0 else 0.5 * (xr - lo)
+            if abs(dx[r]) > room:
+                scale = min(scale, room / max(abs(dx[r]), 1e-300))
+        for r in range(m):
+            prev_dx[i, r] = dx[r] * scale
+        for q in range(x.shape[1]):
+            prev_x[i, q] = x[i, q]
+        for r in range(m):
+            x[i, free[r]] += prev_dx[i, r]
+        fresh[i] = False
+    return not confirm and all_near and not any_back  # after a confirmation: the Jacobian
+
+
+def cap(dx, x):
+    """Steps ``(n, m)`` with non-finite components set to 0, the largest ``|dx|`` capped at
+    `MAX_STEP`, and no component more than half-way to a bound of `CREEP_BOUNDS` (NumPy)."""
+    dx = np.where(np.isfinite(dx), dx, 0.0)
+    big = np.max(np.abs(dx), axis=-1, keepdims=True)
+    dx = dx * np.minimum(1.0, MAX_STEP / np.maximum(big, 1e-300))
+    lo, hi = CREEP_BOUNDS
+    # Never step more than half-way to a bound.
+    room = np.where(dx > 0, 0.5 * (hi - x), 0.5 * (x - lo))
+    scale = np.min(
+        np.where(np.abs(dx) > room, room / np.maximum(np.abs(dx), 1e-300), 1.0),
+        axis=-1,
+        keepdims=True,
+    )
+    return dx * scale
+
+
+COMPILED = njit is not None
+advance_compiled: Any = njit(cache=True)(advance_python) if COMPILED else None

@@ -6,19 +6,20 @@ solves per point. Here every point of a batch is advanced together, so a sweep o
 cycle of ``N`` points costs a few batched solves of ``N`` points each.
 
 Method. Over the Table I drive and the ``hub`` (ratios 0.5-2, torques up to 90 N m, 500 to
-5000 rpm) the optimum sits inside the feasible range, away from the creep and pressure
-limits: it is the maximum of a smooth, concave-near-the-top efficiency ``eta(u)``,
-``u = ln F_N0``. Each point runs a safeguarded successive parabolic interpolation on
-``eta(u)`` (Brent, *Algorithms for Minimization without Derivatives*, 1973, ch. 5):
-three forces around a first guess, then one new force per round, the vertex of the
-parabola through the best force and its two neighbours (a golden-section step where the
-parabola is not concave or its vertex falls outside them; an expansion step, up to the
-pressure bound ``F_p`` or down to ``min_force``, while the best force is an end one).
-Each new force is solved warm from the creeps of the best one (the batched Newton method,
-`solve_batch`). A point is certified when its best force is bracketed by feasible ones
-(converged within the creep limit), the parabola is concave, its vertex lies within
-`STEP` of the best force and the nearest neighbour within `NEAR`: the efficiency then
-misses its maximum by about ``|eta''| STEP^2 / 2`` (some 1e-9).
+5000 rpm, the isothermal and the viscoelastic laws) the optimum sits inside the feasible
+range, away from the creep and pressure limits: it is the maximum of a smooth efficiency
+``eta(u)``, ``u = ln F_N0``, where ``d eta / du = 0``. Each point runs Newton's method on
+that condition with finite-difference derivatives: three forces ``u_c - h, u_c, u_c + h``
+per round, solved together in one batched solve (`solve_batch`, warm from the creeps of
+the last round's centre, scaled as ``1/F_N0``), the next centre the vertex of their
+parabola and the next half-width ``h`` the step taken or the vertex's error (some
+``2 h^2``), at most half the last (quadratic convergence). Where the parabola is not
+concave or its vertex lies far outside the stencil, the stencil moves to its best force
+(doubling its width), or halves around it when a neighbour has no admissible
+equilibrium (below the creep bound). A point is certified when the parabola of a stencil
+of half-width at most `NEAR` is concave with its vertex within the stencil: the vertex
+then misses the optimum by some ``2 NEAR^2`` at most, the efficiency by under 1e-7
+(`STEP` bounds the smallest stencil).
 
 At zero torque the answer is ``min_force`` when it holds the no-load drag within the
 creep limit (the old search's first grid point). Every point not certified (an optimum
@@ -28,7 +29,7 @@ input) is handed to `clamp_optimum`, which also raises its errors unchanged.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -52,6 +53,9 @@ STEP = 1e-4
 NEAR = 5e-3
 #: Half-width in ``ln F_N0`` [-] of the first three forces around the guess.
 WIDTH = 0.3
+#: Newton iterations (per stage) of a solve in the search: a force below the creep bound
+#: has no equilibrium, and the batch would iterate on it up to ``max_iterations``.
+ITERATIONS = 15
 #: Rounds (one batched solve each) before a point is handed to `clamp_optimum`.
 ROUNDS = 12
 
@@ -88,7 +92,10 @@ class _Scorer:
         overall efficiency where the point converges within the creep limit, ``-inf``
         elsewhere (as in `clamp_optimum`)."""
         pb = with_clamp(self.problem.take(index), np.exp(u))
-        sol = solve_batch(pb, self.options, x0, fallback=False, predict=x0 is None)
+        options = replace(
+            self.options, max_iterations=min(self.options.max_iterations, ITERATIONS)
+        )
+        sol = solve_batch(pb, options, x0, fallback=False, predict=x0 is None)
         creep = np.max(np.abs(sol.state.creep), axis=-1)
         ok = sol.converged & (creep <= self.c_lim * (1.0 + CREEP_RTOL))
         eta = efficiency(pb, sol.state).overall
@@ -116,18 +123,16 @@ def _guess(problem: EquilibriumProblem, lo, hi) -> np.ndarray:
 
 
 def _parabola(u, e):
-    """Vertex ``u*``, its efficiency and concavity of the parabola through the three
-    sorted points ``(u[:, k], e[:, k])`` (Newton's divided differences)."""
+    """Vertex ``u*`` and concavity of the parabola through the three sorted points
+    ``(u[:, k], e[:, k])`` (Newton's divided differences)."""
     a, b, c = u.T
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         s1 = (e[:, 1] - e[:, 0]) / (b - a)
         s2 = (e[:, 2] - e[:, 1]) / (c - b)
         q = (s2 - s1) / (c - a)
-        slope = s1 + q * (b - a)
-        vertex = b - slope / (2.0 * q)
-        top = e[:, 1] - slope**2 / (4.0 * q)
+        vertex = b - (s1 + q * (b - a)) / (2.0 * q)
     concave = np.isfinite(e).all(axis=1) & (q < 0) & np.isfinite(vertex)
-    return vertex, top, concave
+    return vertex, concave
 
 
 def _next(u, e, bounds):
@@ -136,7 +141,7 @@ def _next(u, e, bounds):
     leaves for `clamp_optimum`."""
     lo, hi = bounds
     best = np.argmax(e, axis=1)
-    vertex, _, concave = _parabola(u, e)
+    vertex, concave = _parabola(u, e)
     a, b, c = u.T
     h = 0.5 * (c - a)
     step = np.abs(vertex - b)
@@ -157,6 +162,14 @@ def _next(u, e, bounds):
     return centre, width, done
 
 
+def _start(x, du):
+    """Starting creeps at forces ``exp(du)`` times those of the creeps ``x`` (one row per
+    point, ``du`` one row of stencil offsets per point): the traction coefficient a
+    torque needs falls as ``1/F_N0``, and with it, near the origin of the traction
+    curve, the creep."""
+    return (x[:, None, :] * np.exp(-du)[:, :, None]).reshape(-1, x.shape[-1])
+
+
 def _search(score: _Scorer, index, bounds):
     """The stencil search of the points ``index`` (positive torque) -> ``(u, certified)``
     per point: ``u`` the vertex of the last stencil's parabola."""
@@ -165,16 +178,16 @@ def _search(score: _Scorer, index, bounds):
     width = np.full(index.size, WIDTH)
     u = np.empty((index.size, 3))
     e = np.full((index.size, 3), -np.inf)
-    x = None
+    x, xu = None, np.empty(index.size)
     done = np.zeros(index.size, dtype=bool)
     live = np.arange(index.size)
     for _ in range(ROUNDS):
         u[live] = centre[live, None] + width[live, None] * np.array([-1.0, 0.0, 1.0])
-        x0 = None if x is None else np.repeat(x[live], 3, axis=0)
+        x0 = None if x is None else _start(x[live], u[live] - xu[live, None])
         got, xs = score(np.repeat(index[live], 3), u[live].reshape(-1), x0)
         e[live] = got.reshape(-1, 3)
         x = xs[1::3] if x is None else x
-        x[live] = xs.reshape(live.size, 3, -1)[:, 1]
+        x[live], xu[live] = xs.reshape(live.size, 3, -1)[:, 1], u[live, 1]
         nxt, w, certified = _next(u[live], e[live], (lo[live], hi[live]))
         done[live[certified]] = True
         go = ~certified & np.isfinite(nxt)

@@ -52,10 +52,10 @@ STEP = 1e-4
 #: certification (the parabola is then local).
 NEAR = 5e-3
 #: Half-width in ``ln F_N0`` [-] of the first three forces around the guess.
-WIDTH = 0.3
+WIDTH = 0.1
 #: Newton iterations (per stage) of a solve in the search: a force below the creep bound
 #: has no equilibrium, and the batch would iterate on it up to ``max_iterations``.
-ITERATIONS = 15
+ITERATIONS = 10
 #: Rounds (one batched solve each) before a point is handed to `clamp_optimum`.
 ROUNDS = 12
 
@@ -146,7 +146,7 @@ def _next(u, e, bounds):
     h = 0.5 * (c - a)
     step = np.abs(vertex - b)
     newton = concave & (step <= 2 * h)
-    done = newton & (step <= h) & (h <= NEAR)
+    done = newton & (step <= h) & (h <= NEAR * (1 + 1e-9))
     # Newton: the vertex, the next stencil as wide as the step or the vertex's error
     # (some 2 h^2: quadratic convergence), at most half the last
     centre = np.where(newton, vertex, b)

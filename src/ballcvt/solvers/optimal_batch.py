@@ -1,6 +1,6 @@
 """Efficiency-optimal clamping forces of many points in a few batched solves (issue 26).
 
-`ballcvt.solvers.optimal_clamp.clamp_optimum` searches one point at a time (a geometric
+`ballcvt.solvers.optimal_search.search_optimum` searches one point at a time (a geometric
 grid of forces, a bisection for the creep bound, a bounded Brent search): some 15 batched
 solves per point. Here every point of a batch is advanced together, so a sweep or a duty
 cycle of ``N`` points costs a few batched solves of ``N`` points each.
@@ -24,7 +24,7 @@ then misses the optimum by some ``2 NEAR^2`` at most, the efficiency by under 1e
 At zero torque the answer is ``min_force`` when it holds the no-load drag within the
 creep limit (the old search's first grid point). Every point not certified (an optimum
 on the creep or pressure limit or at ``min_force``, a torque no force carries, invalid
-input) is handed to `clamp_optimum`, which also raises its errors unchanged.
+input) is handed to `search_optimum`, which also raises its errors unchanged.
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ from ..model.clamping import OptimalClamp
 from ..performance.efficiency import efficiency
 from .clamped import pressure_bound_force, with_clamp
 from .newton import solve_batch
-from .optimal_clamp import ClampCase, clamp_optimum
+from .optimal_search import ClampCase, search_optimum
 from .options import SolverOptions
 from .refusal import CREEP_RTOL
 
@@ -56,7 +56,7 @@ WIDTH = 0.1
 #: Newton iterations (per stage) of a solve in the search: a force below the creep bound
 #: has no equilibrium, and the batch would iterate on it up to ``max_iterations``.
 ITERATIONS = 10
-#: Rounds (one batched solve each) before a point is handed to `clamp_optimum`.
+#: Rounds (one batched solve each) before a point is handed to `search_optimum`.
 ROUNDS = 12
 
 
@@ -69,7 +69,7 @@ class OptimalForces:
     force : ndarray
         Optimal ``F_N0`` [N]; NaN where no force carries the torque.
     fast : ndarray of bool
-        Found by the batched search (else by `clamp_optimum`).
+        Found by the batched search (else by `search_optimum`).
     refused : ndarray of bool
         No clamping force up to the pressure bound carries the torque.
     """
@@ -90,7 +90,7 @@ class _Scorer:
     def __call__(self, index, u, x0=None):
         """``(score, creeps)`` of points ``index`` at ``F_N0 = exp(u)``: the score is the
         overall efficiency where the point converges within the creep limit, ``-inf``
-        elsewhere (as in `clamp_optimum`)."""
+        elsewhere (as in `search_optimum`)."""
         pb = with_clamp(self.problem.take(index), np.exp(u))
         options = replace(
             self.options, max_iterations=min(self.options.max_iterations, ITERATIONS)
@@ -104,7 +104,7 @@ class _Scorer:
 
 def _limits(problem: EquilibriumProblem, law: OptimalClamp):
     """``(C_lim [-], F_p [N] per point)``, or None where the limits are invalid (left to
-    `clamp_optimum` to refuse)."""
+    `search_optimum` to refuse)."""
     d = problem.design
     c_lim = d.creep_limit if law.creep_limit is None else float(law.creep_limit)
     p_lim = d.max_pressure if law.max_pressure is None else float(law.max_pressure)
@@ -138,7 +138,7 @@ def _parabola(u, e):
 def _next(u, e, bounds):
     """The next stencil of each point, ``(centre, half-width)`` in ``ln F_N0``, and whether
     it is certified (module docstring); ``bounds`` = ``(lo, hi)``; NaN centre: the point
-    leaves for `clamp_optimum`."""
+    leaves for `search_optimum`."""
     lo, hi = bounds
     best = np.argmax(e, axis=1)
     vertex, concave = _parabola(u, e)
@@ -202,6 +202,7 @@ def optimal_forces(
     problem: EquilibriumProblem,
     law: OptimalClamp = OptimalClamp(),
     options: SolverOptions = SolverOptions(),
+    fallback: bool = True,
 ) -> OptimalForces:
     """Efficiency-optimal clamping forces of a 1-D batch of points (module docstring).
 
@@ -210,9 +211,12 @@ def optimal_forces(
     problem : EquilibriumProblem
         The points (their ``clamp_force`` is not used), a 1-D batch.
     law : OptimalClamp
-        The limits and the fallback search's settings (as in `clamp_optimum`).
+        The limits and the fallback search's settings (as in `search_optimum`).
     options : SolverOptions
         Solver options.
+    fallback : bool
+        Whether the points the batched search does not certify go to the one-point
+        search (`search_optimum`); otherwise their force is NaN (``fast`` False).
 
     Returns
     -------
@@ -221,7 +225,7 @@ def optimal_forces(
     Raises
     ------
     InputError
-        From `clamp_optimum` (negative torque, invalid limits).
+        From `search_optimum` (negative torque, invalid limits).
     """
     n = problem.size
     force = np.full(n, np.nan)
@@ -242,14 +246,15 @@ def optimal_forces(
             u, done = _search(score, pos, (np.full(pos.size, lo), hi[pos]))
             fast[pos] = done
             force[pos] = np.exp(u)
+    force = np.where(fast, force, np.nan)
     refused = np.zeros(n, dtype=bool)
-    for j in np.flatnonzero(~fast):
+    for j in np.flatnonzero(~fast) if fallback else ():
         force[j], refused[j] = _fallback(problem, int(j), law, options)
     return OptimalForces(force, fast, refused)
 
 
 def _fallback(problem: EquilibriumProblem, j: int, law: OptimalClamp, options):
-    """``(force [N], refused)`` of point ``j`` by `clamp_optimum`."""
+    """``(force [N], refused)`` of point ``j`` by `search_optimum`."""
     case = ClampCase(
         problem.design,
         problem.fluid,
@@ -259,7 +264,7 @@ def _fallback(problem: EquilibriumProblem, j: int, law: OptimalClamp, options):
         float(problem.input_speed[j]),
     )
     try:
-        opt = clamp_optimum(case, law, options)
+        opt = search_optimum(case, law, options)
     except TractionLimitError:
         return np.nan, True
     return opt.clamp_force, False

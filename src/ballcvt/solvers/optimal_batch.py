@@ -53,9 +53,10 @@ STEP = 1e-4
 NEAR = 5e-3
 #: Half-width in ``ln F_N0`` [-] of the first three forces around the guess.
 WIDTH = 0.1
-#: Newton iterations (per stage) of a solve in the search: a force below the creep bound
+#: Newton iterations (per stage) of a solve in the search (the coarse rule a duty cycle
+#: searches on needs 20 or more at some points): a force below the creep bound
 #: has no equilibrium, and the batch would iterate on it up to ``max_iterations``.
-ITERATIONS = 10
+ITERATIONS = 30
 #: Rounds (one batched solve each) before a point is handed to `search_optimum`.
 ROUNDS = 12
 

@@ -6,7 +6,7 @@ repeated calls), the points per second of an ``n x n`` sweep (ratio 0.5-2, torqu
 0-70 N m, Table I drive at 2000 rpm), the seconds of an ``--steps`` duty cycle (the
 e-bike commute repeated, ``hub`` drive, target input speed), and the largest efficiency
 difference between the batched search (`ballcvt.solvers.optimal_batch.optimal_forces`)
-and the one-point search (`ballcvt.solvers.optimal_clamp.clamp_optimum`) over
+and the one-point search (`ballcvt.solvers.optimal_search.search_optimum`) over
 ``--compare`` points of the sweep. ``--old``: time the sweep and the cycle with the
 one-point search as well (slow).
 """
@@ -28,20 +28,20 @@ from ballcvt.performance.efficiency import efficiency
 from ballcvt.solvers.clamped import with_clamp
 from ballcvt.solvers.newton import solve_batch
 from ballcvt.solvers.optimal_batch import optimal_forces
-from ballcvt.solvers.optimal_clamp import ClampCase, clamp_optimum
+from ballcvt.solvers.optimal_search import ClampCase, search_optimum
 
 ROOT = Path(__file__).resolve().parents[1]
 RPM = 2000.0
 
 
 def one_by_one(pb, law, options):
-    """The former `at_optimal_forces`: `clamp_optimum` point by point."""
+    """The former `at_optimal_forces`: the one-point search, point by point."""
     forces = np.array(pb.clamp_force, dtype=float)
     for j in range(pb.size):
         case = ClampCase(pb.design, pb.fluid, pb.layout.architecture, float(pb.ratio[j]),
                          float(pb.output_torque[j]), float(pb.input_speed[j]))
         try:
-            forces[j] = clamp_optimum(case, law, options).clamp_force
+            forces[j] = search_optimum(case, law, options).clamp_force
         except Exception:  # noqa: BLE001 - a refused point keeps its force
             pass
     return with_clamp(pb, forces)
@@ -88,7 +88,7 @@ def compare(v, n, count, seed=1):
     got = optimal_forces(pb, OptimalClamp(), v.options)
     at = with_clamp(pb, got.force)
     eta = efficiency(at, solve_batch(at, v.options).state).overall
-    old = np.array([clamp_optimum(ClampCase(v.design, v.fluid, v.architecture, r, t, w),
+    old = np.array([search_optimum(ClampCase(v.design, v.fluid, v.architecture, r, t, w),
                                   OptimalClamp(), v.options).eta
                     for r, t in zip(ratio, torque)])
     return float(np.max(np.abs(eta - old))), float(np.min(eta - old)), int(got.fast.sum())

@@ -1,5 +1,5 @@
 """The batched efficiency-optimal clamp (issue 26): the same optimum as the one-point
-search (`clamp_optimum`) to 1e-6 in efficiency, zero torque, refusals unchanged."""
+search (`search_optimum`) to 1e-6 in efficiency, zero torque, refusals unchanged."""
 
 import math
 
@@ -14,7 +14,7 @@ from ballcvt.performance.efficiency import efficiency
 from ballcvt.solvers.clamped import with_clamp
 from ballcvt.solvers.newton import solve_batch
 from ballcvt.solvers.optimal_batch import optimal_forces
-from ballcvt.solvers.optimal_clamp import ClampCase, clamp_optimum
+from ballcvt.solvers.optimal_search import ClampCase, search_optimum
 
 W = 2000.0 * math.pi / 30
 
@@ -34,7 +34,7 @@ def _old(v, pb, law=OptimalClamp()):
     for j in range(pb.size):
         case = ClampCase(v.design, v.fluid, v.architecture, float(pb.ratio[j]),
                          float(pb.output_torque[j]), float(pb.input_speed[j]))
-        out.append(clamp_optimum(case, law, v.options))
+        out.append(search_optimum(case, law, v.options))
     return out
 
 

@@ -25,7 +25,7 @@ from ..solvers.clamped import solve_clamped
 from ..solvers.constraints import with_constraints
 from ..solvers.limit import limit_torque
 from ..solvers.optimal_capacity import capacity_basis
-from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum
+from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum, optimal_force
 from ..solvers.point import SolverOptions, solve_point
 from ..solvers.refusal import point_capacity
 from ..units import rpm_to_rad_s
@@ -123,15 +123,16 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
         law = self.clamp_law(clamp_law, clamp_force)
         if not law.optimises:
             return law, law.name
-        opt = self.optimal_clamp_force(
-            ratio,
-            output_torque,
-            input_speed=input_speed,
-            input_speed_rpm=input_speed_rpm,
-            creep_limit=law.creep_limit,
-            max_pressure=law.max_pressure,
+        case = ClampCase(
+            self.design,
+            self.fluid,
+            self.architecture,
+            float(ratio),
+            float(output_torque),
+            _speed(input_speed, input_speed_rpm),
         )
-        return ConstantClamp(opt.clamp_force), law.name
+        limits = OptimalClamp(law.creep_limit, law.max_pressure)
+        return ConstantClamp(optimal_force(case, limits, self.options)), law.name
 
     # many parameters: what is computed, in the user's quantities (ratio, torque, force
     # or law, speed in rad/s or rpm), then one settings object; **legacy: old keywords.

@@ -14,7 +14,6 @@ import numpy as np
 
 from ...equilibrium.problem import build_problem
 from ...equilibrium.residual import evaluate
-from ...errors import TractionLimitError
 from ...model.clamping import axial_force
 from ...params.drive import Drive
 from ...performance.efficiency import efficiency, loss_breakdown, power_losses
@@ -22,8 +21,8 @@ from ...performance.validity import validity
 from ...solvers.clamped import solve_clamped, with_clamp
 from ...solvers.limit import LimitSearch, limit_search
 from ...solvers.newton import initial_creep, solve_batch
+from ...solvers.optimal_batch import optimal_forces
 from ...solvers.optimal_capacity import capacity_basis
-from ...solvers.optimal_clamp import ClampCase, clamp_optimum
 from ...solvers.options import SolverOptions
 from ...status import Status
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
@@ -308,24 +307,11 @@ def solve_column(pb, law, options, x0):
 
 
 def at_optimal_forces(pb, law, options):
-    """The points of a 1-D batch at their efficiency-optimal clamping forces (one
-    optimisation per point, batched inside); a point no force can carry keeps its force
-    and is flagged by the solve that follows."""
-    forces = np.array(pb.clamp_force, dtype=float)
-    for j in range(pb.size):
-        try:
-            case = ClampCase(
-                pb.design,
-                pb.fluid,
-                pb.layout.architecture,
-                float(pb.ratio[j]),
-                float(pb.output_torque[j]),
-                float(pb.input_speed[j]),
-            )
-            forces[j] = clamp_optimum(case, law, options).clamp_force
-        except TractionLimitError:
-            pass
-    return with_clamp(pb, forces)
+    """The points of a 1-D batch at their efficiency-optimal clamping forces (all points
+    searched together, `ballcvt.solvers.optimal_batch.optimal_forces`); a point no force
+    can carry keeps its force and is flagged by the solve that follows."""
+    got = optimal_forces(pb, law, options)
+    return with_clamp(pb, np.where(got.refused, pb.clamp_force, got.force))
 
 
 def _eta_at(curves: OperatingRows, clamp_force, torque, law=None, x0=None):

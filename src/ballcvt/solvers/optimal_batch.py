@@ -1,0 +1,271 @@
+"""Efficiency-optimal clamping forces of many points in a few batched solves (issue 26).
+
+`ballcvt.solvers.optimal_search.search_optimum` searches one point at a time (a geometric
+grid of forces, a bisection for the creep bound, a bounded Brent search): some 15 batched
+solves per point. Here every point of a batch is advanced together, so a sweep or a duty
+cycle of ``N`` points costs a few batched solves of ``N`` points each.
+
+Method. Over the Table I drive and the ``hub`` (ratios 0.5-2, torques up to 90 N m, 500 to
+5000 rpm, the isothermal and the viscoelastic laws) the optimum sits inside the feasible
+range, away from the creep and pressure limits: it is the maximum of a smooth efficiency
+``eta(u)``, ``u = ln F_N0``, where ``d eta / du = 0``. Each point runs Newton's method on
+that condition with finite-difference derivatives: three forces ``u_c - h, u_c, u_c + h``
+per round, solved together in one batched solve (`solve_batch`, warm from the creeps of
+the last round's centre, scaled as ``1/F_N0``), the next centre the vertex of their
+parabola and the next half-width ``h`` the step taken or the vertex's error (some
+``2 h^2``), at most half the last (quadratic convergence). Where the parabola is not
+concave or its vertex lies far outside the stencil, the stencil moves to its best force
+(doubling its width), or halves around it when a neighbour has no admissible
+equilibrium (below the creep bound). A point is certified when the parabola of a stencil
+of half-width at most `NEAR` is concave with its vertex within the stencil: the vertex
+then misses the optimum by some ``2 NEAR^2`` at most, the efficiency by under 1e-7
+(`STEP` bounds the smallest stencil).
+
+At zero torque the answer is ``min_force`` when it holds the no-load drag within the
+creep limit (the old search's first grid point). Every point not certified (an optimum
+on the creep or pressure limit or at ``min_force``, a torque no force carries, invalid
+input) is handed to `search_optimum`, which also raises its errors unchanged.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem
+from ..errors import TractionLimitError
+from ..model.clamping import OptimalClamp
+from ..performance.efficiency import efficiency
+from .clamped import pressure_bound_force, with_clamp
+from .newton import solve_batch
+from .optimal_search import ClampCase, search_optimum
+from .options import SolverOptions
+from .refusal import CREEP_RTOL
+
+__all__ = ["OptimalForces", "optimal_forces", "STEP", "NEAR"]
+
+#: Largest distance in ``ln F_N0`` [-] of the parabola's vertex from the best force of a
+#: certified point (0.01 % of the force).
+STEP = 1e-4
+#: Largest distance in ``ln F_N0`` [-] of the best force's nearest neighbour at
+#: certification (the parabola is then local).
+NEAR = 5e-3
+#: Half-width in ``ln F_N0`` [-] of the first three forces around the guess.
+WIDTH = 0.1
+#: Newton iterations (per stage) of a solve in the search (the coarse rule a duty cycle
+#: searches on needs 20 or more at some points): a force below the creep bound
+#: has no equilibrium, and the batch would iterate on it up to ``max_iterations``.
+ITERATIONS = 30
+#: Rounds (one batched solve each) before a point is handed to `search_optimum`.
+ROUNDS = 12
+
+
+@dataclass(frozen=True)
+class OptimalForces:
+    """Result of `optimal_forces`, one entry per point of the batch.
+
+    Attributes
+    ----------
+    force : ndarray
+        Optimal ``F_N0`` [N]; NaN where no force carries the torque.
+    fast : ndarray of bool
+        Found by the batched search (else by `search_optimum`).
+    refused : ndarray of bool
+        No clamping force up to the pressure bound carries the torque.
+    """
+
+    force: np.ndarray
+    fast: np.ndarray
+    refused: np.ndarray
+
+
+@dataclass(frozen=True)
+class _Scorer:
+    """Solves points of the batch at given clamping forces (one batched solve a call)."""
+
+    problem: EquilibriumProblem
+    c_lim: float
+    options: SolverOptions
+
+    def __call__(self, index, u, x0=None):
+        """``(score, creeps)`` of points ``index`` at ``F_N0 = exp(u)``: the score is the
+        overall efficiency where the point converges within the creep limit, ``-inf``
+        elsewhere (as in `search_optimum`)."""
+        pb = with_clamp(self.problem.take(index), np.exp(u))
+        options = replace(
+            self.options, max_iterations=min(self.options.max_iterations, ITERATIONS)
+        )
+        sol = solve_batch(pb, options, x0, fallback=False, predict=x0 is None)
+        creep = np.max(np.abs(sol.state.creep), axis=-1)
+        ok = sol.converged & (creep <= self.c_lim * (1.0 + CREEP_RTOL))
+        eta = efficiency(pb, sol.state).overall
+        return np.where(ok, eta, -np.inf), sol.state.creep
+
+
+def _limits(problem: EquilibriumProblem, law: OptimalClamp):
+    """``(C_lim [-], F_p [N] per point)``, or None where the limits are invalid (left to
+    `search_optimum` to refuse)."""
+    d = problem.design
+    c_lim = d.creep_limit if law.creep_limit is None else float(law.creep_limit)
+    p_lim = d.max_pressure if law.max_pressure is None else float(law.max_pressure)
+    if not (0 < c_lim < 1 and p_lim > 0):
+        return None
+    return c_lim, pressure_bound_force(problem, p_lim)
+
+
+def _guess(problem: EquilibriumProblem, lo, hi) -> np.ndarray:
+    """First guess of ``ln F_N0`` [-]: the optimum of the drives studied grows about
+    linearly with the larger of the input and output torques, ``F ~ 200 + 14 T`` [N];
+    kept ``WIDTH`` inside ``(lo, hi)`` so that the first three forces are admissible."""
+    torque = np.abs(problem.output_torque) * np.maximum(1.0, np.abs(problem.ratio))
+    u = np.log(200.0 + 14.0 * torque)
+    return np.clip(u, lo + WIDTH, hi - WIDTH)
+
+
+def _parabola(u, e):
+    """Vertex ``u*`` and concavity of the parabola through the three sorted points
+    ``(u[:, k], e[:, k])`` (Newton's divided differences)."""
+    a, b, c = u.T
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        s1 = (e[:, 1] - e[:, 0]) / (b - a)
+        s2 = (e[:, 2] - e[:, 1]) / (c - b)
+        q = (s2 - s1) / (c - a)
+        vertex = b - (s1 + q * (b - a)) / (2.0 * q)
+    concave = np.isfinite(e).all(axis=1) & (q < 0) & np.isfinite(vertex)
+    return vertex, concave
+
+
+def _next(u, e, bounds):
+    """The next stencil of each point, ``(centre, half-width)`` in ``ln F_N0``, and whether
+    it is certified (module docstring); ``bounds`` = ``(lo, hi)``; NaN centre: the point
+    leaves for `search_optimum`."""
+    lo, hi = bounds
+    best = np.argmax(e, axis=1)
+    vertex, concave = _parabola(u, e)
+    a, b, c = u.T
+    h = 0.5 * (c - a)
+    step = np.abs(vertex - b)
+    newton = concave & (step <= 2 * h)
+    done = newton & (step <= h) & (h <= NEAR * (1 + 1e-9))
+    # Newton: the vertex, the next stencil as wide as the step or the vertex's error
+    # (some 2 h^2: quadratic convergence), at most half the last
+    centre = np.where(newton, vertex, b)
+    width = np.where(newton, np.clip(np.maximum(step, 2 * h * h), STEP, 0.5 * h), 0.5 * h)
+    # otherwise (an infeasible neighbour, below the creep bound) the best force with the
+    # width halved; or the best force at an end: move the stencil there
+    up, down = ~newton & (best == 2), ~newton & (best == 0)
+    centre = np.where(up, np.where(c < hi, c, np.nan), centre)
+    centre = np.where(down, np.where(a > lo, a, np.nan), centre)
+    width = np.where(up | down, np.minimum(2 * h, WIDTH), width)
+    centre = np.clip(centre, lo + width, hi - width)
+    centre = np.where(np.isfinite(e).any(axis=1) & (hi - lo > 2 * width), centre, np.nan)
+    return centre, width, done
+
+
+def _start(x, du):
+    """Starting creeps at forces ``exp(du)`` times those of the creeps ``x`` (one row per
+    point, ``du`` one row of stencil offsets per point): the traction coefficient a
+    torque needs falls as ``1/F_N0``, and with it, near the origin of the traction
+    curve, the creep."""
+    return (x[:, None, :] * np.exp(-du)[:, :, None]).reshape(-1, x.shape[-1])
+
+
+def _search(score: _Scorer, index, bounds):
+    """The stencil search of the points ``index`` (positive torque) -> ``(u, certified)``
+    per point: ``u`` the vertex of the last stencil's parabola."""
+    lo, hi = bounds
+    centre = _guess(score.problem.take(index), lo, hi)
+    width = np.full(index.size, WIDTH)
+    u = np.empty((index.size, 3))
+    e = np.full((index.size, 3), -np.inf)
+    x, xu = None, np.empty(index.size)
+    done = np.zeros(index.size, dtype=bool)
+    live = np.arange(index.size)
+    for _ in range(ROUNDS):
+        u[live] = centre[live, None] + width[live, None] * np.array([-1.0, 0.0, 1.0])
+        x0 = None if x is None else _start(x[live], u[live] - xu[live, None])
+        got, xs = score(np.repeat(index[live], 3), u[live].reshape(-1), x0)
+        e[live] = got.reshape(-1, 3)
+        x = xs[1::3] if x is None else x
+        x[live], xu[live] = xs.reshape(live.size, 3, -1)[:, 1], u[live, 1]
+        nxt, w, certified = _next(u[live], e[live], (lo[live], hi[live]))
+        done[live[certified]] = True
+        go = ~certified & np.isfinite(nxt)
+        centre[live], width[live] = nxt, w
+        live = live[go]
+        if not live.size:
+            break
+    return _parabola(u, e)[0], done
+
+
+def optimal_forces(
+    problem: EquilibriumProblem,
+    law: OptimalClamp = OptimalClamp(),
+    options: SolverOptions = SolverOptions(),
+    fallback: bool = True,
+) -> OptimalForces:
+    """Efficiency-optimal clamping forces of a 1-D batch of points (module docstring).
+
+    Parameters
+    ----------
+    problem : EquilibriumProblem
+        The points (their ``clamp_force`` is not used), a 1-D batch.
+    law : OptimalClamp
+        The limits and the fallback search's settings (as in `search_optimum`).
+    options : SolverOptions
+        Solver options.
+    fallback : bool
+        Whether the points the batched search does not certify go to the one-point
+        search (`search_optimum`); otherwise their force is NaN (``fast`` False).
+
+    Returns
+    -------
+    OptimalForces
+
+    Raises
+    ------
+    InputError
+        From `search_optimum` (negative torque, invalid limits).
+    """
+    n = problem.size
+    force = np.full(n, np.nan)
+    fast = np.zeros(n, dtype=bool)
+    limits = _limits(problem, law)
+    if limits is not None:
+        c_lim, f_p = limits
+        score = _Scorer(problem, c_lim, options)
+        torque = problem.output_torque
+        lo, hi = np.log(law.min_force), np.log(f_p)
+        zero = np.flatnonzero((torque == 0) & (hi > lo))
+        if zero.size:  # min_force when it holds the drag
+            got, _ = score(zero, np.full(zero.size, lo))
+            fast[zero] = np.isfinite(got)
+            force[zero] = law.min_force
+        pos = np.flatnonzero((torque > 0) & (hi > lo + 2 * WIDTH))
+        if pos.size:
+            u, done = _search(score, pos, (np.full(pos.size, lo), hi[pos]))
+            fast[pos] = done
+            force[pos] = np.exp(u)
+    force = np.where(fast, force, np.nan)
+    refused = np.zeros(n, dtype=bool)
+    for j in np.flatnonzero(~fast) if fallback else ():
+        force[j], refused[j] = _fallback(problem, int(j), law, options)
+    return OptimalForces(force, fast, refused)
+
+
+def _fallback(problem: EquilibriumProblem, j: int, law: OptimalClamp, options):
+    """``(force [N], refused)`` of point ``j`` by `search_optimum`."""
+    case = ClampCase(
+        problem.design,
+        problem.fluid,
+        problem.layout.architecture,
+        float(problem.ratio[j]),
+        float(problem.output_torque[j]),
+        float(problem.input_speed[j]),
+    )
+    try:
+        opt = search_optimum(case, law, options)
+    except TractionLimitError:
+        return np.nan, True
+    return opt.clamp_force, False

@@ -17,12 +17,17 @@ from scipy.optimize import brentq
 
 from ..errors import InputError
 from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
+from ..params.drive_models import DriveModels
 from ..results.planetary import PlanetaryResult
 
 __all__ = [
     "solve_with_oil",
     "cycle_with_oil",
     "oil_choice",
+    "path_choice",
+    "at_temperature",
+    "sweep_with_oil",
+    "limit_with_oil",
     "thermal_of",
     "MAX_OIL_TEMPERATURE",
     "BALANCE_TOL",
@@ -216,3 +221,88 @@ def cycle_with_oil(variator, cycle, settings, clamp: dict, mode):
         raise InputError("initial_oil_temperature", start, f"150 to {MAX_OIL_TEMPERATURE:g} K")
     oil = OilTransient(thermal=thermal, initial_temperature=start)
     return run_cycle_with_oil(variator, cycle, request, oil)
+
+
+def at_temperature(variator, temperature: float):
+    """``variator`` with its fluid at ``temperature`` [K] and its oil model ``"fixed"``
+    (the paths run on it as on any drive)."""
+    design = variator.design
+    models = design.models
+    fixed = (
+        models.model_copy(update={"oil_temperature": "fixed"})
+        if models is not None
+        else DriveModels(oil_temperature="fixed")
+    )
+    design = design.model_copy(update={"models": fixed})
+    return replace(variator, design=design, fluid=fluid_at(variator.fluid, temperature))
+
+
+def path_choice(variator, value: Any = None) -> str | float:
+    """The oil-temperature model of a sweep, map, table or limit: ``value``, else the
+    drive file's (`drive_choice`), as ``"fixed"``, ``"balance"`` or a temperature [K]."""
+    return oil_choice(drive_choice(variator.design, value), ("fixed", "balance"))
+
+
+def sweep_with_oil(variator, choice: str | float, request):
+    """`Variator.sweep` of ``request`` (`ballcvt.analysis.sweeps.grid.SweepRequest`) under
+    the oil model ``choice``: ``"fixed"`` the fluid as given, a temperature [K] the fluid
+    there, ``"balance"`` each point at its own heat balance
+    (`ballcvt.analysis.oil_sweep.balanced_sweep`). Not ``"fixed"``: the dataset has
+    ``oil_temperature`` [K] at each point and the attribute ``oil_model``."""
+    from ..analysis.oil_sweep import balanced_sweep
+    from ..analysis.sweeps.grid import sweep
+
+    if choice == "fixed":
+        return sweep(variator.design, variator.fluid, request)
+    if choice == "balance":
+        return balanced_sweep(
+            variator.design, variator.fluid, thermal_of(variator.design), request
+        )
+    ds = sweep(variator.design, fluid_at(variator.fluid, float(choice)), request)
+    ds["oil_temperature"] = ds["status"].astype(float) * 0.0 + float(choice)
+    ds["oil_temperature"].attrs.update(long_name="bulk oil temperature (given)", units="K")
+    ds.attrs["oil_model"] = "given"
+    return ds
+
+
+class _Idle:
+    """The stand-in of a limit point where no torque is admissible: nothing to reject."""
+
+    losses = {"total": 0.0}
+
+
+def limit_with_oil(variator, choice: str | float, ratio: float, point: dict):
+    """``(capacity, oil temperature [K])`` of `Variator.capacity` at the oil temperature
+    its limit point produces: the largest admissible torque solved (`LIMIT_SHY` below it)
+    with the fluid at ``T``, whose loss balances ``h A (T - T_amb)`` (`balance`); under a
+    given temperature, the capacity there. A limit point whose losses the housing cannot
+    reject below `MAX_OIL_TEMPERATURE` takes the capacity at that temperature (the
+    hottest oil modelled; `Variator.solve` refuses such a point as a thermal runaway).
+
+    ``point`` holds the keywords of `Variator.capacity` (clamping, speeds, creep limit).
+    """
+    from ..analysis.oil_sweep import LIMIT_SHY
+
+    found: dict[float, Any] = {}
+    keys = ("clamp_force", "clamp_law", "input_speed", "input_speed_rpm")
+    solve_point = {k: point[k] for k in keys if k in point}
+
+    def at(temperature: float):
+        drive = at_temperature(variator, temperature)
+        cap = drive.capacity(ratio, **point)
+        found[temperature] = cap
+        if not cap.intervals:
+            return _Idle()
+        top = cap.intervals[-1][1] * (1.0 - LIMIT_SHY)
+        return drive.solve(ratio, top, check_capacity=False, **solve_point)
+
+    if choice != "balance":
+        at(float(choice))
+        return found[float(choice)], float(choice)
+    try:
+        temperature = balance(at, thermal_of(variator.design))[0]
+    except InputError:
+        if MAX_OIL_TEMPERATURE not in found:
+            raise
+        temperature = MAX_OIL_TEMPERATURE  # a runaway: the limit with the hottest oil
+    return found[temperature], temperature

@@ -97,22 +97,36 @@ def climb(fluid: Fluid, thermal, evaluate: Callable, step: float = NODE_STEP) ->
     Returns
     -------
     Ladder
-        Up to one rung past the first where no solved point's losses exceed the heat
-        rejected (none past the ambient's), or to `MAX_OIL_TEMPERATURE`.
+        The ambient's rung alone where no point has a loss to reject; else the rungs up
+        to one past the first where no point's losses exceed the heat rejected, leaving
+        out the points whose losses exceed it even at `MAX_OIL_TEMPERATURE` (runaways,
+        found by solving there first), and that top rung last.
     """
     ambient, conductance = thermal.ambient_temperature, thermal.conductance
-    temps: list[float] = []
-    results, rows = [], []
-    t, settled = float(ambient), 0
-    while True:
+
+    def rung(t: float):
         result, loss = evaluate(fluid_at(fluid, t))
-        temps.append(t)
-        results.append(result)
-        rows.append(np.asarray(loss, dtype=float) - conductance * (t - ambient))
-        settled += not np.any(rows[-1] > 0.0)  # one rung more: a cubic about every root
-        if settled == 2 or (settled and len(temps) == 1) or t >= MAX_OIL_TEMPERATURE:
-            return Ladder(np.array(temps), results, np.array(rows))
-        t = min(t + step, MAX_OIL_TEMPERATURE)
+        return t, result, np.asarray(loss, dtype=float) - conductance * (t - ambient)
+
+    got = [rung(float(ambient))]
+    if not np.any(got[0][2] > 0.0):  # nothing to reject: every point at the ambient
+        return _ladder(got)
+    top = rung(MAX_OIL_TEMPERATURE)
+    hopeless = top[2] > 0.0  # losses beyond the housing even with the hottest oil
+    settled = 0
+    while settled < 2:  # one rung past the last balance: a cubic about every root
+        t = got[-1][0] + step
+        if t >= MAX_OIL_TEMPERATURE:
+            break
+        got.append(rung(t))
+        settled += not np.any(got[-1][2][~hopeless] > 0.0)
+    return _ladder(got + [top])
+
+
+def _ladder(got: list) -> Ladder:
+    return Ladder(
+        np.array([g[0] for g in got]), [g[1] for g in got], np.array([g[2] for g in got])
+    )
 
 
 def _lagrange(nodes: np.ndarray, t: float) -> np.ndarray:
@@ -152,10 +166,9 @@ def _point(temps: np.ndarray, e: np.ndarray) -> tuple[int, float, np.ndarray]:
     if j == 0:  # no loss to reject: the oil at the ambient
         weights[0] = 1.0
         return BALANCED, float(temps[0]), weights
-    top = j + 1
-    while top < min(k, j + 2) and np.isfinite(e[top]):
-        top += 1
-    use = np.arange(max(0, j - 2), top)
+    spacing = temps[1] - temps[0]
+    above = j + 1 < k and np.isfinite(e[j + 1]) and temps[j + 1] - temps[j] <= 1.001 * spacing
+    use = np.arange(max(0, j - 2), j + 1 + above)
     root = _root(temps[use], e[use], float(temps[j - 1]), float(temps[j]))
     weights[use] = _lagrange(temps[use], root)
     return BALANCED, root, weights

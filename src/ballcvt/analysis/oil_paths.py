@@ -113,6 +113,8 @@ def climb(fluid: Fluid, thermal, evaluate: Callable, step: float = NODE_STEP) ->
         return _ladder(got)
     top = rung(MAX_OIL_TEMPERATURE)
     hopeless = top[2] > 0.0  # losses beyond the housing even with the hottest oil
+    if not np.any(got[0][2][~hopeless] > 0.0):  # the rest balance at the ambient
+        return _ladder(got + [top])
     settled = 0
     while settled < 2:  # one rung past the last balance: a cubic about every root
         t = got[-1][0] + step

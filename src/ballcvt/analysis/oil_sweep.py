@@ -35,7 +35,14 @@ from .sweeps.curves import OperatingRows, limit_search_curves
 from .sweeps.grid import SweepRequest, sweep
 from .sweeps.points import evaluate_points
 
-__all__ = ["balanced_sweep", "balanced_limits", "limit_ladder", "LIMIT_SHY"]
+__all__ = [
+    "balanced_sweep",
+    "balanced_limits",
+    "balanced_rows",
+    "limit_ladder",
+    "oil_balance_of",
+    "LIMIT_SHY",
+]
 
 #: The limit point is solved this fraction below the limiting torque (at the limit itself
 #: the admissibility test may fall either way by round-off) [-].
@@ -225,3 +232,41 @@ def _curve_rows(design: Design, fluid: Fluid, ds: xr.Dataset, request) -> Operat
     force = grid[0] if law is None else None
     c_lim = float(ds.attrs["creep_limit"])
     return OperatingRows(drive, grid[-1], grid[-2], force, law, request.options, c_lim)
+
+
+def oil_balance_of(design: Design):
+    """The housing ``[design.thermal]`` when the drive's ``[models]`` name the oil's
+    balance, else None (the fluid as given)."""
+    models = design.models
+    named = getattr(models, "oil_temperature", None) if models is not None else None
+    return design.thermal if named == "balance" and design.thermal is not None else None
+
+
+def balanced_rows(rows: OperatingRows, thermal, evaluate) -> tuple[np.ndarray, dict]:
+    """Scattered points (`evaluate_points`' rows) each at its oil balance.
+
+    ``evaluate(rows) -> (output torque [N m] (n,), evaluate_points' dict)`` solves the rows
+    at their fluid (e.g. at a given input power); returned interpolated to each point's
+    balance, with ``oil_temperature`` [K] (NaN where not solved) and the status of the
+    rung nearest (a runaway's 2).
+    """
+
+    def at(f: Fluid):
+        t2, res = evaluate(replace(rows, drive=replace(rows.drive, fluid=f)))
+        ok = res["status"] == 0
+        return (t2, res), np.where(ok, res["losses"][:, LOSS_KINDS.index("total")], np.nan)
+
+    ladder = climb(rows.drive.fluid, thermal, at)
+    temp, weights, outcome = balance_weights(ladder)
+    res = {}
+    for key in ladder.results[0][1]:
+        stack = np.stack([r[1][key] for r in ladder.results])
+        if key == "status":
+            res[key] = runaway_status(nearest(stack, ladder, temp, outcome), outcome)
+        elif np.issubdtype(stack.dtype, np.floating):
+            res[key] = interpolate(stack, weights)
+    t2 = interpolate(
+        np.stack([np.broadcast_to(r[0], temp.shape) for r in ladder.results]), weights
+    )
+    res["oil_temperature"] = np.where(res["status"] == 0, temp, np.nan)
+    return t2, res

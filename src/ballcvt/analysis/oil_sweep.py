@@ -173,9 +173,13 @@ def limit_ladder(rows: OperatingRows, thermal, cached: dict | None = None) -> La
 
     def at(f: Fluid):
         r = replace(rows, drive=replace(rows.drive, fluid=f))
-        got = known.get(float(f.inlet_temperature))
-        search = None if got is not None else limit_search_curves(r)[1]
-        limit = got[0] if got is not None else search.torque.ravel()
+        got = known.get(f.inlet_temperature)  # (fluid_at sets it)
+        search = None
+        if got is None:
+            search = limit_search_curves(r)[1]
+            limit = search.torque.ravel() if search is not None else np.full(r.size, np.nan)
+        else:
+            limit = got[0]
         point = evaluate_points(r, np.nan_to_num(limit * (1.0 - LIMIT_SHY), nan=0.0))
         finite = np.isfinite(limit)
         loss = np.where(finite, point["losses"][:, LOSS_KINDS.index("total")], np.nan)

@@ -20,6 +20,7 @@ from ..params.drive import PAPER_POINT
 from ..params.feasibility import design_warnings
 from ..params.models import CamModel, Design
 from ..solvers.capacity import Capacity
+from .oil import with_oil_temperature
 
 __all__ = [
     "CamSizing",
@@ -191,7 +192,9 @@ def size_cam(drive, margin: float = 1.2) -> CamSizing:
     ``creep_limit / margin`` (and every pressure within ``max_pressure``) for every output
     torque from zero to `rated_torque`. The preload is the smallest that holds the no-load
     drag at every ratio (the capacity starts at zero); the ramp angle is then the largest
-    (least clamping, least loss) that carries the rated torque.
+    (least clamping, least loss) that carries the rated torque. The limits are those of
+    the fluid as given, whatever the drive's oil model (docs/model.md §15: a heat balance
+    per trial limit would cost some ten times more).
 
     Parameters
     ----------
@@ -215,14 +218,15 @@ def size_cam(drive, margin: float = 1.2) -> CamSizing:
     if not 1.0 <= margin < 10.0:
         raise InputError("margin", margin, "1 <= margin < 10")
     c_lim = d.creep_limit / margin
-    rated = rated_torque(drive, c_lim)
+    fixed = with_oil_temperature(drive, "fixed")  # sized with the fluid as given (§15)
+    rated = rated_torque(fixed, c_lim)
     per_force = d.n_rollers * math.sin(d.theta0)  # thrust per unit F_N0 (the cam law)
-    preload, gain = _thrust_line(drive, c_lim, rated)
+    preload, gain = _thrust_line(fixed, c_lim, rated)
     preload, gain = preload * per_force, gain * per_force
     for _ in range(MAX_BUMPS):
         cam = _cam(d.cam, preload, gain)
         sized = drive.__class__(d.replace(cam=cam), drive.fluid, drive.architecture)
-        if all(_covers(c, rated) for _, c in _scan(sized, c_lim)):
+        if all(_covers(c, rated) for _, c in _scan(with_oil_temperature(sized, "fixed"), c_lim)):
             return CamSizing(cam, sized.design, rated, c_lim, tuple(_ratios(d)))
         preload, gain = preload * 1.1, gain * 1.1
     raise InputError(

@@ -30,6 +30,7 @@ __all__ = [
     "at_temperature",
     "sweep_with_oil",
     "limit_with_oil",
+    "with_oil_temperature",
     "thermal_of",
     "MAX_OIL_TEMPERATURE",
     "BALANCE_TOL",
@@ -281,7 +282,7 @@ class _Idle:
     losses = {"total": 0.0}
 
 
-def limit_with_oil(variator, choice: str | float, ratio: float, point: dict):
+def limit_with_oil(variator, choice: str | float, ratio: float, point: dict, whole: bool = True):
     """``(capacity, oil temperature [K])`` of `Variator.capacity` at the oil temperature
     its limit point produces: the largest admissible torque solved (`LIMIT_SHY` below it)
     with the fluid at ``T``, whose loss balances ``h A (T - T_amb)`` (`balance`); under a
@@ -289,7 +290,9 @@ def limit_with_oil(variator, choice: str | float, ratio: float, point: dict):
     reject below `MAX_OIL_TEMPERATURE` takes the capacity at that temperature (the
     hottest oil modelled; `Variator.solve` refuses such a point as a thermal runaway).
 
-    ``point`` holds the keywords of `Variator.capacity` (clamping, speeds, creep limit).
+    ``point`` holds the keywords of `Variator.capacity` (clamping, speeds, creep limit);
+    with ``whole`` False the capacity is only `Variator.limit_torque`'s largest torque [N m]
+    (without the intervals' constraints: cheaper).
     """
     from ..analysis.oil_sweep import LIMIT_SHY
 
@@ -299,11 +302,12 @@ def limit_with_oil(variator, choice: str | float, ratio: float, point: dict):
 
     def at(temperature: float):
         drive = at_temperature(variator, temperature)
-        cap = drive.capacity(ratio, **point)
+        cap = drive.capacity(ratio, **point) if whole else drive.limit_torque(ratio, **point)
         found[temperature] = cap
-        if not cap.intervals:
+        top = cap.intervals[-1][1] if whole and cap.intervals else cap
+        if not top >= 0.0:  # (no admissible torque)
             return _Idle()
-        top = cap.intervals[-1][1] * (1.0 - LIMIT_SHY)
+        top = top * (1.0 - LIMIT_SHY)
         return drive.solve(ratio, top, check_capacity=False, **solve_point)
 
     if choice != "balance":
@@ -316,3 +320,22 @@ def limit_with_oil(variator, choice: str | float, ratio: float, point: dict):
             raise
         temperature = MAX_OIL_TEMPERATURE  # a runaway: the limit with the hottest oil
     return found[temperature], temperature
+
+
+def with_oil_temperature(variator, value: Any):
+    """``variator`` computed under the oil model ``value`` on every path: ``"fixed"`` or
+    ``"balance"`` (its ``[models] oil_temperature``), or a temperature [K] (the fluid
+    there, the model ``"fixed"``); itself for None (the drive file's own choice)."""
+    if value is None:
+        return variator
+    choice = oil_choice(value, ("fixed", "balance"))
+    if isinstance(choice, float):
+        return at_temperature(variator, choice)
+    design = variator.design
+    models = design.models
+    named = (
+        models.model_copy(update={"oil_temperature": choice})
+        if models is not None
+        else DriveModels(oil_temperature=choice)
+    )
+    return replace(variator, design=design.model_copy(update={"models": named}))

@@ -278,8 +278,7 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
         point = {"clamp_force": clamp_force, "clamp_law": clamp_law, "creep_limit": creep_limit}
         point.update(input_speed=input_speed, input_speed_rpm=input_speed_rpm)
         if (choice := oil.path_choice(self)) != "fixed":  # at its own oil temperature, §15
-            t_oil = oil.limit_with_oil(self, choice, ratio, point)[1]
-            return oil.at_temperature(self, t_oil).limit_torque(ratio, **point)
+            return oil.limit_with_oil(self, choice, ratio, point, whole=False)[0]
         problem, law, c_lim = self._capacity_basis(
             ratio, clamp_force, clamp_law, (input_speed, input_speed_rpm), creep_limit
         )

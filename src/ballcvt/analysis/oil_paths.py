@@ -9,9 +9,9 @@ exceed what the housing rejects at the top rung, at most to `MAX_OIL_TEMPERATURE
 each point's balance is found between the rungs:
 
 * its excess ``e_k = P_loss(T_k) - h A (T_k - T_amb)`` at the rungs is interpolated by the
-  Lagrange polynomial through up to four rungs about its first change of sign (cubic:
-  the error is of order ``dT^4``, far below the single point's `BALANCE_TOL` at
-  ``dT = 2 K``), whose root in the bracketing interval is the point's temperature;
+  Lagrange polynomial through up to six rungs about its first change of sign (three below
+  the bracket's upper rung, two above: a quintic), whose root in the bracketing interval is
+  the point's temperature;
 * every quantity of the point (efficiency, losses, creeps, forces, ...) is the same
   polynomial's value at that temperature (Lagrange weights over the same rungs); counts
   and codes (status, warnings, iterations) are those of the rung nearest to it.
@@ -46,11 +46,13 @@ __all__ = [
 ]
 
 #: Spacing of the ladder's temperatures [K]: the hub's efficiencies interpolated to their
-#: balance agree with `Variator.solve`'s to about 3e-6 at 2.5 K (5e-5 at 5 K).
+#: balance agree with `Variator.solve`'s to about 1e-7, their temperatures to 1e-5 K.
 NODE_STEP = 2.5
 #: Spacing of the limit points' ladder [K] (1e-4 relative: the limit searches' own
 #: bracket, `ballcvt.solvers.limit.LIMIT_RTOL`; limit points climb far).
 LIMIT_STEP = 10.0
+#: Rungs of a point's stencil below its bracket's upper rung and above it: a quintic.
+BELOW, ABOVE = 3, 2
 #: Bisection steps on a point's interpolated excess (the root to 2 K / 2^40).
 ROOT_STEPS = 40
 #: Outcome of a point: balanced between rungs.
@@ -116,7 +118,7 @@ def climb(fluid: Fluid, thermal, evaluate: Callable, step: float = NODE_STEP) ->
     if not np.any(got[0][2][~hopeless] > 0.0):  # the rest balance at the ambient
         return _ladder(got + [top])
     settled = 0
-    while settled < 2:  # one rung past the last balance: a cubic about every root
+    while settled < 1 + ABOVE:  # rungs past the last balance: a whole stencil about it
         t = got[-1][0] + step
         if t >= MAX_OIL_TEMPERATURE:
             break
@@ -169,8 +171,14 @@ def _point(temps: np.ndarray, e: np.ndarray) -> tuple[int, float, np.ndarray]:
         weights[0] = 1.0
         return BALANCED, float(temps[0]), weights
     spacing = temps[1] - temps[0]
-    above = j + 1 < k and np.isfinite(e[j + 1]) and temps[j + 1] - temps[j] <= 1.001 * spacing
-    use = np.arange(max(0, j - 2), j + 1 + above)
+    top = j
+    while (
+        top + 1 < min(k, j + 1 + ABOVE)
+        and np.isfinite(e[top + 1])
+        and temps[top + 1] - temps[top] <= 1.001 * spacing
+    ):
+        top += 1
+    use = np.arange(max(0, j - BELOW), top + 1)
     root = _root(temps[use], e[use], float(temps[j - 1]), float(temps[j]))
     weights[use] = _lagrange(temps[use], root)
     return BALANCED, root, weights

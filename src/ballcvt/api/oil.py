@@ -4,10 +4,11 @@
 ``P_loss(T) = h A (T - T_amb)``: each evaluation of ``P_loss(T)`` is a full operating point
 with the fluid at ``T`` (`ballcvt.model.oil.fluid_at`). The root is bracketed from the
 ambient upwards by fixed-point steps ``T <- T_amb + P_loss(T) / (h A)`` and then found by
-Brent's method to `BALANCE_TOL` (a step that barely shortens doubles: near the capacity
-the losses rise with the temperature nearly as fast as the heat rejected); if the losses
-still exceed what the housing rejects at `MAX_OIL_TEMPERATURE` there is no balance (a
-runaway) and the point is refused.
+Brent's method to `BALANCE_TOL` (each step that does not cross is followed by the secant's
+step, 10 % past its root: near the capacity the losses rise with the temperature nearly as
+fast as the heat rejected and the fixed point crawls); if the losses still exceed what
+the housing rejects at `MAX_OIL_TEMPERATURE` there is no balance (a runaway) and the point
+is refused.
 """
 
 from __future__ import annotations
@@ -37,13 +38,13 @@ __all__ = [
 ]
 
 #: Tolerance of the balance's temperature [K].
-BALANCE_TOL = 0.01
+BALANCE_TOL = 1e-4
 #: Fixed-point steps to bracket the balance before refusing.
 MAX_BRACKET_STEPS = 30
-#: A fixed-point step longer than this fraction of the one before is slow (the losses
-#: rise with the temperature nearly as fast as the heat rejected, near the capacity):
-#: the next bracket is twice as wide.
-SLOW = 0.7
+#: How far past the secant's root the bracket reaches after a fixed-point step that did
+#: not cross (the losses rising with the temperature, near the capacity, slow the fixed
+#: point down: it converges as (dP/dT) / (h A) per step) [-].
+SECANT_REACH = 1.1
 
 
 def drive_choice(design, value: Any, cycle: bool = False) -> str | float:
@@ -157,13 +158,13 @@ def balance(at, thermal) -> tuple[float, Any, int]:
     lo = thermal.ambient_temperature
     if excess(lo) <= 0.0:  # no loss: the oil is at the ambient
         return lo, solved[lo], len(solved)
-    rise = None
     for _ in range(MAX_BRACKET_STEPS):
         ambient, conductance = thermal.ambient_temperature, thermal.conductance
         hi = min(steady_temperature(_loss(solved[lo]), conductance, ambient), MAX_OIL_TEMPERATURE)
-        if rise is not None and hi - lo > SLOW * rise:  # the losses rise nearly as fast
-            hi = min(lo + 2.0 * (hi - lo), MAX_OIL_TEMPERATURE)  # as h A: bracket wider
-        rise = hi - lo
+        e_lo, e_hi = excess(lo), excess(hi)
+        if 0.0 < e_hi < e_lo and hi - lo > BALANCE_TOL:  # the secant, a little past its root
+            ahead = hi + SECANT_REACH * e_hi * (hi - lo) / (e_lo - e_hi)
+            lo, hi = hi, min(ahead, MAX_OIL_TEMPERATURE)
         if excess(hi) <= 0.0:
             break
         if hi >= MAX_OIL_TEMPERATURE:

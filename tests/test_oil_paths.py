@@ -102,3 +102,37 @@ def test_limit_at_the_temperature_its_limit_point_produces(hub):
     assert curve.torque[0] == pytest.approx(limit, rel=1e-3)
     cold = at_temperature(hub, 293.15).limit_torque(1.0, **point)
     assert limit != cold
+
+
+def test_flags_and_keywords_override_the_hubs_balance(hub, capsys):
+    import json
+
+    from ballcvt.api import with_oil_temperature
+    from ballcvt.interfaces.cli.main import main
+
+    fixed = with_oil_temperature(hub, "fixed")
+    assert fixed.models["oil_temperature"] == "fixed" and fixed.fluid == hub.fluid
+    assert with_oil_temperature(Variator(), "balance").models["oil_temperature"] == "balance"
+    warm = with_oil_temperature(hub, 330.0)
+    assert warm.fluid.inlet_temperature == 330.0 and warm.models["oil_temperature"] == "fixed"
+    point = {"clamp_force": 400.0, "clamp_law": "constant", "input_speed_rpm": SPEED}
+    argv = [
+        "limit",
+        "--design",
+        "hub",
+        "--ratio",
+        "1",
+        "--speed",
+        "114",
+        "--clamp-law",
+        "constant",
+        "--clamp",
+        "400",
+        "--json",
+    ]
+    assert main([*argv, "--oil-temperature", "fixed"]) == 0
+    got = json.loads(capsys.readouterr().out)["limit_torque"]
+    assert got == pytest.approx(fixed.limit_torque(1.0, **point), rel=1e-12)
+    assert main([*argv, "--oil-temperature", "57"]) == 0
+    got = json.loads(capsys.readouterr().out)["limit_torque"]
+    assert got == pytest.approx(at_temperature(hub, 330.15).limit_torque(1.0, **point), rel=1e-12)

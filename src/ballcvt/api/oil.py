@@ -19,6 +19,7 @@ from typing import Any
 from scipy.optimize import brentq
 
 from ..errors import InputError
+from ..model.modes import resolve_mode
 from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
 from ..params.drive_models import DriveModels
 from ..results.planetary import PlanetaryResult
@@ -47,16 +48,20 @@ MAX_BRACKET_STEPS = 30
 SECANT_REACH = 1.1
 
 
-def drive_choice(design, value: Any, cycle: bool = False) -> str | float:
+def drive_choice(design, value: Any, cycle: bool = False, mode=None) -> str | float:
     """The oil-temperature model of a call: ``value`` if given, else the drive file's
     (``[models] oil_temperature``, `ballcvt.params.drive_models`), else ``"fixed"``.
 
     A drive that names ``"balance"`` runs a cycle's steps through the housing's lumped
     transient (``"transient"``, which needs ``thermal_mass``) and a point through the
-    steady balance; without a thermal mass its cycles run at the fixed temperature.
+    steady balance; without a thermal mass its cycles run at the fixed temperature. In a
+    planetary ``mode`` (`ballcvt.model.modes`) the drive's choice is not taken: its maps,
+    limits and cycles run the fluid as given, and so do its points unless asked.
     """
     if value is not None:
         return value
+    if mode is not None and not resolve_mode(mode).is_default:
+        return "fixed"
     models = getattr(design, "models", None)
     named = getattr(models, "oil_temperature", None) or "fixed"
     if named == "balance" and cycle:

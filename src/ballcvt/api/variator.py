@@ -197,7 +197,8 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
             If no equilibrium is found and ``check_capacity`` is False.
         """
         how = merge_settings(SolveSettings, settings, legacy, "solve")
-        how = replace(how, oil_temperature=oil.drive_choice(self.design, how.oil_temperature))
+        named = oil.drive_choice(self.design, how.oil_temperature, mode=how.mode)
+        how = replace(how, oil_temperature=named)
         if how.oil_temperature != "fixed":
             point = {"clamp_force": clamp_force, "clamp_law": clamp_law}
             speeds = {"input_speed": input_speed, "input_speed_rpm": input_speed_rpm}
@@ -469,7 +470,7 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
             cycle = read_cycle(cycle)
         clamp = {"clamp_force": clamp_force, "clamp_law": clamp_law}
         how = replace(
-            how, oil_temperature=oil.drive_choice(self.design, how.oil_temperature, True)
+            how, oil_temperature=oil.drive_choice(self.design, how.oil_temperature, True, mode)
         )
         if how.oil_temperature != "fixed" or how.initial_oil_temperature is not None:
             return oil.cycle_with_oil(self, cycle, how, clamp, resolve_mode(mode))  # §15

@@ -150,14 +150,9 @@ def _solve(ctx: Context, drive: Drive, law, out: dict, row: int) -> None:
     thermal = oil_balance_of(drive.design)  # the drive's [models] name the oil's balance
 
     def solved(rows):
-        return (
-            _at_power(rows, duty.load)
-            if duty.power
-            else (
-                duty.load,
-                evaluate_points(rows, duty.load),
-            )
-        )
+        if duty.power:
+            return _at_power(rows, duty.load)
+        return duty.load, evaluate_points(rows, duty.load)
 
     if thermal is not None:  # each point and each limit at its own oil temperature, §15
         t2, res = balanced_rows(points, thermal, solved)

@@ -6,7 +6,10 @@ lambda at each contact (and the oil temperature when the drive's models compute 
 uncertainty band and ranking (docs/uncertainty.md), the models the drive file names, and
 every assumption it rests on (its ASSUMED comments and its [uncertainty] table).
 
-Run from the repository's root (about a minute with the default 256 samples)::
+Run from the repository's root. With the hub's oil balance (its ``[models]``) each drawn
+drive's points and capacities are balanced too: about 4 s of CPU a sample (30 s for 8
+samples, measured), so some 16 CPU-minutes for the default 256, on 2 processes
+(``--workers``; the same samples either way)::
 
     python docs/scripts/real_hub.py                 # writes docs/validation/real-hub.md
     python docs/scripts/real_hub.py --samples 64 --out /tmp/page   # a quick look

@@ -26,7 +26,7 @@ def hub():
     return Variator(*load_builtin("hub"))
 
 
-def test_ladder_finds_a_cubic_root_and_interpolates_exactly():
+def test_ladder_finds_a_polynomial_root_and_interpolates_exactly():
     temps = np.array([290.0, 292.5, 295.0, 297.5, 300.0])
     root = 294.1
     excess = -(temps - root) * (1.0 + 0.01 * (temps - 290.0) ** 2)  # a cubic, root at 294.1
@@ -64,10 +64,10 @@ def test_hub_sweep_follows_the_balance_and_agrees_with_solve(hub):
         r = hub.solve(1.0, t2, input_speed_rpm=SPEED)
         x = ds.sel(ratio=1.0, output_torque=t2).squeeze()
         assert r.oil_model == "balance"
-        assert float(x["oil_temperature"]) == pytest.approx(r.oil_temperature, abs=0.02)
-        assert float(x["eta"]) == pytest.approx(r.eta, rel=2e-5)
-        # the solve finds its balance to BALANCE_TOL (0.01 K): losses agree to about that
-        assert float(x["losses"].sel(loss="total")) == pytest.approx(r.losses["total"], rel=5e-4)
+        # harden's branch check is 1e-6 in eta: the paths agree well within it
+        assert float(x["oil_temperature"]) == pytest.approx(r.oil_temperature, abs=1e-3)
+        assert float(x["eta"]) == pytest.approx(r.eta, rel=1e-6)
+        assert float(x["losses"].sel(loss="total")) == pytest.approx(r.losses["total"], rel=1e-5)
     hot = ds["oil_temperature"].values.ravel()
     assert 293.15 < hot[0] < hot[1] < 310.0  # more torque, more loss, hotter oil
 

@@ -88,12 +88,13 @@ def rated_torque(drive, creep_limit: float | None = None) -> float:
     ``[operating] rated_torque`` when the file gives it; else the constant-clamp capacity:
     the smallest limiting torque over the ratio range (`operating_ratio_range`) at the
     ``[operating] clamp_force`` (the paper's 2000 N without it), the input speed and
-    ``creep_limit`` (the design's by default).
+    ``creep_limit`` (the design's by default), with the fluid as given (docs/model.md §15).
     """
     d = drive.design
     op = d.operating
     if op is not None and op.rated_torque is not None:
         return float(op.rated_torque)
+    drive = with_oil_temperature(drive, "fixed")  # as `size_cam` sizes (docs/model.md §15)
     force = op.clamp_force if op is not None and op.clamp_force is not None else None
     force = PAPER_POINT.clamp_force if force is None else force
     speed = operating_speed_rpm(d)
@@ -106,7 +107,9 @@ def rated_torque(drive, creep_limit: float | None = None) -> float:
 
 
 def _scan(drive, creep_limit: float) -> list[tuple[float, Capacity]]:
-    """``(ratio, capacity under the cam)`` over the ratio range at the input speed."""
+    """``(ratio, capacity under the cam)`` over the ratio range at the input speed, with
+    the fluid as given (as `size_cam` sizes it, docs/model.md §15)."""
+    drive = with_oil_temperature(drive, "fixed")
     speed = operating_speed_rpm(drive.design)
     return [
         (
@@ -226,7 +229,7 @@ def size_cam(drive, margin: float = 1.2) -> CamSizing:
     for _ in range(MAX_BUMPS):
         cam = _cam(d.cam, preload, gain)
         sized = drive.__class__(d.replace(cam=cam), drive.fluid, drive.architecture)
-        if all(_covers(c, rated) for _, c in _scan(with_oil_temperature(sized, "fixed"), c_lim)):
+        if all(_covers(c, rated) for _, c in _scan(sized, c_lim)):
             return CamSizing(cam, sized.design, rated, c_lim, tuple(_ratios(d)))
         preload, gain = preload * 1.1, gain * 1.1
     raise InputError(

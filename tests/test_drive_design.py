@@ -14,6 +14,7 @@ from ballcvt.api import (
     drive_warnings,
     operating_ratio_range,
     size_cam,
+    with_oil_temperature,
 )
 from ballcvt.errors import InputError
 from ballcvt.interfaces.cli import options
@@ -124,7 +125,7 @@ def test_sized_cam_on_the_enlarged_hub_carries_from_zero_over_the_ratio_range(hu
     v = Variator(enlarged(hub), f)
     sized = size_cam(v, margin=1.2)
     assert sized.rated_torque == 100.0 and sized.design.cam == sized.cam
-    s = Variator(sized.design, f)
+    s = with_oil_temperature(Variator(sized.design, f), "fixed")  # the basis it is sized on
     lo, hi = operating_ratio_range(s.design)
     for ratio in (lo, 0.8, 1.2, hi):
         cap = s.capacity(ratio, clamp_law="cam", input_speed_rpm=150.0)

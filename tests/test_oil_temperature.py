@@ -277,8 +277,11 @@ def test_cycle_transient_tends_to_the_steady_balance():
     assert oil["final_C"] == pytest.approx(steady, abs=0.01)
     assert oil["max_C"] == pytest.approx(max(oil["final_C"], steps["oil_temperature_C"].max()))
     fixed = v.run_cycle(cycle, clamp_law="cam", strategy="target-input-speed",
-                        target_input_speed_rpm=114.0)
+                        target_input_speed_rpm=114.0, oil_temperature="fixed")
     assert "oil_temperature_C" not in fixed.steps and "oil_temperature" not in fixed.summary
+    default = v.run_cycle(cycle, clamp_law="cam", strategy="target-input-speed",
+                          target_input_speed_rpm=114.0)  # the hub names the balance
+    assert default.summary["oil_temperature"]["model"] == "transient"
 
 
 # --- the command line --------------------------------------------------------------------

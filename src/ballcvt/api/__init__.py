@@ -32,6 +32,7 @@ from .cam_sizing import (
 from .capacity import CapacityCurve, capacity_curve
 from .grids import LimitCurve
 from .life import life_settings
+from .oil import with_oil_temperature
 from .settings import CycleSettings, MapGrid, SolveSettings, SweepSettings, TableGrid
 from .shift_moments import ShiftMoments
 from .tools import contact_fluid, drive_text, open_drive, read_study
@@ -69,6 +70,7 @@ __getattr__, __dir__ = lazy_exports(__name__, _LAZY)
 
 __all__ = [
     "folder_lock",
+    "with_oil_temperature",
     "PAPER_POINT",
     "Drive",
     "Variator",

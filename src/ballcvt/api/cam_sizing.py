@@ -20,6 +20,7 @@ from ..params.drive import PAPER_POINT
 from ..params.feasibility import design_warnings
 from ..params.models import CamModel, Design
 from ..solvers.capacity import Capacity
+from .oil import with_oil_temperature
 
 __all__ = [
     "CamSizing",
@@ -87,12 +88,13 @@ def rated_torque(drive, creep_limit: float | None = None) -> float:
     ``[operating] rated_torque`` when the file gives it; else the constant-clamp capacity:
     the smallest limiting torque over the ratio range (`operating_ratio_range`) at the
     ``[operating] clamp_force`` (the paper's 2000 N without it), the input speed and
-    ``creep_limit`` (the design's by default).
+    ``creep_limit`` (the design's by default), with the fluid as given (docs/model.md §15).
     """
     d = drive.design
     op = d.operating
     if op is not None and op.rated_torque is not None:
         return float(op.rated_torque)
+    drive = with_oil_temperature(drive, "fixed")  # as `size_cam` sizes (docs/model.md §15)
     force = op.clamp_force if op is not None and op.clamp_force is not None else None
     force = PAPER_POINT.clamp_force if force is None else force
     speed = operating_speed_rpm(d)
@@ -105,7 +107,9 @@ def rated_torque(drive, creep_limit: float | None = None) -> float:
 
 
 def _scan(drive, creep_limit: float) -> list[tuple[float, Capacity]]:
-    """``(ratio, capacity under the cam)`` over the ratio range at the input speed."""
+    """``(ratio, capacity under the cam)`` over the ratio range at the input speed, with
+    the fluid as given (as `size_cam` sizes it, docs/model.md §15)."""
+    drive = with_oil_temperature(drive, "fixed")
     speed = operating_speed_rpm(drive.design)
     return [
         (
@@ -191,7 +195,9 @@ def size_cam(drive, margin: float = 1.2) -> CamSizing:
     ``creep_limit / margin`` (and every pressure within ``max_pressure``) for every output
     torque from zero to `rated_torque`. The preload is the smallest that holds the no-load
     drag at every ratio (the capacity starts at zero); the ramp angle is then the largest
-    (least clamping, least loss) that carries the rated torque.
+    (least clamping, least loss) that carries the rated torque. The limits are those of
+    the fluid as given, whatever the drive's oil model (docs/model.md §15: a heat balance
+    per trial limit would cost some ten times more).
 
     Parameters
     ----------
@@ -215,9 +221,10 @@ def size_cam(drive, margin: float = 1.2) -> CamSizing:
     if not 1.0 <= margin < 10.0:
         raise InputError("margin", margin, "1 <= margin < 10")
     c_lim = d.creep_limit / margin
-    rated = rated_torque(drive, c_lim)
+    fixed = with_oil_temperature(drive, "fixed")  # sized with the fluid as given (§15)
+    rated = rated_torque(fixed, c_lim)
     per_force = d.n_rollers * math.sin(d.theta0)  # thrust per unit F_N0 (the cam law)
-    preload, gain = _thrust_line(drive, c_lim, rated)
+    preload, gain = _thrust_line(fixed, c_lim, rated)
     preload, gain = preload * per_force, gain * per_force
     for _ in range(MAX_BUMPS):
         cam = _cam(d.cam, preload, gain)

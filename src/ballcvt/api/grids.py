@@ -5,16 +5,19 @@ range, and is handed to the sweep (docs/model.md §8)."""
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
+from ..analysis.oil_sweep import balanced_limits
 from ..analysis.sweeps.curves import OperatingRows, limit_search_curves
 from ..equilibrium.problem import build_problem
+from ..model.oil import fluid_at
 from ..params.drive import Drive
 from ..solvers.limit import LimitSearch, bisection_steps
 from ..units import rpm_to_rad_s
+from . import oil
 from .settings import MapGrid, SweepSettings, TableGrid
 
 __all__ = ["LimitCurve", "limit_curve", "efficiency_map", "lookup_table"]
@@ -33,11 +36,15 @@ class LimitCurve:
     search : LimitSearch
         The limit search (torques, and the creeps at zero torque and at the limits), which
         `Variator.sweep` takes as ``limit_torque`` so as not to search again.
+    oil_temperature : ndarray, optional
+        Under the oil's heat balance, the temperature each curve's limit point produces
+        ``(m,)`` [K] (docs/model.md §15); None at the fluid as given.
     """
 
     ratio: np.ndarray
     input_speed: np.ndarray
     search: LimitSearch
+    oil_temperature: np.ndarray | None = None
 
     @property
     def torque(self) -> np.ndarray:
@@ -76,12 +83,25 @@ def limit_curve(variator, ratio, input_speed, clamp: dict, creep_limit, progress
         v.design, v.fluid, v.architecture, r, 0.0, 1.0 if force is None else force, w
     )  # validates every input
     c_lim = v.design.creep_limit if creep_limit is None else float(creep_limit)
+    rows = OperatingRows.of(
+        Drive(v.design, v.fluid, v.architecture), r, w, force, law, v.options, c_lim
+    )
+    if (choice := oil.path_choice(v)) != "fixed":  # each limit at its own oil temperature
+        return _oil_limits(v, rows, choice)
     with _progress_bar(progress, bisection_steps(), f"limiting torque at {r.size} points") as bar:
-        rows = OperatingRows.of(
-            Drive(v.design, v.fluid, v.architecture), r, w, force, law, v.options, c_lim
-        )
         search = limit_search_curves(rows, bar.update)[1]
     return LimitCurve(r, w, search)
+
+
+def _oil_limits(variator, rows, choice) -> LimitCurve:
+    """`limit_curve` under the oil model ``choice``, not ``"fixed"`` (docs/model.md §15)."""
+    if choice == "balance":
+        thermal = oil.thermal_of(variator.design)
+        _, temperature, search = balanced_limits(rows, thermal)
+        return LimitCurve(rows.ratio, rows.input_speed, search, temperature)
+    fluid = fluid_at(variator.fluid, float(choice))
+    search = limit_search_curves(replace(rows, drive=replace(rows.drive, fluid=fluid)))[1]
+    return LimitCurve(rows.ratio, rows.input_speed, search, np.full(rows.size, float(choice)))
 
 
 def efficiency_map(variator, grid: MapGrid, input_speed_rpm: float, clamp: dict, run: dict):
@@ -96,7 +116,7 @@ def efficiency_map(variator, grid: MapGrid, input_speed_rpm: float, clamp: dict,
         output_torque=np.linspace(top / grid.n_torque, top, grid.n_torque),
         **clamp,
         input_speed_rpm=input_speed_rpm,
-        settings=SweepSettings(limit_torque=limits, label="efficiency map", **run),
+        settings=SweepSettings(limit_torque=_handed(limits), label="efficiency map", **run),
     )
 
 
@@ -111,8 +131,14 @@ def lookup_table(variator, grid: TableGrid, clamp: dict, run: dict):
         output_torque=np.linspace(0.0, top, grid.n_torque),
         **clamp,
         input_speed_rpm=rpm,
-        settings=SweepSettings(limit_torque=limits, label="lookup table", **run),
+        settings=SweepSettings(limit_torque=_handed(limits), label="lookup table", **run),
     )
+
+
+def _handed(limits: LimitCurve) -> LimitCurve | None:
+    """The limits a map or table hands to its sweep: none under an oil temperature
+    other than the fluid's own (each temperature of the sweep searches its own)."""
+    return limits if limits.oil_temperature is None else None
 
 
 def _largest(limits: LimitCurve) -> float:

@@ -4,8 +4,11 @@
 ``P_loss(T) = h A (T - T_amb)``: each evaluation of ``P_loss(T)`` is a full operating point
 with the fluid at ``T`` (`ballcvt.model.oil.fluid_at`). The root is bracketed from the
 ambient upwards by fixed-point steps ``T <- T_amb + P_loss(T) / (h A)`` and then found by
-Brent's method to `BALANCE_TOL`; if the losses still exceed what the housing rejects at
-`MAX_OIL_TEMPERATURE` there is no balance (a runaway) and the point is refused.
+Brent's method to `BALANCE_TOL` (each step that does not cross is followed by the secant's
+step, 10 % past its root: near the capacity the losses rise with the temperature nearly as
+fast as the heat rejected and the fixed point crawls); if the losses still exceed what
+the housing rejects at `MAX_OIL_TEMPERATURE` there is no balance (a runaway) and the point
+is refused.
 """
 
 from __future__ import annotations
@@ -16,34 +19,49 @@ from typing import Any
 from scipy.optimize import brentq
 
 from ..errors import InputError
+from ..model.modes import resolve_mode
 from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
+from ..params.drive_models import DriveModels
 from ..results.planetary import PlanetaryResult
 
 __all__ = [
     "solve_with_oil",
     "cycle_with_oil",
     "oil_choice",
+    "path_choice",
+    "at_temperature",
+    "sweep_with_oil",
+    "limit_with_oil",
+    "with_oil_temperature",
     "thermal_of",
     "MAX_OIL_TEMPERATURE",
     "BALANCE_TOL",
 ]
 
 #: Tolerance of the balance's temperature [K].
-BALANCE_TOL = 0.01
+BALANCE_TOL = 1e-4
 #: Fixed-point steps to bracket the balance before refusing.
 MAX_BRACKET_STEPS = 30
+#: How far past the secant's root the bracket reaches after a fixed-point step that did
+#: not cross (the losses rising with the temperature, near the capacity, slow the fixed
+#: point down: it converges as (dP/dT) / (h A) per step) [-].
+SECANT_REACH = 1.1
 
 
-def drive_choice(design, value: Any, cycle: bool = False) -> str | float:
+def drive_choice(design, value: Any, cycle: bool = False, mode=None) -> str | float:
     """The oil-temperature model of a call: ``value`` if given, else the drive file's
     (``[models] oil_temperature``, `ballcvt.params.drive_models`), else ``"fixed"``.
 
     A drive that names ``"balance"`` runs a cycle's steps through the housing's lumped
     transient (``"transient"``, which needs ``thermal_mass``) and a point through the
-    steady balance; without a thermal mass its cycles run at the fixed temperature.
+    steady balance; without a thermal mass its cycles run at the fixed temperature. In a
+    planetary ``mode`` (`ballcvt.model.modes`) the drive's choice is not taken: its maps,
+    limits and cycles run the fluid as given, and so do its points unless asked.
     """
     if value is not None:
         return value
+    if mode is not None and not resolve_mode(mode).is_default:
+        return "fixed"
     models = getattr(design, "models", None)
     named = getattr(models, "oil_temperature", None) or "fixed"
     if named == "balance" and cycle:
@@ -148,6 +166,10 @@ def balance(at, thermal) -> tuple[float, Any, int]:
     for _ in range(MAX_BRACKET_STEPS):
         ambient, conductance = thermal.ambient_temperature, thermal.conductance
         hi = min(steady_temperature(_loss(solved[lo]), conductance, ambient), MAX_OIL_TEMPERATURE)
+        e_lo, e_hi = excess(lo), excess(hi)
+        if 0.0 < e_hi < e_lo and hi - lo > BALANCE_TOL:  # the secant, a little past its root
+            ahead = hi + SECANT_REACH * e_hi * (hi - lo) / (e_lo - e_hi)
+            lo, hi = hi, min(ahead, MAX_OIL_TEMPERATURE)
         if excess(hi) <= 0.0:
             break
         if hi >= MAX_OIL_TEMPERATURE:
@@ -216,3 +238,110 @@ def cycle_with_oil(variator, cycle, settings, clamp: dict, mode):
         raise InputError("initial_oil_temperature", start, f"150 to {MAX_OIL_TEMPERATURE:g} K")
     oil = OilTransient(thermal=thermal, initial_temperature=start)
     return run_cycle_with_oil(variator, cycle, request, oil)
+
+
+def at_temperature(variator, temperature: float):
+    """``variator`` with its fluid at ``temperature`` [K] and its oil model ``"fixed"``
+    (the paths run on it as on any drive)."""
+    design = variator.design
+    models = design.models
+    fixed = (
+        models.model_copy(update={"oil_temperature": "fixed"})
+        if models is not None
+        else DriveModels(oil_temperature="fixed")
+    )
+    design = design.model_copy(update={"models": fixed})
+    return replace(variator, design=design, fluid=fluid_at(variator.fluid, temperature))
+
+
+def path_choice(variator, value: Any = None) -> str | float:
+    """The oil-temperature model of a sweep, map, table or limit: ``value``, else the
+    drive file's (`drive_choice`), as ``"fixed"``, ``"balance"`` or a temperature [K]."""
+    return oil_choice(drive_choice(variator.design, value), ("fixed", "balance"))
+
+
+def sweep_with_oil(variator, choice: str | float, request):
+    """`Variator.sweep` of ``request`` (`ballcvt.analysis.sweeps.grid.SweepRequest`) under
+    the oil model ``choice``: ``"fixed"`` the fluid as given, a temperature [K] the fluid
+    there, ``"balance"`` each point at its own heat balance
+    (`ballcvt.analysis.oil_sweep.balanced_sweep`). Not ``"fixed"``: the dataset has
+    ``oil_temperature`` [K] at each point and the attribute ``oil_model``."""
+    from ..analysis.oil_sweep import balanced_sweep
+    from ..analysis.sweeps.grid import sweep
+
+    if choice == "fixed":
+        return sweep(variator.design, variator.fluid, request)
+    if choice == "balance":
+        return balanced_sweep(
+            variator.design, variator.fluid, thermal_of(variator.design), request
+        )
+    ds = sweep(variator.design, fluid_at(variator.fluid, float(choice)), request)
+    ds["oil_temperature"] = ds["status"].astype(float) * 0.0 + float(choice)
+    ds["oil_temperature"].attrs.update(long_name="bulk oil temperature (given)", units="K")
+    ds.attrs["oil_model"] = "given"
+    return ds
+
+
+class _Idle:
+    """The stand-in of a limit point where no torque is admissible: nothing to reject."""
+
+    losses = {"total": 0.0}
+
+
+def limit_with_oil(variator, choice: str | float, ratio: float, point: dict, whole: bool = True):
+    """``(capacity, oil temperature [K])`` of `Variator.capacity` at the oil temperature
+    its limit point produces: the largest admissible torque solved (`LIMIT_SHY` below it)
+    with the fluid at ``T``, whose loss balances ``h A (T - T_amb)`` (`balance`); under a
+    given temperature, the capacity there. A limit point whose losses the housing cannot
+    reject below `MAX_OIL_TEMPERATURE` takes the capacity at that temperature (the
+    hottest oil modelled; `Variator.solve` refuses such a point as a thermal runaway).
+
+    ``point`` holds the keywords of `Variator.capacity` (clamping, speeds, creep limit);
+    with ``whole`` False the capacity is only `Variator.limit_torque`'s largest torque [N m]
+    (without the intervals' constraints: cheaper).
+    """
+    from ..analysis.oil_sweep import LIMIT_SHY
+
+    found: dict[float, Any] = {}
+    keys = ("clamp_force", "clamp_law", "input_speed", "input_speed_rpm")
+    solve_point = {k: point[k] for k in keys if k in point}
+
+    def at(temperature: float):
+        drive = at_temperature(variator, temperature)
+        cap = drive.capacity(ratio, **point) if whole else drive.limit_torque(ratio, **point)
+        found[temperature] = cap
+        top = cap.intervals[-1][1] if whole and cap.intervals else cap
+        if not top >= 0.0:  # (no admissible torque)
+            return _Idle()
+        top = top * (1.0 - LIMIT_SHY)
+        return drive.solve(ratio, top, check_capacity=False, **solve_point)
+
+    if choice != "balance":
+        at(float(choice))
+        return found[float(choice)], float(choice)
+    try:
+        temperature = balance(at, thermal_of(variator.design))[0]
+    except InputError:
+        if MAX_OIL_TEMPERATURE not in found:
+            raise
+        temperature = MAX_OIL_TEMPERATURE  # a runaway: the limit with the hottest oil
+    return found[temperature], temperature
+
+
+def with_oil_temperature(variator, value: Any):
+    """``variator`` computed under the oil model ``value`` on every path: ``"fixed"`` or
+    ``"balance"`` (its ``[models] oil_temperature``), or a temperature [K] (the fluid
+    there, the model ``"fixed"``); itself for None (the drive file's own choice)."""
+    if value is None:
+        return variator
+    choice = oil_choice(value, ("fixed", "balance"))
+    if isinstance(choice, float):
+        return at_temperature(variator, choice)
+    design = variator.design
+    models = design.models
+    named = (
+        models.model_copy(update={"oil_temperature": choice})
+        if models is not None
+        else DriveModels(oil_temperature=choice)
+    )
+    return replace(variator, design=design.model_copy(update={"models": named}))

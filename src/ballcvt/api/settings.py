@@ -71,6 +71,9 @@ class SweepSettings:
         Progress bar (default: when stderr is a terminal).
     label : str, optional
         What the progress bar says it computes.
+    oil_temperature : {"fixed", "balance"} or float, optional
+        As in `SolveSettings`: under ``"balance"`` each point at its own heat balance
+        (`ballcvt.analysis.oil_sweep`), the dataset gaining ``oil_temperature`` [K].
     """
 
     architecture: Any = None
@@ -79,6 +82,7 @@ class SweepSettings:
     workers: int = 1
     progress: bool | None = None
     label: str | None = None
+    oil_temperature: str | float | None = None
 
 
 @dataclass(frozen=True)

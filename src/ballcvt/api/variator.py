@@ -198,7 +198,8 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
             If no equilibrium is found and ``check_capacity`` is False.
         """
         how = merge_settings(SolveSettings, settings, legacy, "solve")
-        how = replace(how, oil_temperature=oil.drive_choice(self.design, how.oil_temperature))
+        named = oil.drive_choice(self.design, how.oil_temperature, mode=how.mode)
+        how = replace(how, oil_temperature=named)
         if how.oil_temperature != "fixed":
             point = {"clamp_force": clamp_force, "clamp_law": clamp_law}
             speeds = {"input_speed": input_speed, "input_speed_rpm": input_speed_rpm}
@@ -276,6 +277,10 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
                 _speed(input_speed, input_speed_rpm),
                 self._creep_limit(creep_limit),
             )
+        point = {"clamp_force": clamp_force, "clamp_law": clamp_law, "creep_limit": creep_limit}
+        point.update(input_speed=input_speed, input_speed_rpm=input_speed_rpm)
+        if (choice := oil.path_choice(self)) != "fixed":  # at its own oil temperature, §15
+            return oil.limit_with_oil(self, choice, ratio, point, whole=False)[0]
         problem, law, c_lim = self._capacity_basis(
             ratio, clamp_force, clamp_law, (input_speed, input_speed_rpm), creep_limit
         )
@@ -306,6 +311,10 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
             ``active_constraint`` what sets the largest (e.g. ``"creep (output contact)"``,
             ``"pressure (max_pressure 3 GPa)"``; `ballcvt.solvers.constraints`).
         """
+        point = {"clamp_force": clamp_force, "clamp_law": clamp_law, "creep_limit": creep_limit}
+        point.update(input_speed=input_speed, input_speed_rpm=input_speed_rpm)
+        if (choice := oil.path_choice(self)) != "fixed":  # at its own oil temperature, §15
+            return oil.limit_with_oil(self, choice, ratio, point)[0]
         problem, law, c_lim = self._capacity_basis(
             ratio, clamp_force, clamp_law, (input_speed, input_speed_rpm), creep_limit
         )
@@ -372,16 +381,14 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
                 input_speed,
                 "exactly one of input_speed [rad/s] or input_speed_rpm [rpm]",
             )
-        from ..analysis.sweeps.grid import sweep
+        from ..analysis.sweeps.grid import SweepRequest
 
         clamp_law, clamp_force = drive_clamp(self.design, clamp_law, clamp_force)
         rpm = (
             None if input_speed_rpm is None else np.atleast_1d(np.asarray(input_speed_rpm, float))
         )
         speed = np.asarray(input_speed, float) if rpm is None else rpm_to_rad_s(rpm)
-        return sweep(
-            self.design,
-            self.fluid,
+        request = SweepRequest(
             ratio=ratio,
             output_torque=output_torque,
             clamp_force=clamp_force,
@@ -396,6 +403,7 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
             label=how.label,
             input_speed_rpm=rpm,
         )
+        return oil.sweep_with_oil(self, oil.path_choice(self, how.oil_temperature), request)
 
     def optimal_clamp_force(
         self,
@@ -463,7 +471,7 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
             cycle = read_cycle(cycle)
         clamp = {"clamp_force": clamp_force, "clamp_law": clamp_law}
         how = replace(
-            how, oil_temperature=oil.drive_choice(self.design, how.oil_temperature, True)
+            how, oil_temperature=oil.drive_choice(self.design, how.oil_temperature, True, mode)
         )
         if how.oil_temperature != "fixed" or how.initial_oil_temperature is not None:
             return oil.cycle_with_oil(self, cycle, how, clamp, resolve_mode(mode))  # §15

@@ -23,6 +23,7 @@ from ...params.models import Design, Fluid
 from ...params.uncertainty import with_values
 from ...solvers import SolverOptions
 from ...status import Status
+from ..oil_sweep import balanced_limits, balanced_rows, oil_balance_of
 from ..sweeps.curves import OperatingRows, limit_search_curves
 from ..sweeps.points import evaluate_points
 
@@ -145,19 +146,26 @@ def _solve(ctx: Context, drive: Drive, law, out: dict, row: int) -> None:
     """Efficiency at the points and capacity at the capacity rows of one drive."""
     duty = ctx.duty
     points = _rows(ctx, drive, law, duty.ratio, duty.input_speed)
-    if duty.power:
-        t2, res = _at_power(points, duty.load)
+    caps = _rows(ctx, drive, law, duty.capacity_ratio, duty.capacity_speed)
+    thermal = oil_balance_of(drive.design)  # the drive's [models] name the oil's balance
+
+    def solved(rows):
+        if duty.power:
+            return _at_power(rows, duty.load)
+        return duty.load, evaluate_points(rows, duty.load)
+
+    if thermal is not None:  # each point and each limit at its own oil temperature, §15
+        t2, res = balanced_rows(points, thermal, solved)
+        out["capacity"][row] = balanced_limits(caps, thermal)[0]
     else:
-        t2, res = duty.load, evaluate_points(points, duty.load)
+        t2, res = solved(points)
     out["status"][row] = res["status"]
     ok = res["status"] == Status.CONVERGED
     out["eta"][row] = np.where(ok, res["eta"], np.nan)
     out["output_torque"][row] = np.where(ok, t2, np.nan)
     out["input_torque"][row] = np.where(ok, res["input_torque"], np.nan)
-    _, search = limit_search_curves(
-        _rows(ctx, drive, law, duty.capacity_ratio, duty.capacity_speed)
-    )
-    out["capacity"][row] = search.torque
+    if thermal is None:
+        out["capacity"][row] = limit_search_curves(caps)[1].torque
 
 
 def _at_power(points: OperatingRows, power: np.ndarray):

@@ -7,6 +7,7 @@ import numpy as np
 from ...api import capacity_curve
 from ...files import atomic_path, check_output_dir
 from . import options as o
+from .oil_option import add_oil_option
 
 
 def add_parser(subparsers) -> None:
@@ -34,6 +35,7 @@ def add_parser(subparsers) -> None:
     )
     p.add_argument("--points", type=o.count(2, 200), default=7, help="ratios, 2-200 (default: 7)")
     o.out(p, "ballcvt-capacity")
+    add_oil_option(p, "balance")
     p.add_argument("--quiet", action="store_true", help="no summary")
 
 

@@ -6,6 +6,7 @@ from ..._version import __version__
 from . import options as o
 from .format import limit_table
 from .modes import add_mode_options, mode_of
+from .oil_option import add_oil_option
 
 
 def add_parser(subparsers) -> None:
@@ -25,6 +26,7 @@ def add_parser(subparsers) -> None:
     )
     o.add(p, "arch", "ratio", *o.CLAMP_OPTIONS, "speed", "creep-limit", *o.FLUID_OPTIONS, "json")
     add_mode_options(p, "the limit is the driven member's largest load torque")
+    add_oil_option(p, "balance")
 
 
 def run(args) -> int:

@@ -11,6 +11,7 @@ from ...files import check_output_dir
 from ...units import deg_to_rad
 from . import options as o
 from .modes import add_mode_options, mode_of
+from .oil_option import add_oil_option
 from .point import add_tilt_rate
 
 
@@ -44,6 +45,7 @@ def add_parser(subparsers) -> None:
         p, n_ratio=31, n_torque=35, most=1000, torque_max="1.02 x the largest limiting torque"
     )
     o.run_options(p)
+    add_oil_option(p, "balance")
     add_mode_options(p, "the torques are the driven member's load torques")
 
 

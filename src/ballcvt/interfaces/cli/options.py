@@ -25,9 +25,11 @@ from ...api import (
     drive_clamp,
     effective_models,
     open_drive,
+    with_oil_temperature,
 )
 from ...errors import InputError
 from ...registry import ARCHITECTURES, CLAMP_LAWS, LUBRICATION_MODELS, TRACTION_LAWS
+from ...units import celsius_to_kelvin
 
 #: The paper's operating point: the defaults of ``point``, ``limit`` and ``clamp``.
 #: The drive and fluid options of every command that solves the drive.
@@ -324,6 +326,9 @@ def variator(args) -> Variator:
         opt = flags[next(iter(cam))]
         raise InputError(opt, None, "--clamp-law cam", message=f"{opt} needs --clamp-law cam")
     v = Variator(design, fluid, args.arch, traction_law=fluid.traction_law)
+    oil = getattr(args, "oil_temperature", None)  # --oil-temperature on every path (§15)
+    if oil is not None and oil != "transient":
+        v = with_oil_temperature(v, oil if isinstance(oil, str) else celsius_to_kelvin(oil))
     return v.with_cam(cam, flags) if cam else v
 
 

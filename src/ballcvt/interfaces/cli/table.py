@@ -5,6 +5,7 @@ from __future__ import annotations
 from ...api import TableGrid, to_netcdf, write_tables
 from ...files import check_output_dir
 from . import options as o
+from .oil_option import add_oil_option
 
 
 def add_parser(subparsers) -> None:
@@ -46,6 +47,7 @@ def add_parser(subparsers) -> None:
     )
     o.out(p, "ballcvt-table")
     o.run_options(p)
+    add_oil_option(p, "balance")
 
 
 def run(args) -> int:

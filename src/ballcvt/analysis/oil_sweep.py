@@ -1,0 +1,276 @@
+"""A sweep under the oil's heat balance: each point, and each curve's limiting torque, at
+its own oil temperature (docs/model.md §15; the method: `ballcvt.analysis.oil_paths`).
+
+The sweep is run at each rung of the ladder of oil temperatures; each point's quantities
+are interpolated to its balance temperature, and each curve's ``limit_torque`` and
+``eta_at_limit`` to the temperature its limit point produces (the limit point solved at
+each rung; the rungs climb on for the limits as far as they need). The dataset gains
+``oil_temperature`` [K] at every point and ``oil_temperature_at_limit`` [K] per curve.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import xarray as xr
+
+from ..errors import InputError
+from ..model.clamping import clamp_law as clamp_law_of
+from ..params.drive import Drive
+from ..params.models import Design, Fluid
+from ..performance.efficiency import LOSS_KINDS
+from ..solvers.limit import LimitSearch
+from .oil_paths import (
+    LIMIT_STEP,
+    Ladder,
+    balance_weights,
+    climb,
+    interpolate,
+    nearest,
+    runaway_status,
+    runaways_at_top,
+)
+from .sweeps.curves import OperatingRows, limit_search_curves
+from .sweeps.grid import SweepRequest, sweep
+from .sweeps.points import evaluate_points
+
+__all__ = [
+    "balanced_sweep",
+    "balanced_limits",
+    "balanced_rows",
+    "limit_ladder",
+    "oil_balance_of",
+    "LIMIT_SHY",
+]
+
+#: The limit point is solved this fraction below the limiting torque (at the limit itself
+#: the admissibility test may fall either way by round-off) [-].
+LIMIT_SHY = 1e-6
+#: Variables taken at the nearest rung rather than interpolated (counts and codes).
+CODES = ("status", "warnings", "iterations")
+
+
+def balanced_sweep(design: Design, fluid: Fluid, thermal, request: SweepRequest) -> xr.Dataset:
+    """`ballcvt.analysis.sweeps.grid.sweep` with every point at its oil balance.
+
+    Parameters
+    ----------
+    design, fluid : Design, Fluid
+        The drive (the fluid with its viscosity-temperature data).
+    thermal : ThermalModel
+        The housing, ``[design.thermal]``.
+    request : SweepRequest
+        The grid, without ``limit_torque`` (each temperature searches its own).
+
+    Returns
+    -------
+    xarray.Dataset
+        As `sweep`, with ``oil_temperature`` [K] at each point and
+        ``oil_temperature_at_limit`` [K] per curve, and the attribute ``oil_model``
+        ``"balance"``.
+    """
+    if request.limit_torque is not None:
+        raise InputError(
+            "limit_torque",
+            "given",
+            "None under the oil's heat balance (each temperature searches its own limits)",
+        )
+
+    def at(f: Fluid):
+        ds = sweep(design, f, request)
+        return ds, _points(ds, ds["losses"].sel(loss="total")).ravel()
+
+    ladder = climb(fluid, thermal, at)
+    first = ladder.results[0]
+    out = _interpolated(ladder, list(first["status"].dims))
+    _limits_into(out, design, fluid, thermal, (request, ladder))
+    out.attrs.update(first.attrs, oil_model="balance", oil_rungs=len(ladder.temperatures))
+    return out
+
+
+def _limits_into(out: xr.Dataset, design, fluid, thermal, run) -> None:
+    """``out`` gains the curves' balanced ``limit_torque``, ``eta_at_limit`` and
+    ``oil_temperature_at_limit``; ``run`` is the request and the points' ladder."""
+    request, points = run
+    first = points.results[0]
+    dims = first["limit_torque"].dims
+    flat = {
+        float(t): tuple(
+            r[v].transpose(*dims).values.ravel() for v in ("limit_torque", "eta_at_limit")
+        )
+        for t, r in zip(points.temperatures, points.results, strict=True)
+    }
+    ladder = limit_ladder(_curve_rows(design, fluid, first, request), thermal, flat)
+    temp, weights, outcome = balance_weights(ladder)
+    runaways_at_top(ladder, temp, weights, outcome)
+    shape = first["limit_torque"].shape
+    for i, name in enumerate(("limit_torque", "eta_at_limit")):
+        values = interpolate(np.stack([r[i] for r in ladder.results]), weights)
+        out[name] = xr.Variable(dims, values.reshape(shape), first[name].attrs)
+    temp = np.where(np.isfinite(out["limit_torque"].values.ravel()), temp, np.nan)
+    out["oil_temperature_at_limit"] = xr.Variable(
+        dims,
+        temp.reshape(shape),
+        {"long_name": "oil temperature the limit point produces", "units": "K"},
+    )
+
+
+def _points(ds: xr.Dataset, var: xr.DataArray) -> np.ndarray:
+    """``var`` with the point dimensions of ``ds`` (its ``status``'s) first, in order."""
+    dims = list(ds["status"].dims)
+    return var.transpose(*dims, ...).values
+
+
+def _interpolated(ladder: Ladder, dims: list[str]) -> xr.Dataset:
+    """The variables of the rungs' datasets over ``dims`` at each point's balance."""
+    temp, weights, outcome = balance_weights(ladder)
+    first = ladder.results[0]
+    shape = tuple(first.sizes[d] for d in dims)
+    data = {}
+    for name, var in first.data_vars.items():
+        if tuple(var.dims[: len(dims)]) != tuple(dims):
+            continue
+        stack = np.stack([r[name].values for r in ladder.results])
+        stack = stack.reshape((stack.shape[0], -1) + stack.shape[1 + len(dims) :])
+        if name in CODES:
+            values = nearest(stack, ladder, temp, outcome)
+            values = runaway_status(values, outcome) if name == "status" else values
+        else:
+            values = interpolate(stack.astype(float), weights)
+        data[name] = xr.Variable(var.dims, values.reshape(var.shape).astype(var.dtype), var.attrs)
+    status = data.get("status")
+    bad = outcome != -1
+    temperature = np.where(bad, np.nan, temp).reshape(shape)
+    if status is not None:  # a failed point's values are NaN (its rung's status says why)
+        temperature = np.where(np.asarray(status.values) == 0, temperature, np.nan)
+    data["oil_temperature"] = xr.Variable(
+        dims, temperature, {"long_name": "bulk oil temperature (heat balance)", "units": "K"}
+    )
+    return xr.Dataset(data, coords=first.coords)
+
+
+def limit_ladder(rows: OperatingRows, thermal, cached: dict | None = None) -> Ladder:
+    """The rows' limits on the ladder of oil temperatures.
+
+    Parameters
+    ----------
+    rows : OperatingRows
+        The curves (ratio, speed, force or law), with the fluid as given.
+    thermal : ThermalModel
+        The housing.
+    cached : dict, optional
+        ``{T [K]: (limit torques, efficiencies at them)}`` already found (a sweep's).
+
+    Returns
+    -------
+    Ladder
+        Its results: ``(limit torque [N m], efficiency at the limit [-], LimitSearch or
+        None)`` of each row at each rung; its excess, the limit point's (solved
+        `LIMIT_SHY` below the limit), climbing while a limit point needs it.
+    """
+    known = cached or {}
+
+    def at(f: Fluid):
+        r = replace(rows, drive=replace(rows.drive, fluid=f))
+        got = known.get(f.inlet_temperature)  # (fluid_at sets it)
+        search = None
+        if got is None:
+            search = limit_search_curves(r)[1]
+            limit = search.torque.ravel() if search is not None else np.full(r.size, np.nan)
+        else:
+            limit = got[0]
+        point = evaluate_points(r, np.nan_to_num(limit * (1.0 - LIMIT_SHY), nan=0.0))
+        finite = np.isfinite(limit)
+        loss = np.where(finite, point["losses"][:, LOSS_KINDS.index("total")], np.nan)
+        eta = got[1] if got is not None else np.where(finite, point["eta"], np.nan)
+        return (limit, eta, search), loss
+
+    return climb(rows.drive.fluid, thermal, at, LIMIT_STEP)
+
+
+def balanced_limits(rows: OperatingRows, thermal) -> tuple[np.ndarray, np.ndarray, LimitSearch]:
+    """Each row's limiting torque at the oil temperature its limit point produces.
+
+    Returns
+    -------
+    torque : ndarray
+        ``(m,)`` [N m], NaN where none (or where its limit point has no balance).
+    temperature : ndarray
+        The limit point's oil temperature ``(m,)`` [K].
+    search : LimitSearch
+        The search at the rung nearest each row's temperature, with ``torque`` the
+        balanced limit (its creeps a start for the points near it).
+    """
+    ladder = limit_ladder(rows, thermal)
+    temp, weights, outcome = balance_weights(ladder)
+    runaways_at_top(ladder, temp, weights, outcome)
+    torque = interpolate(np.stack([r[0] for r in ladder.results]), weights)
+    k = np.abs(ladder.temperatures[:, None] - temp[None, :]).argmin(axis=0)
+    searches = [r[2] for r in ladder.results]
+    base = searches[0].flat()
+    pick = [searches[j].flat().take(np.array([i])) for i, j in enumerate(k)]
+    search = LimitSearch(
+        torque,
+        np.concatenate([p.creep for p in pick]) if pick else base.creep,
+        np.concatenate([p.creep_zero for p in pick]) if pick else base.creep_zero,
+    )
+    return torque, np.where(np.isfinite(torque), temp, np.nan), search
+
+
+def _curve_rows(design: Design, fluid: Fluid, ds: xr.Dataset, request) -> OperatingRows:
+    """The curves of a sweep dataset as rows (in the C order of its ``limit_torque``)."""
+    if ds.sizes["architecture"] != 1:
+        raise InputError(
+            "architecture",
+            ", ".join(ds["architecture"].values),
+            "one architecture under the oil's heat balance",
+        )
+    law = None
+    if "clamp_force" not in ds["limit_torque"].dims:  # a law sets the force
+        law = clamp_law_of(request.clamp_law, design, request.clamp_force)
+    axes = [ds["input_speed"].values, ds["ratio"].values]
+    axes = ([ds["clamp_force"].values] if law is None else []) + axes
+    grid = [g.ravel() for g in np.meshgrid(*axes, indexing="ij")]
+    drive = Drive(design, fluid, str(ds["architecture"].values[0]))
+    force = grid[0] if law is None else None
+    c_lim = float(ds.attrs["creep_limit"])
+    return OperatingRows(drive, grid[-1], grid[-2], force, law, request.options, c_lim)
+
+
+def oil_balance_of(design: Design):
+    """The housing ``[design.thermal]`` when the drive's ``[models]`` name the oil's
+    balance, else None (the fluid as given)."""
+    models = design.models
+    named = getattr(models, "oil_temperature", None) if models is not None else None
+    return design.thermal if named == "balance" and design.thermal is not None else None
+
+
+def balanced_rows(rows: OperatingRows, thermal, evaluate) -> tuple[np.ndarray, dict]:
+    """Scattered points (`evaluate_points`' rows) each at its oil balance.
+
+    ``evaluate(rows) -> (output torque [N m] (n,), evaluate_points' dict)`` solves the rows
+    at their fluid (e.g. at a given input power); returned interpolated to each point's
+    balance, with ``oil_temperature`` [K] (NaN where not solved) and the status of the
+    rung nearest (a runaway's 2).
+    """
+
+    def at(f: Fluid):
+        t2, res = evaluate(replace(rows, drive=replace(rows.drive, fluid=f)))
+        ok = res["status"] == 0
+        return (t2, res), np.where(ok, res["losses"][:, LOSS_KINDS.index("total")], np.nan)
+
+    ladder = climb(rows.drive.fluid, thermal, at)
+    temp, weights, outcome = balance_weights(ladder)
+    res = {}
+    for key in ladder.results[0][1]:
+        stack = np.stack([r[1][key] for r in ladder.results])
+        if key == "status":
+            res[key] = runaway_status(nearest(stack, ladder, temp, outcome), outcome)
+        elif np.issubdtype(stack.dtype, np.floating):
+            res[key] = interpolate(stack, weights)
+    t2 = interpolate(
+        np.stack([np.broadcast_to(r[0], temp.shape) for r in ladder.results]), weights
+    )
+    res["oil_temperature"] = np.where(res["status"] == 0, temp, np.nan)
+    return t2, res

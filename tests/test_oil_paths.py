@@ -1,0 +1,138 @@
+"""The oil's heat balance on every path (docs/model.md §15, issue 27): sweeps, limits,
+capacity and limit curves at each point's own oil temperature, agreeing with
+`Variator.solve`'s balance; the ladder's interpolation checked on exact polynomials."""
+
+import numpy as np
+import pytest
+
+from ballcvt import Variator
+from ballcvt.analysis.oil_paths import (
+    RUNAWAY,
+    Ladder,
+    balance_weights,
+    interpolate,
+    nearest,
+    runaway_status,
+)
+from ballcvt.api.oil import at_temperature, limit_with_oil, path_choice
+from ballcvt.params import load_builtin
+from ballcvt.status import Status
+
+SPEED = 114.0
+
+
+@pytest.fixture(scope="module")
+def hub():
+    return Variator(*load_builtin("hub"))
+
+
+def test_ladder_finds_a_polynomial_root_and_interpolates_exactly():
+    temps = np.array([290.0, 292.5, 295.0, 297.5, 300.0])
+    root = 294.1
+    excess = -(temps - root) * (1.0 + 0.01 * (temps - 290.0) ** 2)  # a cubic, root at 294.1
+    value = 0.9 + 1e-3 * (temps - 290.0) ** 3  # a cubic quantity of the point
+    ladder = Ladder(temps, [None] * temps.size, excess[:, None])
+    t, w, outcome = balance_weights(ladder)
+    assert outcome[0] == -1 and t[0] == pytest.approx(root, abs=1e-9)
+    assert interpolate(value[:, None], w)[0] == pytest.approx(0.9 + 1e-3 * 4.1**3, rel=1e-12)
+
+
+def test_ladder_outcomes_ambient_failed_and_runaway():
+    temps = np.array([290.0, 292.5, 295.0])
+    excess = np.array(
+        [
+            [-1.0, 2.0, 2.0, 3.0],  # balanced at the ambient / runaway / failed / runaway
+            [-2.0, 1.0, np.nan, 2.0],
+            [-3.0, 0.5, np.nan, 1.0],
+        ]
+    )
+    t, w, outcome = balance_weights(Ladder(temps, [None] * 3, excess))
+    assert outcome.tolist() == [-1, RUNAWAY, 1, RUNAWAY]
+    assert t[0] == 290.0 and w[:, 0].tolist() == [1.0, 0.0, 0.0]
+    assert np.isnan(interpolate(np.ones((3, 4)), w)[1:]).all()
+    status = np.array([[0, 0, 0, 0], [0, 0, 1, 0], [0, 0, 1, 0]], dtype=np.int8)
+    got = runaway_status(nearest(status, Ladder(temps, [], excess), t, outcome), outcome)
+    assert got.tolist() == [Status.CONVERGED, Status.NOT_CONVERGED, 1, Status.NOT_CONVERGED]
+
+
+def test_hub_sweep_follows_the_balance_and_agrees_with_solve(hub):
+    assert path_choice(hub) == "balance"  # the hub's [models] names it
+    ds = hub.sweep(ratio=[1.0], output_torque=[5.0, 20.0], input_speed_rpm=SPEED)
+    assert ds.attrs["oil_model"] == "balance"
+    assert ds["oil_temperature"].attrs["units"] == "K"
+    for t2 in (5.0, 20.0):
+        r = hub.solve(1.0, t2, input_speed_rpm=SPEED)
+        x = ds.sel(ratio=1.0, output_torque=t2).squeeze()
+        assert r.oil_model == "balance"
+        # harden's branch check is 1e-6 in eta: the paths agree well within it
+        assert float(x["oil_temperature"]) == pytest.approx(r.oil_temperature, abs=1e-3)
+        assert float(x["eta"]) == pytest.approx(r.eta, rel=1e-6)
+        assert float(x["losses"].sel(loss="total")) == pytest.approx(r.losses["total"], rel=1e-5)
+    hot = ds["oil_temperature"].values.ravel()
+    assert 293.15 < hot[0] < hot[1] < 310.0  # more torque, more loss, hotter oil
+
+
+def test_fixed_and_given_temperature_sweeps(hub):
+    grid = {"ratio": [1.0], "output_torque": [10.0], "input_speed_rpm": SPEED}
+    fixed = hub.sweep(**grid, oil_temperature="fixed")
+    assert "oil_temperature" not in fixed and "oil_model" not in fixed.attrs
+    plain = Variator().sweep(
+        ratio=1.0, output_torque=40.0, clamp_force=2000.0, input_speed_rpm=2000
+    )
+    assert "oil_temperature" not in plain  # the paper's drive: as before
+    given = hub.sweep(**grid, oil_temperature=330.0)
+    moved = at_temperature(hub, 330.0).sweep(**grid)
+    assert float(given["oil_temperature"].squeeze()) == 330.0
+    assert float(given["eta"].squeeze()) == float(moved["eta"].squeeze())
+
+
+def test_limit_at_the_temperature_its_limit_point_produces(hub):
+    point = {"clamp_force": 400.0, "clamp_law": "constant", "input_speed_rpm": SPEED}
+    cap, t_oil = limit_with_oil(hub, "balance", 1.0, point)
+    assert 293.15 < t_oil < 340.0
+    limit = hub.limit_torque(1.0, **point)
+    assert limit == pytest.approx(cap.intervals[-1][1], rel=1e-9)
+    assert limit == at_temperature(hub, t_oil).limit_torque(1.0, **point)
+    r = hub.solve(1.0, limit * (1 - 1e-6), check_capacity=False, **point)
+    # near the limit the losses rise with T almost as fast as h A: the balance is
+    # ill-conditioned and the two balances, each to 0.01 K, may differ by some 0.1 K
+    assert r.oil_temperature == pytest.approx(t_oil, abs=0.2)
+    curve = hub.limit_curve([1.0], **point)
+    assert curve.oil_temperature[0] == pytest.approx(t_oil, abs=0.2)
+    assert curve.torque[0] == pytest.approx(limit, rel=1e-3)
+    cold = at_temperature(hub, 293.15).limit_torque(1.0, **point)
+    assert limit != cold
+
+
+def test_flags_and_keywords_override_the_hubs_balance(hub, capsys):
+    import json
+
+    from ballcvt.api import with_oil_temperature
+    from ballcvt.interfaces.cli.main import main
+
+    fixed = with_oil_temperature(hub, "fixed")
+    assert fixed.models["oil_temperature"] == "fixed" and fixed.fluid == hub.fluid
+    assert with_oil_temperature(Variator(), "balance").models["oil_temperature"] == "balance"
+    warm = with_oil_temperature(hub, 330.0)
+    assert warm.fluid.inlet_temperature == 330.0 and warm.models["oil_temperature"] == "fixed"
+    point = {"clamp_force": 400.0, "clamp_law": "constant", "input_speed_rpm": SPEED}
+    argv = [
+        "limit",
+        "--design",
+        "hub",
+        "--ratio",
+        "1",
+        "--speed",
+        "114",
+        "--clamp-law",
+        "constant",
+        "--clamp",
+        "400",
+        "--json",
+    ]
+    assert main([*argv, "--oil-temperature", "fixed"]) == 0
+    got = json.loads(capsys.readouterr().out)["limit_torque"]
+    assert got == pytest.approx(fixed.limit_torque(1.0, **point), rel=1e-12)
+    assert main([*argv, "--oil-temperature", "57"]) == 0
+    got = json.loads(capsys.readouterr().out)["limit_torque"]
+    assert got == pytest.approx(at_temperature(hub, 330.15).limit_torque(1.0, **point), rel=1e-12)

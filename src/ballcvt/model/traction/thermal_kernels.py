@@ -41,9 +41,7 @@ if AVAILABLE:
         beta - beta_L)`` [1/K]."""
         beta_l, b = heat
         f_t = math.exp(-beta_l * dt)
-        s = contact_sums(
-            par, i, par[8, i] * math.exp(b * dt), rule, table[0], table[1], True, False
-        )
+        s = contact_sums(par, i, par[8, i] * math.exp(b * dt), rule, table, True, False)
         mu, chi = f_t * s[0], f_t * s[1]
         m0, m1, m2 = f_t * s[2], f_t * s[3], f_t * s[4]
         c0, c1, c2 = f_t * s[5], f_t * s[6], f_t * s[7]

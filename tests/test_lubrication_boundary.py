@@ -81,17 +81,18 @@ def test_was_the_films_viscous_shear_before():
 
 
 def test_pure_spin_moment_is_the_dry_contacts():
-    """Pure spin of a circle, spin slip at the edge 180x the slip scale: the moment tends
-    to ``(3 pi / 16) mu_b F a`` (Johnson 1985 §8.4), ``chi = M / (F r_c)``; 2 % for the
-    elastic core round the pole and the quadrature."""
+    """Pure spin of a circle: the moment tends to ``(3 pi / 16) mu_b F a`` (Johnson 1985
+    §8.4), ``chi = M / (F r_c)``: within the quadrature's error (1e-3) at an edge slip of
+    180x the slip scale (spin 20; measured 2e-6), 0.5 % at 18x (spin 2: the elastic core
+    round the pole, measured 0.17 %)."""
     a, p0, rc = 4.2e-4, 7.55e8, 0.07
     load = 2.0 / 3.0 * math.pi * a * a * p0
-    for spin in (20.0, -20.0):
+    for spin, tol in ((20.0, QUAD), (-20.0, QUAD), (2.0, 5e-3)):
         state = ContactState(0.0, spin, a, a, p0, load, rc, 0.24, 8e-8)
         mu, chi = _boundary(state)
         assert abs(float(mu)) < 1e-12
         dry = math.copysign(3 * math.pi / 16 * MU_B * a / rc, spin)
-        assert float(chi) == pytest.approx(dry, rel=0.02)
+        assert float(chi) == pytest.approx(dry, rel=tol)
         assert abs(float(chi)) < abs(dry) * (1 + QUAD)
 
 

@@ -80,8 +80,8 @@ FILM_SHARE_EXPONENT = 0.14
 #: Relative step of the derivative with respect to the film thickness [-].
 _STEP = 1e-6
 #: Kalker's longitudinal creep coefficient ``C_11`` of a circular contact at Poisson's
-#: ratios 0, 0.25, 0.5 (Kalker 1967, in Johnson, *Contact Mechanics* (1985) §8.4, Table
-#: 8.1: ``F_x = C_11 G a b xi`` for small creep ``xi``) [-].
+#: ratios 0, 0.25, 0.5 (Kalker 1967, as tabulated in Johnson, *Contact Mechanics* (1985)
+#: §8.4: ``F_x = C_11 G a b xi`` for small creep ``xi``) [-].
 _KALKER_POISSON, _KALKER_C11 = (0.0, 0.25, 0.5), (3.40, 4.12, 5.20)
 
 
@@ -91,7 +91,7 @@ def creep_stiffness(youngs_modulus: float, poisson_ratio: float) -> float:
     The shear ``tau = k s`` of a local slip ``s`` (sliding over rolling speed) spread over
     the Hertz ellipse gives Kalker's linear creep force ``F_x = C_11 G a b xi`` of a rolling
     contact without slip (Johnson 1985 §8.4; ``G = E / (2 (1 + nu))``, ``C_11``
-    interpolated in ``nu`` from Kalker's circle values). Steel (210 GPa, 0.3): 1.12e11 Pa,
+    interpolated in ``nu`` from Kalker's circle values). Steel (210 GPa, 0.3): 1.11e11 Pa,
     so that ``mu_b p_max / k`` is 7e-4 at 0.1 and 0.76 GPa, the order of the creep at which
     a Hertz contact slips throughout (Carter's ``mu a / R = 2 mu p_0 / E*``, Johnson 1985
     §8.2: 1.3e-3 there).
@@ -102,6 +102,11 @@ def creep_stiffness(youngs_modulus: float, poisson_ratio: float) -> float:
         ``E`` [Pa] of both bodies.
     poisson_ratio : float
         ``nu`` [-].
+
+    Returns
+    -------
+    float
+        ``k`` [Pa].
     """
     c11 = float(np.interp(poisson_ratio, _KALKER_POISSON, _KALKER_C11))
     return c11 * youngs_modulus / (2.0 * (1.0 + poisson_ratio)) / np.pi

@@ -19,8 +19,9 @@ independent:
 
         ``mu = (1 - f_a) mu_film + f_a mu_b M``, ``chi = (1 - f_a) chi_film + f_a mu_b N``,
 
-    ``M``, ``N`` the traction and spin coefficients of a unit Coulomb shear over the
-    Hertz pressure (`boundary_coefficients`).
+    ``M``, ``N`` the traction and spin coefficients of a unit regularised Coulomb shear
+    over the Hertz pressure (`boundary_coefficients`): Coulomb's ``mu_b p`` once the local
+    slip exceeds the contact's tangential compliance (creep of order 1e-3), elastic below.
 
 Load sharing (Johnson, Greenwood and Poon 1972): the film carries the pressure
 ``p / gamma_1`` and forms as a smooth EHL film of load ``F / gamma_1`` on a modulus
@@ -66,6 +67,8 @@ __all__ = [
     "asperity_integral",
     "load_sharing",
     "boundary_coefficients",
+    "creep_stiffness",
+    "STEEL_CREEP_STIFFNESS",
     "lubricated_coefficients",
 ]
 
@@ -76,6 +79,41 @@ LAMBDA_CUTOFF = 4.0
 FILM_SHARE_EXPONENT = 0.14
 #: Relative step of the derivative with respect to the film thickness [-].
 _STEP = 1e-6
+#: Kalker's longitudinal creep coefficient ``C_11`` of a circular contact at Poisson's
+#: ratios 0, 0.25, 0.5 (Kalker 1967, as tabulated in Johnson, *Contact Mechanics* (1985)
+#: §8.4: ``F_x = C_11 G a b xi`` for small creep ``xi``) [-].
+_KALKER_POISSON, _KALKER_C11 = (0.0, 0.25, 0.5), (3.40, 4.12, 5.20)
+
+
+def creep_stiffness(youngs_modulus: float, poisson_ratio: float) -> float:
+    """Tangential stiffness per unit creep of an asperity contact: ``k = C_11 G / pi`` [Pa].
+
+    The shear ``tau = k s`` of a local slip ``s`` (sliding over rolling speed) spread over
+    the Hertz ellipse gives Kalker's linear creep force ``F_x = C_11 G a b xi`` of a rolling
+    contact without slip (Johnson 1985 §8.4; ``G = E / (2 (1 + nu))``, ``C_11``
+    interpolated in ``nu`` from Kalker's circle values). Steel (210 GPa, 0.3): 1.11e11 Pa,
+    so that ``mu_b p_max / k`` is 7e-4 at 0.1 and 0.76 GPa, the order of the creep at which
+    a Hertz contact slips throughout (Carter's ``mu a / R = 2 mu p_0 / E*``, Johnson 1985
+    §8.2: 1.3e-3 there).
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        ``E`` [Pa] of both bodies.
+    poisson_ratio : float
+        ``nu`` [-].
+
+    Returns
+    -------
+    float
+        ``k`` [Pa].
+    """
+    c11 = float(np.interp(poisson_ratio, _KALKER_POISSON, _KALKER_C11))
+    return c11 * youngs_modulus / (2.0 * (1.0 + poisson_ratio)) / np.pi
+
+
+#: `creep_stiffness` of bearing steel (E 210 GPa, nu 0.3) [Pa].
+STEEL_CREEP_STIFFNESS = creep_stiffness(210.0e9, 0.3)
 
 
 @dataclass(frozen=True)
@@ -94,6 +132,8 @@ class Asperities:
         ``mu_b`` [-].
     density_product, slope : float
         ``eta beta sigma`` and ``sigma / beta`` [-].
+    creep_stiffness : float
+        ``k`` of the asperities' boundary shear [Pa] (`creep_stiffness`).
     """
 
     model: str
@@ -102,6 +142,7 @@ class Asperities:
     boundary_friction: float = 0.0
     density_product: float = 0.0
     slope: float = 0.0
+    creep_stiffness: float = STEEL_CREEP_STIFFNESS
 
     @property
     def pressure_scale(self) -> float:
@@ -122,6 +163,7 @@ def asperities(design: Design) -> Asperities:
         lub.boundary_friction,
         lub.asperity_density_product,
         lub.asperity_slope,
+        creep_stiffness(design.material.youngs_modulus, design.material.poisson_ratio),
     )
 
 
@@ -251,13 +293,17 @@ def _solve_share(lam_s: np.ndarray, scale: np.ndarray) -> np.ndarray:
 
 
 @lru_cache(maxsize=16)
-def _coulomb_fluid(fluid: Fluid, friction: float) -> Fluid:
-    """The isothermal law with the limiting shear stress ``1 Pa + friction x p`` (the
-    Coulomb law's zero intercept kept positive for the kernels' logarithms: 1 Pa against
-    ``mu_b p`` of order 1e8 Pa)."""
+def _coulomb_fluid(fluid: Fluid, friction: float, stiffness: float) -> Fluid:
+    """Eq. 53 made the regularised Coulomb law of `boundary_coefficients`: limiting shear
+    stress ``1 Pa + friction x p`` (the zero intercept kept positive for the kernels'
+    logarithms: 1 Pa against ``mu_b p`` of order 1e8 Pa) and a pressure-free viscosity
+    ``stiffness`` [Pa s], so that over a film ``h = u_ref`` [m] the Newtonian stress
+    ``eta |V| / h`` is ``k s``."""
     return fluid.model_copy(
         update={
             "traction_law": "isothermal",
+            "viscosity": stiffness,
+            "pole_viscosity": stiffness,  # log(eta_0 / eta_inf) = 0: no pressure growth
             "limiting_shear_stress": 1.0,
             "limiting_shear_slope": friction,
         }
@@ -265,25 +311,66 @@ def _coulomb_fluid(fluid: Fluid, friction: float) -> Fluid:
 
 
 def boundary_coefficients(
-    state: ContactState, fluid: Fluid, friction: float, quadrature: Quadrature, derivatives: bool
+    state: ContactState,
+    fluid: Fluid,
+    friction: float,
+    quadrature: Quadrature,
+    derivatives: bool,
+    stiffness: float = STEEL_CREEP_STIFFNESS,
 ):
     """Traction and spin coefficients of the asperities' boundary shear, per unit load.
 
-    The asperity shear is the boundary friction ``mu_b`` times the (Hertz) pressure, along
-    the local sliding ``V`` (Eq. 55), as in a dry contact in full sliding: it is Eq. 53
-    with the limiting shear stress ``mu_b p`` (Briscoe and Tabor's boundary-film shear
-    strength ``tau_0 + alpha p`` with ``tau_0 = 0``), whose saturation reaches the
-    Coulomb stress ``mu_b p V / |V|`` once ``eta |V| / h >> mu_b p``; the film's shear rate
-    sets only the smooth passage through zero sliding at the pole. So ``|mu| <= mu_b``,
-    and the spin moment is that of a dry contact with the Hertz pressure (for a circle in
-    pure spin, ``(3 pi / 16) mu_b F a``; Johnson, *Contact Mechanics* (1985) §8.4).
+    The asperities shear in Coulomb friction ``mu_b p`` along the local sliding ``V``
+    (Eq. 55) once their junctions slip, and elastically before: a junction under a
+    boundary film slips when the local slip ``s = |V| / u_ref`` exceeds its tangential
+    compliance, not when a viscous film's stress reaches ``mu_b p``. The local law is the
+    regularised Coulomb law
+
+        ``tau = mu_b p (1 - exp(-k s / (mu_b p))) V / |V|``,
+
+    linear ``k s`` at small slip with the stiffness ``k = C_11 G / pi`` that gives a
+    contact without slip Kalker's linear creep force (`creep_stiffness`; Johnson,
+    *Contact Mechanics* (1985) §8.4), and Coulomb's ``mu_b p`` once ``s >> s_c = mu_b p /
+    k`` (the local form of the full-slip creep of Carter's and Johnson's rolling contacts,
+    Johnson 1985 §8.2-8.4: ``s_c`` 7e-4 at the peak pressure of a 0.76 GPa steel contact,
+    ``mu_b`` 0.1; the same exponential saturation as Eq. 53, and the slip-dependent
+    friction of a brush model). It does not depend on the film or the rolling speed. So
+    ``|mu| -> mu_b`` in sliding (creep >> s_c), and in pure spin the moment tends to a dry
+    contact's with the Hertz pressure (for a circle ``(3 pi / 16) mu_b F a``, Johnson 1985
+    §8.4). Computed by the kernels of Eq. 53 (`_coulomb_fluid`, film ``h = u_ref``).
+
+    Parameters
+    ----------
+    state : ContactState
+        The contacts (their film is not used).
+    fluid : Fluid
+        The traction fluid (the kernels' fluid is built from it).
+    friction : float
+        ``mu_b`` [-].
+    quadrature : Quadrature
+        The traction law's quadrature.
+    derivatives : bool
+        Also the derivatives.
+    stiffness : float
+        ``k`` [Pa] (default: bearing steel's).
 
     Returns
     -------
     As `ballcvt.model.traction.isothermal.shear_coefficients` (``mu, chi`` and with
-    ``derivatives`` their derivatives by ``creep_term``, ``spin``, ``log u_ref``).
+    ``derivatives`` their derivatives by ``creep_term``, ``spin``, ``log u_ref``; the last
+    zero: the law depends on the slip alone).
     """
-    return shear_coefficients(state, _coulomb_fluid(fluid, friction), quadrature, derivatives)
+    speed = np.maximum(np.asarray(state.u_ref, dtype=float), 1e-30)  # V = 0 where u_ref = 0
+    out = shear_coefficients(
+        state.replace(film=speed),
+        _coulomb_fluid(fluid, friction, stiffness),
+        quadrature,
+        derivatives,
+    )
+    if derivatives:
+        for g in out[2:]:
+            g[..., 2] = 0.0  # d/d log u at fixed u/h, minus the same by log h: 0
+    return out
 
 
 def _mixed_values(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrature, d: bool):
@@ -297,7 +384,7 @@ def _mixed_values(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrat
     )
     film = contact_coefficients(film_state, fluid, q, d)
     boundary = boundary_coefficients(
-        state.replace(film=film_state.film), fluid, asp.boundary_friction, q, d
+        state, fluid, asp.boundary_friction, q, d, asp.creep_stiffness
     )
     return frac, film, boundary
 

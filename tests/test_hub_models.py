@@ -189,7 +189,6 @@ def test_the_hub_names_its_models(hub):
         "clamp_law": "cam",
         "traction_law": "isothermal",
         "lubrication": "mixed",
-        "oil_temperature": "balance",
     }
 
 
@@ -246,7 +245,7 @@ def test_cli_reports_its_models_and_flags_win(capsys):
                  "114", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["models"] == {"clamp_law": "cam", "traction_law": "isothermal",
-                              "lubrication": "mixed", "oil_temperature": "balance"}
+                              "lubrication": "mixed", "oil_temperature": "fixed"}
     assert data["clamp_law"] == "cam"
     assert main(["point", "--design", "hub", "--ratio", "1", "--torque", "8", "--speed",
                  "114", "--clamp-law", "constant", "--traction-law", "thermal"]) == 0
@@ -263,7 +262,7 @@ def test_figure_titles_name_the_models_beyond_the_papers():
 
     hub = argparse.Namespace(design="hub", fluid=None, traction_law="thermal",
                              clamp_law="cam", clamp=None)
-    assert clamp_label(hub) == "cam clamping, thermal traction, mixed lubrication, balance oil"
+    assert clamp_label(hub) == "cam clamping, thermal traction, mixed lubrication"
     paper = argparse.Namespace(design=None, fluid=None, traction_law=None,
                                clamp_law="constant", clamp=None)
     assert clamp_label(paper) == "$F_{N0}$ = 2000 N"

@@ -14,7 +14,7 @@ from ballcvt.analysis.oil_paths import (
     nearest,
     runaway_status,
 )
-from ballcvt.api.oil import at_temperature, limit_with_oil, path_choice
+from ballcvt.api.oil import at_temperature, limit_with_oil, path_choice, with_oil_temperature
 from ballcvt.params import load_builtin
 from ballcvt.status import Status
 
@@ -23,7 +23,8 @@ SPEED = 114.0
 
 @pytest.fixture(scope="module")
 def hub():
-    return Variator(*load_builtin("hub"))
+    # the hub's shell with its balance asked for (its drive file leaves it commented out)
+    return with_oil_temperature(Variator(*load_builtin("hub")), "balance")
 
 
 def test_ladder_finds_a_polynomial_root_and_interpolates_exactly():
@@ -56,7 +57,7 @@ def test_ladder_outcomes_ambient_failed_and_runaway():
 
 
 def test_hub_sweep_follows_the_balance_and_agrees_with_solve(hub):
-    assert path_choice(hub) == "balance"  # the hub's [models] names it
+    assert path_choice(hub) == "balance"
     ds = hub.sweep(ratio=[1.0], output_torque=[5.0, 20.0], input_speed_rpm=SPEED)
     assert ds.attrs["oil_model"] == "balance"
     assert ds["oil_temperature"].attrs["units"] == "K"
@@ -107,7 +108,6 @@ def test_limit_at_the_temperature_its_limit_point_produces(hub):
 def test_flags_and_keywords_override_the_hubs_balance(hub, capsys):
     import json
 
-    from ballcvt.api import with_oil_temperature
     from ballcvt.interfaces.cli.main import main
 
     fixed = with_oil_temperature(hub, "fixed")

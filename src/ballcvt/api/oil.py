@@ -18,9 +18,10 @@ from typing import Any
 
 from scipy.optimize import brentq
 
-from ..errors import InputError
+from ..errors import BallCVTError, InputError
 from ..model.modes import resolve_mode
 from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
+from ..model.traction.base import has_multiple_equilibria
 from ..params.drive_models import DriveModels
 from ..results.planetary import PlanetaryResult
 
@@ -40,6 +41,9 @@ __all__ = [
 
 #: Tolerance of the balance's temperature [K].
 BALANCE_TOL = 1e-4
+#: Relative resolution [-] and reach [-] of the search past the balanced fixed point of a
+#: limit under a law with a fold (`_past_the_fixed_point`).
+STRETCH_RTOL, STRETCH_MAX = 5e-4, 0.2
 #: Fixed-point steps to bracket the balance before refusing.
 MAX_BRACKET_STEPS = 30
 #: How far past the secant's root the bracket reaches after a fixed-point step that did
@@ -325,7 +329,50 @@ def limit_with_oil(variator, choice: str | float, ratio: float, point: dict, who
         if MAX_OIL_TEMPERATURE not in found:
             raise
         temperature = MAX_OIL_TEMPERATURE  # a runaway: the limit with the hottest oil
-    return found[temperature], temperature
+    cap = found[temperature]
+    if temperature < MAX_OIL_TEMPERATURE and has_multiple_equilibria(variator.fluid):
+        cap = _past_the_fixed_point(variator, ratio, point, cap)
+    return cap, temperature
+
+
+def _past_the_fixed_point(variator, ratio: float, point: dict, cap):
+    """``cap`` with its largest torque moved to the largest one `Variator.solve` carries
+    under the balance, to `STRETCH_RTOL`.
+
+    Under a law with a fold (the thermal law) the limit at a fixed oil temperature ``T``
+    is the fold's torque ``L(T)``, and the balance temperature ``T(t)`` of a torque ``t``
+    climbs steeply near the fold: where ``L'(T) T'(t) > 1`` torques above the fixed point
+    ``t = L(T(t))`` still have a balanced equilibrium within ``L(T(t))``. The largest one
+    is found from ``t`` by growing steps and bisection, each a balanced solve (without the
+    capacity check, which would recurse) within the creep limit.
+    """
+    top = cap.intervals[-1][1] if hasattr(cap, "intervals") else cap
+    if not (top > 0.0):
+        return cap
+    keys = ("clamp_force", "clamp_law", "input_speed", "input_speed_rpm")
+    kw = {k: point[k] for k in keys if k in point}
+    c_lim = point.get("creep_limit") or variator.design.creep_limit
+
+    def carries(torque: float) -> bool:
+        try:
+            r = variator.solve(ratio, torque, check_capacity=False, **kw)
+        except BallCVTError:
+            return False
+        return max(abs(c.creep) for c in r.contacts.values()) <= c_lim
+
+    lo, grow = top, STRETCH_RTOL
+    while grow <= STRETCH_MAX and carries(top * (1.0 + grow)):
+        lo, grow = top * (1.0 + grow), 4.0 * grow
+    if lo == top:
+        return cap
+    hi = top * (1.0 + grow)
+    while hi - lo > STRETCH_RTOL * lo:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if carries(mid) else (lo, mid)
+    if not hasattr(cap, "intervals"):
+        return lo
+    last = (cap.intervals[-1][0], lo)
+    return replace(cap, intervals=cap.intervals[:-1] + (last,))
 
 
 def with_oil_temperature(variator, value: Any):

@@ -77,7 +77,8 @@ class SweepRequest:
         creeps at the limits, from which every point is started in one batch; with bare
         torques the sweep walks up the torque grid instead.
     workers : int
-        Processes to use (curves are split between them).
+        Processes to use: the chunks of curves (`ballcvt.analysis.sweeps.chunks`) are
+        shared between them, the same chunks as in one process, so the same results.
     progress : bool, optional
         Show a progress bar; by default only when stderr is a terminal.
     label : str, optional
@@ -85,6 +86,12 @@ class SweepRequest:
     input_speed_rpm : array_like, optional
         The same input speeds in rpm: the speed dimension is then ``input_speed_rpm``
         with these values, and ``input_speed`` [rad/s] a second coordinate on it.
+
+    Notes
+    -----
+    The curves are solved in chunks of about ``CHUNK_POINTS`` points written into the output
+    arrays as they finish, so a sweep's memory is its output (about 0.5 kB per point with
+    the double idler: float64 throughout) plus one chunk's work per process.
     """
 
     ratio: Any = None

@@ -8,8 +8,8 @@ previous release, commit 202cf3f, read from ``benchmarks/results/previous.json``
 That file is produced once by running this script against a worktree of 202cf3f::
 
     git worktree add /tmp/prev 202cf3f
-    PYTHONPATH=/tmp/prev/src python benchmarks/bench_table.py --json --quick \\
-        --save-previous benchmarks/results/previous.json
+    PYTHONPATH=/tmp/prev/src python benchmarks/bench_table.py --quick \\
+        --save benchmarks/results/previous.json
 
 (``--quick`` and the full run are stored apart: each table reads its own mode's figures.)
 
@@ -76,7 +76,7 @@ def cpu(fn):
 # ------------------------------------------------------------------------- the rows
 
 
-def sweep_rows(quick):
+def sweep_rows(quick, clamps=("constant", "cam")):
     """30 x 30 sweeps (Table I, 2000 rpm): every traction law x constant / cam / optimal
     clamping (the optimal clamp on a smaller grid: one optimisation per point)."""
     from ballcvt import Variator
@@ -84,7 +84,8 @@ def sweep_rows(quick):
     rows = []
     for law in ("isothermal", "viscoelastic", "thermal"):
         v = Variator(traction_law=law)
-        for clamp, kw in CLAMPS.items():
+        for clamp in clamps:
+            kw = CLAMPS[clamp]
             n = (4 if quick else 8) if clamp == "optimal" else (10 if quick else 30)
             grid = {"ratio": np.linspace(0.5, 2.0, n), "output_torque": np.linspace(5.0, 70.0, n)}
             v.sweep(ratio=[1.0], output_torque=[10.0, 20.0], **kw, **OP, progress=False)
@@ -96,6 +97,11 @@ def sweep_rows(quick):
                             (1e3 / ms >= (1000 if law == "thermal" else 2000))
                             if clamp != "optimal" else None, f"{n * n / c:,.0f} points/s"))
     return rows
+
+
+def optimal_rows(quick):
+    """The sweeps of `sweep_rows` under the optimal clamp (8 x 8; quick: 4 x 4)."""
+    return sweep_rows(quick, ("optimal",))
 
 
 def mixed_row(quick):
@@ -251,18 +257,48 @@ def reproduce_row(quick):
                 "s")]
 
 
-SECTIONS = (sweep_rows, mixed_row, mode_rows, solve_rows, cycle_rows, memory_rows,
-            workers_row, study_row, reproduce_row)
+SECTIONS = {"sweeps": sweep_rows, "optimal": optimal_rows, "mixed": mixed_row,
+            "modes": mode_rows, "solve": solve_rows, "cycles": cycle_rows,
+            "memory": memory_rows, "workers": workers_row, "study": study_row,
+            "reproduce": reproduce_row}
 
 
-def measure(quick, big=False, log=print):
+def measure(quick, big=False, sections=tuple(SECTIONS), log=print):
+    """The rows of ``sections`` (names of `SECTIONS`), in the table's order."""
     rows = []
-    for section in SECTIONS:
+    for name in SECTIONS:
+        if name not in sections:
+            continue
         t = time.perf_counter()
+        section = SECTIONS[name]
         got = section(quick, big) if section is memory_rows else section(quick)
         rows += got
-        log(f"  {section.__name__}: {time.perf_counter() - t:.0f} s")
+        log(f"  {name}: {time.perf_counter() - t:.0f} s; " + json.dumps([asdict(r) for r in got]))
     return rows
+
+
+def merged(path, mode, doc):
+    """Store ``doc``'s rows under ``mode`` in the JSON file ``path``, replacing rows of the
+    same key and keeping the others (sections measured apart); returns the stored doc."""
+    path = Path(path)
+    stored = json.loads(path.read_text()) if path.exists() else {}
+    old = stored.get(mode, {}).get("rows", [])
+    keys = {r["key"] for r in doc["rows"]}
+    rows = [r for r in old if r["key"] not in keys] + doc["rows"]
+    order = [r["key"] for r in rows]
+    stored[mode] = dict(doc, rows=sorted(rows, key=lambda r: _rank(r["key"], order)))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(stored, indent=1) + "\n")
+    return stored[mode]
+
+
+def _rank(key, order):
+    """Rows in the order of `SECTIONS` (by their key's prefix), then as stored."""
+    prefixes = ["sweep-", "sweep-", "mixed", "mode-", "solve-", "cycle-", "map-memory",
+                "map-1000", "map-workers", "dask", "reproduce"]
+    first = next((i for i, p in enumerate(prefixes) if key.startswith(p)), len(prefixes))
+    optimal = key.startswith("sweep-") and key.endswith("-optimal")
+    return (first + (0.5 if optimal else 0), order.index(key))
 
 
 # ------------------------------------------------------------------------ the table
@@ -310,25 +346,31 @@ def main(argv=None):
     ap.add_argument("--json", action="store_true", help="print the rows as JSON")
     ap.add_argument("--markdown", action="store_true", help="print the README table")
     ap.add_argument("--write-readme", action="store_true", help="put the table in README.md")
-    ap.add_argument("--from-json", help="format rows saved by --json instead of measuring")
-    ap.add_argument("--save-previous", help="store the rows as the previous release's")
+    ap.add_argument("--sections", default=",".join(SECTIONS),
+                    help="comma-separated sections to measure (default: all): "
+                    + ", ".join(SECTIONS))
+    ap.add_argument("--from-json", help="format the rows stored in this file (--save) "
+                    "instead of measuring")
+    ap.add_argument("--save", help="merge the rows into this JSON file (by key, per mode): "
+                    "benchmarks/results/latest.json, or previous.json for the previous release")
     args = ap.parse_args(argv)
     mode = "quick" if args.quick else "full"
     quiet = args.json or args.markdown
-    if args.from_json:
-        rows = json.loads(Path(args.from_json).read_text())["rows"]
-    else:
-        rows = [asdict(r) for r in measure(args.quick, args.big,
-                                           log=lambda s: print(s, file=sys.stderr))]
     from ballcvt import __version__
 
-    doc = {"mode": mode, "version": __version__, "python": platform.python_version(),
-           "cores": os.cpu_count(), "rows": rows}
-    if args.save_previous:
-        path = Path(args.save_previous)
-        stored = json.loads(path.read_text()) if path.exists() else {}
-        stored[mode] = doc
-        path.write_text(json.dumps(stored, indent=1) + "\n")
+    if args.from_json:
+        stored = json.loads(Path(args.from_json).read_text())
+        doc = stored.get(mode, stored)
+        rows = doc["rows"]
+    else:
+        sections = [s.strip() for s in args.sections.split(",") if s.strip()]
+        rows = [asdict(r) for r in measure(args.quick, args.big, sections,
+                                           log=lambda s: print(s, file=sys.stderr))]
+        doc = {"mode": mode, "version": __version__, "python": platform.python_version(),
+               "cores": os.cpu_count(), "rows": rows}
+    if args.save:
+        doc = merged(args.save, mode, doc)
+        rows = doc["rows"]
     previous = json.loads(PREVIOUS.read_text()).get(mode, {}).get("rows") if PREVIOUS.exists() \
         else None
     header = (f"ballcvt {__version__}, {mode} run, Python {platform.python_version()}, "

@@ -106,6 +106,8 @@ def test_curve_chunks_cover_every_curve_once():
         idx = np.concatenate([np.arange(c.start, c.stop) for c in got])
         np.testing.assert_array_equal(idx, np.arange(n))
         assert all((c.stop - c.start) * nt <= max(nt, chunks.CHUNK_POINTS) for c in got)
+    assert len(chunks.curve_chunks(50, 100, workers=2)) == 2  # work for both workers
+    assert len(chunks.curve_chunks(30, 30, workers=2)) == 1  # too small to share
 
 
 def test_csv_streams_the_same_table(monkeypatch, tmp_path):
@@ -122,3 +124,18 @@ def test_csv_streams_the_same_table(monkeypatch, tmp_path):
         monkeypatch.setattr(export, "CSV_ROWS", rows)
         to_csv(ds, tmp_path / f"rows{rows}.csv")
         assert filecmp.cmp(tmp_path / "whole.csv", tmp_path / f"rows{rows}.csv", shallow=False)
+
+
+def test_map_cli_workers_same_data(tmp_path, monkeypatch):
+    """``ballcvt map --workers 2`` shares the chunks with a worker process: the same data."""
+    from ballcvt.api import load_dataset
+    from ballcvt.interfaces.cli.main import main
+
+    monkeypatch.setattr(chunks, "CHUNK_POINTS", 300)
+    got = {}
+    for workers in (1, 2):
+        out = tmp_path / f"w{workers}"
+        argv = ["map", "--out", str(out), "--n-ratio", "20", "--n-torque", "30", "--quiet"]
+        assert main([*argv, "--workers", str(workers)]) == 0
+        got[workers] = _values(load_dataset(out / "map.nc"))
+    _same(got[2], got[1])

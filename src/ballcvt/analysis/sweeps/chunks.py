@@ -35,6 +35,8 @@ __all__ = ["CHUNK_POINTS", "SweepArrays", "solve_chunked", "curve_chunks"]
 #: Points (curves x torques) solved together: bounds a sweep's working memory (about 5 kB
 #: per point in flight) while keeping the batches long enough for the batched solver.
 CHUNK_POINTS = 8192
+#: The fewest points of a chunk made only to give a worker process some work.
+SPLIT_POINTS = 1024
 
 #: Per-curve outputs (no torque axis).
 CURVE_VARIABLES = ("limit_torque", "eta_at_limit")
@@ -94,12 +96,20 @@ class SweepArrays:
             d["clamp_force"][at] = result["clamp_force"]
 
 
-def curve_chunks(n_curves: int, n_torque: int) -> list[slice]:
+def curve_chunks(n_curves: int, n_torque: int, workers: int = 1) -> list[slice]:
     """Contiguous chunks of whole curves of at most `CHUNK_POINTS` points each (at least
-    one curve). They do not depend on the number of worker processes, so neither do the
-    results."""
-    count = -(-n_curves * max(1, n_torque) // CHUNK_POINTS)  # chunks, as even as can be
-    size = max(1, min(CHUNK_POINTS // max(1, n_torque), -(-n_curves // count)))
+    one curve), as even as can be.
+
+    With ``workers`` > 1 a grid of fewer chunks than workers is split further, into
+    chunks of no fewer than `SPLIT_POINTS` points (then the results can differ from one
+    process's by round-off; a grid of `CHUNK_POINTS` points or more is split the same
+    way whatever ``workers``, so gives the same bits).
+    """
+    nt = max(1, n_torque)
+    count = -(-n_curves * nt // CHUNK_POINTS)
+    if count < workers:
+        count = max(count, min(workers, n_curves * nt // SPLIT_POINTS))
+    size = max(1, min(CHUNK_POINTS // nt, -(-n_curves // max(1, count))))
     return [slice(a, min(a + size, n_curves)) for a in range(0, n_curves, size)]
 
 

@@ -78,7 +78,8 @@ class SweepRequest:
         torques the sweep walks up the torque grid instead.
     workers : int
         Processes to use: the chunks of curves (`ballcvt.analysis.sweeps.chunks`) are
-        shared between them, the same chunks as in one process, so the same results.
+        shared between them (a grid of one chunk is split in chunks of at least
+        ``SPLIT_POINTS`` points to share it).
     progress : bool, optional
         Show a progress bar; by default only when stderr is a terminal.
     label : str, optional
@@ -157,7 +158,7 @@ def sweep(
     show = sys.stderr.isatty() if s.progress is None else s.progress
     contacts = _contact_axis(archs)
     out = SweepArrays.allocate(len(archs), flat[0].size, torque.size, contacts, law is not None)
-    chunks = curve_chunks(flat[0].size, torque.size)
+    chunks = curve_chunks(flat[0].size, torque.size, s.workers)
     pool = worker_pool(s.workers if len(chunks) > 1 else 1)
     try:
         for a, arch in enumerate(archs):

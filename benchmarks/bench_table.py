@@ -203,7 +203,7 @@ def map_child(n, tmp, workers=1):
 def memory_rows(quick, big):
     """Peak RSS of ``ballcvt map`` (solve, map.nc, map.csv, figure) in child processes:
     memory per point from two sizes; the 1000 x 1000 map with ``--big``."""
-    small, large = (60, 150) if quick else (100, 300)
+    small, large = (150, 300) if quick else (200, 400)
     with tempfile.TemporaryDirectory() as tmp:
         map_child(10, tmp)  # the numba cache, loaded once
         (r0, _), (r1, _) = map_child(small, tmp), map_child(large, tmp)

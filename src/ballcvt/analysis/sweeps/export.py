@@ -20,6 +20,8 @@ __all__ = ["to_netcdf", "to_csv", "load_dataset", "to_frame", "write_table", "pa
 
 #: The NetCDF engine: netCDF4 (NetCDF-4/HDF5 files, the format CF tools expect).
 ENGINE = "netcdf4"
+#: HDF5 chunk cache per variable while `to_netcdf` writes [bytes].
+CHUNK_CACHE = 4 * 2**20
 
 
 def to_netcdf(ds: xr.Dataset, path) -> Path:
@@ -36,10 +38,19 @@ def to_netcdf(ds: xr.Dataset, path) -> Path:
     -------
     pathlib.Path
     """
+    import netCDF4
+
     path = Path(path)
     encoding: dict[Any, Any] = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
-    with atomic_path(path) as tmp:
-        ds.to_netcdf(tmp, engine=ENGINE, format="NETCDF4", encoding=encoding)  # type: ignore[call-overload]
+    # HDF5 keeps a chunk cache per variable (64 MB by default) until the file closes: for a
+    # 1000 x 1000 map that is about 0.4 GB; a small one writes the same file in less memory
+    cache = netCDF4.get_chunk_cache()
+    netCDF4.set_chunk_cache(CHUNK_CACHE, *cache[1:])
+    try:
+        with atomic_path(path) as tmp:
+            ds.to_netcdf(tmp, engine=ENGINE, format="NETCDF4", encoding=encoding)  # type: ignore[call-overload]
+    finally:
+        netCDF4.set_chunk_cache(*cache)
     return path
 
 

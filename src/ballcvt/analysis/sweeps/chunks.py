@@ -164,7 +164,8 @@ def solve_chunked(run: ChunkRun, out: SweepArrays, chunks, pool=None, callback=N
     arch = run.curves.drive.architecture
     if pool is None:
         for rows in chunks:
-            out.write(run.arch_index, arch, rows, solve_curves(*run.job(rows), callback=callback))
+            curves, torque, limits = run.job(rows)
+            out.write(run.arch_index, arch, rows, solve_curves(curves, torque, limits, callback))
         return
     futures = {pool.submit(solve_curves, *run.job(rows)): rows for rows in chunks}
     for f in as_completed(futures):

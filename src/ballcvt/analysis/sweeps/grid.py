@@ -331,7 +331,7 @@ def _assemble(out: SweepArrays, archs, axes, shape, rpm=None):
     for name, arr in out.data.items():
         if name == "clamp_force":  # a law's forces: set apart by `sweep`
             continue
-        d = lead if name in CURVE_VARIABLES else lead + ("output_torque",)
+        d: tuple[str, ...] = lead if name in CURVE_VARIABLES else lead + ("output_torque",)
         d += trail.get(name, ())
         data[name] = xr.Variable(
             d, arr.reshape((len(archs),) + shape + arr.shape[2:]), attrs_for(name)

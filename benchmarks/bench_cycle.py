@@ -21,21 +21,31 @@ from ballcvt.analysis.cycles import run_cycle
 ROOT = Path(__file__).resolve().parents[1]
 
 
+def commute(steps):
+    """The example e-bike commute repeated to ``steps`` steps."""
+    base = read_cycle(ROOT / "examples" / "cycles" / "ebike_commute.csv")
+    reps = int(np.ceil(steps / base.size))
+    t = np.concatenate([base.time + k * (base.time[-1] + 1.0) for k in range(reps)])
+    return cycle_from_arrays(time=t[:steps],
+                             output_speed=np.tile(base.output_speed, reps)[:steps],
+                             output_torque=np.tile(base.output_torque, reps)[:steps],
+                             name=f"commute x{reps}")
+
+
+def warm_up(v, **clamp):
+    """One two-step cycle (loads the compiled kernels)."""
+    run_cycle(v, cycle_from_arrays(time=[0.0, 1.0], output_speed=[20.0, 20.0],
+                                   output_torque=[10.0, 10.0]),
+              target_input_speed=19.0, progress=False, **clamp)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--steps", type=int, default=10_000)
     args = ap.parse_args()
-    base = read_cycle(ROOT / "examples" / "cycles" / "ebike_commute.csv")
-    reps = int(np.ceil(args.steps / base.size))
-    t = np.concatenate([base.time + k * (base.time[-1] + 1.0) for k in range(reps)])
-    cycle = cycle_from_arrays(time=t[:args.steps],
-                              output_speed=np.tile(base.output_speed, reps)[:args.steps],
-                              output_torque=np.tile(base.output_torque, reps)[:args.steps],
-                              name=f"commute x{reps}")
+    cycle = commute(args.steps)
     v = Variator(*load_builtin("hub"))
-    run_cycle(v, cycle_from_arrays(time=[0.0, 1.0], output_speed=[20.0, 20.0],
-                                   output_torque=[10.0, 10.0]),
-              target_input_speed=19.0, clamp_law="cam", progress=False)      # JIT warm-up
+    warm_up(v, clamp_law="cam")
     print(f"ballcvt duty cycle, {cycle.size} steps ({cycle.name}), hub drive, cam clamping")
     for strategy, kw in (("target-input-speed", {"target_input_speed": 180 * np.pi / 30}),
                          ("max-efficiency", {"ratio_range": (0.5, 2.0)})):

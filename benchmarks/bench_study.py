@@ -59,6 +59,42 @@ capacity = "max"
 """
 
 
+def in_process_and_dask(designs, chunk, workers=(1, 2), out=print):
+    """Run the benchmark study in process, then on local Dask clusters of ``workers``
+    processes; returns ``{"points", "designs", "plain": s, workers: (start-up s, run s)}``
+    and prints (``out``) as it goes."""
+    spec = parse_study(STUDY.format(designs=designs, chunk=chunk))
+    with tempfile.TemporaryDirectory() as tmp:
+        # warm the JIT cache (the workers load it from disk)
+        run_study(parse_study(STUDY.format(designs=2, chunk=1)), f"{tmp}/warm",
+                  in_process=True, progress=False)
+        t = time.perf_counter()
+        plain = run_study(spec, f"{tmp}/plain", in_process=True, progress=False)
+        t_plain = time.perf_counter() - t
+        points = int((plain.dataset["point_status"].values >= 0).sum())
+        n = plain.dataset.sizes["design"]
+        out(f"{n} designs x {plain.dataset.sizes['point']} operating points: "
+            f"{int((plain.dataset['status'].values == 0).sum())} feasible, {points} points "
+            "solved")
+        out(f"  in process (plain batched solve): {t_plain:7.1f} s = "
+            f"{points / t_plain:7,.0f} points/s = {n / t_plain:6.1f} designs/s")
+        times = {"points": points, "designs": n, "plain": t_plain}
+        for w in workers:
+            t = time.perf_counter()
+            client = local_client(w)
+            t_start = time.perf_counter() - t
+            t = time.perf_counter()
+            run_study(spec, f"{tmp}/dask{w}", client=client, progress=False)
+            t_run = time.perf_counter() - t
+            cluster = client.cluster
+            client.close()
+            cluster.close()
+            times[w] = (t_start, t_run)
+            out(f"  Dask, {w} worker(s): {t_run:7.1f} s = {points / t_run:7,.0f} "
+                f"points/s (cluster start-up {t_start:.1f} s more)")
+    return times
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--designs", type=int, default=1000)
@@ -68,40 +104,13 @@ def main():
     args = parser.parse_args()
     print(f"ballcvt {__version__}, Python {platform.python_version()}, {platform.machine()}, "
           f"{os.cpu_count()} cores")
-    spec = parse_study(STUDY.format(designs=args.designs, chunk=args.chunk))
-    with tempfile.TemporaryDirectory() as tmp:
-        # warm the JIT cache (the workers load it from disk)
-        run_study(parse_study(STUDY.format(designs=2, chunk=1)), f"{tmp}/warm",
-                  in_process=True, progress=False)
-        t = time.perf_counter()
-        plain = run_study(spec, f"{tmp}/plain", in_process=True, progress=False)
-        t_plain = time.perf_counter() - t
-        points = int((plain.dataset["point_status"].values >= 0).sum())
-        designs = plain.dataset.sizes["design"]
-        print(f"{designs} designs x {plain.dataset.sizes['point']} operating points: "
-              f"{int((plain.dataset['status'].values == 0).sum())} feasible, {points} points "
-              "solved")
-        print(f"  in process (plain batched solve): {t_plain:7.1f} s = "
-              f"{points / t_plain:7,.0f} points/s = {designs / t_plain:6.1f} designs/s")
-        times = {}
-        for workers in (1, 2):
-            t = time.perf_counter()
-            client = local_client(workers)
-            t_start = time.perf_counter() - t
-            t = time.perf_counter()
-            run_study(spec, f"{tmp}/dask{workers}", client=client, progress=False)
-            t_run = time.perf_counter() - t
-            cluster = client.cluster
-            client.close()
-            cluster.close()
-            times[workers] = (t_start, t_run)
-            print(f"  Dask, {workers} worker(s): {t_run:7.1f} s = {points / t_run:7,.0f} "
-                  f"points/s (cluster start-up {t_start:.1f} s more)")
-        (s1, r1), (_, r2) = times[1], times[2]
-        print(f"  scaling 1 -> 2 workers: {r1 / r2:.2f}x")
-        print(f"  Dask overhead on 1 worker against the plain batched solve: "
-              f"{(r1 / t_plain - 1) * 100:+.1f} % ({(r1 + s1) / t_plain * 100 - 100:+.1f} % "
-              "with the cluster's start-up); target under 15 %")
+    times = in_process_and_dask(args.designs, args.chunk)
+    t_plain = times["plain"]
+    (s1, r1), (_, r2) = times[1], times[2]
+    print(f"  scaling 1 -> 2 workers: {r1 / r2:.2f}x")
+    print(f"  Dask overhead on 1 worker against the plain batched solve: "
+          f"{(r1 / t_plain - 1) * 100:+.1f} % ({(r1 + s1) / t_plain * 100 - 100:+.1f} % "
+          "with the cluster's start-up); target under 15 %")
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import xarray as xr
 
 from ...files import atomic_path
@@ -19,6 +20,8 @@ __all__ = ["to_netcdf", "to_csv", "load_dataset", "to_frame", "write_table", "pa
 
 #: The NetCDF engine: netCDF4 (NetCDF-4/HDF5 files, the format CF tools expect).
 ENGINE = "netcdf4"
+#: HDF5 chunk cache per variable while `to_netcdf` writes [bytes].
+CHUNK_CACHE = 4 * 2**20
 
 
 def to_netcdf(ds: xr.Dataset, path) -> Path:
@@ -35,10 +38,19 @@ def to_netcdf(ds: xr.Dataset, path) -> Path:
     -------
     pathlib.Path
     """
+    import netCDF4
+
     path = Path(path)
     encoding: dict[Any, Any] = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars}
-    with atomic_path(path) as tmp:
-        ds.to_netcdf(tmp, engine=ENGINE, format="NETCDF4", encoding=encoding)  # type: ignore[call-overload]
+    # HDF5 keeps a chunk cache per variable (64 MB by default) until the file closes: for a
+    # 1000 x 1000 map that is about 0.4 GB; a small one writes the same file in less memory
+    cache = netCDF4.get_chunk_cache()
+    netCDF4.set_chunk_cache(CHUNK_CACHE, *cache[1:])
+    try:
+        with atomic_path(path) as tmp:
+            ds.to_netcdf(tmp, engine=ENGINE, format="NETCDF4", encoding=encoding)  # type: ignore[call-overload]
+    finally:
+        netCDF4.set_chunk_cache(*cache)
     return path
 
 
@@ -74,6 +86,12 @@ def parameters(ds: xr.Dataset, prefix: str) -> dict:
 def to_frame(ds: xr.Dataset):
     """One row per operating point; per-contact and per-loss variables become
     ``<name>_<contact>`` and ``loss_<kind>`` columns."""
+    flat = _flat(ds)
+    return _with_units(flat.to_dataframe().reset_index(), flat)
+
+
+def _flat(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with its contact and loss axes spread into variables (views, no copies)."""
     flat = ds.copy()
     for dim, name_of in (
         ("contact", lambda n, c: f"{n}_{c}"),
@@ -89,9 +107,35 @@ def to_frame(ds: xr.Dataset):
                 )
             flat = flat.drop_vars([name])
         flat = flat.drop_dims(dim, errors="ignore")
-    frame = flat.to_dataframe().reset_index()
+    return flat
+
+
+def _with_units(frame, flat: xr.Dataset):
+    """``frame`` with the units of ``flat``'s variables in its column names."""
     units = {c: flat[c].attrs.get("units") for c in frame.columns if c in flat.variables}
     return frame.rename(columns={c: f"{c} [{u}]" for c, u in units.items() if u})
+
+
+#: Rows of a CSV table built and written at a time (`to_csv` streams: its memory is that
+#: of the dataset plus one block of rows, whatever the dataset's size).
+CSV_ROWS = 20_000
+
+
+def _blocks(flat: xr.Dataset, dims: list, rows: int):
+    """Pieces of ``flat`` whose tables have at most about ``rows`` rows and which,
+    concatenated in turn, make its table (C order of ``dims``, the table's order)."""
+    size = int(np.prod([flat.sizes[d] for d in dims]))
+    if size <= rows or not dims:
+        yield flat
+        return
+    n = flat.sizes[dims[0]]
+    step = rows // (size // n)
+    if step < 1:  # one slice of the outer axis is still too long: split inside it
+        for a in range(n):
+            yield from _blocks(flat.isel({dims[0]: slice(a, a + 1)}), dims[1:], rows)
+        return
+    for a in range(0, n, step):
+        yield flat.isel({dims[0]: slice(a, a + step)})
 
 
 def write_table(frame, path, units: dict | None = None) -> Path:
@@ -116,5 +160,14 @@ def write_table(frame, path, units: dict | None = None) -> Path:
 
 
 def to_csv(ds: xr.Dataset, path) -> Path:
-    """Write ``ds`` as a CSV table (see `to_frame`), units in the column names."""
-    return write_table(to_frame(ds), path)
+    """Write ``ds`` as a CSV table (see `to_frame`), units in the column names.
+
+    The table is built and written `CSV_ROWS` rows at a time (the same file as
+    ``to_frame(ds).to_csv(path, index=False)``, in bounded memory)."""
+    path = Path(path)
+    flat = _flat(ds)
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        for k, block in enumerate(_blocks(flat, list(flat.dims), CSV_ROWS)):
+            frame = _with_units(block.to_dataframe().reset_index(), flat)
+            frame.to_csv(fh, index=False, header=k == 0)
+    return path

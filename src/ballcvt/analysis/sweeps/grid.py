@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -29,18 +28,18 @@ from ...model.clamping import clamp_law as clamp_law_of
 from ...model.clamping.base import DEFAULT_LAW, names_fixed_force
 from ...params.drive import Drive
 from ...params.models import ARCHITECTURES, Design, Fluid
-from ...solvers.limit import LimitSearch, bisection_steps
+from ...solvers.limit import LimitSearch
 from ...solvers.options import SolverOptions
-from .curves import OperatingRows, solve_curves
-from .variables import (
-    CONTACT_VARIABLES,
-    LOSS_KINDS,
-    LOSS_SUBTOTALS,
-    POINT_VARIABLES,
-    SWEEP_LOSSES,
-    attrs_for,
-    component_losses,
+from .chunks import (
+    CURVE_VARIABLES,
+    ChunkRun,
+    SweepArrays,
+    curve_chunks,
+    solve_chunked,
+    worker_pool,
 )
+from .curves import OperatingRows, limit_search_curves
+from .variables import CONTACT_VARIABLES, LOSS_SUBTOTALS, SWEEP_LOSSES, attrs_for
 
 __all__ = ["sweep", "SweepRequest"]
 
@@ -78,7 +77,9 @@ class SweepRequest:
         creeps at the limits, from which every point is started in one batch; with bare
         torques the sweep walks up the torque grid instead.
     workers : int
-        Processes to use (curves are split between them).
+        Processes to use: the chunks of curves (`ballcvt.analysis.sweeps.chunks`) are
+        shared between them (a grid of one chunk is split in chunks of at least
+        ``SPLIT_POINTS`` points to share it).
     progress : bool, optional
         Show a progress bar; by default only when stderr is a terminal.
     label : str, optional
@@ -86,6 +87,12 @@ class SweepRequest:
     input_speed_rpm : array_like, optional
         The same input speeds in rpm: the speed dimension is then ``input_speed_rpm``
         with these values, and ``input_speed`` [rad/s] a second coordinate on it.
+
+    Notes
+    -----
+    The curves are solved in chunks of about ``CHUNK_POINTS`` points written into the output
+    arrays as they finish, so a sweep's memory is its output (about 0.5 kB per point with
+    the double idler: float64 throughout) plus one chunk's work per process.
     """
 
     ratio: Any = None
@@ -149,24 +156,25 @@ def sweep(
     flat = [g.ravel() for g in grid]
     limits = _given_limits(s.limit_torque, archs, shape)
     show = sys.stderr.isatty() if s.progress is None else s.progress
-    chunks = np.array_split(np.arange(flat[0].size), max(1, min(s.workers, flat[0].size)))
-    blocks = {}
-    for arch in archs:
-        drive = Drive(design, fluid, arch)
-        jobs = [
-            (
-                OperatingRows(drive, flat[2][c], flat[1][c], flat[0][c], law, s.options, c_lim),
-                torque,
-                None if limits is None else _part(limits, c),
+    contacts = _contact_axis(archs)
+    out = SweepArrays.allocate(len(archs), flat[0].size, torque.size, contacts, law is not None)
+    chunks = curve_chunks(flat[0].size, torque.size, s.workers)
+    pool = worker_pool(s.workers if len(chunks) > 1 else 1)
+    try:
+        for a, arch in enumerate(archs):
+            rows = OperatingRows(
+                Drive(design, fluid, arch), flat[2], flat[1], flat[0], law, s.options, c_lim
             )
-            for c in chunks
-        ]
-        text = f"{s.label}, {arch} idler" if s.label and len(archs) > 1 else s.label
-        blocks[arch] = _run(jobs, s.workers, show, text or f"sweep, {arch} idler")
-    ds = _assemble(blocks, archs, axes, shape, _contact_axis(archs), s.input_speed_rpm)
+            run = ChunkRun(rows, torque, limits, a)
+            text = f"{s.label}, {arch} idler" if s.label and len(archs) > 1 else s.label
+            _run(run, out, chunks, pool, (show, text or f"sweep, {arch} idler"))
+    finally:
+        if pool is not None:
+            pool.shutdown()
+    ds = _assemble(out, archs, axes, shape, s.input_speed_rpm)
     if law is not None:
         speed_dim = "input_speed" if s.input_speed_rpm is None else "input_speed_rpm"
-        used = np.stack([blocks[a]["clamp_force"].reshape(shape + (torque.size,)) for a in archs])
+        used = out.data["clamp_force"].reshape((len(archs),) + shape + (torque.size,))
         ds = ds.isel(clamp_force=0, drop=True)
         ds["clamp_force"] = xr.Variable(
             ("architecture", speed_dim, "ratio", "output_torque"),
@@ -295,70 +303,40 @@ def _contact_axis(archs):
     return names
 
 
-def _run(jobs, workers, show, label):
+def _run(run: ChunkRun, out: SweepArrays, chunks, pool, bar) -> None:
+    """Solve ``run``'s ``chunks`` into ``out`` behind a progress bar (``bar``: whether to
+    show it, its label): steps in one process, chunks on a pool.
+
+    With more than one chunk, the limits not given are searched first, for every curve
+    in one batch (memory per curve, not per point), so that each curve's limit is the
+    same whatever the chunks."""
     from tqdm.auto import tqdm  # only the orchestration needs a progress bar
 
-    if workers > 1 and len(jobs) > 1:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            futures = [pool.submit(solve_curves, *job) for job in jobs]
-            with tqdm(total=len(jobs), desc=label, disable=not show, unit="block") as bar:
-                out = []
-                for f in futures:
-                    out.append(f.result())
-                    bar.update()
-        return _concat(out)
-    steps = sum(len(job[1]) + (bisection_steps() if job[2] is None else 0) for job in jobs)
-    with tqdm(total=steps, desc=label, disable=not show, unit="step") as bar:
-        return _concat([solve_curves(*job, callback=bar.update) for job in jobs])
+    show, label = bar
+    search = run.limits is None and len(chunks) > 1
+    total = run.steps(chunks) if pool is None else len(chunks) + (run.steps([]) if search else 0)
+    with tqdm(total=total, desc=label, disable=not show, unit="step") as progress:
+        if search:
+            run = replace(run, limits=limit_search_curves(run.curves, progress.update)[1])
+        solve_chunked(run, out, chunks, pool, progress.update)
 
 
-def _part(limits, index):
-    """The limits of the curves ``index`` (an array or a `LimitSearch`)."""
-    return limits.take(index) if isinstance(limits, LimitSearch) else limits[index]
-
-
-def _concat(parts):
-    return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
-
-
-def _assemble(blocks, archs, axes, shape, contacts, rpm=None):
+def _assemble(out: SweepArrays, archs, axes, shape, rpm=None):
+    """The Dataset of the output arrays (views of them: nothing is copied)."""
     speed_dim = "input_speed" if rpm is None else "input_speed_rpm"
-    dims = ("clamp_force", speed_dim, "ratio")
+    lead = ("architecture", "clamp_force", speed_dim, "ratio")
+    trail = {"loss_subtotals": ("subtotal",), "losses": ("loss",)}
+    trail.update({name: ("contact",) for name in CONTACT_VARIABLES})
     data = {}
-    for name in (
-        "limit_torque",
-        "eta_at_limit",
-        "status",
-        "warnings",
-        "iterations",
-        "residual_norm",
-        *POINT_VARIABLES,
-        "losses",
-        *CONTACT_VARIABLES,
-    ):
-        per_arch = []
-        for arch in archs:
-            v = blocks[arch][name]
-            v = v.reshape(shape + v.shape[1:])
-            if name in CONTACT_VARIABLES:
-                full = np.full(v.shape[:-1] + (len(contacts),), np.nan)
-                for j, c in enumerate(CONTACT_NAMES[arch]):
-                    full[..., contacts.index(c)] = v[..., j]
-                v = full
-            per_arch.append(v)
-        arr = np.stack(per_arch)
-        d = ("architecture",) + dims
-        if name not in ("limit_torque", "eta_at_limit"):
-            d += ("output_torque",)
-        if name in CONTACT_VARIABLES:
-            d += ("contact",)
-        elif name == "losses":  # components and one total; the subtotals apart
-            subs = [LOSS_KINDS.index(k) for k in LOSS_SUBTOTALS]
-            data["loss_subtotals"] = xr.Variable(
-                d + ("subtotal",), arr[..., subs], attrs_for("loss_subtotals")
-            )
-            arr, d = component_losses(arr), d + ("loss",)
-        data[name] = xr.Variable(d, arr, attrs_for(name))
+    for name, arr in out.data.items():
+        if name == "clamp_force":  # a law's forces: set apart by `sweep`
+            continue
+        d: tuple[str, ...] = lead if name in CURVE_VARIABLES else lead + ("output_torque",)
+        d += trail.get(name, ())
+        data[name] = xr.Variable(
+            d, arr.reshape((len(archs),) + shape + arr.shape[2:]), attrs_for(name)
+        )
+    contacts = out.contacts
     coords = {
         "architecture": ("architecture", np.array(archs), {"long_name": "idler architecture"}),
         "contact": ("contact", np.array(contacts), {"long_name": "contact"}),

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...model.architectures import CONTACT_NAMES
 from ...solvers.limit import solve_admissible
 from ...status import Status
 from .curves import OperatingRows, at_optimal_forces, derived
@@ -55,34 +54,38 @@ def evaluate_points(points: OperatingRows, output_torque, callback=None, executo
     parts = np.array_split(np.arange(n), -(-n // CHUNK))
     if executor is not None and len(parts) > 1:
         futures = [executor.submit(evaluate_points, points.take(i), torque[i]) for i in parts]
-        done = []
-        for i, f in zip(parts, futures):
-            done.append(f.result())
-            if callback is not None:
-                callback(i.size)
-        return {k: np.concatenate([d[k] for d in done]) for k in done[0]}
-    status = np.full(n, Status.NOT_CONVERGED, dtype=np.int8)
-    creep = np.full((n, 1, len(CONTACT_NAMES[points.drive.architecture])), np.nan)
-    used = np.array(force, dtype=float)
-    follows = law if law is not None and not points.optimal else None
-    c_lim = points.creep_limit
-    for idx in parts:
-        pb = points.problem(idx, torque[idx], force[idx])
-        if points.optimal:  # the optimiser's force, then the constant law
-            pb = at_optimal_forces(pb, law, points.options)
-        got = solve_admissible(pb, c_lim, points.options, follows)
-        used[idx] = got.problem.clamp_force
-        # converged but inadmissible (creep or, under a cam, pressure), or running away
-        beyond = got.converged | (np.max(np.abs(got.creep), axis=-1) > c_lim)
-        status[idx] = np.where(
-            got.ok,
-            Status.CONVERGED,
-            np.where(beyond, Status.BEYOND_LIMIT, Status.NOT_CONVERGED),
-        )
-        creep[idx, 0] = np.where(got.ok[:, None], got.creep, np.nan)
+        chunks = ((i, f.result()) for i, f in zip(parts, futures))
+    else:
+        chunks = ((i, _solve_chunk(points, i, torque[i], force[i])) for i in parts)
+    out: dict = {}
+    for idx, got in chunks:  # each chunk into the output arrays, then dropped
+        if not out:  # allocated once: every point is written by its chunk
+            out = {k: np.empty((n,) + v.shape[1:], dtype=v.dtype) for k, v in got.items()}
+        for k, v in got.items():
+            out[k][idx] = v
         if callback is not None:
             callback(idx.size)
-    out = derived(points, used[:, None], torque[:, None], creep, status[:, None])
+    return out
+
+
+def _solve_chunk(points: OperatingRows, idx, torque, force) -> dict:
+    """Solve and report the points ``idx`` (one chunk; see `evaluate_points`)."""
+    law, c_lim = points.law, points.creep_limit
+    follows = law if law is not None and not points.optimal else None
+    pb = points.problem(idx, torque, force)
+    if points.optimal:  # the optimiser's force, then the constant law
+        pb = at_optimal_forces(pb, law, points.options)
+    got = solve_admissible(pb, c_lim, points.options, follows)
+    used = np.array(got.problem.clamp_force, dtype=float)
+    # converged but inadmissible (creep or, under a cam, pressure), or running away
+    beyond = got.converged | (np.max(np.abs(got.creep), axis=-1) > c_lim)
+    status = np.where(
+        got.ok,
+        Status.CONVERGED,
+        np.where(beyond, Status.BEYOND_LIMIT, Status.NOT_CONVERGED),
+    ).astype(np.int8)
+    creep = np.where(got.ok[:, None], got.creep, np.nan)[:, None]
+    out = derived(points.take(idx), used[:, None], torque[:, None], creep, status[:, None])
     out = {k: v[:, 0] for k, v in out.items()}
     out["status"] = status
     out["clamp_force"] = np.where(status == Status.CONVERGED, used, np.nan)

@@ -108,7 +108,7 @@ def _write(ds, out, args) -> None:
 
     to_netcdf(ds, out / "map.nc")
     to_csv(ds, out / "map.csv")
-    one = ds.squeeze(drop=True)
+    one = _for_figure(ds.squeeze(drop=True))
     save(
         efficiency_map(
             one.ratio.values,
@@ -137,6 +137,23 @@ def _write(ds, out, args) -> None:
             out,
             "shift_effort",
         )
+
+
+#: Most ratios and torques a figure draws: a larger map is drawn on every k-th of them
+#: (ends kept). Its triangulated contours would otherwise cost gigabytes and a long SVG
+#: for no visible difference (a 1000 x 1000 map: 2 million triangles on 860 pixels).
+FIGURE_POINTS = 250
+
+
+def _for_figure(one):
+    """``one`` thinned to at most `FIGURE_POINTS` ratios and torques (the data files
+    keep every point)."""
+    pick = {}
+    for dim in ("ratio", "output_torque"):
+        n = one.sizes.get(dim, 1)
+        if n > FIGURE_POINTS:
+            pick[dim] = np.unique(np.round(np.linspace(0, n - 1, FIGURE_POINTS)).astype(int))
+    return one.isel(pick) if pick else one
 
 
 def _mode_summary(ds, out, design: str) -> str:

@@ -1,0 +1,390 @@
+"""One benchmark table of every path (issue 26): ``python benchmarks/bench_table.py``.
+
+Each row is measured in this process (or in a child process where it says so) and printed
+with its target, its ratio to the baseline row (the 30 x 30 sweep, isothermal law, constant
+clamping force: how many times its cost per point) and the same row measured on the
+previous release, commit 202cf3f, read from ``benchmarks/results/previous.json``.
+
+That file is produced once by running this script against a worktree of 202cf3f::
+
+    git worktree add /tmp/prev 202cf3f
+    PYTHONPATH=/tmp/prev/src python benchmarks/bench_table.py --quick \\
+        --save benchmarks/results/previous.json
+
+(``--quick`` and the full run are stored apart: each table reads its own mode's figures.)
+
+Options: ``--quick`` (small grids, about 5 minutes on a loaded 2-core machine), ``--json``
+(the rows as JSON), ``--markdown`` (the README table), ``--write-readme`` (put that table
+into README.md between ``<!-- bench-table-start -->`` and ``<!-- bench-table-end -->``),
+``--big`` (also run a 1000 x 1000 ``ballcvt map`` in a child process for its peak memory:
+several minutes).
+
+Times are CPU seconds of the process that does the work (``time.process_time``), not wall
+time: the machine these figures come from is shared and its wall times drift by 2-4x.
+Rows that use several processes (``--workers``, Dask) are wall times and say so.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(__file__))
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+PREVIOUS = HERE / "results" / "previous.json"
+PREVIOUS_COMMIT = "202cf3f"
+BASELINE = "sweep-isothermal-constant"
+MARKERS = ("<!-- bench-table-start -->", "<!-- bench-table-end -->")
+OP = {"input_speed_rpm": 2000.0}
+CLAMPS = {"constant": {"clamp_force": 2000.0}, "cam": {"clamp_law": "cam"},
+          "optimal": {"clamp_law": "optimal"}}
+
+
+@dataclass
+class Row:
+    """One measured path: ``figure`` in ``unit`` (``ms/point`` rows are compared with the
+    baseline), the target text, and how it was measured."""
+
+    key: str
+    what: str
+    figure: float
+    unit: str
+    target: str = ""
+    met: bool | None = None
+    note: str = ""
+
+
+def cpu(fn):
+    """(CPU seconds, wall seconds, result) of one call."""
+    c, w = time.process_time(), time.perf_counter()
+    out = fn()
+    return time.process_time() - c, time.perf_counter() - w, out
+
+
+# ------------------------------------------------------------------------- the rows
+
+
+def sweep_rows(quick, clamps=("constant", "cam")):
+    """30 x 30 sweeps (Table I, 2000 rpm): every traction law x constant / cam / optimal
+    clamping (the optimal clamp on a smaller grid: one optimisation per point)."""
+    from ballcvt import Variator
+
+    rows = []
+    for law in ("isothermal", "viscoelastic", "thermal"):
+        v = Variator(traction_law=law)
+        for clamp in clamps:
+            kw = CLAMPS[clamp]
+            n = (4 if quick else 8) if clamp == "optimal" else (10 if quick else 30)
+            grid = {"ratio": np.linspace(0.5, 2.0, n), "output_torque": np.linspace(5.0, 70.0, n)}
+            v.sweep(ratio=[1.0], output_torque=[10.0, 20.0], **kw, **OP, progress=False)
+            c, w, _ = cpu(lambda g=grid, kw=kw: v.sweep(**g, **kw, **OP, progress=False))
+            ms = c / n / n * 1e3
+            target = ">= 1,000 points/s" if law == "thermal" else ">= 2,000 points/s"
+            rows.append(Row(f"sweep-{law}-{clamp}", f"sweep {n} x {n}, {law} law, {clamp} clamp",
+                            ms, "ms/point", target if clamp != "optimal" else "",
+                            (1e3 / ms >= (1000 if law == "thermal" else 2000))
+                            if clamp != "optimal" else None, f"{n * n / c:,.0f} points/s"))
+    return rows
+
+
+def optimal_rows(quick):
+    """The sweeps of `sweep_rows` under the optimal clamp (8 x 8; quick: 4 x 4)."""
+    return sweep_rows(quick, ("optimal",))
+
+
+def mixed_row(quick):
+    """The hub's map with its named mixed lubrication (and its cam), 150 rpm."""
+    from ballcvt import Variator, load_builtin
+    from ballcvt.api import MapGrid
+
+    design, fluid = load_builtin("hub")
+    v = Variator(design.with_lubrication("mixed"), fluid)
+    n = 10 if quick else 30
+    v.efficiency_map(MapGrid((0.6, 1.6), 2, None, 2), clamp_law="cam", input_speed_rpm=150.0,
+                     progress=False)
+    c, w, _ = cpu(lambda: v.efficiency_map(MapGrid((0.6, 1.6), n, None, n), clamp_law="cam",
+                                           input_speed_rpm=150.0, progress=False))
+    return [Row("mixed-lubrication", f"hub map {n} x {n}, mixed lubrication, cam, 150 rpm",
+                c / n / n * 1e3, "ms/point", note=f"{n * n / c:,.0f} points/s")]
+
+
+def mode_rows(quick):
+    """A 10 x 10 efficiency map (quick: 6 x 6) in every planetary mode, 2 kN."""
+    from ballcvt import Variator
+    from ballcvt.api import MapGrid
+    from ballcvt.registry import OPERATING_MODES
+
+    v, n, rows = Variator(), 6 if quick else 10, []
+    for mode in OPERATING_MODES:
+        v.efficiency_map(MapGrid((0.6, 1.6), 2, None, 2), clamp_force=2000.0, mode=mode,
+                         input_speed_rpm=2000.0)
+        c, w, _ = cpu(lambda m=mode: v.efficiency_map(
+            MapGrid((0.6, 1.6), n, None, n), clamp_force=2000.0, mode=m, input_speed_rpm=2000.0))
+        rows.append(Row(f"mode-{mode}", f"map {n} x {n} in mode {mode}", c / n / n * 1e3,
+                        "ms/point"))
+    return rows
+
+
+def solve_rows(quick):
+    """``solve`` one point, constant and optimal clamping (median of repeated calls)."""
+    from ballcvt import Variator
+
+    v, rows = Variator(), []
+    for clamp, target in (("constant", "< 1 ms median"), ("optimal", "")):
+        kw = CLAMPS[clamp]
+        v.solve(1.0, 40.0, **kw, **OP)
+        times = [cpu(lambda kw=kw: v.solve(1.0, 40.0, **kw, **OP))[0]
+                 for _ in range(5 if quick or clamp == "optimal" else 40)]
+        ms = float(np.median(times)) * 1e3
+        rows.append(Row(f"solve-{clamp}", f"solve one point, {clamp} clamp", ms, "ms/point",
+                        target, ms < 1.0 if target else None))
+    return rows
+
+
+def cycle_rows(quick):
+    """10,000-step cycles (the example commute repeated), target-input-speed strategy, one
+    process: the Table I drive and the hub, constant and cam clamping; the optimal clamp on
+    fewer steps, scaled to 10,000."""
+    from bench_cycle import commute, warm_up
+
+    from ballcvt import Variator, load_builtin
+    from ballcvt.analysis.cycles import run_cycle
+
+    rows = []
+    for drive in ("table1", "hub"):
+        v = Variator(*load_builtin(drive))
+        for clamp in ("constant", "cam", "optimal"):
+            kw = {"clamp_force": 1500.0} if clamp == "constant" else {"clamp_law": clamp}
+            steps = (20 if quick else 100) if clamp == "optimal" else (1000 if quick else 10_000)
+            warm_up(v, **kw)
+            c, w, _ = cpu(lambda kw=kw, steps=steps: run_cycle(
+                v, commute(steps), target_input_speed=180 * np.pi / 30, progress=False, **kw))
+            s = c * 10_000 / steps
+            rows.append(Row(f"cycle-{drive}-{clamp}", f"cycle of 10,000 steps, {drive}, {clamp} "
+                            "clamp", s, "s", "< 10 s", s < 10.0,
+                            "" if steps == 10_000 else f"{steps} steps run, scaled"))
+    return rows
+
+
+CHILD = """
+import resource, sys
+from ballcvt.interfaces.cli.main import main
+try:
+    main(sys.argv[1:])
+finally:
+    print("MAXRSS", resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, file=sys.stderr)
+"""
+
+
+def map_child(n, tmp, workers=1):
+    """``ballcvt map`` of n x n points in a child process: (peak RSS [bytes], wall s)."""
+    argv = [sys.executable, "-c", CHILD, "map", "--out", f"{tmp}/map{n}", "--clamp", "2000",
+            "--speed", "2000", "--n-ratio", str(n), "--n-torque", str(n), "--quiet",
+            "--workers", str(workers)]
+    t = time.perf_counter()
+    done = subprocess.run(argv, capture_output=True, text=True, check=True)
+    wall = time.perf_counter() - t
+    rss = [int(line.split()[1]) for line in done.stderr.splitlines() if line.startswith("MAXRSS")]
+    return rss[-1] * 1024, wall
+
+
+def memory_rows(quick, big):
+    """Peak RSS of ``ballcvt map`` (solve, map.nc, map.csv, figure) in child processes:
+    memory per point from two sizes; the 1000 x 1000 map with ``--big``."""
+    small, large = (150, 300) if quick else (200, 400)
+    with tempfile.TemporaryDirectory() as tmp:
+        map_child(10, tmp)  # the numba cache, loaded once
+        (r0, _), (r1, _) = map_child(small, tmp), map_child(large, tmp)
+        per = (r1 - r0) / (large**2 - small**2)
+        rows = [Row("map-memory", f"memory per point of `ballcvt map` ({small}^2 -> {large}^2 "
+                    "points, peak RSS)", per, "B/point", "stated",
+                    note=f"peak {r1 / 2**20:,.0f} MiB at {large} x {large}")]
+        if big:
+            rss, wall = map_child(1000, tmp)
+            rows.append(Row("map-1000", "`ballcvt map` 1000 x 1000, peak RSS", rss / 2**20,
+                            "MiB", "< 1 GB", rss < 2**30, f"{wall:.0f} s wall"))
+        else:
+            rows.append(Row("map-1000", "`ballcvt map` 1000 x 1000, peak RSS (estimated: "
+                            "the small map's peak + 10^6 x memory per point)",
+                            (r1 + per * (1e6 - large**2)) / 2**20, "MiB", "< 1 GB",
+                            r1 + per * (1e6 - large**2) < 2**30))
+    return rows
+
+
+def workers_row(quick):
+    """``ballcvt map --workers 2`` against ``--workers 1`` (wall time, child processes)."""
+    n = 100 if quick else 300
+    with tempfile.TemporaryDirectory() as tmp:
+        map_child(10, tmp)
+        (_, w1), (_, w2) = map_child(n, tmp, 1), map_child(n, tmp, 2)
+    return [Row("map-workers", f"`ballcvt map` {n} x {n}: wall time --workers 1 / --workers 2",
+                w1 / w2, "x", "> 1.2 x (a speed-up)", w1 / w2 > 1.2,
+                f"{w1:.1f} s / {w2:.1f} s wall, {os.cpu_count()} cores")]
+
+
+def study_row(quick):
+    """Dask's overhead on 1 worker against the in-process loop (bench_study.py's study)."""
+    from bench_study import in_process_and_dask
+
+    designs = 20 if quick else 100
+    t = in_process_and_dask(designs, 10, workers=(1,), out=lambda *a: None)
+    over = (t[1][1] / t["plain"] - 1.0) * 100
+    return [Row("dask-overhead", f"Dask study overhead, 1 worker vs in process ({designs} "
+                "designs x 100 points, chunks of 10; wall)", over, "%", "< 15 %", over < 15.0,
+                f"{t['plain']:.1f} s in process, {t[1][1]:.1f} s on Dask")]
+
+
+def reproduce_row(quick):
+    """``ballcvt reproduce`` (``--quick`` in a quick run) in a child process, wall time."""
+    with tempfile.TemporaryDirectory() as tmp:
+        argv = [sys.executable, "-c", CHILD, "reproduce", "--out", f"{tmp}/r", "--quiet"]
+        t = time.perf_counter()
+        subprocess.run(argv + (["--quick"] if quick else []), capture_output=True, check=True)
+        wall = time.perf_counter() - t
+    return [Row("reproduce", f"`ballcvt reproduce{' --quick' if quick else ''}` (wall)", wall,
+                "s")]
+
+
+SECTIONS = {"sweeps": sweep_rows, "optimal": optimal_rows, "mixed": mixed_row,
+            "modes": mode_rows, "solve": solve_rows, "cycles": cycle_rows,
+            "memory": memory_rows, "workers": workers_row, "study": study_row,
+            "reproduce": reproduce_row}
+
+
+def measure(quick, big=False, sections=tuple(SECTIONS), log=print):
+    """The rows of ``sections`` (names of `SECTIONS`), in the table's order."""
+    rows = []
+    for name in SECTIONS:
+        if name not in sections:
+            continue
+        t = time.perf_counter()
+        section = SECTIONS[name]
+        got = section(quick, big) if section is memory_rows else section(quick)
+        rows += got
+        log(f"  {name}: {time.perf_counter() - t:.0f} s; " + json.dumps([asdict(r) for r in got]))
+    return rows
+
+
+def merged(path, mode, doc):
+    """Store ``doc``'s rows under ``mode`` in the JSON file ``path``, replacing rows of the
+    same key and keeping the others (sections measured apart); returns the stored doc."""
+    path = Path(path)
+    stored = json.loads(path.read_text()) if path.exists() else {}
+    old = stored.get(mode, {}).get("rows", [])
+    keys = {r["key"] for r in doc["rows"]}
+    rows = [r for r in old if r["key"] not in keys] + doc["rows"]
+    order = [r["key"] for r in rows]
+    stored[mode] = dict(doc, rows=sorted(rows, key=lambda r: _rank(r["key"], order)))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(stored, indent=1) + "\n")
+    return stored[mode]
+
+
+def _rank(key, order):
+    """Rows in the order of `SECTIONS` (by their key's prefix), then as stored."""
+    prefixes = ["sweep-", "sweep-", "mixed", "mode-", "solve-", "cycle-", "map-memory",
+                "map-1000", "map-workers", "dask", "reproduce"]
+    first = next((i for i, p in enumerate(prefixes) if key.startswith(p)), len(prefixes))
+    optimal = key.startswith("sweep-") and key.endswith("-optimal")
+    return (first + (0.5 if optimal else 0), order.index(key))
+
+
+# ------------------------------------------------------------------------ the table
+
+
+def fmt(x, unit):
+    if x is None or not np.isfinite(x):
+        return "-"
+    digits = ".3f" if abs(x) < 1 else ".2f" if abs(x) < 10 else ".1f" if abs(x) < 100 else ",.0f"
+    return f"{x:{digits}} {unit}"
+
+
+def table(rows, previous=None, header=None):
+    """The Markdown table of ``rows`` (a list of `Row` or dicts); ``previous``: the same
+    keys measured on the previous release."""
+    rows = [r if isinstance(r, Row) else Row(**r) for r in rows]
+    prev = {r["key"]: r for r in (previous or [])}
+    base = next((r.figure for r in rows if r.key == BASELINE), None)
+    lines = [header] if header else []
+    lines += ["| path | measured | x baseline | target | met | previous release "
+              f"({PREVIOUS_COMMIT}) | now / previous |", "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        ratio = fmt(r.figure / base, "") if base and r.unit == "ms/point" else ""
+        p = prev.get(r.key)
+        pf = fmt(p["figure"], p["unit"]) if p else "-"
+        change = fmt(r.figure / p["figure"], "") if p and p["figure"] else ""
+        met = "" if r.met is None else ("yes" if r.met else "NO")
+        figure = fmt(r.figure, r.unit) + (f" ({r.note})" if r.note else "")
+        lines.append(f"| {r.what} | {figure} | {ratio.strip()} | {r.target} | {met} | {pf} "
+                     f"| {change.strip()} |")
+    return "\n".join(lines)
+
+
+def write_readme(text, path=ROOT / "README.md"):
+    """Replace the README's table between `MARKERS` with ``text``."""
+    readme = path.read_text()
+    a, b = (readme.index(m) for m in MARKERS)
+    path.write_text(readme[: a + len(MARKERS[0])] + "\n" + text + "\n" + readme[b:])
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="small grids and short cycles")
+    ap.add_argument("--big", action="store_true", help="also the 1000 x 1000 map's peak RSS")
+    ap.add_argument("--json", action="store_true", help="print the rows as JSON")
+    ap.add_argument("--markdown", action="store_true", help="print the README table")
+    ap.add_argument("--write-readme", action="store_true", help="put the table in README.md")
+    ap.add_argument("--sections", default=",".join(SECTIONS),
+                    help="comma-separated sections to measure (default: all): "
+                    + ", ".join(SECTIONS))
+    ap.add_argument("--from-json", help="format the rows stored in this file (--save) "
+                    "instead of measuring")
+    ap.add_argument("--save", help="merge the rows into this JSON file (by key, per mode): "
+                    "benchmarks/results/latest.json, or previous.json for the previous release")
+    args = ap.parse_args(argv)
+    mode = "quick" if args.quick else "full"
+    quiet = args.json or args.markdown
+    from ballcvt import __version__
+
+    if args.from_json:
+        stored = json.loads(Path(args.from_json).read_text())
+        doc = stored.get(mode, stored)
+        rows = doc["rows"]
+    else:
+        sections = [s.strip() for s in args.sections.split(",") if s.strip()]
+        rows = [asdict(r) for r in measure(args.quick, args.big, sections,
+                                           log=lambda s: print(s, file=sys.stderr))]
+        doc = {"mode": mode, "version": __version__, "python": platform.python_version(),
+               "cores": os.cpu_count(), "rows": rows}
+    if args.save:
+        doc = merged(args.save, mode, doc)
+        rows = doc["rows"]
+    previous = json.loads(PREVIOUS.read_text()).get(mode, {}).get("rows") if PREVIOUS.exists() \
+        else None
+    header = (f"ballcvt {__version__}, {mode} run, Python {platform.python_version()}, "
+              f"{os.cpu_count()} cores; CPU time unless the row says wall. "
+              "Generated by `python benchmarks/bench_table.py"
+              f"{' --quick' if args.quick else ''} --write-readme`.\n")
+    text = table(rows, previous, header)
+    if args.json:
+        print(json.dumps(doc, indent=1))
+    if args.markdown or not quiet:
+        print(text)
+    if args.write_readme:
+        write_readme(text)
+
+
+if __name__ == "__main__":
+    main()

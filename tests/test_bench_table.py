@@ -1,0 +1,68 @@
+"""The benchmark table's formatter and README writer (benchmarks/bench_table.py); the
+measurements themselves are not run here (no timings in tests)."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _bench():
+    spec = importlib.util.spec_from_file_location("bench_table", ROOT / "benchmarks" / "bench_table.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["bench_table"] = module  # its dataclass looks its module up
+    spec.loader.exec_module(module)
+    return module
+
+
+ROWS = [
+    {"key": "sweep-isothermal-constant", "what": "base", "figure": 0.2, "unit": "ms/point",
+     "target": ">= 2,000 points/s", "met": True, "note": ""},
+    {"key": "sweep-thermal-constant", "what": "thermal", "figure": 0.5, "unit": "ms/point",
+     "target": "", "met": None, "note": "2,000 points/s"},
+    {"key": "map-1000", "what": "big map", "figure": 900.0, "unit": "MiB",
+     "target": "< 1 GB", "met": True, "note": ""},
+]
+
+
+def test_table_ratios_to_baseline_and_previous():
+    b = _bench()
+    previous = [dict(ROWS[1], figure=1.0)]
+    lines = b.table(ROWS, previous).splitlines()
+    assert lines[0].startswith("| path | measured | x baseline")
+    thermal = next(line for line in lines if line.startswith("| thermal"))
+    cells = [c.strip() for c in thermal.split("|")[1:-1]]
+    assert cells[1] == "0.500 ms/point (2,000 points/s)"
+    assert cells[2] == "2.50"  # 0.5 / 0.2 ms per point
+    assert cells[5] == "1.00 ms/point" and cells[6] == "0.500"
+    big = next(line for line in lines if line.startswith("| big map"))
+    assert "| yes |" in big and big.split("|")[3].strip() == ""  # no ratio for MiB
+
+
+def test_write_readme_replaces_between_markers(tmp_path):
+    b = _bench()
+    readme = tmp_path / "README.md"
+    readme.write_text(f"intro\n{b.MARKERS[0]}\nold table\n{b.MARKERS[1]}\nrest\n")
+    b.write_readme("| new |", readme)
+    assert readme.read_text() == f"intro\n{b.MARKERS[0]}\n| new |\n{b.MARKERS[1]}\nrest\n"
+
+
+def test_markdown_from_saved_rows(tmp_path, capsys):
+    b = _bench()
+    saved = tmp_path / "rows.json"
+    saved.write_text(json.dumps({"rows": ROWS}))
+    b.main(["--from-json", str(saved), "--markdown"])
+    out = capsys.readouterr().out
+    assert "| base | 0.200 ms/point | 1.00 |" in out
+
+
+def test_readme_table_is_the_scripts():
+    """The README's performance table sits between the script's markers."""
+    b = _bench()
+    text = (ROOT / "README.md").read_text()
+    a, z = (text.index(m) for m in b.MARKERS)
+    assert "| path | measured | x baseline" in text[a:z]

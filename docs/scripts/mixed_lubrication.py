@@ -200,7 +200,7 @@ The ceiling is `K E' F_5/2(0) / p_mean` computed by hand (`F_5/2(0) = 2^(3/4) Ga
 sqrt(2 pi)` = {f52:.4f}, the Gaussian moment); the sweep's share at the lowest speed tends
 to it (`tests/test_validation_mixed.py`).
 
-## What a measured Stribeck curve would show, and the model does not
+## What a measured Stribeck curve would show, and what the model shows
 
 A Stribeck curve of lubricated steel rises, as the speed falls, from the film's traction
 towards the boundary friction of the asperities (about 0.1: Bowden and Tabor's value, the
@@ -209,10 +209,12 @@ of the Stribeck curves for lubricated counterformal contacts"; abstract only rea
 such complete curves, boundary to full film, for counterformal contacts on a
 rolling-sliding apparatus from 0.00006 to 60 m/s, and report that in the full film the
 friction still falls as the speed rises (flash heating lowers the limiting shear stress):
-the isothermal law here rises instead; the thermal law of §14 is the one to compare. In the
-model the traction coefficient *falls* as the speed falls, at every creep and every
-asperity parameter above: it has no boundary branch, and below `h_s / sigma` of about 2
-the mixed model's traction is *lower* than the full film's. Two reasons, each checked by a test:
+the isothermal law here rises instead; the thermal law of §14 is the one to compare.
+
+In the model, at a small creep the traction falls with the film's shear as the speed
+falls, has a minimum and rises again at the lowest speeds as the asperities take load
+with the boundary shear (the table: at creep 0.02 and 1 mm/s, above the full film's); it
+stays far below `mu_b`, for two reasons, each checked by a test:
 
 1. **The asperity share is bounded** by the asperity pressure at zero separation: at the
    hub's contact the asperities carry at most {ceil:.1f} % of the load with the defaults
@@ -220,21 +222,19 @@ the mixed model's traction is *lower* than the full film's. Two reasons, each ch
    ranges), because under Johnson, Greenwood and Poon's scaling the film never thins
    below the smooth film `h_s` (docs/model.md §16, "When not to trust it" (1)). At
    a traction drive's pressures the boundary regime `f_a -> 1` is out of reach.
-2. **The asperity share's friction is the film's viscous shear, not `mu_b`.** The
-   boundary shear is the isothermal law with the limiting shear stress `mu_b p`; it
-   reaches `mu_b p` only where `eta |V| / h` exceeds it, and at these pressures and films
-   it does not: at the hub's own contact (creep 0.0175, spin, 0.24 m/s) the asperity
+2. **The asperity share's friction is Coulomb's once the slip passes its elastic
+   scale** (docs/model.md §16: `tau = mu_b p (1 - exp(-k s / (mu_b p)))`, `k` from
+   Kalker's `C_11`): at the hub's own contact (creep 0.0175, spin, 0.24 m/s) the asperity
    share's friction coefficient is {asp_hub:.4f} against the film's {film_hub:.4f} and
    `mu_b` = 0.1; at the slide-to-roll ratio 0.5 it is {asp_slow:.3f} at {u0:g} mm/s and
-   {asp_fast:.3f} at {u1:g} m/s. docs/model.md §16 describes a Coulomb shear `mu_b p`
-   that the film's viscosity only smooths through zero sliding at the pole; that holds
-   only at far larger sliding speeds. Reported in issue 27; the test
-   `test_asperity_share_reaches_boundary_friction_in_sliding` is a strict expected
-   failure until the model does it.
+   {asp_fast:.3f} at {u1:g} m/s (`test_asperity_share_reaches_boundary_friction_in_sliding`).
+   So at a traction drive's creeps (1-2 %) the asperities grip with nearly `mu_b`, but on
+   a few percent of the load.
 
-So the mixed model, as it stands, moves a traction drive's traction by what the
-asperities' *load* takes from the film (its pressure and viscosity fall), not by their
-friction: this is why it changes the hub's efficiency by a few tenths of a point only.
+So the mixed model moves a traction drive's traction mostly by what the asperities'
+*load* takes from the film (its pressure and viscosity fall), and by their boundary
+friction on that small share: this is why it changes the hub's efficiency by a few tenths
+of a point only.
 """
 
 SEARCH = """\

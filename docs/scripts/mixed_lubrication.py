@@ -180,8 +180,8 @@ reproduced within its scatter, and for the oil's thermal balance against a hand
 calculation and a published gearbox heat-rejection figure. **Neither published
 measurement could be reproduced here: no citable, tabulated data were found** (what was
 searched is listed below). What the page gives instead is the model's own Stribeck sweep,
-the hand calculations it rests on, and two properties of the model that a measured
-Stribeck curve of steel would contradict. Nothing is fitted or tuned.
+the hand calculations it rests on, and why its boundary branch stays far below a
+measured Stribeck curve's. Nothing is fitted or tuned.
 
 ## The model's Stribeck sweep
 

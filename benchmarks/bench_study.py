@@ -1,22 +1,28 @@
-"""Design-study throughput on Dask: 1,000 designs x 100 operating points (issue 11).
+"""Design-study throughput on Dask: 1,000 designs x 100 operating points (issues 11, 26).
 
-Run: ``python benchmarks/bench_study.py`` (about 5 minutes; ``--designs 200`` for a quick
-look; prints figures, asserts nothing).
+Run: ``python benchmarks/bench_study.py`` (about 5 minutes on an idle 2-core machine;
+``--designs 200`` for a quick look; prints figures, asserts nothing).
 
 The same study (Sobol designs over ball radius, aspect ratio, contact angles and the number
 of balls, near Table I; a 10 x 10 grid of ratios 0.6-1.6 and torques 5-45 N m at 2 kN and
-2000 rpm; capacity at ratio 1) is run three ways:
+2000 rpm; capacity at ratio 1) is run four ways:
 
-* in process, without Dask: the plain batched solve of the same work (each design's 100
-  points in one batch through the fast solver, its limit in one `limit_search`);
-* on a local Dask cluster of 1 worker process, then of 2;
+* **the in-process loop**: `evaluate_chunk` over every design in this process, nothing
+  stored (each design's 100 points in one batch through the fast solver, its limit in one
+  `limit_search`): the work itself;
+* `run_study` in process, without Dask (the same plus the Zarr appends and the tables);
+* `run_study` on a local Dask cluster of 1 worker process, then of 2 (``--workers``).
 
-and printed: designs and points per second, the scaling from 1 to 2 workers, and Dask's
-overhead on 1 worker against the plain batched solve (target: under 15 %), with and without
-the cluster's start-up.
+**Overhead** (issue 26: under 10 % at 10,000 designs) is Dask's on *one* worker against
+the in-process loop, one process computing in both: ``t_dask1 / t_loop - 1``, the cluster's
+start-up left out (printed apart, and with it). It holds everything a Dask study adds:
+scheduling, sending the tasks and results, the workers' imports and kernel loading, the
+appends and the tables. With 2 workers the script prints the speed-up over the loop and the
+overhead per worker, ``2 t_dask2 / t_loop - 1`` (which on a 2-core machine also counts the
+cores the scheduler and this process take from the workers).
 
-It imports the studies' internals on purpose (`local_client`, `parse_study`): it times the
-Dask machinery against the in-process loop.
+It imports the studies' internals on purpose (`evaluate_chunk`, `local_client`,
+`parse_study`): it times the Dask machinery against the in-process loop.
 """
 
 from __future__ import annotations
@@ -27,8 +33,11 @@ import platform
 import tempfile
 import time
 
+import numpy as np
+
 from ballcvt import __version__
-from ballcvt.analysis.studies.run import local_client, run_study
+from ballcvt.analysis.studies.evaluate import evaluate_chunk, make_context
+from ballcvt.analysis.studies.run import design_vectors, local_client, run_study, task_size
 from ballcvt.analysis.studies.spec import parse_study
 
 STUDY = """
@@ -59,39 +68,46 @@ capacity = "max"
 """
 
 
+def loop_time(spec) -> tuple[float, dict]:
+    """Seconds of the in-process loop over the study's designs (nothing stored), and its
+    result (`evaluate_chunk`'s arrays)."""
+    ctx = make_context(spec)
+    x = design_vectors(spec)
+    t = time.perf_counter()
+    result = evaluate_chunk(ctx, np.arange(len(x)), x)
+    return time.perf_counter() - t, result
+
+
+def dask_time(spec, out, workers: int) -> tuple[float, float]:
+    """(cluster start-up, study run) seconds of ``spec`` on a new local cluster."""
+    t = time.perf_counter()
+    client = local_client(workers)
+    t_start = time.perf_counter() - t
+    t = time.perf_counter()
+    run_study(spec, out, client=client, progress=False)
+    t_run = time.perf_counter() - t
+    cluster = client.cluster
+    client.close()
+    cluster.close()
+    return t_start, t_run
+
+
 def in_process_and_dask(designs, chunk, workers=(1, 2), out=print):
-    """Run the benchmark study in process, then on local Dask clusters of ``workers``
-    processes; returns ``{"points", "designs", "plain": s, workers: (start-up s, run s)}``
-    and prints (``out``) as it goes."""
+    """The in-process loop, then the study on local Dask clusters of ``workers``
+    processes; returns ``{"points", "designs", "plain": loop s, workers: (start-up s, run
+    s)}`` and prints (``out``) as it goes (`benchmarks/bench_table.py`'s study row)."""
     spec = parse_study(STUDY.format(designs=designs, chunk=chunk))
     with tempfile.TemporaryDirectory() as tmp:
-        # warm the JIT cache (the workers load it from disk)
         run_study(parse_study(STUDY.format(designs=2, chunk=1)), f"{tmp}/warm",
-                  in_process=True, progress=False)
-        t = time.perf_counter()
-        plain = run_study(spec, f"{tmp}/plain", in_process=True, progress=False)
-        t_plain = time.perf_counter() - t
-        points = int((plain.dataset["point_status"].values >= 0).sum())
-        n = plain.dataset.sizes["design"]
-        out(f"{n} designs x {plain.dataset.sizes['point']} operating points: "
-            f"{int((plain.dataset['status'].values == 0).sum())} feasible, {points} points "
-            "solved")
-        out(f"  in process (plain batched solve): {t_plain:7.1f} s = "
-            f"{points / t_plain:7,.0f} points/s = {n / t_plain:6.1f} designs/s")
-        times = {"points": points, "designs": n, "plain": t_plain}
+                  in_process=True, progress=False)  # warm the JIT cache
+        t_loop, res = loop_time(spec)
+        points = int((res["point_status"] >= 0).sum())
+        times = {"points": points, "designs": len(res["design"]), "plain": t_loop}
+        out(f"  in-process loop: {t_loop:7.1f} s = {points / t_loop:7,.0f} points/s")
         for w in workers:
-            t = time.perf_counter()
-            client = local_client(w)
-            t_start = time.perf_counter() - t
-            t = time.perf_counter()
-            run_study(spec, f"{tmp}/dask{w}", client=client, progress=False)
-            t_run = time.perf_counter() - t
-            cluster = client.cluster
-            client.close()
-            cluster.close()
-            times[w] = (t_start, t_run)
-            out(f"  Dask, {w} worker(s): {t_run:7.1f} s = {points / t_run:7,.0f} "
-                f"points/s (cluster start-up {t_start:.1f} s more)")
+            times[w] = dask_time(spec, f"{tmp}/dask{w}", w)
+            out(f"  Dask, {w} worker(s): {times[w][1]:7.1f} s "
+                f"(cluster start-up {times[w][0]:.1f} s more)")
     return times
 
 
@@ -99,18 +115,41 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--designs", type=int, default=1000)
     parser.add_argument("--chunk", type=int, default=10,
-                        help="designs per task (each finished chunk is one append to the "
-                        "Zarr store, about 80 ms: --chunk 50 runs faster, README)")
+                        help="the study's chunk: the fewest designs per task (run.task_size)")
+    parser.add_argument("--workers", type=int, nargs="+", default=[1, 2],
+                        help="local cluster sizes to time (default: 1 2)")
+    parser.add_argument("--no-in-process-study", action="store_true",
+                        help="skip run_study in process (time the loop and Dask only)")
     args = parser.parse_args()
     print(f"ballcvt {__version__}, Python {platform.python_version()}, {platform.machine()}, "
           f"{os.cpu_count()} cores")
-    times = in_process_and_dask(args.designs, args.chunk)
-    t_plain = times["plain"]
-    (s1, r1), (_, r2) = times[1], times[2]
-    print(f"  scaling 1 -> 2 workers: {r1 / r2:.2f}x")
-    print(f"  Dask overhead on 1 worker against the plain batched solve: "
-          f"{(r1 / t_plain - 1) * 100:+.1f} % ({(r1 + s1) / t_plain * 100 - 100:+.1f} % "
-          "with the cluster's start-up); target under 15 %")
+    spec = parse_study(STUDY.format(designs=args.designs, chunk=args.chunk))
+    with tempfile.TemporaryDirectory() as tmp:
+        # warm the JIT cache (the workers load it from disk)
+        run_study(parse_study(STUDY.format(designs=2, chunk=1)), f"{tmp}/warm",
+                  in_process=True, progress=False)
+        t_loop, res = loop_time(spec)
+        points = int((res["point_status"] >= 0).sum())
+        designs = len(res["design"])
+        print(f"{designs} designs x {res['eta'].shape[1]} operating points: "
+              f"{int((res['status'] == 0).sum())} feasible, {points} points solved; tasks of "
+              f"{task_size(designs, args.chunk, 1)} designs on 1 worker")
+        print(f"  in-process loop (nothing stored): {t_loop:7.1f} s = "
+              f"{points / t_loop:7,.0f} points/s = {designs / t_loop:6.1f} designs/s")
+        if not args.no_in_process_study:
+            t = time.perf_counter()
+            run_study(spec, f"{tmp}/plain", in_process=True, progress=False)
+            t_plain = time.perf_counter() - t
+            print(f"  run_study in process (no Dask): {t_plain:7.1f} s "
+                  f"({(t_plain / t_loop - 1) * 100:+.1f} % against the loop)")
+        for workers in args.workers:
+            s, r = dask_time(spec, f"{tmp}/dask{workers}", workers)
+            print(f"  Dask, {workers} worker(s): {r:7.1f} s = {points / r:7,.0f} points/s "
+                  f"(cluster start-up {s:.1f} s more); speed-up over the loop "
+                  f"{t_loop / r:.2f}x; overhead per worker {(workers * r / t_loop - 1) * 100:+.1f} %"
+                  f" ({(workers * (r + s) / t_loop - 1) * 100:+.1f} % with the start-up)")
+        print("  overhead = Dask on 1 worker / in-process loop - 1 (issue 26 target: "
+              "under 10 % at 10,000 designs)")
 
 
 if __name__ == "__main__":

@@ -1,7 +1,9 @@
 """Run a study: sample or optimise designs, evaluate them on Dask, keep every result.
 
-Designs are evaluated in chunks (`StudySettings.chunk` designs per task); each finished
-chunk is appended to the Zarr store and committed at once (`store.DesignStore`), so an
+Designs are evaluated in tasks of `task_size` designs (at least `StudySettings.chunk`;
+about a quarter of a worker's share on Dask, a sixteenth of the designs in process, at most
+`MAX_TASK`): few tasks, so few round trips to the workers and few appends. Each finished
+task is appended to the Zarr store and committed at once (`store.DesignStore`), so an
 interrupted study, even one killed in the middle of an append, resumes where it stopped
 (``resume=True``): designs already in the store are never evaluated again, and a
 different study is refused. A run holds its folder (`lock.folder_lock`): a second run into
@@ -41,7 +43,22 @@ from .pareto import choose, pareto_mask
 from .spec import OBJECTIVES, StudySpec
 from .store import STORE, DesignStore, chunk_dataset, study_changes, study_hash, study_record
 
-__all__ = ["StudyResult", "Compute", "run_study", "design_vectors", "local_client"]
+__all__ = [
+    "StudyResult",
+    "Compute",
+    "run_study",
+    "design_vectors",
+    "local_client",
+    "task_size",
+    "MAX_TASK",
+]
+
+#: Tasks a study aims at per worker: enough for the workers to share the tail evenly.
+TASKS_PER_WORKER = 4
+#: Processes the in-process path pretends to have (n / 16 designs per append).
+_IN_PROCESS_SHARE = 4
+#: The most designs in one task (one append; a kill loses at most a task per worker).
+MAX_TASK = 500
 
 
 @dataclass(frozen=True)
@@ -155,6 +172,18 @@ def local_client(workers: int):
     return Client(cluster)
 
 
+def task_size(n: int, chunk: int, workers: int) -> int:
+    """Designs per task for ``n`` designs on ``workers`` processes.
+
+    At least ``chunk`` (the study's ``chunk``), else ``n / (4 workers)`` designs, at most
+    `MAX_TASK`: each task is one submission and one append to the store (about 0.1 s each),
+    so a few large tasks per worker cost next to nothing against the designs' solves
+    (about 15-60 ms each), and a kill loses at most the tasks being evaluated. The rows
+    stored do not depend on it (each design is evaluated alone).
+    """
+    return max(chunk, min(MAX_TASK, n // (TASKS_PER_WORKER * max(workers, 1))))
+
+
 class _Evaluator:
     """Evaluates chunks in process or on a Dask client; appends each to the store."""
 
@@ -177,7 +206,11 @@ class _Evaluator:
 
         if index.size == 0:
             return
-        size = self.ctx.spec.study.chunk
+        chunk = self.ctx.spec.study.chunk
+        if self.client is None:
+            size = task_size(index.size, chunk, _IN_PROCESS_SHARE)
+        else:
+            size = task_size(index.size, chunk, sum(self.client.nthreads().values()))
         parts = [np.arange(i, min(i + size, index.size)) for i in range(0, index.size, size)]
         show = sys.stderr.isatty() if self.progress is None else self.progress
         with tqdm(total=index.size, desc=desc, unit="design", disable=not show) as bar:

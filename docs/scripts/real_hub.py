@@ -6,10 +6,11 @@ lambda at each contact (and the oil temperature when the drive's models compute 
 uncertainty band and ranking (docs/uncertainty.md), the models the drive file names, and
 every assumption it rests on (its ASSUMED comments and its [uncertainty] table).
 
-Run from the repository's root. With the hub's oil balance (its ``[models]``) each drawn
-drive's points and capacities are balanced too: about 4 s of CPU a sample (30 s for 8
-samples, measured), so some 16 CPU-minutes for the default 256, on 2 processes
-(``--workers``; the same samples either way)::
+Run from the repository's root. The points are also solved with the oil's heat balance
+(opt-in for the hub, docs/model.md §15); the uncertainty band follows the drive file's own
+models (with a ``[models] oil_temperature = "balance"`` each drawn drive's points and
+capacities are balanced too: about 4 s of CPU a sample). On 2 processes (``--workers``;
+the same samples either way)::
 
     python docs/scripts/real_hub.py                 # writes docs/validation/real-hub.md
     python docs/scripts/real_hub.py --samples 64 --out /tmp/page   # a quick look
@@ -41,6 +42,7 @@ from ballcvt.api import (  # noqa: E402
     drive_clamp,
     resolve_drive,
     uncertainty,
+    with_oil_temperature,  # noqa: E402
 )
 from ballcvt.plotting import uncertainty_figure  # noqa: E402
 
@@ -144,11 +146,36 @@ def efficiency_section(solved: dict, band) -> str:
             continue
         temp = getattr(r, "oil_temperature", None)
         note = f"oil {temp - 273.15:.1f} C" if temp is not None else ""
-        rows.append(
-            [f"{p:g}", f"{ratio:g}", f"{r.eta:.4f}", f"{r.output_torque:.2f}", span, note]
-        )
+        rows.append([f"{p:g}", f"{ratio:g}", f"{r.eta:.4f}", f"{r.output_torque:.2f}", span, note])
     return table(
         ["input power [W]", "ratio", "efficiency", "T2 [N m]", "band 5-95 %", "note"], rows
+    )
+
+
+def balance_section(solved: dict, balanced: dict) -> str:
+    """Efficiency at the fluid's fixed temperature and with the oil's heat balance."""
+    rows = []
+    for key, r in balanced.items():
+        p, ratio = key
+        fixed = solved[key]
+        eta0 = f"{fixed.eta:.4f}" if not isinstance(fixed, str) else "-"
+        if isinstance(r, str):
+            rows.append([f"{p:g}", f"{ratio:g}", eta0, "not solved", "", r])
+            continue
+        temp = f"{r.oil_temperature - 273.15:.1f}"
+        rows.append(
+            [f"{p:g}", f"{ratio:g}", eta0, f"{r.eta:.4f}", temp, f"{r.losses['total']:.2f} W"]
+        )
+    return table(
+        [
+            "input power [W]",
+            "ratio",
+            "efficiency (fixed)",
+            "efficiency (balance)",
+            "oil [C]",
+            "losses (balance)",
+        ],
+        rows,
     )
 
 
@@ -196,8 +223,9 @@ def figure(solved: dict, band, path: Path) -> None:
     for ratio in RATIOS:
         ok = [(p, solved[p, ratio]) for p in POWERS if not isinstance(solved[p, ratio], str)]
         if ok:
-            line = ax.plot([p for p, _ in ok], [r.eta for _, r in ok], "o-",
-                           label=f"ratio {ratio:g}")[0]
+            line = ax.plot(
+                [p for p, _ in ok], [r.eta for _, r in ok], "o-", label=f"ratio {ratio:g}"
+            )[0]
         lo, hi, pw = [], [], []
         for p in POWERS:
             b = q.get(f"eta at ratio {ratio:g}, P {p:g} W, {SPEED_RPM:g} rpm")
@@ -237,24 +265,34 @@ def page(design: str, samples: int, seed: int, out: Path, workers: int = 1) -> P
     if force is not None:
         law["clamp_force"] = force
     solved = points(v, law)
+    balanced = points(with_oil_temperature(v, "balance"), law)
     run_on = {"workers": workers} if workers > 1 else {}  # the same samples either way
     start = time.perf_counter()
-    unc = uncertainty(design, samples=samples, seed=seed, ratio=RATIOS, input_power=POWERS,
-                      input_speed_rpm=(SPEED_RPM,), progress=False, **run_on)
+    unc = uncertainty(
+        design,
+        samples=samples,
+        seed=seed,
+        ratio=RATIOS,
+        input_power=POWERS,
+        input_speed_rpm=(SPEED_RPM,),
+        progress=False,
+        **run_on,
+    )
     elapsed = time.perf_counter() - start
     band, rank = unc.band(), unc.ranking()
     out.mkdir(parents=True, exist_ok=True)
     figure(solved, band, out / "real-hub-efficiency.png")
     fig = uncertainty_figure(band, rank, f"{design}: {samples} samples, seed {seed}")
     fig.savefig(out / "real-hub-band.png", dpi=100)
-    md = render(design, text, v, solved, unc, (samples, seed, elapsed))
+    md = render(design, text, v, (solved, balanced), unc, (samples, seed, elapsed))
     path = out / "real-hub.md"
     path.write_text(md, encoding="utf-8")
     return path
 
 
-def render(design, text, v, solved, unc, run) -> str:
+def render(design, text, v, both, unc, run) -> str:
     samples, seed, elapsed = run
+    solved, balanced = both
     band, rank, counts = unc.band(), unc.ranking(), unc.counts()
     models = named_models(text) or [("(none named)", "the paper's models")]
     cap = band[band["unit"] == "N m"]
@@ -281,6 +319,15 @@ def render(design, text, v, solved, unc, run) -> str:
         "",
         "![efficiency and losses](real-hub-efficiency.png)",
         "",
+        "## With the oil's heat balance",
+        "",
+        "The same points with `--oil-temperature balance` (`ballcvt.api.with_oil_temperature"
+        '(v, "balance")`): the oil at the temperature where the hub\'s shell '
+        "(`[design.thermal]`) rejects the point's losses (docs/model.md §15), its viscosity "
+        "by Walther's law. Opt-in (the drive file leaves it commented out, §15).",
+        "",
+        balance_section(solved, balanced),
+        "",
         "## Loss breakdown [W]",
         "",
         "`result.losses` at each point (docs/model.md §7, §12).",
@@ -301,17 +348,32 @@ def render(design, text, v, solved, unc, run) -> str:
         "",
         table(
             ["capacity at", "nominal [N m]", "5 %", "50 %", "95 %"],
-            [[r["output"].split(" at ", 1)[1], f"{r['nominal']:.1f}", f"{r['q05']:.1f}",
-              f"{r['q50']:.1f}", f"{r['q95']:.1f}"] for _, r in cap.iterrows()],
+            [
+                [
+                    r["output"].split(" at ", 1)[1],
+                    f"{r['nominal']:.1f}",
+                    f"{r['q05']:.1f}",
+                    f"{r['q50']:.1f}",
+                    f"{r['q95']:.1f}",
+                ]
+                for _, r in cap.iterrows()
+            ],
         ),
         "",
         "Parameters ranked by their mean |Spearman rank correlation| with the efficiencies "
-        "(docs/uncertainty.md, \"How to read it\"):",
+        '(docs/uncertainty.md, "How to read it"):',
         "",
         table(
             ["rank", "parameter", "score (efficiency)", "score (capacity)"],
-            [[str(int(r["rank"])), f"`{p}`", f"{r['score_eta']:.2f}",
-              f"{r['score_capacity']:.2f}"] for p, r in rank.iterrows()],
+            [
+                [
+                    str(int(r["rank"])),
+                    f"`{p}`",
+                    f"{r['score_eta']:.2f}",
+                    f"{r['score_capacity']:.2f}",
+                ]
+                for p, r in rank.iterrows()
+            ],
         ),
         "",
         "![band and ranking](real-hub-band.png)",
@@ -324,8 +386,10 @@ def render(design, text, v, solved, unc, run) -> str:
         "",
         "With the ranges of its `[uncertainty]` table:",
         "",
-        *[f"- `{p['path']}`: {p['description']} ({p['source'] or 'no source given'})"
-          for p in unc.inputs["parameters"]],
+        *[
+            f"- `{p['path']}`: {p['description']} ({p['source'] or 'no source given'})"
+            for p in unc.inputs["parameters"]
+        ],
         "",
     ]
     return "\n".join(parts)

@@ -137,6 +137,9 @@ def _variants(design, tmp):
     cycle_life = (["cycle", tiny, "--target-speed", "180", "--out", str(tmp / "c4"), "--json",
                    "--life"], dict(lives))
     mapping[1]["--life"] = ["--life"]
+    # the oil at another temperature (docs/model.md §15) on every command that takes it
+    for entry in (limit, mapping, table):
+        entry[1]["--oil-temperature"] = ["--oil-temperature", "60"]
     cycle[1]["--life"] = ["--life"]
     # issue 29: the holding and shift moments (docs/model.md section 15)
     map_shift = (["map", "--out", str(tmp / "m5"), *small, "--shift-effort"],
@@ -146,6 +149,7 @@ def _variants(design, tmp):
     # issue 25: the capacity over a ratio range (its cam options act as in map)
     capacity = (["capacity", "--out", str(tmp / "k0"), "--points", "2", "--ratio-range", "0.8",
                  "1.2"], {
+        "--oil-temperature": ["--oil-temperature", "60"],
         "--arch": ["--arch", "single"], "--clamp": ["--clamp", "2500"],
         "--clamp-law": law, "--speed": ["--speed", "1000"],
         "--creep-limit": ["--creep-limit", "0.05"], "--design": ["--design", design],

@@ -5,21 +5,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_studies import same  # bitwise equality of two stores
 
 from ballcvt.analysis.studies import run as run_module
 from ballcvt.analysis.studies.run import MAX_TASK, local_client, run_study, task_size
 from ballcvt.analysis.studies.spec import parse_study
 
 TINY = Path(__file__).parent / "data" / "study_tiny.toml"
-
-
-def same(a, b):
-    for name in a.data_vars:
-        x, y = a[name].values, b[name].values
-        if x.dtype.kind == "f":
-            np.testing.assert_array_equal(x, y, err_msg=name)  # bitwise, NaN where NaN
-        else:
-            assert np.array_equal(x, y), name
 
 
 def tiny(chunk: int):

@@ -118,19 +118,19 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
             self.design, self.fluid, self.architecture, float(ratio), t2, force, speed
         )
 
+    def _clamp_case(self, ratio, output_torque, input_speed, input_speed_rpm) -> ClampCase:
+        """The `ClampCase` of this drive at one point (speed in rad/s or rpm)."""
+        speed = _speed(input_speed, input_speed_rpm)
+        return ClampCase(
+            self.design, self.fluid, self.architecture, float(ratio), float(output_torque), speed
+        )
+
     def _resolve(self, ratio, output_torque, clamp_force, clamp_law, input_speed, input_speed_rpm):
         """(force law, law name): the optimal law becomes the constant law at its optimum."""
         law = self.clamp_law(clamp_law, clamp_force)
         if not law.optimises:
             return law, law.name
-        case = ClampCase(
-            self.design,
-            self.fluid,
-            self.architecture,
-            float(ratio),
-            float(output_torque),
-            _speed(input_speed, input_speed_rpm),
-        )
+        case = self._clamp_case(ratio, output_torque, input_speed, input_speed_rpm)
         limits = OptimalClamp(law.creep_limit, law.max_pressure)
         return ConstantClamp(optimal_force(case, limits, self.options)), law.name
 
@@ -420,14 +420,7 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
         See `ballcvt.solvers.optimal_clamp.optimal_clamp_force`; limits default to the design's
         ``creep_limit`` and ``max_pressure``.
         """
-        case = ClampCase(
-            self.design,
-            self.fluid,
-            self.architecture,
-            float(ratio),
-            float(output_torque),
-            _speed(input_speed, input_speed_rpm),
-        )
+        case = self._clamp_case(ratio, output_torque, input_speed, input_speed_rpm)
         return clamp_optimum(case, OptimalClamp(creep_limit, max_pressure), self.options)
 
     def run_cycle(

@@ -202,38 +202,19 @@ def search_optimum(
     options: SolverOptions = SolverOptions(),
     found: float | None = None,
 ) -> ClampOptimum:
-    """Clamping force of maximum efficiency under the creep and pressure limits.
+    """Clamping force of maximum efficiency under the creep and pressure limits, searched
+    for one point: a grid of forces, the creep-limit force by bisection, the maximum by
+    Brent's search (or ``found``).
 
-    At zero output torque the efficiency is zero at every force; the optimum there is the
-    least force (from ``min_force``) that holds the no-load drag within the creep limit,
-    the limit of the optimum as the torque falls to zero.
+    ``case``, ``law`` and ``options``, the result and the errors are those of
+    `ballcvt.solvers.optimal_clamp.clamp_optimum`, which calls it (and the batched
+    search's reference and fallback, `ballcvt.solvers.optimal_batch`).
 
     Parameters
     ----------
-    case : ClampCase
-        The operating point (design, fluid, architecture, ratio [-], output torque
-        [N m], input speed [rad/s]).
-    law : OptimalClamp
-        The limits (``creep_limit`` [-], ``max_pressure`` [Pa]: the design's when None;
-        ``inf``: no pressure limit, the force then bounded only by the Roelands viscosity
-        limit, docs/model.md §10, or by the efficiency) and the search settings
-        (``min_force`` [N], ``grid``, ``xtol`` [N]).
-    options : SolverOptions
-        Solver options.
     found : float, optional
         The optimum [N] found by the batched search (`ballcvt.solvers.optimal_batch`):
         taken for the Brent search's.
-
-    Returns
-    -------
-    ClampOptimum
-
-    Raises
-    ------
-    InputError
-        Negative torque or non-positive limits.
-    TractionLimitError
-        If no clamping force up to the pressure bound carries the torque.
     """
     c_lim, p_lim = _limits(case, law)
     search = _Search(case, c_lim, options)

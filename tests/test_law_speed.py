@@ -10,7 +10,11 @@ as the tests make, in a checkout of that commit:
 (`_efficiency`: ``Variator(traction_law=law).solve(ratio=..., output_torque=...,
 input_speed_rpm=2000)`` at 2000 N or the cam; the hub drive at 2000 N), and
 ``thermal_law_coefficients(STATE, fluid)``, ``temperature_rise(STATE, fluid)``;
-tolerance 1e-8 on the efficiencies, 1e-9 relative on the coefficients.
+tolerance 1e-8 on the efficiencies, 1e-9 relative on the coefficients. Since the thermal
+law's solves stop at its residual floor (`THERMAL_RESIDUAL_FLOOR`, 1e-9 of the torque scale
+``n F_N0 r_S``, ~480 N m here, instead of 1e-11), its efficiencies are compared to 1e-7:
+four balances each off by up to 1e-9 of the scale move an efficiency at 20-60 N m by up
+to ~1e-7.
 """
 
 from __future__ import annotations
@@ -73,7 +77,8 @@ def _efficiency(law, clamp, ratio, torque):
 
 @pytest.mark.parametrize("key", sorted(BEFORE), ids=lambda k: "-".join(map(str, k)))
 def test_efficiency_unchanged(key):
-    assert _efficiency(*key) == pytest.approx(BEFORE[key], abs=1e-8)
+    tol = 1e-7 if key[0] == "thermal" else 1e-8
+    assert _efficiency(*key) == pytest.approx(BEFORE[key], abs=tol)
 
 
 def _fluid():

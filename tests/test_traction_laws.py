@@ -13,6 +13,7 @@ from ballcvt.interfaces.cli import main as cli
 from ballcvt import _compat
 from ballcvt._compat import BallCVTDeprecationWarning
 from ballcvt.model.traction import base as laws
+from ballcvt.model.traction.base import THERMAL_RESIDUAL_FLOOR
 from ballcvt.model.traction import isothermal, thermal
 from ballcvt.model.traction.contact import ContactState, contact_coefficients
 from ballcvt.model.traction.curve import traction_curve
@@ -190,11 +191,13 @@ def test_thermal_solves_in_the_drive_and_batches_agree(double):
     iso = double.solve(ratio=1.2, output_torque=30.0, clamp_force=2000.0,
                        input_speed_rpm=2000)
     assert r.eta != pytest.approx(iso.eta, abs=1e-4)
-    # Eq. 38 (powers) equals Eq. 39 (losses) under the new law too
-    assert r.eta_loss == pytest.approx(r.eta, abs=1e-9)
+    # Eq. 38 (powers) equals Eq. 39 (losses) under the new law too, to the order of the
+    # residual tolerance, raised to the law's residual floor
+    agree = 10 * THERMAL_RESIDUAL_FLOOR
+    assert r.eta_loss == pytest.approx(r.eta, abs=agree)
     ds = v.sweep(ratio=[1.2], output_torque=[30.0], clamp_force=2000.0,
                  input_speed_rpm=2000)
-    assert float(ds.eta.squeeze()) == pytest.approx(r.eta, abs=1e-9)
+    assert float(ds.eta.squeeze()) == pytest.approx(r.eta, abs=agree)
     assert ds.attrs["traction_law"] == "thermal"
     assert v.limit_torque(ratio=1.0, clamp_force=2000.0, input_speed_rpm=2000) < \
         double.limit_torque(ratio=1.0, clamp_force=2000.0, input_speed_rpm=2000)

@@ -31,7 +31,7 @@ from ..equilibrium.residual import (
 from ..model.traction.base import has_multiple_equilibria
 from .continuation import continue_in_torque
 from .newton_step import COMPILED, MAX_STEP, advance_compiled, advance_python, cap
-from .options import CREEP_BOUNDS, SolverOptions
+from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
 from .robust import solve_robust
 
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "branch_solver"]
@@ -104,11 +104,13 @@ def solve_batch(
     -------
     BatchSolution
     """
-    options = SolverOptions() if options is None else options
+    options = at_residual_floor(SolverOptions() if options is None else options, problem.fluid)
     shape, nc = problem.shape, problem.layout.n_contacts
     flat = problem.flat()
     if has_multiple_equilibria(problem.fluid):
-        x, iterations, _ = continue_in_torque(flat, branch_solver(options, predict))
+        x, iterations, _ = continue_in_torque(
+            flat, branch_solver(options, predict), pinned=branch_pinned(options)
+        )
         sol = _flat_solution(evaluate(flat, x, options.quadrature), iterations + 1, options.tol)
     else:
         x = (
@@ -166,6 +168,12 @@ def branch_solver(options: SolverOptions, predict: bool = True):
     return solve
 
 
+def branch_pinned(options: SolverOptions):
+    """`solve_pinned` with ``options`` bound and the tolerance: the ``pinned`` argument of
+    `continue_in_torque` (`ballcvt.solvers.held_creep.Pinned`, tol)."""
+    return (lambda pb, k, x0: solve_pinned(pb, k, x0, options)), options.tol
+
+
 def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     """Solve with one contact's creep held, for the output torque that goes with it.
 
@@ -194,7 +202,7 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     solution : BatchSolution
         Creeps and state; ``converged`` refers to the balances other than the output's.
     """
-    options = SolverOptions() if options is None else options
+    options = at_residual_floor(SolverOptions() if options is None else options, problem.fluid)
     flat = problem.flat()
     nc = flat.layout.n_contacts
     x = np.array(x0, dtype=float).reshape(flat.size, nc)  # (0, n_c) too: no rows, no crash

@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
+from ..model.traction.base import residual_floor
 from ..model.traction.quadrature import Quadrature
 
-__all__ = ["SolverOptions", "METHODS", "CREEP_BOUNDS"]
+__all__ = ["SolverOptions", "METHODS", "CREEP_BOUNDS", "at_residual_floor"]
 
 #: Creeps outside this open interval are unphysical (speeds reverse) [-].
 CREEP_BOUNDS = (-0.5, 0.98)
@@ -55,3 +56,11 @@ class SolverOptions:
     def __post_init__(self):
         if self.method not in METHODS:
             raise ValueError(f"solver method must be one of {METHODS}, got {self.method!r}")
+
+
+def at_residual_floor(options: SolverOptions, fluid) -> SolverOptions:
+    """``options`` with ``tol`` raised to the residual floor of ``fluid``'s traction law
+    (`ballcvt.model.traction.base.TractionLaw.residual_floor`: 1e-9 under the thermal law,
+    whose coefficients carry rounding noise; none under the paper's law)."""
+    floor = residual_floor(fluid)
+    return options if options.tol >= floor else replace(options, tol=floor)

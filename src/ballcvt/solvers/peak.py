@@ -25,7 +25,9 @@ from dataclasses import replace
 import numpy as np
 
 from .continuation import continue_in_torque, solve_twice
-from .newton import branch_solver, solve_pinned
+from .held_creep import FOLD_CREEP_RTOL, march_to_fold
+from .newton import branch_pinned, branch_solver
+from .options import at_residual_floor
 
 __all__ = ["peak_limits", "PEAK_RTOL", "FOLD_MARGIN", "FOLD_CREEP_RTOL"]
 
@@ -35,26 +37,19 @@ PEAK_RTOL = 1e-5
 #: Relative margin below a fold at which its limit is reported [-]: a solve converges
 #: there, and fails at ``1.001`` times it.
 FOLD_MARGIN = 2e-4
-#: Smallest creep step of the march to the fold, as a share of ``C_lim`` [-].
-FOLD_CREEP_RTOL = 1e-4
-#: Residual norm, in solver tolerances, up to which a held-creep step counts [-]: the
-#: thermal residual has a noise floor near the tolerance at large loads, and only the
-#: torque of the step is used (exact far within the limit's 1e-3).
-PINNED_SLACK = 100.0
-#: Most steps of the march to the fold.
-MAX_FOLD_STEPS = 80
 
 
 def peak_limits(flat, creep_limit, options, x_zero=None):
     """Limiting torques of the 1-D batch ``flat`` under a law with more than one
     equilibrium (docs/model.md §8, §14): each point is followed from zero torque up
     (`continue_in_torque` to an open target) while its equilibrium converges with every
-    ``|C| <= creep_limit``, then its fold is located in the creep (`_march_to_fold`).
+    ``|C| <= creep_limit``, then its fold is located in the creep (`ballcvt.solvers.held_creep.march_to_fold`).
 
     Returns the torques ``(n,)`` [N m] and the creeps there ``(n, n_c)``; NaN where even
     zero torque is inadmissible. ``x_zero`` (starting creeps of the other limit methods)
     is not used: the continuation starts from the cold start at zero torque.
     """
+    options = at_residual_floor(options, flat.fluid)
     pin = creep_limit * (1.0 - 1e-7)
 
     def admissible(x):
@@ -67,7 +62,8 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
     keep = np.flatnonzero(np.isfinite(torque))
     if keep.size:
         sub = flat.take(keep)
-        top, fold = _march_to_fold(sub, pin, options, torque[keep], x[keep])
+        pinned = branch_pinned(options)
+        top, fold = march_to_fold(sub, pinned[0], pin, options.tol, torque[keep], x[keep])
         top = np.where(fold, top * (1.0 - FOLD_MARGIN), top)
         more = top > torque[keep]
         idx = np.flatnonzero(more)
@@ -79,50 +75,10 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
             good &= admissible(xr)
             far = np.flatnonzero(~good)
             if far.size:
-                xf, _, reached = continue_in_torque(sub.take(idx[far]), solve, top[idx[far]])
+                xf, _, reached = continue_in_torque(
+                    sub.take(idx[far]), solve, top[idx[far]], pinned=pinned
+                )
                 good[far], xr[far] = (reached == top[idx[far]]) & admissible(xf), xf
             torque[keep[idx[good]]], x[keep[idx[good]]] = top[idx[good]], xr[good]
     keep = np.isfinite(torque)
     return np.where(keep, torque, np.nan), np.where(keep[:, None], x, np.nan)
-
-
-def _march_to_fold(flat, pin, options, torque, x):
-    """The largest torque on each point's branch beyond ``(torque, x)``: each disc
-    contact's creep held and stepped up from ``x`` (`solve_pinned`), the step reversed and
-    quartered where the torque does not rise (or the step fails, or a creep passes
-    ``pin``), until it is below `FOLD_CREEP_RTOL` of ``pin``.
-
-    Returns the torques ``(n,)`` [N m] and whether each is that of a fold (not of a
-    creep at ``pin``).
-    """
-    nc = flat.layout.n_contacts
-    best_t = torque.copy()
-    fold = np.zeros(flat.size, dtype=bool)
-    for k in (0, nc - 1):
-        t, xk = torque.copy(), x.copy()
-        at_pin = np.zeros(flat.size, dtype=bool)
-        step = np.where(xk[:, k] < 0, -1.0, 1.0) * 0.02 * pin
-        active = np.arange(flat.size)
-        for _ in range(MAX_FOLD_STEPS):
-            active = active[np.abs(step[active]) >= FOLD_CREEP_RTOL * pin]
-            if active.size == 0:
-                break
-            x0 = xk[active].copy()
-            x0[:, k] = np.clip(x0[:, k] + step[active], -pin, pin)
-            got, sol = solve_pinned(flat.take(active), k, x0, options)
-            xs = sol.state.creep
-            up = (
-                (sol.residual_norm <= PINNED_SLACK * options.tol)
-                & np.isfinite(got)
-                & (got > t[active])
-                & (np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9))
-            )
-            acc, rej = active[up], active[~up]
-            t[acc], xk[acc] = got[up], xs[up]
-            at_pin[acc] = np.abs(xs[up, k]) >= pin * (1.0 - 1e-12)
-            step[acc] *= 2.0
-            step[rej] *= -0.25
-        better = t > best_t
-        best_t = np.where(better, t, best_t)
-        fold = np.where(better, ~at_pin, fold)
-    return best_t, fold

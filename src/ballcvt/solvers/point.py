@@ -19,7 +19,7 @@ import numpy as np
 from ..equilibrium.problem import EquilibriumProblem
 from ..model.traction.base import has_multiple_equilibria
 from .newton import initial_creep, solve_batch
-from .options import METHODS, SolverOptions
+from .options import METHODS, SolverOptions, at_residual_floor
 from .robust import PointSolution, solve_robust
 
 __all__ = ["SolverOptions", "PointSolution", "solve_point", "initial_creep", "METHODS"]
@@ -48,7 +48,7 @@ def solve_point(
         raise ValueError("solve_point takes a single operating point")
     x0 = initial_creep(problem) if x0 is None else np.asarray(x0, dtype=float)
     if has_multiple_equilibria(problem.fluid):
-        return _on_branch(problem, options)
+        return _on_branch(problem, at_residual_floor(options, problem.fluid))
     if options.method == "hybr":
         return solve_robust(problem, options, x0)
     batch = solve_batch(problem, options, x0, fallback=False)

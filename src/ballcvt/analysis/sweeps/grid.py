@@ -29,7 +29,7 @@ from ...model.clamping.base import DEFAULT_LAW, names_fixed_force
 from ...params.drive import Drive
 from ...params.models import ARCHITECTURES, Design, Fluid
 from ...solvers.limit import LimitSearch
-from ...solvers.options import SolverOptions
+from ...solvers.options import SolverOptions, at_residual_floor
 from .chunks import (
     CURVE_VARIABLES,
     ChunkRun,
@@ -194,7 +194,7 @@ def sweep(
         creep_limit=c_lim,
         quadrature=repr(s.options.quadrature),
         solver=s.options.method,
-        tolerance=s.options.tol,
+        tolerance=at_residual_floor(s.options, fluid).tol,
         run_time_s=time.perf_counter() - start,
     )
     ds.attrs.update(flat_attrs("design", design.model_dump()))

@@ -1,0 +1,248 @@
+"""Following the branch of equilibria from zero torque in one disc contact's held creep.
+
+Where the traction can fall with the creep (the thermal law, docs/model.md §14) the
+branch of equilibria that starts at zero torque folds back at its largest torque. Next
+to the fold Newton converges slowly in the torque (its Jacobian turns singular there),
+and a torque continuation (`ballcvt.solvers.continuation`) can also stop short of it
+where a step fails at the solver's noise floor (harden tasks 2026:2534, 2028:592: the
+continuation stopped anywhere between 55 % and 99.5 % of the fold at forces 1e-6 apart).
+Parametrised by the creep of a disc contact instead, the branch is regular through the
+fold: with that creep held, one Newton solve gives the other creeps and the output torque
+that goes with them (`ballcvt.solvers.newton.solve_pinned`, the ``Pinned`` callable
+here). Two walks use it:
+
+* `march_to_fold`: the largest torque on the branch (the limiting torque at a fold);
+* `reach_torque`: the equilibrium on the branch at a given torque below the fold, where
+  the continuation stopped short of it (`bracket_in_creep`, then the secant method in the
+  held creep, then Newton at the torque itself).
+
+Both step the held creep up from the last equilibrium on the branch, doubling the step
+after a success and shrinking it where the torque does not rise (or the solve fails, or
+a creep passes the limit), so they never leave the branch for the equilibrium past its
+fold.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from ..equilibrium.problem import EquilibriumProblem
+
+__all__ = [
+    "march_to_fold",
+    "reach_torque",
+    "FOLD_CREEP_RTOL",
+    "PINNED_SLACK",
+    "MAX_FOLD_STEPS",
+    "MAX_CREEP_STEP",
+    "REACH_RTOL",
+    "SECANT_STEPS",
+]
+
+#: Smallest creep step of a march, as a share of the creep scale (``C_lim`` for the
+#: march to the fold, the held creep where it starts for `reach_torque`) [-].
+FOLD_CREEP_RTOL = 1e-4
+#: Residual norm, in solver tolerances, up to which a held-creep step counts [-]: the
+#: thermal residual has a noise floor near the tolerance at large loads, and only the
+#: torque of the step is used (a solve at the torque itself decides convergence).
+PINNED_SLACK = 100.0
+#: Most steps of a march.
+MAX_FOLD_STEPS = 80
+#: Largest creep step of `bracket_in_creep`, as a share of the held creep where it starts [-]:
+#: a long step could pass the fold and still land above the last torque.
+MAX_CREEP_STEP = 0.05
+#: Relative torque error [-] at which the secant method hands over to Newton at the torque.
+REACH_RTOL = 1e-7
+#: Most secant steps in the held creep.
+SECANT_STEPS = 12
+
+#: ``pinned(problem, contact, x0)`` -> ``(torque, BatchSolution)``: `solve_pinned` with
+#: the solver options bound.
+Pinned = Callable[[EquilibriumProblem, int, np.ndarray], tuple]
+#: ``solve(problem, x0)`` -> ``(converged, creep)`` at the problems' own torques.
+Solve = Callable[[EquilibriumProblem, np.ndarray], tuple]
+
+
+def _pinned_step(pinned: Pinned, flat, k, x, creep, tol):
+    """Held creep ``creep`` of contact ``k`` (the other creeps from ``x``): the torque
+    (NaN where the solve failed) and the creeps."""
+    x0 = x.copy()
+    x0[:, k] = creep
+    got, sol = pinned(flat, k, x0)
+    ok = (sol.residual_norm <= PINNED_SLACK * tol) & np.isfinite(got)
+    return np.where(ok, got, np.nan), sol.state.creep
+
+
+def march_to_fold(flat, pinned: Pinned, pin, tol, torque, x):
+    """The largest torque on each point's branch beyond ``(torque, x)``: each disc
+    contact's creep held and stepped up from ``x``, the step reversed and quartered where
+    the torque does not rise (or the step fails, or a creep passes ``pin``), until it is
+    below `FOLD_CREEP_RTOL` of ``pin``.
+
+    Parameters
+    ----------
+    flat : EquilibriumProblem
+        Operating points, 1-D batch ``(n,)``.
+    pinned : callable
+        `Pinned`.
+    pin : float
+        Creep bound [-] (the creep limit, a hair below).
+    tol : float
+        Solver tolerance [-] (a step counts up to `PINNED_SLACK` times it).
+    torque, x : ndarray
+        Equilibria on the branch: torques ``(n,)`` [N m] and creeps ``(n, n_c)`` [-].
+
+    Returns
+    -------
+    torque : ndarray
+        ``(n,)`` [N m].
+    fold : ndarray of bool
+        Whether each is that of a fold (not of a creep at ``pin``).
+    """
+    nc = flat.layout.n_contacts
+    best_t = torque.copy()
+    fold = np.zeros(flat.size, dtype=bool)
+    for k in (0, nc - 1):
+        t, xk = torque.copy(), x.copy()
+        at_pin = np.zeros(flat.size, dtype=bool)
+        step = np.where(xk[:, k] < 0, -1.0, 1.0) * 0.02 * pin
+        active = np.arange(flat.size)
+        for _ in range(MAX_FOLD_STEPS):
+            active = active[np.abs(step[active]) >= FOLD_CREEP_RTOL * pin]
+            if active.size == 0:
+                break
+            trial = np.clip(xk[active, k] + step[active], -pin, pin)
+            got, xs = _pinned_step(pinned, flat.take(active), k, xk[active], trial, tol)
+            up = (got > t[active]) & (np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9))
+            acc, rej = active[up], active[~up]
+            t[acc], xk[acc] = got[up], xs[up]
+            at_pin[acc] = np.abs(xs[up, k]) >= pin * (1.0 - 1e-12)
+            step[acc] *= 2.0
+            step[rej] *= -0.25
+        better = t > best_t
+        best_t = np.where(better, t, best_t)
+        fold = np.where(better, ~at_pin, fold)
+    return best_t, fold
+
+
+def reach_torque(flat, pinned: Pinned, solve: Solve, tol, torque, x):
+    """The equilibrium at each point's own torque on its branch, from an equilibrium on
+    the branch below it (``(torque, x)``, where a continuation stopped): the torque
+    bracketed in a disc contact's held creep (`bracket_in_creep`, the input disc's
+    contact first, then the output disc's for the points not bracketed), the secant
+    method (Illinois) in that creep down to `REACH_RTOL`, then ``solve`` at the torque
+    from there.
+
+    Parameters
+    ----------
+    flat : EquilibriumProblem
+        Operating points, 1-D batch ``(n,)``, each at its target ``output_torque``.
+    pinned, solve : callable
+        `Pinned`, `Solve`.
+    tol : float
+        Solver tolerance [-].
+    torque, x : ndarray
+        Equilibria below the targets on their branches: ``(n,)`` [N m], ``(n, n_c)``.
+
+    Returns
+    -------
+    converged : ndarray of bool
+        ``(n,)``: False where the torque lies past the fold (or the solve failed).
+    creep : ndarray
+        ``(n, n_c)``; the start ``x`` where not converged.
+    """
+    ok, out = np.zeros(flat.size, dtype=bool), np.array(x, dtype=float)
+    for k in (0, flat.layout.n_contacts - 1):
+        todo = np.flatnonzero(~ok)
+        if todo.size == 0:
+            break
+        sub = flat.take(todo)
+        lo, hi = bracket_in_creep(sub, pinned, k, tol, torque[todo], x[todo])
+        xs = _secant(sub, pinned, k, tol, lo, hi)
+        found = np.flatnonzero(np.all(np.isfinite(xs), axis=-1))
+        if found.size:
+            good, xr = solve(sub.take(found), xs[found])
+            good = np.asarray(good, dtype=bool)
+            ok[todo[found[good]]], out[todo[found[good]]] = True, np.asarray(xr)[good]
+    return ok, out
+
+
+def _goal(flat):
+    """``|T_2|`` of each point's target and its sign (the direction the torque rises)."""
+    t = np.broadcast_to(np.asarray(flat.output_torque, dtype=float), (flat.size,))
+    return np.abs(t), np.where(t < 0, -1.0, 1.0)
+
+
+def bracket_in_creep(flat, pinned: Pinned, k, tol, torque, x):
+    """The held creep of contact ``k`` stepped up from the equilibria ``(torque, x)``
+    until the torque passes each point's target: the step doubles while the torque rises
+    short of it (to at most `MAX_CREEP_STEP` of the starting creep) and is quartered where
+    the torque does not rise (the fold), down to `FOLD_CREEP_RTOL` of the starting creep.
+    The step keeps the direction of the creep (the creeps grow along the branch), never
+    reversed: a march turned back past the fold would bracket the equilibrium past it.
+
+    Returns the brackets ``(lo, hi)``, each ``(creep (n,), |torque| (n,), creeps (n,
+    n_c))``: ``lo`` below the target, ``hi`` past it (NaN where not bracketed).
+    """
+    goal, sign = _goal(flat)
+    lo_x, lo_t = np.array(x, dtype=float), sign * np.asarray(torque, dtype=float)
+    hi_t, hi_x = np.full(flat.size, np.nan), np.full_like(lo_x, np.nan)
+    scale = np.maximum(np.abs(lo_x[:, k]), 1e-6)
+    step = np.where(lo_x[:, k] < 0, -1.0, 1.0) * 0.01 * scale
+    active = np.arange(flat.size)
+    for _ in range(MAX_FOLD_STEPS):
+        active = active[np.abs(step[active]) >= FOLD_CREEP_RTOL * scale[active]]
+        if active.size == 0:
+            break
+        trial = lo_x[active, k] + step[active]
+        got, xs = _pinned_step(pinned, flat.take(active), k, lo_x[active], trial, tol)
+        got = sign[active] * got
+        up = got > lo_t[active]
+        past = up & (got >= goal[active])
+        rise = up & ~past
+        lo_t[active[rise]], lo_x[active[rise]] = got[rise], xs[rise]
+        step[active[rise]] = np.clip(
+            2.0 * step[active[rise]],
+            -MAX_CREEP_STEP * scale[active[rise]],
+            MAX_CREEP_STEP * scale[active[rise]],
+        )
+        step[active[~up]] *= 0.25
+        hi_t[active[past]], hi_x[active[past]] = got[past], xs[past]
+        active = active[~past]
+    return (lo_x[:, k], lo_t, lo_x), (hi_x[:, k], hi_t, hi_x)
+
+
+def _secant(flat, pinned: Pinned, k, tol, lo, hi):
+    """The creeps at each point's target torque by the Illinois method in the held creep
+    of contact ``k`` within the bracket ``(lo, hi)`` (`bracket_in_creep`); NaN rows where
+    there is no bracket or a step failed."""
+    goal, sign = _goal(flat)
+    (c_lo, t_lo, x_lo), (c_hi, t_hi, x_hi) = lo, hi
+    ends = [[c_lo.copy(), t_lo - goal, x_lo.copy()], [c_hi.copy(), t_hi - goal, x_hi.copy()]]
+    out = np.full_like(x_lo, np.nan)
+    close = np.abs(ends[1][1]) <= REACH_RTOL * goal
+    out[close] = x_hi[close]
+    last = np.full(flat.size, -1)  # the side replaced last (Illinois)
+    active = np.flatnonzero(np.isfinite(t_hi) & ~close)
+    for _ in range(SECANT_STEPS):
+        if active.size == 0:
+            break
+        (ca, fa, xa), (cb, fb, _) = ends
+        a, b = fa[active], fb[active]
+        c = ca[active] - a * (cb[active] - ca[active]) / (b - a)
+        got, xs = _pinned_step(pinned, flat.take(active), k, xa[active], c, tol)
+        err = sign[active] * got - goal[active]
+        bad = ~np.isfinite(err)
+        side = (err >= 0).astype(int)
+        for s in (0, 1):
+            j = ~bad & (side == s)
+            i = active[j]
+            ends[1 - s][1][i] *= np.where(last[i] == s, 0.5, 1.0)
+            ends[s][0][i], ends[s][1][i], ends[s][2][i] = c[j], err[j], xs[j]
+            last[i] = s
+        done = ~bad & (np.abs(err) <= REACH_RTOL * goal[active])
+        out[active[done]] = xs[done]
+        active = active[~bad & ~done]
+    return out

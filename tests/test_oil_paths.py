@@ -5,7 +5,7 @@ capacity and limit curves at each point's own oil temperature, agreeing with
 import numpy as np
 import pytest
 
-from ballcvt import Variator
+from ballcvt import TractionLimitError, Variator
 from ballcvt.analysis.oil_paths import (
     RUNAWAY,
     Ladder,
@@ -93,7 +93,11 @@ def test_limit_at_the_temperature_its_limit_point_produces(hub):
     assert 293.15 < t_oil < 340.0
     limit = hub.limit_torque(1.0, **point)
     assert limit == pytest.approx(cap.intervals[-1][1], rel=1e-9)
-    assert limit == at_temperature(hub, t_oil).limit_torque(1.0, **point)
+    # the fixed point's limit, moved to where the balanced solve flips (to 5e-4)
+    assert limit == pytest.approx(at_temperature(hub, t_oil).limit_torque(1.0, **point), rel=1e-3)
+    hub.solve(1.0, limit * (1 - 1e-3), **point)
+    with pytest.raises(TractionLimitError):
+        hub.solve(1.0, limit * (1 + 1e-3), **point)
     r = hub.solve(1.0, limit * (1 - 1e-6), check_capacity=False, **point)
     # near the limit the losses rise with T almost as fast as h A: the balance is
     # ill-conditioned and the two balances, each to 0.01 K, may differ by some 0.1 K
@@ -136,3 +140,23 @@ def test_flags_and_keywords_override_the_hubs_balance(hub, capsys):
     assert main([*argv, "--oil-temperature", "57"]) == 0
     got = json.loads(capsys.readouterr().out)["limit_torque"]
     assert got == pytest.approx(at_temperature(hub, 330.15).limit_torque(1.0, **point), rel=1e-12)
+
+
+def test_a_balanced_solve_is_judged_at_its_own_temperature_only(hub, monkeypatch):
+    """The balance solves the point at trial temperatures from the ambient up; only the
+    point at its balance is judged against the capacity (before, a torque whose creep
+    passed the limit in the ambient's colder oil was refused although its balanced creep
+    was within it: 1.878 N m on tests/test_capacity_limits.py's seed 3 under the
+    balance)."""
+    checked = []
+    solve = Variator.solve
+
+    def spy(self, *args, settings=None, **kw):
+        if settings is not None and settings.oil_temperature == "fixed":
+            checked.append(settings.check_capacity)
+        return solve(self, *args, settings=settings, **kw)
+
+    monkeypatch.setattr(Variator, "solve", spy)
+    r = hub.solve(1.0, 8.0, clamp_force=400.0, input_speed_rpm=SPEED)
+    assert r.oil_model == "balance" and r.thermal_iterations >= 2
+    assert checked[-1] is True and not any(checked[:-1]) and len(checked) >= 3

@@ -18,12 +18,12 @@ from typing import Any
 
 from scipy.optimize import brentq
 
-from ..errors import BallCVTError, InputError
+from ..errors import BallCVTError, ConvergenceError, InputError
 from ..model.modes import resolve_mode
 from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
-from ..model.traction.base import has_multiple_equilibria
 from ..params.drive_models import DriveModels
 from ..results.planetary import PlanetaryResult
+from ..solvers.refusal import CREEP_RTOL
 
 __all__ = [
     "solve_with_oil",
@@ -41,8 +41,9 @@ __all__ = [
 
 #: Tolerance of the balance's temperature [K].
 BALANCE_TOL = 1e-4
-#: Relative resolution [-] and reach [-] of the search past the balanced fixed point of a
-#: limit under a law with a fold (`_past_the_fixed_point`).
+#: Relative resolution [-] of the search for the ends of the capacity under the balance
+#: from those at the fixed point's temperature (`_balanced_ends`), and its reach above the
+#: largest [-] (an end between two intervals may move as far as its neighbour).
 STRETCH_RTOL, STRETCH_MAX = 5e-4, 0.2
 #: Fixed-point steps to bracket the balance before refusing.
 MAX_BRACKET_STEPS = 30
@@ -137,15 +138,23 @@ def solve_with_oil(variator, settings, ratio: float, output_torque: float, point
     """
     choice = oil_choice(settings.oil_temperature, ("fixed", "balance"))
     fixed = replace(settings, oil_temperature="fixed")
+    trial = replace(fixed, check_capacity=False)
 
-    def at(temperature: float):
+    def at(temperature: float, how=trial):
         drive = replace(variator, fluid=fluid_at(variator.fluid, temperature))
-        return drive.solve(ratio, output_torque, settings=fixed, **point)
+        try:
+            return drive.solve(ratio, output_torque, settings=how, **point)
+        except ConvergenceError:  # no equilibrium: refused as `Variator.solve` refuses
+            if how is fixed or not settings.check_capacity:
+                raise
+            return drive.solve(ratio, output_torque, settings=fixed, **point)
 
     if isinstance(choice, float):
-        return _tag(at(choice), "given", 0)
+        return _tag(at(choice, fixed), "given", 0)
     thermal = thermal_of(variator.design)
     temperature, result, evaluations = balance(at, thermal)
+    if settings.check_capacity:  # judged at its own balance, not at the trial temperatures
+        result = at(temperature, fixed)
     return _tag(result, "balance", evaluations)
 
 
@@ -299,6 +308,9 @@ def limit_with_oil(variator, choice: str | float, ratio: float, point: dict, who
     given temperature, the capacity there. A limit point whose losses the housing cannot
     reject below `MAX_OIL_TEMPERATURE` takes the capacity at that temperature (the
     hottest oil modelled; `Variator.solve` refuses such a point as a thermal runaway).
+    Under the balance the ends of that capacity are then moved to where `Variator.solve`,
+    each torque at its own balance, switches between carrying and refusing
+    (`_balanced_ends`).
 
     ``point`` holds the keywords of `Variator.capacity` (clamping, speeds, creep limit);
     with ``whole`` False the capacity is only `Variator.limit_torque`'s largest torque [N m]
@@ -329,50 +341,117 @@ def limit_with_oil(variator, choice: str | float, ratio: float, point: dict, who
         if MAX_OIL_TEMPERATURE not in found:
             raise
         temperature = MAX_OIL_TEMPERATURE  # a runaway: the limit with the hottest oil
-    cap = found[temperature]
-    if temperature < MAX_OIL_TEMPERATURE and has_multiple_equilibria(variator.fluid):
-        cap = _past_the_fixed_point(variator, ratio, point, cap)
-    return cap, temperature
+    return _balanced_ends(variator, ratio, point, found[temperature]), temperature
 
 
-def _past_the_fixed_point(variator, ratio: float, point: dict, cap):
-    """``cap`` with its largest torque moved to the largest one `Variator.solve` carries
-    under the balance, to `STRETCH_RTOL`.
+def _balanced_ends(variator, ratio: float, point: dict, cap):
+    """``cap`` with every end of its intervals moved to where `Variator.solve` under the
+    balance switches between carrying the torque and refusing it, to `STRETCH_RTOL`.
 
-    Under a law with a fold (the thermal law) the limit at a fixed oil temperature ``T``
-    is the fold's torque ``L(T)``, and the balance temperature ``T(t)`` of a torque ``t``
-    climbs steeply near the fold: where ``L'(T) T'(t) > 1`` torques above the fixed point
-    ``t = L(T(t))`` still have a balanced equilibrium within ``L(T(t))``. The largest one
-    is found from ``t`` by growing steps and bisection, each a balanced solve (without the
-    capacity check, which would recurse) within the creep limit.
+    The capacity found at the balance temperature ``T*`` of its limit point is that of
+    the fluid at ``T*``; every other torque ``t`` runs at its own balance ``T(t)``, and the
+    oil reached from the ambient is the first root of the balance. Where the losses change
+    with the temperature the ends move: a cam's lower interval ends at a colder oil than
+    its top (more viscous, more drag to carry), a cam's pressure-bound top moves with the
+    efficiency (the input torque sets the force), and under a law with a fold (the thermal
+    law) the balance temperature climbs steeply near the fold, so that torques above the
+    fixed point ``t = L(T(t))`` may still be carried (``L'(T) T'(t) > 1``). Each end is
+    found from the fixed point's by steps growing fourfold from `STRETCH_RTOL` (outwards
+    as far as the neighbouring interval, or `STRETCH_MAX` above the largest torque;
+    inwards as far as the interval's other end), then bisection, each a balanced solve judged as `Variator.solve` judges
+    a point (converged, every creep within the limit, under a torque-following law the
+    peak pressure within ``max_pressure``); intervals that close up are dropped, and
+    neighbours that meet are joined.
     """
-    top = cap.intervals[-1][1] if hasattr(cap, "intervals") else cap
-    if not (top > 0.0):
-        return cap
     keys = ("clamp_force", "clamp_law", "input_speed", "input_speed_rpm")
     kw = {k: point[k] for k in keys if k in point}
     c_lim = point.get("creep_limit") or variator.design.creep_limit
+    p_lim = variator.design.max_pressure
+
+    refused: dict[float, str] = {}  # torque -> what bounds the capacity there
 
     def carries(torque: float) -> bool:
         try:
             r = variator.solve(ratio, torque, check_capacity=False, **kw)
-        except BallCVTError:
+        except BallCVTError as exc:
+            runaway = isinstance(exc, InputError) and "heat balance" in str(exc)
+            refused[torque] = "oil heat balance (runaway)" if runaway else "no equilibrium"
             return False
-        return max(abs(c.creep) for c in r.contacts.values()) <= c_lim
+        name, c = max(r.contacts.items(), key=lambda nc: abs(nc[1].creep))
+        if abs(c.creep) > c_lim * (1.0 + CREEP_RTOL):
+            refused[torque] = f"creep ({name} contact)"
+            return False
+        follows = r.clamp_law not in ("constant", "optimal")
+        if follows and max(c.p_max for c in r.contacts.values()) > p_lim * (1.0 + 1e-9):
+            refused[torque] = f"pressure (max_pressure {p_lim / 1e9:g} GPa)"
+            return False
+        return True
 
-    lo, grow = top, STRETCH_RTOL
-    while grow <= STRETCH_MAX and carries(top * (1.0 + grow)):
-        lo, grow = top * (1.0 + grow), 4.0 * grow
-    if lo == top:
-        return cap
-    hi = top * (1.0 + grow)
-    while hi - lo > STRETCH_RTOL * lo:
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if carries(mid) else (lo, mid)
+    def moved(end, stop, reach, label):
+        """The end found from ``end`` and what bounds the capacity there."""
+        got = _flip(carries, end, stop, reach)
+        if got is None:
+            return None, label
+        inside, outside = got
+        return inside, (label if outside is None else refused.get(outside, label))
+
     if not hasattr(cap, "intervals"):
-        return lo
-    last = (cap.intervals[-1][0], lo)
-    return replace(cap, intervals=cap.intervals[:-1] + (last,))
+        top = moved(cap, 0.0, cap * (1.0 + STRETCH_MAX), "")[0] if cap > 0.0 else None
+        return cap if top is None else top
+    kept: list = []
+    ends = [iv[0] for iv in cap.intervals[1:]] + [cap.largest * (1.0 + STRETCH_MAX)]
+    for ((lo, hi), why), nxt in zip(zip(cap.intervals, cap.constraints), ends):
+        below = kept[-1][0][1] if kept else 0.0
+        why_lo, why_hi = why
+        if lo > 0.0:
+            lo, why_lo = moved(lo, hi, below, why_lo)
+        if hi > 0.0 and lo is not None:
+            hi, why_hi = moved(hi, lo, nxt, why_hi)
+        if lo is None or hi is None or not lo < hi:
+            continue
+        if kept and lo <= kept[-1][0][1]:  # met its neighbour: one interval
+            (lo, _), (why_lo, _) = kept.pop()
+        kept.append(((lo, hi), (why_lo, why_hi)))
+    return replace(
+        cap,
+        intervals=tuple(k[0] for k in kept),
+        constraints=tuple(tuple(k[1]) for k in kept),
+    )
+
+
+def _flip(carries, end: float, stop: float, reach: float):
+    """``(inside, outside)``: the torques on either side of where ``carries`` flips
+    nearest ``end``, within `STRETCH_RTOL` relative, ``inside`` carried: searched
+    outwards as far as ``reach`` where ``end`` is carried (``(reach, None)`` if ``reach``
+    is), else inwards as far as ``stop``, the interval's other end; steps growing fourfold
+    from `STRETCH_RTOL` of ``end``, then bisection. None where nothing before ``stop`` is
+    carried."""
+    side = 1.0 if end > stop else -1.0
+    grow = STRETCH_RTOL
+    inside, outside = None, None
+    if carries(end):  # the flip lies further out, before ``reach``
+        inside = end
+        while outside is None:
+            trial = end + side * grow * abs(end)
+            if (trial - reach) * side >= 0.0:
+                if carries(reach):
+                    return reach, None
+                outside = reach
+                break
+            inside, outside = (trial, None) if carries(trial) else (inside, trial)
+            grow *= 4.0
+    else:  # the flip lies inside, before ``stop``
+        outside, span = end, abs(end - stop)
+        while inside is None and grow * abs(end) < span:
+            trial = end - side * grow * abs(end)
+            inside, outside = (trial, outside) if carries(trial) else (None, trial)
+            grow *= 4.0
+        if inside is None:
+            return None
+    while abs(outside - inside) > STRETCH_RTOL * abs(inside):
+        mid = 0.5 * (inside + outside)
+        inside, outside = (mid, outside) if carries(mid) else (inside, mid)
+    return inside, outside
 
 
 def with_oil_temperature(variator, value: Any):

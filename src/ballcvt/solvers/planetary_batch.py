@@ -22,7 +22,7 @@ from ..status import Status
 from .limit import traction_ceiling_torque
 from .newton import initial_creep, solve_batch
 from .options import SolverOptions
-from .planetary import RATIO_TOL, ModePoint, carrier_frame_problem
+from .planetary import ModePoint, carrier_frame_problem, ratio_tolerance
 
 __all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch"]
 
@@ -104,6 +104,7 @@ def solve_mode_batch(
     loss, circ, big = (np.full(n, np.nan) for _ in range(3))
     kinds = np.full((len(LOSS_KINDS), n), np.nan)
     settled = np.zeros(n, dtype=bool)
+    ratio_tol = ratio_tolerance(options, drive.fluid)
     for _ in range(max_passes):
         sp = mode.speeds(w, tau, check=False)
         rel = sp["disc0"] - sp["carrier"]
@@ -127,7 +128,7 @@ def solve_mode_batch(
         st = sol.state
         x[todo] = st.creep
         new = st.omega[:, -1] / st.omega[:, 0]
-        done = ~sol.converged | (np.abs(new - tau[todo]) <= RATIO_TOL * np.abs(tau[todo]))
+        done = ~sol.converged | (np.abs(new - tau[todo]) <= ratio_tol * np.abs(tau[todo]))
         settled[todo[done]] = True
         fin = done & sol.converged
         j = todo[fin]

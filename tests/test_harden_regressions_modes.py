@@ -1,0 +1,49 @@
+"""Harden task 2029:982 (issue 23): a planetary mode under the thermal law.
+
+Each pass of the fixed point on the actual ratio (`ballcvt.solvers.planetary`) solves the
+point by the continuation from zero torque, exact to the thermal law's residual floor
+(1e-9), so the ratio jitters by ~2.5e-12 from pass to pass: the fixed point's 1e-13 was
+never met, loads were refused ("the speeds did not settle in 30 passes") or solved by
+chance, and the limit (207.5 N m) lay below a load `solve` carried (254.75 N m). The
+ratio's tolerance now follows the law's floor (`ratio_tolerance`).
+"""
+
+import json
+import math
+
+import pytest
+
+from ballcvt import InputError, TractionLimitError, Variator, load_builtin
+from ballcvt.api import SolveSettings
+from ballcvt.solvers.options import SolverOptions
+from ballcvt.solvers.planetary import RATIO_TOL, ratio_tolerance
+
+FIELDS = json.loads("""{"aspect_ratio": 2.381783177294551, "roller_radius": 0.046637842499942274, "theta0_deg": 57.037987909231276, "theta2_deg": 34.9963727219909, "alpha_deg": 4.581087144797104, "n_rollers": 6, "roller_bearing_diameter": 0.026558074909013896, "idler_bearing_diameter": 0.04652004163032025, "disc_groove_ratio": 1.5933997007344858, "idler_groove_ratio": 2.4336470977178544, "single_idler_groove_ratio": 6.12059113348265, "tilt_safety_factor": 0.8177899404148186, "creep_limit": 0.06744632570811039, "min_roller_gap": 0.0011224561247520277, "cam": {"disc": "input", "preload": 283.32254357524596, "ramp_angle_deg": 13.940940400829383, "mean_radius": 0.10357167539849692, "friction": 0.04287565119248098}, "parasitic": null}""")
+MODE = "disc2_held_disc0_drives"
+RATIO = 1.2595227765992327
+POINT = {"clamp_force": 35490.218113252704, "input_speed_rpm": 147.85781471595814}
+
+
+@pytest.fixture(scope="module")
+def drive():
+    design, fluid = load_builtin("hub")
+    design = design.replace(name="random", **FIELDS)
+    return Variator(design, fluid, "double", traction_law="thermal")
+
+
+def _solve(v, load):
+    return v.solve(RATIO, load, settings=SolveSettings(mode=MODE), **POINT)
+
+
+def test_the_ratio_tolerance_follows_the_residual_floor(drive):
+    assert ratio_tolerance(SolverOptions(), Variator().fluid) == RATIO_TOL
+    assert ratio_tolerance(SolverOptions(), drive.fluid) == pytest.approx(1e-10)
+
+
+def test_every_load_below_the_limit_is_carried_and_above_refused(drive):
+    limit = drive.limit_torque(RATIO, mode=MODE, **POINT)
+    for load in (150.0, 200.0, 254.75, limit * (1 - 1e-3)):  # 150, 200 did not settle
+        r = _solve(drive, load)
+        assert math.isfinite(r.eta) and 0.0 < r.eta < 1.0
+    with pytest.raises((TractionLimitError, InputError)):
+        _solve(drive, limit * (1 + 1e-3))

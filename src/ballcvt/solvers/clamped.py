@@ -40,6 +40,12 @@ CLAMP_RTOL = 1e-10
 CLAMP_NOISE_RTOL = 1e-8
 #: Fixed-point iterations allowed for a law that senses the input torque.
 MAX_CLAMP_ITERATIONS = 30
+#: Relative margin kept below the Roelands overflow pressure by `pressure_bound_force` [-].
+#: The peak pressure of a problem rebuilt at ``F_N0 (p_lim / p_max)^3`` lands on ``p_lim``
+#: only to a few units of round-off (1e-16), either side; at the limit itself
+#: `ballcvt.equilibrium.build_problem` would refuse the force that came out a hair above
+#: it, so a fixed point clipped there raised instead of being flagged (issue 23).
+ROELANDS_ROUND_OFF = 1e-12
 
 
 def _settles(step, last, force) -> np.ndarray:
@@ -67,15 +73,15 @@ def pressure_bound_force(problem: EquilibriumProblem, max_pressure: float) -> np
 
     Every contact load is proportional to ``F_N0`` and the Hertz peak pressure grows as
     ``F^(1/3)`` (Eqs. 48-50), so ``F = F_N0 (p_lim / p_max)^3``. The bound never exceeds the
-    pressure at which the Roelands viscosity overflows (docs/model.md §10).
+    pressure at which the Roelands viscosity overflows (docs/model.md §10), less
+    `ROELANDS_ROUND_OFF` of it, so that a problem built at the bound is never refused for a
+    peak pressure one round-off above that limit (issue 23, harden 2029:2727).
     """
     fl = problem.fluid
-    p_lim = min(
-        float(max_pressure),
-        roelands_pressure_limit(
-            fl.viscosity, fl.pole_viscosity, fl.pole_pressure, fl.roelands_index
-        ),
+    roelands = roelands_pressure_limit(
+        fl.viscosity, fl.pole_viscosity, fl.pole_pressure, fl.roelands_index
     )
+    p_lim = min(float(max_pressure), roelands * (1.0 - ROELANDS_ROUND_OFF))
     return problem.clamp_force * (p_lim / np.max(problem.p_max, axis=-1)) ** 3
 
 

@@ -1,0 +1,78 @@
+"""Campaign regression (issue 23, seed 2029, task 2727) of the study evaluation: a cam on
+the input disc whose fixed point runs away at a high torque was clipped at the force of the
+Roelands overflow pressure (`ballcvt.solvers.clamped.pressure_bound_force`); the problem
+rebuilt there came out one round-off above that pressure and was refused, which failed the
+whole design, while `Variator.solve` solved its other points (docs/model.md §10, §11)."""
+
+import json
+
+import numpy as np
+
+from ballcvt import Variator, load_builtin
+from ballcvt.analysis.studies.evaluate import evaluate_chunk, make_context
+from ballcvt.analysis.studies.spec import StudySpec
+from ballcvt.equilibrium.problem import build_problem
+from ballcvt.solvers.clamped import pressure_bound_force, with_clamp
+
+# 2029:2727 (visco-elastic, single, cam on the input disc, carrier held)
+FIELDS = json.loads(
+    '{"aspect_ratio": 97.15018969391978, "roller_radius": 0.3450702297348293, '
+    '"theta0_deg": 23.26285741542518, "theta2_deg": 26.85054496103646, '
+    '"alpha_deg": 83.63048442778303, "n_rollers": 21, '
+    '"roller_bearing_diameter": 0.034566054562587635, '
+    '"idler_bearing_diameter": 0.31819387398929677, "disc_groove_ratio": Infinity, '
+    '"idler_groove_ratio": 1.058197265014879, "single_idler_groove_ratio": 1.5063523531000542, '
+    '"tilt_safety_factor": 0.7380331965117761, "creep_limit": 0.44488561936543813, '
+    '"min_roller_gap": 0.007464673266908551, "cam": {"disc": "input", '
+    '"preload": 75045.15333817796, "ramp_angle_deg": 17.02709030539163, '
+    '"mean_radius": 0.38136531948587976, "friction": 0.034886375102174086}}'
+)
+RATIO, RPM = 1.3591587599419814, 188.93206278278498
+#: a torque both paths solve, and one whose cam fixed point runs away to the bound
+TORQUES = [9355.943066437867, 39566.90341042956]
+
+
+def _study() -> StudySpec:
+    fixed = {k: v for k, v in FIELDS.items() if k != "n_rollers"}
+    return StudySpec.model_validate(
+        {
+            "study": {
+                "name": "harden",
+                "drive": "table1",
+                "samples": 1,
+                "architecture": "single",
+                "traction_law": "viscoelastic",
+                "capacity_ratios": [RATIO],
+            },
+            "parameters": {"n_rollers": {"values": [21]}},
+            "fixed": fixed,
+            "operating": {
+                "ratio": [RATIO],
+                "output_torque": TORQUES,
+                "input_speed_rpm": [RPM],
+                "clamp_law": "cam",
+            },
+            "objectives": {"eta_mean": "max", "capacity": "max"},
+        }
+    )
+
+
+def test_study_evaluates_the_point_solve_solves():
+    out = evaluate_chunk(make_context(_study()), np.arange(1), np.array([[21.0]]))
+    # the runaway point is flagged, not raised: the design is judged, not "not solved"
+    assert "Roelands" not in out["reason"][0]
+    assert list(out["point_status"][0]) == [0, 1]
+    d, f = load_builtin("table1")
+    v = Variator(d.replace(name="random", **FIELDS), f, "single", traction_law="viscoelastic")
+    res = v.solve(RATIO, TORQUES[0], clamp_law="cam", input_speed_rpm=RPM)
+    assert res.converged
+    assert abs(out["eta"][0, 0] - res.eta) <= 1e-9
+
+
+def test_problem_at_the_roelands_bound_is_built():
+    d, f = load_builtin("table1")
+    design = d.replace(name="random", **FIELDS)
+    fluid = f.with_traction_law("viscoelastic")
+    for force in np.geomspace(1e3, 1e10, 60):
+        pb = build_problem(design, fluid, "single", RATIO, 1000.0, force, 20.0)
+        with_clamp(pb, pressure_bound_force(pb, np.inf))  # no InputError

@@ -17,6 +17,17 @@ settings.register_profile("thorough", max_examples=300, deadline=None,
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
 
 RPM = math.pi / 30.0
+
+
+@pytest.fixture(autouse=True)
+def _slow_only_when_asked(request):
+    """A test marked ``slow`` runs only under ``-m slow`` (pyproject.toml's marker)."""
+    if request.node.get_closest_marker("slow") and "slow" not in (
+        request.config.getoption("markexpr") or ""
+    ):
+        pytest.skip("slow: run with -m slow")
+
+
 #: The paper's operating point of Figs. 7, 9-13.
 PAPER = {"clamp_force": 2000.0, "input_speed_rpm": 2000.0}
 

@@ -66,14 +66,6 @@ print("done", r.evaluated_now, flush=True)
 """
 
 
-@pytest.fixture(autouse=True)
-def _slow_only_when_asked(request):
-    if request.node.get_closest_marker("slow") and "slow" not in (
-        request.config.getoption("markexpr") or ""
-    ):
-        pytest.skip("slow: run with -m slow")
-
-
 @pytest.fixture(scope="module")
 def study(tmp_path_factory):
     path = tmp_path_factory.mktemp("spec") / "study.toml"

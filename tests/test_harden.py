@@ -75,8 +75,9 @@ def test_campaign_json(tmp_path):
     for r in records:
         assert r["outcome"] in ("silent", "bug") and r["check"] and r["message"]
         assert {"law", "clamp", "arch", "mode", "entry"} <= set(r["case"])
-    # LEAD: switch this on once the fixes of issue 23 are merged (the campaign's target):
-    # assert s["silent"] == 0 and s["bug"] == 0, s["by_check"]
+    # the campaign's target (issue 23): no silent wrong answer, no internal error (seed 0
+    # gave 247 points, 0 and 0, in 120 s on one loaded core at commit 77e861a)
+    assert s["silent"] == 0 and s["bug"] == 0, s["by_check"]
 
 
 def test_cam_refusal_below_its_interval_is_a_flag_not_silent():

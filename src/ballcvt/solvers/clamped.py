@@ -4,9 +4,10 @@ A law whose force follows the output torque (a cam on the output disc) fixes ``F
 before the equilibrium is solved. A law whose force follows the input torque (a cam on
 the input disc) makes ``F_N0`` an unknown of the equilibrium: it is found by a fixed-point
 iteration ``F_N0 <- law(T_0(F_N0))`` around the creep solver, warm-started from the last
-creeps, each step accelerated by the map's measured slope (Wegstein 1958, a secant step on
-``law(T_0(F)) - F``). The map is a contraction (``T_0`` changes with ``F_N0`` only through the
-losses), but near the capacity a slow one (a factor of 0.5 per step and more), and a point counts as converged only when its equilibrium residual meets the
+creeps, each step accelerated by the map's measured slope (Wegstein 1958, a secant step
+on ``law(T_0(F)) - F``). The map is a contraction (``T_0`` changes with ``F_N0`` only
+through the losses), though it can be a slow one (a factor of 0.5 per step, issue 23),
+and a point counts as converged only when its equilibrium residual meets the
 solver's tolerance *and* the clamping equation holds to ``CLAMP_RTOL`` (or its fixed point
 has reached the noise floor of ``T_0``, within ``CLAMP_NOISE_RTOL``).
 """

@@ -63,7 +63,8 @@ def _wegstein(force, new, memory):
     """The next force [N] of the fixed point ``F <- g(F)`` from ``force`` ``F`` and
     ``new`` ``g(F)`` [N] (Wegstein 1958): ``F + (g(F) - F) / (1 - s)``, with ``s`` the
     slope of ``g`` measured against the previous pair in ``memory`` (a dict it updates;
-    ``s = 0``, the plain step, until a slope is measured), clipped to ``[-1, MAX_SLOPE]``.
+    ``s = 0``, the plain step, until a slope is measured and where it is 1 or more),
+    clipped to ``[-1, MAX_SLOPE]``.
     A contraction of slope ``s`` then converges in a step or two instead of some
     ``log(1e-10) / log(s)`` plain ones (issue 23, harden 2029:5846)."""
     slope = memory.get("slope", np.zeros(np.shape(force)))
@@ -72,7 +73,10 @@ def _wegstein(force, new, memory):
         with np.errstate(divide="ignore", invalid="ignore"):
             measured = (new - memory["new"]) / df
         fresh = np.isfinite(measured) & (np.abs(df) > SLOPE_RTOL * np.abs(force))
-        slope = np.where(fresh, np.clip(measured, -1.0, MAX_SLOPE), slope)
+        # a slope of 1 or more is no contraction (a point beyond the capacity, whose
+        # force runs away): it takes the plain step
+        trusted = np.where(measured < 1.0, np.clip(measured, -1.0, MAX_SLOPE), 0.0)
+        slope = np.where(fresh, trusted, slope)
     memory.update(force=force, new=new, slope=slope)
     return force + (new - force) / (1.0 - slope)
 

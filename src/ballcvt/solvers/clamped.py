@@ -4,8 +4,10 @@ A law whose force follows the output torque (a cam on the output disc) fixes ``F
 before the equilibrium is solved. A law whose force follows the input torque (a cam on
 the input disc) makes ``F_N0`` an unknown of the equilibrium: it is found by a fixed-point
 iteration ``F_N0 <- law(T_0(F_N0))`` around the creep solver, warm-started from the last
-creeps. The map is a strong contraction (``T_0`` changes with ``F_N0`` only through the
-losses), and a point counts as converged only when its equilibrium residual meets the
+creeps, each step accelerated by the map's measured slope (Wegstein 1958, a secant step
+on ``law(T_0(F)) - F``). The map is a contraction (``T_0`` changes with ``F_N0`` only
+through the losses), though it can be a slow one (a factor of 0.5 per step, issue 23),
+and a point counts as converged only when its equilibrium residual meets the
 solver's tolerance *and* the clamping equation holds to ``CLAMP_RTOL`` (or its fixed point
 has reached the noise floor of ``T_0``, within ``CLAMP_NOISE_RTOL``).
 """
@@ -46,6 +48,14 @@ MAX_CLAMP_ITERATIONS = 30
 #: `ballcvt.equilibrium.build_problem` would refuse the force that came out a hair above
 #: it, so a fixed point clipped there raised instead of being flagged (issue 23).
 ROELANDS_ROUND_OFF = 1e-12
+#: Largest slope ``s`` of the map ``F -> law(T_0(F))`` a Wegstein step trusts [-]: the step
+#: is ``1 / (1 - s)`` times the plain one, so this caps that gain at 10 (noise of the
+#: force at its floor, some 5e-10 of it, stays below `CLAMP_NOISE_RTOL` when amplified).
+MAX_SLOPE = 0.9
+#: Smallest change of the force, relative to it, from which the map's slope is measured
+#: [-]: smaller changes come too close to the noise floor of ``T_0`` to give a slope, and
+#: the last slope measured is kept.
+SLOPE_RTOL = 1e-7
 
 
 def _settles(step, last, force) -> np.ndarray:
@@ -53,6 +63,28 @@ def _settles(step, last, force) -> np.ndarray:
     (``|law(T_0(F)) - F|``) and the previous step ``last`` [N]: within `CLAMP_RTOL`, or
     within `CLAMP_NOISE_RTOL` and no smaller than the step before (the noise floor)."""
     return (step <= CLAMP_RTOL * force) | ((step <= CLAMP_NOISE_RTOL * force) & (step >= last))
+
+
+def _wegstein(force, new, memory):
+    """The next force [N] of the fixed point ``F <- g(F)`` from ``force`` ``F`` and
+    ``new`` ``g(F)`` [N] (Wegstein 1958): ``F + (g(F) - F) / (1 - s)``, with ``s`` the
+    slope of ``g`` measured against the previous pair in ``memory`` (a dict it updates;
+    ``s = 0``, the plain step, until a slope is measured and where it is 1 or more),
+    clipped to ``[-1, MAX_SLOPE]``.
+    A contraction of slope ``s`` then converges in a step or two instead of some
+    ``log(1e-10) / log(s)`` plain ones (issue 23, harden 2029:5846)."""
+    slope = memory.get("slope", np.zeros(np.shape(force)))
+    if "force" in memory:
+        df = force - memory["force"]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            measured = (new - memory["new"]) / df
+        fresh = np.isfinite(measured) & (np.abs(df) > SLOPE_RTOL * np.abs(force))
+        # a slope of 1 or more is no contraction (a point beyond the capacity, whose
+        # force runs away): it takes the plain step
+        trusted = np.where(measured < 1.0, np.clip(measured, -1.0, MAX_SLOPE), 0.0)
+        slope = np.where(fresh, trusted, slope)
+    memory.update(force=force, new=new, slope=slope)
+    return force + (new - force) / (1.0 - slope)
 
 
 def with_clamp(problem: EquilibriumProblem, clamp_force) -> EquilibriumProblem:
@@ -115,6 +147,7 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):
         return pb, sol
     settled = np.zeros(np.shape(sol.converged), dtype=bool)
     last = np.full(np.shape(sol.converged), np.inf)
+    memory: dict = {}
     for _ in range(MAX_CLAMP_ITERATIONS):
         new = law.clamp_force(pb.design, sol.state.input_torque, t2)
         # a point whose clamping equation holds, or whose fixed point has reached the
@@ -130,7 +163,8 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):
         if not np.any(move):
             break
         ceiling = pressure_bound_force(pb, np.inf)
-        pb = with_clamp(problem, np.where(move, np.minimum(new, ceiling), pb.clamp_force))
+        target = np.minimum(_wegstein(pb.clamp_force, new, memory), ceiling)
+        pb = with_clamp(problem, np.where(move, target, pb.clamp_force))
         sol = solve(pb, sol.state.creep)
     new = law.clamp_force(pb.design, sol.state.input_torque, t2)
     held = settled | (np.abs(new - pb.clamp_force) <= CLAMP_RTOL * pb.clamp_force)

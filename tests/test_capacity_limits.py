@@ -58,7 +58,7 @@ def test_under_the_oil_balance_every_end_is_where_solve_flips():
     """Seed 3 (the hub with a small input-side cam preload) under the oil's heat balance:
     the capacity at the balance of its limit point (in 150 C oil, a runaway) was (0, 0.94)
     and (4.48, 694.8) N m while `solve`, each torque at its own balance, carried up to
-    1.88, from 2.91 and up to 483.9 N m (a runaway above it). ~75 s on an idle core."""
+    1.88, from 2.91 and up to 483.9 N m (a runaway above it). 412 s on the loaded 2-core machine."""
     v, ratio, kw = _draw(3)
     # above the top the oil runs away: refused as such (InputError, one line)
     refusals = (TractionLimitError, InputError)

@@ -295,3 +295,25 @@ def test_newton_update_compiled_equals_python_and_handles_singular_steps():
     active, _ = B._advance(it, np.arange(1), np.ones((1, nc)) * 1e-3, np.ones((1, nc, nc)),
                            free, 1e-11, False)
     assert active.tolist() == [0] and np.all(np.isfinite(x)) and not np.allclose(x[0, 0], 0.01)
+
+
+def test_viscosity_table_stays_finite_past_overflow(drive):
+    """A Newton trial at a pressure where ``E = eta / tau_L`` passes e^709 (the hub under
+    its oil balance reached one, ~1 TPa) gets a finite table, flat past `LOG_E_MAX`, no
+    overflow warning, and finite coefficients there. Fails before the cap (inf in the table,
+    numpy's overflow RuntimeWarning)."""
+    import warnings
+
+    from ballcvt.model.traction.kernels import LOG_E_MAX, viscosity_table
+
+    _, fluid = drive
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fl, tab = viscosity_table(fluid, 5e12)
+    assert np.isfinite(tab).all()
+    assert tab[-1, 0] == pytest.approx(np.exp(LOG_E_MAX)) and tab[-1, 1] == 0.0
+    state = ContactState(0.01, 0.0, 1.2e-3, 0.45e-3, 4e12, 2000.0, 0.03, 15.0, 1.5e-7)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        mu, chi, *_ = contact_coefficients(state, fluid, Quadrature(), derivatives=True)
+    assert np.isfinite(mu).all() and np.isfinite(chi).all()

@@ -51,6 +51,12 @@ AVAILABLE = njit is not None
 #: Fast-math flags that keep IEEE NaN and infinity semantics (a NaN must propagate).
 _FAST = {"nsz", "arcp", "contract", "afn", "reassoc"}
 N_OUT = 8
+#: Largest ``log E`` a viscosity table holds [-]: ``E = e^300`` s (~2e130) saturates the
+#: film at its limiting shear at any slip (``E`` multiplies the shear rate), so the table
+#: keeps it there (flat) where ``E`` (or ``E^2`` in the Jacobian) would overflow to inf and
+#: the coefficients to NaN. Reached past ~40 GPa with the paper's fluid (``log E`` = 254 at
+#: 30 GPa), i.e. only by a Newton trial step (the hub under its oil balance took one).
+LOG_E_MAX = 300.0
 
 
 def viscosity_table(
@@ -103,9 +109,11 @@ def viscosity_table(
     log_e = np.log(fluid.viscosity / (tl0 + slope_tl * p)) + log_ratio * np.expm1(
         z * np.log1p(p / cp)
     )
-    e = np.exp(log_e)
+    capped = log_e > LOG_E_MAX
+    e = np.exp(np.minimum(log_e, LOG_E_MAX))
+    de = np.where(capped, 0.0, e * log_slope(p) * (top / n))
     fl = np.array([tl0, slope_tl, n / top, float(modulus)])
-    return fl, np.column_stack([e, e * log_slope(p) * (top / n)])
+    return fl, np.column_stack([e, de])
 
 
 #: ``2^-k`` for the exponent of `_exp_neg` (``k`` up to 1099: ``exp(-740)`` is 0 within

@@ -247,7 +247,11 @@ def test_compiled_path_equals_numpy_path_on_random_designs(case):
         assert fast.converged[i] or not ref.converged
         if ref.converged:
             c, cr = fast.state.creep[i], ref.state.creep
-            assert np.allclose(c, cr, rtol=1e-7, atol=1e-12 * np.max(np.abs(cr)))
+            # relative 1e-7 on creeps down to 1e-6 (as `_errors`), below that 1e-13 absolute:
+            # the fast solve stops at a residual ~5e-13 (tol 1e-11), which leaves a single
+            # idler's tiny creep (~3e-7, traction slope ~10 per unit creep) ~5e-14 off
+            # (3.7e-14 measured on one drawn design, 1.2e-7 relative)
+            assert np.allclose(c, cr, rtol=1e-7, atol=1e-7 * 1e-6)
             eta = efficiency(pb.take(i), ref.state).overall
             # both solutions meet their balances to their residual norms (torques over
             # n F_N0 r_S): each of the n_c balances may move the output torque, and with it

@@ -28,6 +28,7 @@ from ballcvt.errors import NoEquilibriumError
 from ballcvt.registry import CLAMP_LAWS, OPERATING_MODES, TRACTION_LAWS
 from ballcvt.solvers.options import SolverOptions
 from ballcvt.solvers.planetary import ratio_tolerance
+from ballcvt.solvers.refusal import CREEP_RTOL
 
 #: The entry points, in the order they are reported.
 ENTRIES = ("solve", "sweep", "limit", "map", "table", "cycle step", "study evaluation")
@@ -35,6 +36,10 @@ ENTRIES = ("solve", "sweep", "limit", "map", "table", "cycle step", "study evalu
 MODE_ENTRIES = {"solve": "any", "limit": "any", "map": "any", "cycle step": "any"}
 FLAGS = (TractionLimitError, NoEquilibriumError, InputError, ConvergenceError)
 ETA_TOL = 1e-6  # sweep/map/table/cycle/study against solve
+#: A creep is within the limit up to the solvers' own admissibility tolerance: `solve`
+#: refuses only above ``creep_limit (1 + CREEP_RTOL)`` (the optimal clamp holds the
+#: creep at the limit to that tolerance).
+CREEP_SLACK = CREEP_RTOL
 LIMIT_TOL = 1e-3  # limit searches against each other; 1.001 x the limit is "above"
 ETA_SLACK = 1e-12  # round-off allowed outside [0, 1]
 
@@ -340,7 +345,7 @@ def result_checks(v, r) -> list:
             )
         )
     creep = max(abs(c.creep) for c in r.contacts.values())
-    if creep > v.design.creep_limit * (1 + 1e-9) and not _creep_flagged(r):
+    if creep > v.design.creep_limit * (1 + CREEP_SLACK) and not _creep_flagged(r):
         bad.append(
             (
                 "creep limit",
@@ -376,7 +381,7 @@ def planetary_checks(v, p) -> list:
     if neg:
         bad.append(("negative loss", ", ".join(f"{k} {x:.4g} W" for k, x in neg.items())))
     creep = max(abs(c.creep) for c in rel.contacts.values())
-    if creep > v.design.creep_limit * (1 + 1e-9) and not _creep_flagged(rel):
+    if creep > v.design.creep_limit * (1 + CREEP_SLACK) and not _creep_flagged(rel):
         bad.append(("creep limit", f"|creep| {creep:.4g} > {v.design.creep_limit:.4g}"))
     data = p.to_dict()
     for key in ("eta", "overall_eta"):
@@ -444,11 +449,12 @@ def grid_point_checks(v, values: dict) -> list:
     if losses.size and np.nanmin(losses) < 0:
         bad.append(("negative loss", f"a loss of {np.nanmin(losses):.4g} W"))
     creep = np.asarray(values.get("creep", []), float)
-    if creep.size and np.nanmax(np.abs(creep)) > v.design.creep_limit * (1 + 1e-9):
+    if creep.size and np.nanmax(np.abs(creep)) > v.design.creep_limit * (1 + CREEP_SLACK):
         bad.append(
             (
                 "creep limit",
-                f"|creep| {np.nanmax(np.abs(creep)):.4g} > {v.design.creep_limit:.4g} at status 0",
+                f"|creep| {np.nanmax(np.abs(creep)):.10g} > {v.design.creep_limit:.10g} "
+                "at status 0",
             )
         )
     return bad

@@ -7,7 +7,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from harden_entries import ETA_SLACK, LIMIT_TOL, agree, close, planetary_checks, reference
+from harden_entries import (
+    CREEP_SLACK,
+    ETA_SLACK,
+    LIMIT_TOL,
+    agree,
+    close,
+    planetary_checks,
+    reference,
+)
 
 from ballcvt import CycleSettings, InputError, MapGrid, TractionLimitError, cycle_from_arrays
 from ballcvt.registry import OPERATING_MODES
@@ -155,7 +163,7 @@ def run_cycle(task, v, cond):
             bad.append(("eta range", f"cycle step eta {e:.6g} outside [0, 1]"))
         if any(not row[c] >= 0 for c in loss_cols):
             bad.append(("negative loss", f"cycle step losses {[row[c] for c in loss_cols]}"))
-        if row["max_creep"] > v.design.creep_limit * (1 + 1e-9):
+        if row["max_creep"] > v.design.creep_limit * (1 + CREEP_SLACK):
             bad.append(("creep limit", f"cycle step max creep {row['max_creep']:.4g}"))
         task.judge(bad, inputs)
 
@@ -249,7 +257,7 @@ def run_map(task, v, cond):
                 bad.append(("eta range", f"map eta {e:.6g} outside [0, 1]"))
             if not loss[j] >= 0:
                 bad.append(("negative loss", f"map loss {loss[j]:.4g} W"))
-            if creep[j] > v.design.creep_limit * (1 + 1e-9):
+            if creep[j] > v.design.creep_limit * (1 + CREEP_SLACK):
                 bad.append(("creep limit", f"map max creep {creep[j]:.4g} at status 0"))
             if ref[0] == "ok" and not close(float(loss[j]), ref[1].loss, 1e-6):
                 bad.append(("map = solve", f"map loss {loss[j]:.8g} vs solve {ref[1].loss:.8g} W"))

@@ -39,6 +39,7 @@ __all__ = [
     "balanced_sweep",
     "balanced_limits",
     "balanced_rows",
+    "balanced_tops",
     "limit_ladder",
     "oil_balance_of",
     "LIMIT_SHY",
@@ -49,6 +50,9 @@ __all__ = [
 LIMIT_SHY = 1e-6
 #: Variables taken at the nearest rung rather than interpolated (counts and codes).
 CODES = ("status", "warnings", "iterations")
+#: Relative width [-] to which `balanced_tops` locates where a balanced point flips, and
+#: how far [-] above the fixed point's limit it looks (as `ballcvt.api.oil` does).
+STRETCH_RTOL, STRETCH_MAX = 5e-4, 0.2
 
 
 def balanced_sweep(design: Design, fluid: Fluid, thermal, request: SweepRequest) -> xr.Dataset:
@@ -105,10 +109,13 @@ def _limits_into(out: xr.Dataset, design, fluid, thermal, run) -> None:
     temp, weights, outcome = balance_weights(ladder)
     runaways_at_top(ladder, temp, weights, outcome)
     shape = first["limit_torque"].shape
-    for i, name in enumerate(("limit_torque", "eta_at_limit")):
-        values = interpolate(np.stack([r[i] for r in ladder.results]), weights)
+    rows = _curve_rows(design, fluid, first, request)
+    top = interpolate(np.stack([r[0] for r in ladder.results]), weights)
+    eta = interpolate(np.stack([r[1] for r in ladder.results]), weights)
+    top, eta, temp = _moved(rows, thermal, top, (eta, temp))
+    for name, values in (("limit_torque", top), ("eta_at_limit", eta)):
         out[name] = xr.Variable(dims, values.reshape(shape), first[name].attrs)
-    temp = np.where(np.isfinite(out["limit_torque"].values.ravel()), temp, np.nan)
+    temp = np.where(np.isfinite(top), temp, np.nan)
     out["oil_temperature_at_limit"] = xr.Variable(
         dims,
         temp.reshape(shape),
@@ -206,6 +213,7 @@ def balanced_limits(rows: OperatingRows, thermal) -> tuple[np.ndarray, np.ndarra
     temp, weights, outcome = balance_weights(ladder)
     runaways_at_top(ladder, temp, weights, outcome)
     torque = interpolate(np.stack([r[0] for r in ladder.results]), weights)
+    torque, _, temp = _moved(rows, thermal, torque, (torque, temp))
     k = np.abs(ladder.temperatures[:, None] - temp[None, :]).argmin(axis=0)
     searches = [r[2] for r in ladder.results]
     base = searches[0].flat()
@@ -274,3 +282,71 @@ def balanced_rows(rows: OperatingRows, thermal, evaluate) -> tuple[np.ndarray, d
     )
     res["oil_temperature"] = np.where(res["status"] == 0, temp, np.nan)
     return t2, res
+
+
+def balanced_tops(rows: OperatingRows, thermal, top) -> np.ndarray:
+    """Each row's largest torque [N m] moved from ``top`` to where the row, solved at its
+    own oil balance (`balanced_rows`), flips between carried (`Status.CONVERGED`: within
+    the creep limit and, under a torque-following law, ``max_pressure``) and refused (a
+    runaway of the oil included), to `STRETCH_RTOL`.
+
+    ``top`` is the limit of the fluid at the temperature its limit point produces (the
+    ladder's fixed point ``t = L(T(t))``); every other torque runs at its own balance, so
+    the flip lies elsewhere where the losses change with the temperature, or where the
+    limit point's oil runs away (docs/model.md §15). As `ballcvt.api.oil` moves
+    `Variator.limit_torque`, batched: from ``top`` in steps growing fourfold from
+    `STRETCH_RTOL` (outwards as far as `STRETCH_MAX` above it where it is carried, else
+    inwards towards zero), then bisection; every step one balanced solve of the rows still
+    searching. A row carried nowhere below ``top`` keeps it (as the scalar path does).
+    """
+    out = np.array(top, dtype=float)
+    idx = np.flatnonzero(np.isfinite(out) & (out > 0.0))
+    if idx.size == 0:
+        return out
+    rows, end = rows.take(idx), out[idx]
+    ok = _carries(rows, thermal, end)
+    inside, outside = np.where(ok, end, np.nan), np.where(ok, np.nan, end)
+    grow = STRETCH_RTOL
+    while True:  # bracket: outwards where carried, inwards where refused
+        up, down = np.isnan(outside), np.isnan(inside) & (grow < 1.0)
+        live = up | down
+        if not live.any():
+            break
+        trial = np.where(
+            up, np.minimum(end * (1.0 + grow), end * (1.0 + STRETCH_MAX)), end * (1.0 - grow)
+        )[live]
+        ok = _carries(rows.take(np.flatnonzero(live)), thermal, trial)
+        reach = up[live] & (trial >= end[live] * (1.0 + STRETCH_MAX))
+        inside[live] = np.where(ok, trial, inside[live])
+        outside[live] = np.where(ok & ~reach, outside[live], trial)
+        grow *= 4.0
+    while True:  # bisect the brackets
+        live = np.isfinite(inside) & (np.abs(outside - inside) > STRETCH_RTOL * inside)
+        if not live.any():
+            break
+        mid = 0.5 * (inside + outside)[live]
+        ok = _carries(rows.take(np.flatnonzero(live)), thermal, mid)
+        inside[live] = np.where(ok, mid, inside[live])
+        outside[live] = np.where(ok, outside[live], mid)
+    out[idx] = np.where(np.isnan(inside), end, inside)
+    return out
+
+
+def _carries(rows: OperatingRows, thermal, torque: np.ndarray) -> np.ndarray:
+    """Whether each row carries its ``torque`` [N m] at its own oil balance."""
+    _, res = balanced_rows(rows, thermal, lambda r: (torque, evaluate_points(r, torque)))
+    return res["status"] == 0
+
+
+def _moved(rows: OperatingRows, thermal, top: np.ndarray, at_top: tuple) -> tuple:
+    """``(top, eta, oil temperature)`` with the tops moved (`balanced_tops`); a moved
+    row's efficiency and oil temperature those of its new limit point (`LIMIT_SHY` below
+    it), the others' ``at_top`` as given."""
+    eta, temp = (np.array(a, dtype=float) for a in at_top)
+    new = balanced_tops(rows, thermal, top)
+    moved = np.flatnonzero(np.isfinite(new) & (new != top))
+    if moved.size:
+        shy = new[moved] * (1.0 - LIMIT_SHY)
+        _, res = balanced_rows(rows.take(moved), thermal, lambda r: (shy, evaluate_points(r, shy)))
+        eta[moved], temp[moved] = res["eta"], res["oil_temperature"]
+    return new, eta, temp

@@ -12,6 +12,7 @@ from ..params import PAPER_POINT, Drive
 from ..params.drive_models import drive_clamp
 from ..params.io import parse_uncertain_drive, uncertain_drive_text
 from ..units import rad_s_to_rpm
+from .oil import with_oil_temperature
 from .variator import Variator
 
 __all__ = ["uncertainty", "HOW_TO_ADD"]
@@ -43,6 +44,9 @@ def uncertainty(design: str | Path = "hub", request=None, compute=None, **keywor
         process; a ``workers``, ``scheduler`` or ``client`` keyword runs on Dask.
     architecture : str, keyword
         Idler architecture (default ``"double"``).
+    oil_temperature : str or float, keyword
+        The oil model of every drawn drive: ``"fixed"``, ``"balance"`` or a temperature
+        [K] (`ballcvt.api.with_oil_temperature`); default the drive file's ``[models]``.
 
     Returns
     -------
@@ -64,6 +68,7 @@ def uncertainty(design: str | Path = "hub", request=None, compute=None, **keywor
     from ..analysis.uncertainty.run import UncertainDrive, UncertaintyRequest, run_uncertainty
 
     architecture = keywords.pop("architecture", "double")
+    oil = keywords.pop("oil_temperature", None)
     asked = {k: keywords.pop(k) for k in list(keywords) if k in _names(Compute)}
     unknown = sorted(set(keywords) - _names(UncertaintyRequest))
     if unknown:
@@ -77,7 +82,8 @@ def uncertainty(design: str | Path = "hub", request=None, compute=None, **keywor
             "a drive with uncertain parameters",
             message=f"{source} has no uncertain parameters: {HOW_TO_ADD}",
         )
-    v = Variator(d, fluid, architecture)  # checks the drive as every command does
+    # checks the drive as every command does; the oil model asked for, else the file's
+    v = with_oil_temperature(Variator(d, fluid, architecture), oil)
     req = _defaults(replace(request or UncertaintyRequest(input_speed_rpm=None), **keywords), d)
     dask = any(asked.get(k) is not None for k in ("workers", "scheduler", "client"))
     base = compute or Compute(in_process=not dask)

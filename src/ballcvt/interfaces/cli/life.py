@@ -8,6 +8,7 @@ from ...api import read_cycle
 from ...errors import InputError
 from . import options as o
 from .cycle_options import cycle_options, cycle_settings
+from .oil_option import add_oil_option
 
 
 def add_parser(subparsers) -> None:
@@ -29,6 +30,7 @@ def add_parser(subparsers) -> None:
     )
     o.add(p, "arch", "ratio", "torque", *o.CLAMP_OPTIONS, "speed", *o.FLUID_OPTIONS)
     o.add(p, "life-model", "material", "json")
+    add_oil_option(p, "balance")
     p.add_argument(
         "--cycle",
         type=Path,

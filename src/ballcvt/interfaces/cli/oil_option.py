@@ -1,5 +1,5 @@
 """``--oil-temperature``: the oil's bulk temperature of ``point``, ``cycle``, ``map``,
-``table``, ``limit`` and ``capacity`` (docs/model.md §15, docs/cli.md)."""
+``table``, ``limit``, ``capacity``, ``shift`` and ``life`` (docs/model.md §15, docs/cli.md)."""
 
 from __future__ import annotations
 

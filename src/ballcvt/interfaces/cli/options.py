@@ -416,10 +416,17 @@ def clamp_label(args) -> str:
     models = effective_models(
         design, fluid, clamp_law=args.clamp_law, traction_law=fluid.traction_law
     )
+    oil = getattr(args, "oil_temperature", None)  # --oil-temperature wins over the file
+    if oil is not None:
+        models["oil_temperature"] = oil if isinstance(oil, str) else f"{oil:g} C"
     paper = {"traction_law": "isothermal", "lubrication": "full-film", "oil_temperature": "fixed"}
-    said = {"traction_law": "traction", "lubrication": "lubrication", "oil_temperature": "oil"}
+    said = {
+        "traction_law": "{} traction",
+        "lubrication": "{} lubrication",
+        "oil_temperature": "oil {}",
+    }
     return ", ".join(
-        [label] + [f"{models[k]} {said[k]}" for k, m in paper.items() if models[k] != m]
+        [label] + [said[k].format(models[k]) for k, m in paper.items() if models[k] != m]
     )
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from ...files import check_output_dir
 from . import options as o
+from .oil_option import add_oil_option
 
 
 def add_parser(subparsers) -> None:
@@ -77,6 +78,7 @@ def add_parser(subparsers) -> None:
         help="output samples over the shift, 3-10000 (default: 51)",
     )
     o.add(p, "arch", "torque", *o.CLAMP_OPTIONS, "speed", *o.FLUID_OPTIONS, "json")
+    add_oil_option(p, "balance")
     o.out(p, "ballcvt-shift")
     p.add_argument("--quiet", action="store_true", help="no summary line")
 

@@ -9,6 +9,7 @@ from ... import api
 from ...files import atomic_write_text, check_output_dir
 from . import options as o
 from .network import check_scheduler
+from .oil_option import add_oil_option, oil_setting
 
 
 def add_parser(subparsers) -> None:
@@ -61,6 +62,7 @@ def add_parser(subparsers) -> None:
     )
     _points(p)
     o.add(p, "arch")
+    add_oil_option(p, "balance")
     where = p.add_mutually_exclusive_group()
     where.add_argument(
         "--workers",
@@ -126,6 +128,7 @@ def run(args) -> int:
         output_torque=None if args.torque is None else tuple(args.torque),
         input_speed_rpm=None if args.speeds is None else tuple(args.speeds),
         architecture=args.arch,
+        oil_temperature=oil_setting(args)["oil_temperature"],
         workers=args.workers,
         scheduler=args.scheduler,
         progress=o.show(args),

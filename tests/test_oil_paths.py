@@ -5,7 +5,7 @@ capacity and limit curves at each point's own oil temperature, agreeing with
 import numpy as np
 import pytest
 
-from ballcvt import TractionLimitError, Variator
+from ballcvt import InputError, TractionLimitError, Variator
 from ballcvt.analysis.oil_paths import (
     RUNAWAY,
     Ladder,
@@ -23,7 +23,7 @@ SPEED = 114.0
 
 @pytest.fixture(scope="module")
 def hub():
-    # the hub's shell with its balance asked for (its drive file leaves it commented out)
+    # the hub's drive file names its shell's balance; asked for explicitly all the same
     return with_oil_temperature(Variator(*load_builtin("hub")), "balance")
 
 
@@ -109,6 +109,29 @@ def test_limit_at_the_temperature_its_limit_point_produces(hub):
     assert limit != cold
 
 
+def test_a_runaway_bound_limit_is_the_same_on_every_path(hub):
+    """At ratio 1 and 114 rpm under the cam the hub's limit point runs its oil away: at
+    the fixed point the limit is the hottest oil's (383 N m, the pressure's), but solve
+    refuses above ~264 N m (a runaway). A sweep's and an uncertainty run's limit used to
+    report 383 N m (`oil_sweep.balanced_tops` moves them as `limit_torque` is moved)."""
+    from ballcvt.analysis.oil_sweep import balanced_limits
+    from ballcvt.analysis.sweeps.curves import OperatingRows
+    from ballcvt.model.clamping import clamp_law
+    from ballcvt.params.drive import Drive
+
+    limit = hub.limit_torque(1.0, input_speed_rpm=SPEED)
+    ds = hub.sweep(ratio=[1.0], output_torque=[10.0], input_speed_rpm=SPEED, progress=False)
+    assert float(ds["limit_torque"].values.ravel()[0]) == pytest.approx(limit, rel=1e-6)
+    assert float(ds["eta_at_limit"].values.ravel()[0]) > 0.0
+    drive = Drive(hub.design, hub.fluid, hub.architecture)
+    law = clamp_law("cam", hub.design, None)
+    rows = OperatingRows.of(drive, [1.0], [SPEED * np.pi / 30.0], law=law)
+    assert balanced_limits(rows, hub.design.thermal)[0][0] == pytest.approx(limit, rel=1e-6)
+    hub.solve(1.0, limit * (1 - 1e-3), input_speed_rpm=SPEED)
+    with pytest.raises(InputError, match="heat balance"):
+        hub.solve(1.0, limit * (1 + 1e-3), input_speed_rpm=SPEED)
+
+
 def test_flags_and_keywords_override_the_hubs_balance(hub, capsys):
     import json
 
@@ -160,3 +183,33 @@ def test_a_balanced_solve_is_judged_at_its_own_temperature_only(hub, monkeypatch
     r = hub.solve(1.0, 8.0, clamp_force=400.0, input_speed_rpm=SPEED)
     assert r.oil_model == "balance" and r.thermal_iterations >= 2
     assert checked[-1] is True and not any(checked[:-1]) and len(checked) >= 3
+
+
+def test_inward_trials_reach_the_far_end_of_the_interval():
+    """From a refused end the trials step fourfold, then halve what is left to the other
+    end, so a flip anywhere in the interval is bracketed (fourfold steps alone stopped at
+    half the span and kept a refused end as the limit)."""
+    from ballcvt.analysis.oil_sweep import STRETCH_RTOL, inward_trial
+
+    got = [float(inward_trial(100.0, 0.0, k)) for k in range(20)]
+    tried = [t for t in got if t == t]
+    assert tried[:5] == pytest.approx([99.95, 99.8, 99.2, 96.8, 87.2])
+    assert tried[5:8] == pytest.approx([50.0, 25.0, 12.5])
+    assert all(a > b for a, b in zip(tried, tried[1:]))  # always further in
+    assert STRETCH_RTOL * 100.0 <= tried[-1] < 2 * STRETCH_RTOL * 100.0
+    assert all(t != t for t in got[len(tried):])
+    inner = [float(inward_trial(100.0, 60.0, k)) for k in range(16)]
+    assert min(t for t in inner if t == t) > 60.0
+    assert [float(inward_trial(10.0, 100.0, k)) for k in range(2)] == pytest.approx([10.005, 10.02])
+
+
+def test_a_limit_far_below_the_hot_oils_is_found(hub):
+    """The hub at ratio 2 and 180 rpm under its cam: the 150 C oil's limit is 383 N m, but
+    the oil runs away far below it (its flip lies under half of 383 N m). The limit was
+    left at 383 N m on every path; it is now where solve stops."""
+    kw = {"clamp_law": "cam", "input_speed_rpm": 180.0}
+    limit = hub.limit_torque(2.0, **kw)
+    assert limit < 0.5 * 383.0
+    hub.solve(2.0, limit * (1 - 1e-3), **kw)
+    with pytest.raises(InputError, match="heat balance"):
+        hub.solve(2.0, limit * (1 + 1e-3), **kw)

@@ -40,6 +40,7 @@ __all__ = [
     "balanced_limits",
     "balanced_rows",
     "balanced_tops",
+    "inward_trial",
     "limit_ladder",
     "oil_balance_of",
     "LIMIT_SHY",
@@ -50,8 +51,10 @@ __all__ = [
 LIMIT_SHY = 1e-6
 #: Variables taken at the nearest rung rather than interpolated (counts and codes).
 CODES = ("status", "warnings", "iterations")
-#: Relative width [-] to which `balanced_tops` locates where a balanced point flips, and
-#: how far [-] above the fixed point's limit it looks (as `ballcvt.api.oil` does).
+#: Relative resolution [-] of the search for where a balanced point flips between carried
+#: and refused, from the ends found at the fixed point's temperature (`balanced_tops`,
+#: `ballcvt.api.oil`'s `_balanced_ends`), and its reach above the largest end [-] (an end
+#: between two intervals may move as far as its neighbour).
 STRETCH_RTOL, STRETCH_MAX = 5e-4, 0.2
 
 
@@ -306,20 +309,22 @@ def balanced_tops(rows: OperatingRows, thermal, top) -> np.ndarray:
     rows, end = rows.take(idx), out[idx]
     ok = _carries(rows, thermal, end)
     inside, outside = np.where(ok, end, np.nan), np.where(ok, np.nan, end)
-    grow = STRETCH_RTOL
-    while True:  # bracket: outwards where carried, inwards where refused
-        up, down = np.isnan(outside), np.isnan(inside) & (grow < 1.0)
+    k = 0
+    while True:  # bracket: outwards where carried, inwards (towards zero) where refused
+        reach = end * (1.0 + STRETCH_MAX)
+        down = np.isnan(inside) & np.isfinite(inward_trial(end, 0.0, k))
+        up = np.isnan(outside)
         live = up | down
         if not live.any():
             break
         trial = np.where(
-            up, np.minimum(end * (1.0 + grow), end * (1.0 + STRETCH_MAX)), end * (1.0 - grow)
+            up, np.minimum(end * (1.0 + STRETCH_RTOL * 4.0**k), reach), inward_trial(end, 0.0, k)
         )[live]
         ok = _carries(rows.take(np.flatnonzero(live)), thermal, trial)
-        reach = up[live] & (trial >= end[live] * (1.0 + STRETCH_MAX))
+        at_reach = up[live] & (trial >= reach[live])
         inside[live] = np.where(ok, trial, inside[live])
-        outside[live] = np.where(ok & ~reach, outside[live], trial)
-        grow *= 4.0
+        outside[live] = np.where(ok & ~at_reach, outside[live], trial)
+        k += 1
     while True:  # bisect the brackets
         live = np.isfinite(inside) & (np.abs(outside - inside) > STRETCH_RTOL * inside)
         if not live.any():
@@ -330,6 +335,23 @@ def balanced_tops(rows: OperatingRows, thermal, top) -> np.ndarray:
         outside[live] = np.where(ok, outside[live], mid)
     out[idx] = np.where(np.isnan(inside), end, inside)
     return out
+
+
+def inward_trial(end, stop, k) -> np.ndarray:
+    """The ``k``-th torque [N m] tried from a refused ``end`` towards ``stop`` (the
+    interval's other end) for where a balanced point starts to be carried: steps growing
+    fourfold from `STRETCH_RTOL` of ``end`` while under half the span, then the distance
+    left to ``stop`` halved, down to `STRETCH_RTOL` of the span; NaN past the last.
+    (Fourfold steps alone stopped at half the span: a flip further in, e.g. an oil
+    runaway at 45 % of the 150 C oil's limit, left the limit where solve refuses.)"""
+    end, stop, k = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (end, stop, k)))
+    span, side = np.abs(end - stop), np.sign(end - stop)
+    first = STRETCH_RTOL * np.abs(end)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        n_near = np.maximum(np.ceil(np.log(0.5 * span / first) / np.log(4.0)), 0.0)
+    left = 0.5 ** (k - n_near + 1.0)  # share of the span left to ``stop`` (far steps)
+    trial = np.where(k < n_near, end - side * first * 4.0**k, stop + side * span * left)
+    return np.where((k < n_near) | (left >= STRETCH_RTOL), trial, np.nan)
 
 
 def _carries(rows: OperatingRows, thermal, torque: np.ndarray) -> np.ndarray:

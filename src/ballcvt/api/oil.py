@@ -18,6 +18,7 @@ from typing import Any
 
 from scipy.optimize import brentq
 
+from ..analysis.oil_sweep import STRETCH_MAX, STRETCH_RTOL, inward_trial
 from ..errors import BallCVTError, ConvergenceError, InputError
 from ..model.modes import resolve_mode
 from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
@@ -41,10 +42,6 @@ __all__ = [
 
 #: Tolerance of the balance's temperature [K].
 BALANCE_TOL = 1e-4
-#: Relative resolution [-] of the search for the ends of the capacity under the balance
-#: from those at the fixed point's temperature (`_balanced_ends`), and its reach above the
-#: largest [-] (an end between two intervals may move as far as its neighbour).
-STRETCH_RTOL, STRETCH_MAX = 5e-4, 0.2
 #: Fixed-point steps to bracket the balance before refusing.
 MAX_BRACKET_STEPS = 30
 #: How far past the secant's root the bracket reaches after a fixed-point step that did
@@ -423,9 +420,9 @@ def _flip(carries, end: float, stop: float, reach: float):
     """``(inside, outside)``: the torques on either side of where ``carries`` flips
     nearest ``end``, within `STRETCH_RTOL` relative, ``inside`` carried: searched
     outwards as far as ``reach`` where ``end`` is carried (``(reach, None)`` if ``reach``
-    is), else inwards as far as ``stop``, the interval's other end; steps growing fourfold
-    from `STRETCH_RTOL` of ``end``, then bisection. None where nothing before ``stop`` is
-    carried."""
+    is), else inwards as far as ``stop``, the interval's other end
+    (`ballcvt.analysis.oil_sweep.inward_trial`); steps growing fourfold from `STRETCH_RTOL`
+    of ``end``, then bisection. None where nothing before ``stop`` is carried."""
     side = 1.0 if end > stop else -1.0
     grow = STRETCH_RTOL
     inside, outside = None, None
@@ -441,13 +438,13 @@ def _flip(carries, end: float, stop: float, reach: float):
             inside, outside = (trial, None) if carries(trial) else (inside, trial)
             grow *= 4.0
     else:  # the flip lies inside, before ``stop``
-        outside, span = end, abs(end - stop)
-        while inside is None and grow * abs(end) < span:
-            trial = end - side * grow * abs(end)
+        outside, k = end, 0
+        while inside is None:
+            trial = float(inward_trial(end, stop, k))
+            if trial != trial:  # (NaN: past the last trial) nothing carried
+                return None
             inside, outside = (trial, outside) if carries(trial) else (None, trial)
-            grow *= 4.0
-        if inside is None:
-            return None
+            k += 1
     while abs(outside - inside) > STRETCH_RTOL * abs(inside):
         mid = 0.5 * (inside + outside)
         inside, outside = (mid, outside) if carries(mid) else (inside, mid)

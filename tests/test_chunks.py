@@ -12,6 +12,7 @@ import ballcvt.analysis.sweeps.chunks as chunks
 import ballcvt.analysis.sweeps.export as export
 from ballcvt import Variator, load_builtin
 from ballcvt.api import MapGrid, TableGrid, to_csv, to_frame
+from drives import fixed_oil_hub
 
 
 def _values(ds):
@@ -69,7 +70,7 @@ def test_sweep_same_answers_whatever_the_chunk(monkeypatch):
 
 
 def test_cam_sweep_whatever_the_chunk(monkeypatch):
-    v = Variator(*load_builtin("hub"))
+    v = Variator(*fixed_oil_hub())
     kw = {"ratio": np.linspace(0.6, 1.6, 20), "output_torque": np.linspace(2.0, 60.0, 30)}
     whole = _values(v.sweep(**kw, clamp_law="cam", input_speed_rpm=150.0, progress=False))
     monkeypatch.setattr(chunks, "CHUNK_POINTS", 300)

@@ -11,13 +11,14 @@ from ballcvt import InputError, Variator, load_builtin
 from ballcvt.analysis.cycle_files import cycle_from_arrays, read_cycle
 from ballcvt.analysis.cycles import run_cycle
 from ballcvt.interfaces.cli import main as cli
+from drives import fixed_oil_hub
 
 RPM = math.pi / 30
 
 
 @pytest.fixture(scope="module")
 def hub():
-    return Variator(*load_builtin("hub"))
+    return Variator(*fixed_oil_hub())
 
 
 @pytest.fixture(scope="module")
@@ -133,7 +134,7 @@ def test_cli_cycle(tmp_path, capsys):
     path.write_text("time [s],output_speed [rpm],output_torque [N m]\n"
                     + "".join(f"{t},190,12\n" for t in range(10)))
     out = tmp_path / "run"
-    assert cli.main(["cycle", str(path), "--design", "hub", "--clamp-law", "cam",
+    assert cli.main(["cycle", str(path), "--design", "hub", "--oil-temperature", "fixed", "--clamp-law", "cam",
                      "--target-speed", "180", "--out", str(out), "--json"]) == 0
     s = json.loads(capsys.readouterr().out)
     for key in ("energy_in_J", "energy_out_J", "efficiency", "losses_J", "steps",
@@ -186,7 +187,7 @@ def test_default_strategy_without_a_target_speed(hub, cruise, tmp_path, capsys):
                      "--out", str(tmp_path / "run"), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["strategy"] == "max-efficiency"
     # a drive file with an [operating] input speed holds it (docs/drive-files.md)
-    assert cli.main(["cycle", str(path), "--design", "hub",
+    assert cli.main(["cycle", str(path), "--design", "hub", "--oil-temperature", "fixed",
                      "--out", str(tmp_path / "run_hub"), "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert summary["strategy"] == "target-input-speed"
@@ -210,7 +211,7 @@ def test_options_a_strategy_does_not_use_are_refused(hub, cruise, tmp_path, caps
             run_cycle(hub, rig, clamp_force=2000.0, progress=False, **bad)
     path = tmp_path / "c.csv"
     path.write_text("time [s],output_speed [rpm],output_torque [N m]\n0,190,12\n1,190,12\n")
-    assert cli.main(["cycle", str(path), "--design", "hub", "--target-speed", "180",
+    assert cli.main(["cycle", str(path), "--design", "hub", "--oil-temperature", "fixed", "--target-speed", "180",
                      "--candidates", "15", "--out", str(tmp_path / "run")]) == 2
     err = capsys.readouterr().err
     assert "candidates" in err and "max-efficiency" in err and len(err.strip().splitlines()) == 1

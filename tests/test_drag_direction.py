@@ -16,8 +16,9 @@ from ballcvt.equilibrium.problem import build_problem
 from ballcvt.equilibrium.residual import balancing_output_torque, evaluate, evaluate_with_jacobian
 from ballcvt.model.losses import STICK_SPEED, coulomb_direction, drag_magnitudes, drag_power, shaft_drags
 from ballcvt.solvers.newton import solve_batch
+from drives import fixed_oil_hub
 
-HUB = load_builtin("hub")
+HUB = fixed_oil_hub()
 W0 = 2000.0 * np.pi / 30.0
 #: At 20 N m, 2000 N, 2000 rpm the discs' solved relative speed crosses zero (the bearing
 #: sticks) between tau_ID 1.00555 and 1.00575; the sign flips of issue 23 lie below.

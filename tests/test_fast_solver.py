@@ -15,6 +15,7 @@ from ballcvt.performance.efficiency import efficiency
 from ballcvt.solvers.limit import limit_search, limit_torque_batch
 from ballcvt.solvers.newton import solve_batch
 from ballcvt.solvers.point import solve_point
+from drives import fixed_oil_hub
 
 REF = SolverOptions(quadrature=Quadrature("pole", 64, 64, 128))
 FAST = SolverOptions()
@@ -165,7 +166,7 @@ def test_one_batch_sweep_equals_torque_continuation(law):
     the former walk up the torque axis (taken when the limits are given): the same points
     converge, to the same values."""
     from ballcvt import Variator, load_builtin
-    v = Variator(*load_builtin("hub")) if law else Variator()
+    v = Variator(*fixed_oil_hub()) if law else Variator()
     kw = {"clamp_law": "cam"} if law else {"clamp_force": 2000.0}
     grid = {"ratio": np.linspace(0.5, 2.0, 6), "output_torque": np.linspace(0.0, 120.0, 9),
             "input_speed_rpm": 2000.0, **kw}

@@ -11,12 +11,12 @@ from ballcvt.interfaces.cli.main import main
 
 
 def test_hub_ratio_one_cam_is_pressure_bound(capsys):
-    assert main(["limit", "--design", "hub", "--ratio", "1", "--clamp-law", "cam",
+    assert main(["limit", "--design", "hub", "--oil-temperature", "fixed", "--ratio", "1", "--clamp-law", "cam",
                  "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["active_constraint"] == "pressure (max_pressure 3 GPa)"
     assert data["interval_constraints"][0] == ["zero torque", "pressure (max_pressure 3 GPa)"]
-    assert main(["limit", "--design", "hub", "--ratio", "1", "--clamp-law", "cam"]) == 0
+    assert main(["limit", "--design", "hub", "--oil-temperature", "fixed", "--ratio", "1", "--clamp-law", "cam"]) == 0
     assert "set by: pressure (max_pressure 3 GPa)" in capsys.readouterr().out
 
 
@@ -35,7 +35,7 @@ def test_empty_capacity_says_no_equilibrium():
 
 def test_capacity_command_writes_curve_and_figure(tmp_path, capsys):
     out = tmp_path / "cap"
-    assert main(["capacity", "--design", "hub", "--clamp-law", "cam", "--ratio-range",
+    assert main(["capacity", "--design", "hub", "--oil-temperature", "fixed", "--clamp-law", "cam", "--ratio-range",
                  "0.8", "1.2", "--points", "2", "--out", str(out)]) == 0
     text = (out / "capacity.csv").read_text().splitlines()
     assert text[0].startswith("ratio,limit_torque,lowest_torque,active_constraint")
@@ -55,7 +55,7 @@ def test_capacity_curve_api():
 
 
 def test_small_preload_names_the_lower_end(capsys):
-    argv = ["limit", "--design", "hub", "--clamp-law", "cam", "--cam-preload", "20",
+    argv = ["limit", "--design", "hub", "--oil-temperature", "fixed", "--clamp-law", "cam", "--cam-preload", "20",
             "--ratio", "1", "--speed", "2000"]  # not the hub's [operating] 150 rpm
     assert main([*argv, "--json"]) == 0
     data = json.loads(capsys.readouterr().out)

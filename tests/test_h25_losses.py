@@ -11,6 +11,7 @@ from ballcvt.api import load_builtin
 from ballcvt.errors import BallCVTDeprecationWarning
 from ballcvt.results.losses import LOSS_SUBTOTALS, LossBreakdown
 from ballcvt.results.point import OperatingResult
+from drives import fixed_oil_hub
 
 COMPONENTS = {"creep", "spin", "roller_bearings", "idler_bearings", "churning", "seals",
               "disc_bearings", "hub_bearings"}  # hub_bearings: the hub's own (issue 27)
@@ -18,7 +19,7 @@ COMPONENTS = {"creep", "spin", "roller_bearings", "idler_bearings", "churning", 
 
 @pytest.fixture(scope="module")
 def hub():
-    return Variator(*load_builtin("hub"))
+    return Variator(*fixed_oil_hub())
 
 
 def test_random_points_components_sum_to_total(hub):
@@ -69,7 +70,7 @@ def test_loss_breakdown_drops_subtotals():
 def test_cycle_losses_are_components_and_one_total():
     tiny = Path(__file__).parent / "data" / "tiny_cycle.csv"
     from ballcvt.api import read_cycle
-    v = Variator(*load_builtin("hub"))
+    v = Variator(*fixed_oil_hub())
     s = v.run_cycle(read_cycle(tiny), clamp_force=2000.0).summary
     lj = s["losses_J"]
     assert "bearing" not in lj and "parasitic" not in lj

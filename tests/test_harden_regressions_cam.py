@@ -10,6 +10,7 @@ import pytest
 
 from ballcvt import Variator, load_builtin
 from ballcvt.errors import TractionLimitError
+from drives import fixed_oil_hub
 
 FIELDS = (
     '{"aspect_ratio": 3.9689581221795067, "roller_radius": 0.01541036563610668, '
@@ -29,7 +30,7 @@ RPM = 234.16495632484862
 
 @pytest.fixture(scope="module")
 def drive() -> Variator:
-    d, f = load_builtin("hub")
+    d, f = fixed_oil_hub()
     d = d.replace(name="random", **json.loads(FIELDS))
     return Variator(d, f, "double", traction_law="viscoelastic")
 

@@ -17,6 +17,7 @@ from ballcvt import InputError, TractionLimitError, Variator, load_builtin
 from ballcvt.api import SolveSettings
 from ballcvt.solvers.options import SolverOptions
 from ballcvt.solvers.planetary import RATIO_TOL, ratio_tolerance
+from drives import fixed_oil_hub
 
 FIELDS = json.loads("""{"aspect_ratio": 2.381783177294551, "roller_radius": 0.046637842499942274, "theta0_deg": 57.037987909231276, "theta2_deg": 34.9963727219909, "alpha_deg": 4.581087144797104, "n_rollers": 6, "roller_bearing_diameter": 0.026558074909013896, "idler_bearing_diameter": 0.04652004163032025, "disc_groove_ratio": 1.5933997007344858, "idler_groove_ratio": 2.4336470977178544, "single_idler_groove_ratio": 6.12059113348265, "tilt_safety_factor": 0.8177899404148186, "creep_limit": 0.06744632570811039, "min_roller_gap": 0.0011224561247520277, "cam": {"disc": "input", "preload": 283.32254357524596, "ramp_angle_deg": 13.940940400829383, "mean_radius": 0.10357167539849692, "friction": 0.04287565119248098}, "parasitic": null}""")
 MODE = "disc2_held_disc0_drives"
@@ -26,7 +27,7 @@ POINT = {"clamp_force": 35490.218113252704, "input_speed_rpm": 147.8578147159581
 
 @pytest.fixture(scope="module")
 def drive():
-    design, fluid = load_builtin("hub")
+    design, fluid = fixed_oil_hub()
     design = design.replace(name="random", **FIELDS)
     return Variator(design, fluid, "double", traction_law="thermal")
 

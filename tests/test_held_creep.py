@@ -17,6 +17,7 @@ from ballcvt.solvers.held_creep import reach_torque
 from ballcvt.solvers.limit import limit_torque_batch
 from ballcvt.solvers.newton import branch_pinned, branch_solver, solve_batch
 from ballcvt.solvers.options import SolverOptions, at_residual_floor
+from drives import fixed_oil_hub
 
 RPM = math.pi / 30.0
 THERMAL = Variator(traction_law="thermal")
@@ -109,7 +110,7 @@ def test_task_592_limit_at_one_force_whatever_the_batch():
     (3.873 N m, the march to the fold's 3.874 less `FOLD_MARGIN`) to 1e-5."""
     from ballcvt import load_builtin
 
-    design, fluid = load_builtin("hub")
+    design, fluid = fixed_oil_hub()
     v = Variator(design.replace(name="random", **TASK_592), fluid, "single",
                  traction_law="thermal")
     force = 1384.09 * (1.0 + 1e-6 * np.arange(4))

@@ -189,6 +189,7 @@ def test_the_hub_names_its_models(hub):
         "clamp_law": "cam",
         "traction_law": "isothermal",
         "lubrication": "mixed",
+        "oil_temperature": "balance",
     }
 
 
@@ -245,8 +246,13 @@ def test_cli_reports_its_models_and_flags_win(capsys):
                  "114", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["models"] == {"clamp_law": "cam", "traction_law": "isothermal",
-                              "lubrication": "mixed", "oil_temperature": "fixed"}
-    assert data["clamp_law"] == "cam"
+                              "lubrication": "mixed", "oil_temperature": "balance"}
+    assert data["clamp_law"] == "cam" and data["oil_temperature"] > 293.15  # the balance's
+    assert main(["point", "--design", "hub", "--ratio", "1", "--torque", "8", "--speed",
+                 "114", "--json", "--oil-temperature", "fixed"]) == 0
+    fixed = json.loads(capsys.readouterr().out)
+    assert fixed["models"]["oil_temperature"] == "fixed" and fixed["oil_model"] == "fixed"
+    assert fixed["oil_temperature_C"] == pytest.approx(40.0)  # the fluid's own
     assert main(["point", "--design", "hub", "--ratio", "1", "--torque", "8", "--speed",
                  "114", "--clamp-law", "constant", "--traction-law", "thermal"]) == 0
     out = capsys.readouterr().out
@@ -262,7 +268,11 @@ def test_figure_titles_name_the_models_beyond_the_papers():
 
     hub = argparse.Namespace(design="hub", fluid=None, traction_law="thermal",
                              clamp_law="cam", clamp=None)
+    assert clamp_label(hub) == "cam clamping, thermal traction, mixed lubrication, oil balance"
+    hub.oil_temperature = "fixed"  # --oil-temperature wins over the drive file
     assert clamp_label(hub) == "cam clamping, thermal traction, mixed lubrication"
+    hub.oil_temperature = 60.0
+    assert clamp_label(hub) == "cam clamping, thermal traction, mixed lubrication, oil 60 C"
     paper = argparse.Namespace(design=None, fluid=None, traction_law=None,
                                clamp_law="constant", clamp=None)
     assert clamp_label(paper) == "$F_{N0}$ = 2000 N"

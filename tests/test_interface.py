@@ -138,7 +138,7 @@ def _variants(design, tmp):
                    "--life"], dict(lives))
     mapping[1]["--life"] = ["--life"]
     # the oil at another temperature (docs/model.md §15) on every command that takes it
-    for entry in (limit, mapping, table):
+    for entry in (limit, mapping, table, life):
         entry[1]["--oil-temperature"] = ["--oil-temperature", "60"]
     cycle[1]["--life"] = ["--life"]
     # issue 29: the holding and shift moments (docs/model.md section 15)
@@ -226,7 +226,7 @@ def _shift_variants(design, tmp, law, cam, fluid):
         "--actuator-moment": ["--actuator-moment", "5"],
         "--actuator-lag": ["--actuator-lag", "0.05"], "--max-time": ["--max-time", "30"],
         "--samples": ["--samples", "7"], "--out": ["--out", str(tmp / "s1")], "--json": None,
-        **fluid})
+        "--oil-temperature": ["--oil-temperature", "60"], **fluid})
     return {"shift": shift,
             "shift:text": ([*base, "--out", str(tmp / "s2")], {"--quiet": ["--quiet"]}),
             "shift:cam": ([*base, "--out", str(tmp / "s3"), "--json", *law], dict(cam))}

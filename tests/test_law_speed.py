@@ -32,6 +32,7 @@ from ballcvt.model.traction.thermal import (
     thermal_law_coefficients,
     thermal_law_film_coefficients,
 )
+from drives import fixed_oil_hub
 
 BEFORE = {
     ("isothermal", "constant", 0.8, 40.0): 0.8632021072826955,
@@ -66,7 +67,7 @@ def _efficiency(law, clamp, ratio, torque):
     if law == "hub":
         # the hub's mixed lubrication at the fluid's fixed 40 C, as stored (the drive's
         # own oil balance is another model: tests/test_oil_paths.py)
-        v = with_oil_temperature(ballcvt.Variator(*load_builtin("hub")), "fixed")
+        v = with_oil_temperature(ballcvt.Variator(*fixed_oil_hub()), "fixed")
         force = {"clamp_force": 2000.0}
     else:
         v = ballcvt.Variator(traction_law=law)

@@ -13,14 +13,15 @@ from ballcvt import InputError, Variator, load_builtin
 from ballcvt.analysis.cycle_files import cycle_from_arrays, read_cycle
 from ballcvt.api import LifeResult, MapGrid, SolveSettings, read_study
 from ballcvt.interfaces.cli import main as cli
+from drives import fixed_oil_hub
 
 RPM = math.pi / 30
-HUB = ("--design", "hub", "--ratio", "1.5", "--torque", "30", "--speed", "180")
+HUB = ("--design", "hub", "--oil-temperature", "fixed", "--ratio", "1.5", "--torque", "30", "--speed", "180")
 
 
 @pytest.fixture(scope="module")
 def hub():
-    return Variator(*load_builtin("hub"))
+    return Variator(*fixed_oil_hub())
 
 
 def _life_json(capsys, *args):
@@ -83,7 +84,7 @@ def test_planetary_point_counts_speeds_relative_to_the_carrier(hub):
 
 def test_ratings_are_optional_design_fields():
     table1, _ = load_builtin("table1")
-    hub, _ = load_builtin("hub")
+    hub, _ = fixed_oil_hub()
     assert "roller_bearing_rating" not in table1.bearings.model_dump()
     assert hub.bearings.roller_bearing_rating > 0
     with pytest.raises(InputError, match="roller_bearing_rating"):
@@ -120,11 +121,11 @@ def test_cli_life_and_cycle_on_a_cycle(tmp_path, capsys):
     cyc = tmp_path / "c.csv"
     cyc.write_text("time [s],output_speed [rpm],output_torque [N m],vehicle_speed [km/h]\n"
                    "0,190,12,25\n1,190,14,25\n2,190,20,25\n")
-    got = _life_json(capsys, "--design", "hub", "--clamp-law", "cam", "--cycle", str(cyc),
+    got = _life_json(capsys, "--design", "hub", "--oil-temperature", "fixed", "--clamp-law", "cam", "--cycle", str(cyc),
                      "--target-speed", "180")
     assert got["l10_hours"] > 0 and got["l10_km"] > 0 and got["limiting_element"]
     out = tmp_path / "out"
-    assert cli.main(["cycle", str(cyc), "--design", "hub", "--clamp-law", "cam",
+    assert cli.main(["cycle", str(cyc), "--design", "hub", "--oil-temperature", "fixed", "--clamp-law", "cam",
                      "--target-speed", "180", "--life", "--out", str(out), "--quiet"]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert summary["life"]["damage_per_pass"] > 0 and "energy_in_J" in summary
@@ -155,7 +156,7 @@ def test_map_life_contours(hub, tmp_path):
     one = ds.l10_hours.squeeze(drop=True).transpose("ratio", "output_torque").values
     assert np.all(np.diff(one, axis=1)[np.isfinite(np.diff(one, axis=1))] < 0)
     out = tmp_path / "m"
-    assert cli.main(["map", "--design", "hub", "--clamp-law", "cam", "--speed", "180",
+    assert cli.main(["map", "--design", "hub", "--oil-temperature", "fixed", "--clamp-law", "cam", "--speed", "180",
                      "--life", "--n-ratio", "3", "--n-torque", "4", "--out", str(out),
                      "--quiet"]) == 0
     assert "l10_hours" in (out / "map.csv").read_text().splitlines()[0]

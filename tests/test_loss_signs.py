@@ -11,8 +11,9 @@ from ballcvt import TractionLimitError, Variator, load_builtin
 from ballcvt.errors import NoEquilibriumError
 from ballcvt.model.losses import DragInputs, parasitic_drags
 from ballcvt.registry import LOSS_TERMS
+from drives import fixed_oil_hub
 
-HUB = load_builtin("hub")
+HUB = fixed_oil_hub()
 
 
 @settings(max_examples=40, deadline=None)

@@ -21,8 +21,9 @@ from ballcvt.model.lubrication import (
 from ballcvt.model.traction.contact import ContactState, contact_coefficients
 from ballcvt.params.models import Design
 from ballcvt.registry import LUBRICATION_MODELS
+from drives import fixed_oil_hub
 
-DESIGN, FLUID = load_builtin("hub")[:2]
+DESIGN, FLUID = fixed_oil_hub()[:2]
 ASP = Asperities("mixed", 0.07e-6, 2.31e11, 0.1, 0.04, 1e-3)
 # a hub input contact (ballcvt point --design hub --ratio 1 --torque 4.19 --speed 114)
 STATE = ContactState(0.0175, -2.64, 4.04e-4, 4.87e-4, 7.55e8, 311.0, 0.07, 0.24, 8.28e-8)

@@ -21,8 +21,9 @@ from ballcvt.model.lubrication import (
 )
 from ballcvt.model.traction.contact import ContactState, contact_coefficients
 from ballcvt.model.traction.quadrature import Quadrature
+from drives import fixed_oil_hub
 
-DESIGN, FLUID = load_builtin("hub")[:2]
+DESIGN, FLUID = fixed_oil_hub()[:2]
 MU_B = 0.1
 SIGMA = 0.07e-6
 ASP = Asperities("mixed", SIGMA, 2.31e11, MU_B, 0.04, 1e-3)

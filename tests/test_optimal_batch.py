@@ -15,6 +15,7 @@ from ballcvt.solvers.clamped import with_clamp
 from ballcvt.solvers.newton import solve_batch
 from ballcvt.solvers.optimal_batch import optimal_forces
 from ballcvt.solvers.optimal_search import ClampCase, search_optimum
+from drives import fixed_oil_hub
 
 W = 2000.0 * math.pi / 30
 
@@ -58,7 +59,7 @@ def test_same_optimum_as_the_one_point_search(traction_law):
 def test_hub_speeds_and_creep_limited_zero_torque():
     """The hub at 5000 rpm: zero torque needs more than min_force to hold the drag (the
     one-point search's creep bound, handed over), the others are found batched."""
-    v = Variator(*load_builtin("hub"))
+    v = Variator(*fixed_oil_hub())
     pb = _points(v, [2.0, 2.0, 0.8], [0.0, 30.0, 60.0], 5000.0 * math.pi / 30)
     got = optimal_forces(pb, OptimalClamp(), v.options)
     old = _old(v, pb)

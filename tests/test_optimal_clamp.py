@@ -9,6 +9,7 @@ import pytest
 from ballcvt import InputError, Variator
 from ballcvt.interfaces.cli import main as cli
 from ballcvt.model.clamping import OptimalClamp
+from drives import fixed_oil_hub
 
 RPM = 2000.0
 
@@ -91,6 +92,6 @@ def test_cycle_steps_at_zero_torque():
 
     rig = cycle_from_arrays(time=[0.0, 1.0, 2.0], input_speed=np.full(3, RPM * math.pi / 30),
                             input_power=[3000.0, 300.0, 300.0], ratio=[1.0, 1.0, 1.0])
-    res = run_cycle(Variator(*load_builtin("hub")), rig, clamp_law="optimal", progress=False)
+    res = run_cycle(Variator(*fixed_oil_hub()), rig, clamp_law="optimal", progress=False)
     assert list(res.steps["flag"]) == ["ok", "power_below_drag", "power_below_drag"]
     assert np.all(res.steps["clamp_force"] > 0)

@@ -11,11 +11,12 @@ from hypothesis import strategies as st
 from ballcvt import TractionLimitError, Variator, load_builtin
 from ballcvt.errors import NoEquilibriumError
 from ballcvt.model.losses import moment_coefficient, parasitic_torques, seal_torque, thrust_bearing_torque, windage_torque
+from drives import fixed_oil_hub
 
 
 @pytest.fixture(scope="module")
 def hub():
-    return Variator(*load_builtin("hub"))
+    return Variator(*fixed_oil_hub())
 
 
 def test_off_by_default_and_bitwise_unchanged():
@@ -62,7 +63,7 @@ def test_thrust_bearing_loss_is_zero_at_equal_disc_speeds(hub):
 @settings(max_examples=10, deadline=None)
 @given(ratio=st.floats(0.5, 2.0), torque=st.floats(2.0, 60.0), rpm=st.floats(50.0, 4000.0))
 def test_eq38_equals_eq39_with_parasitic_losses(ratio, torque, rpm):
-    v = Variator(*load_builtin("hub"))
+    v = Variator(*fixed_oil_hub())
     try:
         r = v.solve(ratio, torque, clamp_law="cam", input_speed_rpm=rpm)
     except (TractionLimitError, NoEquilibriumError):

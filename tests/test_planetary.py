@@ -16,6 +16,7 @@ from ballcvt.model.modes import MEMBERS, OperatingMode, relative_ratio_coefficie
 from ballcvt.results.planetary import PlanetaryResult
 from ballcvt.solvers.planetary import ModePoint, solve_mode
 from ballcvt.solvers.point import solve_point
+from drives import fixed_oil_hub
 
 F = 2000.0
 MODES = [OperatingMode(h, d) for h in MEMBERS for d in MEMBERS if h != d]
@@ -182,12 +183,12 @@ def test_result_round_trip_and_edits_refused(v, tmp_path):
 
 
 def test_planetary_modes_refuse_what_they_do_not_model():
-    hub = Variator(*load_builtin("hub"))
+    hub = Variator(*fixed_oil_hub())
     mode = OperatingMode("disc2", "carrier")
     with pytest.raises(InputError, match="parasitic"):
         hub.solve(1.2, 10.0, clamp_force=F, input_speed=50.0, mode=mode)
     with pytest.raises(InputError, match="clamp_law"):
-        Variator(*load_builtin("hub")).solve(1.2, 10.0, clamp_law="cam", input_speed=50.0,
+        Variator(*fixed_oil_hub()).solve(1.2, 10.0, clamp_law="cam", input_speed=50.0,
                                              mode=mode)
 
 

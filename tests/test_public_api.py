@@ -19,6 +19,7 @@ import ballcvt
 from ballcvt.api import (CycleSettings, LimitCurve, MapGrid, OperatingMode, SweepSettings,
                          TableGrid, Variator)
 from ballcvt.errors import InputError
+from drives import fixed_oil_hub
 
 ROOT = Path(ballcvt.__file__).parent
 LEAVES = ["ballcvt.errors", "ballcvt.files", "ballcvt.units", "ballcvt.registry",
@@ -178,4 +179,4 @@ def test_with_cam_names_the_missing_keys():
     v = Variator(design.replace(cam=None), fluid)
     with pytest.raises(InputError, match="missing: --p"):
         v.with_cam({"disc": "input"}, {"preload": "--p"})
-    assert v.with_cam(dict(Variator(*ballcvt.load_builtin("hub")).design.cam)).design.cam
+    assert v.with_cam(dict(Variator(*fixed_oil_hub()).design.cam)).design.cam

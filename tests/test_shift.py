@@ -21,8 +21,9 @@ from ballcvt.model.shift_kinematics import (
     skew_tilt_rate,
 )
 from ballcvt.units import rpm_to_rad_s
+from drives import fixed_oil_hub
 
-HUB = load_builtin("hub")
+HUB = fixed_oil_hub()
 CAM = {"clamp_law": "cam"}
 
 
@@ -215,7 +216,7 @@ def _cli(capsys, *argv):
 
 
 def test_cli_json_csv_and_figure(capsys, tmp_path):
-    code, out, err = _cli(capsys, "shift", "--design", "hub", "--from", "0.5", "--to", "1.8",
+    code, out, err = _cli(capsys, "shift", "--design", "hub", "--oil-temperature", "fixed", "--from", "0.5", "--to", "1.8",
                           "--skew", "1", "--speed", "114", "--torque", "20", "--samples", "9",
                           "--out", str(tmp_path), "--json")
     assert code == 0, err
@@ -233,7 +234,7 @@ def test_cli_json_csv_and_figure(capsys, tmp_path):
 
 
 def test_cli_defaults_come_from_the_hub_operating_table(capsys, tmp_path):
-    code, out, _ = _cli(capsys, "shift", "--design", "hub", "--from", "0.5", "--to", "1.8",
+    code, out, _ = _cli(capsys, "shift", "--design", "hub", "--oil-temperature", "fixed", "--from", "0.5", "--to", "1.8",
                         "--skew", "1", "--samples", "3", "--out", str(tmp_path), "--json")
     assert code == 0
     assert json.loads(out)["inputs"]["input_speed_rpm"] == 150.0  # [operating] input speed
@@ -251,7 +252,7 @@ def test_cli_defaults_come_from_the_hub_operating_table(capsys, tmp_path):
 ])
 def test_cli_bad_input_exits_2_with_one_line(capsys, tmp_path, argv, fragment):
     try:
-        code, _, err = _cli(capsys, "shift", "--design", "hub", *argv, "--out", str(tmp_path))
+        code, _, err = _cli(capsys, "shift", "--design", "hub", "--oil-temperature", "fixed", *argv, "--out", str(tmp_path))
     except SystemExit as exc:
         code, err = exc.code, capsys.readouterr().err
     assert code == 2

@@ -9,12 +9,13 @@ from scipy.io import loadmat
 from ballcvt import Variator, load_builtin
 from ballcvt.analysis.tables import read_modelica_tables
 from ballcvt.interfaces.cli import main as cli
+from drives import fixed_oil_hub
 
 
 @pytest.fixture(scope="module")
 def tables(tmp_path_factory):
     out = tmp_path_factory.mktemp("tables")
-    assert cli.main(["table", "--design", "hub", "--clamp-law", "cam", "--ratio-range", "0.6",
+    assert cli.main(["table", "--design", "hub", "--oil-temperature", "fixed", "--clamp-law", "cam", "--ratio-range", "0.6",
                      "1.6", "--n-ratio", "6", "--speed-range", "500", "2500", "--n-speed",
                      "3", "--torque-max", "120", "--n-torque", "7", "--out", str(out),
                      "--quiet"]) == 0
@@ -44,7 +45,7 @@ def test_round_trip_interpolation_matches_the_model(tables):
     mat = loadmat(tables / "table.mat", squeeze_me=True)
     grid = (mat["ratio"], mat["input_speed_rpm"], mat["output_torque"])
     interp = RegularGridInterpolator(grid, mat["eta"])
-    v = Variator(*load_builtin("hub"))
+    v = Variator(*fixed_oil_hub())
     rng = np.random.default_rng(3)
     for _ in range(6):
         i, j, k = rng.integers(0, 5), rng.integers(0, 2), rng.integers(1, 6)

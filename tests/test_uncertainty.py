@@ -15,7 +15,10 @@ from ballcvt.params.io import parse_drive, parse_uncertain_drive
 from ballcvt.params.uncertainty import parse_uncertainty
 
 HUB = builtin_text("hub")
-BASE = HUB.split("\n[uncertainty]")[0]  # the hub without its table
+# the hub without its table, its oil fixed at the fluid's 40 C: these tests check the
+# propagation (a capacity under the hub's oil balance costs ~10 s of CPU a drive)
+BASE = HUB.split("\n[uncertainty]")[0].replace(
+    'oil_temperature = "balance"', 'oil_temperature = "fixed"')
 POINT = {"ratio": (1.0,), "input_speed_rpm": (114.0,), "progress": False}
 
 
@@ -242,6 +245,7 @@ def test_every_cli_flag_reaches_the_computation(tmp_path, monkeypatch, capsys):
         "--torque": ["--torque", "20"], "--speed": ["--speed", "114"],
         "--arch": ["--arch", "single"], "--workers": ["--workers", "2"],
         "--scheduler": ["--scheduler", "tcp://127.0.0.1:8786"],
+        "--oil-temperature": ["--oil-temperature", "40"],
     }
     parser = cli.build_parser()
     sub = next(a for a in parser._subparsers._group_actions[0].choices.items()
@@ -266,10 +270,29 @@ def test_real_hub_page_script_writes_its_page(tmp_path):
 
     script = Path(__file__).resolve().parents[1] / "docs" / "scripts" / "real_hub.py"
     page = runpy.run_path(str(script))["page"]
-    text = page("hub", 4, 0, tmp_path).read_text()
+    # the hub with its oil fixed (its capacities under the balance cost ~25 s a sample):
+    # the page then compares with the balance at its nine points
+    drive = tmp_path / "hub_fixed_oil.toml"
+    drive.write_text(HUB.replace('oil_temperature = "balance"', 'oil_temperature = "fixed"'))
+    text = page(str(drive), 4, 0, tmp_path).read_text()
+    assert "The same points with `--oil-temperature balance`" in text
     for heading in ("## Models used", "## Efficiency", "## Loss breakdown",
                     "## Film parameter lambda", "## Uncertainty band", "## Assumptions"):
         assert heading in text
     assert "`models.clamp_law` = `cam`" in text and "`design.cam.preload`" in text
     assert (tmp_path / "real-hub-efficiency.png").is_file()
     assert (tmp_path / "real-hub-band.png").is_file()
+
+
+def test_the_oil_model_asked_for_reaches_every_drawn_drive(tmp_path):
+    """`oil_temperature=` overrides the drive file's oil model for every sample (the
+    hub's file names the balance): a given temperature runs each drive at it."""
+    path = drive_file(tmp_path, '"design.cam.preload" = { relative = 0.5 }\n')
+    balanced = path.with_name("balanced.toml")
+    balanced.write_text(path.read_text().replace(
+        'oil_temperature = "fixed"', 'oil_temperature = "balance"'))
+    at40 = uncertainty(balanced, samples=2, seed=1, output_torque=(10.0,),
+                       oil_temperature=313.15, **POINT)
+    fixed = uncertainty(path, samples=2, seed=1, output_torque=(10.0,), **POINT)
+    np.testing.assert_allclose(at40.eta, fixed.eta, rtol=1e-12)
+    np.testing.assert_allclose(at40.capacity, fixed.capacity, rtol=1e-12)

@@ -38,8 +38,9 @@ from ballcvt.model.oil import housing_coefficient
 from ballcvt.model.traction.contact import ContactState, contact_coefficients
 from ballcvt.model.traction.quadrature import Quadrature
 from ballcvt.params.thermal import ThermalModel
+from drives import fixed_oil_hub
 
-DESIGN, FLUID = load_builtin("hub")[:2]
+DESIGN, FLUID = fixed_oil_hub()[:2]
 E = DESIGN.material.reduced_modulus
 SIGMA = DESIGN.surface_roughness
 #: ballcvt's defaults (Greenwood and Williamson's middle values) and mu_b = 0.1.

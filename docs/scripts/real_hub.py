@@ -6,10 +6,11 @@ lambda at each contact (and the oil temperature when the drive's models compute 
 uncertainty band and ranking (docs/uncertainty.md), the models the drive file names, and
 every assumption it rests on (its ASSUMED comments and its [uncertainty] table).
 
-Run from the repository's root. The points are also solved with the oil's heat balance
-(opt-in for the hub, docs/model.md §15); the uncertainty band follows the drive file's own
-models (with a ``[models] oil_temperature = "balance"`` each drawn drive's points and
-capacities are balanced too: about 4 s of CPU a sample). On 2 processes (``--workers``;
+Run from the repository's root. The points are solved under the drive file's own models
+(the hub's oil at its heat balance, docs/model.md §15) and again with the other oil model
+(fixed, or balanced where the file fixes it); the uncertainty band follows the drive file's
+own models (under a ``[models] oil_temperature = "balance"`` each drawn drive's points and
+capacities are balanced too). On 2 processes (``--workers``;
 the same samples either way)::
 
     python docs/scripts/real_hub.py                 # writes docs/validation/real-hub.md
@@ -152,6 +153,30 @@ def efficiency_section(solved: dict, band) -> str:
     )
 
 
+def oil_model(v: Variator) -> str:
+    """The oil model the drive file names (``fixed`` without one)."""
+    models = v.design.models
+    return (models.oil_temperature if models is not None else None) or "fixed"
+
+
+def balance_text(own: str) -> str:
+    """What the oil section compares, by the drive file's own oil model."""
+    how = (
+        "the oil where the shell (`[design.thermal]`) rejects the point's losses "
+        "(docs/model.md §15), its viscosity by Walther's law"
+    )
+    if own == "balance":
+        return (
+            f'The drive file names `oil_temperature = "balance"`: the tables above have {how}. '
+            "Here the same points with the fluid fixed at its own temperature as well "
+            '(`--oil-temperature fixed`, `ballcvt.api.with_oil_temperature(v, "fixed")`).'
+        )
+    return (
+        "The same points with `--oil-temperature balance` (`ballcvt.api.with_oil_temperature"
+        f'(v, "balance")`): {how}. The drive file does not name the balance (§15).'
+    )
+
+
 def balance_section(solved: dict, balanced: dict) -> str:
     """Efficiency at the fluid's fixed temperature and with the oil's heat balance."""
     rows = []
@@ -264,8 +289,10 @@ def page(design: str, samples: int, seed: int, out: Path, workers: int = 1) -> P
     law = {"clamp_law": name} if name else {}
     if force is not None:
         law["clamp_force"] = force
-    solved = points(v, law)
-    balanced = points(with_oil_temperature(v, "balance"), law)
+    solved = points(v, law)  # under the drive file's own models
+    own = oil_model(v)
+    other = points(with_oil_temperature(v, "fixed" if own == "balance" else "balance"), law)
+    fixed, balanced = (other, solved) if own == "balance" else (solved, other)
     run_on = {"workers": workers} if workers > 1 else {}  # the same samples either way
     start = time.perf_counter()
     unc = uncertainty(
@@ -284,7 +311,7 @@ def page(design: str, samples: int, seed: int, out: Path, workers: int = 1) -> P
     figure(solved, band, out / "real-hub-efficiency.png")
     fig = uncertainty_figure(band, rank, f"{design}: {samples} samples, seed {seed}")
     fig.savefig(out / "real-hub-band.png", dpi=100)
-    md = render(design, text, v, (solved, balanced), unc, (samples, seed, elapsed))
+    md = render(design, text, v, (solved, fixed, balanced), unc, (samples, seed, elapsed))
     path = out / "real-hub.md"
     path.write_text(md, encoding="utf-8")
     return path
@@ -292,7 +319,7 @@ def page(design: str, samples: int, seed: int, out: Path, workers: int = 1) -> P
 
 def render(design, text, v, both, unc, run) -> str:
     samples, seed, elapsed = run
-    solved, balanced = both
+    solved, fixed, balanced = both
     band, rank, counts = unc.band(), unc.ranking(), unc.counts()
     models = named_models(text) or [("(none named)", "the paper's models")]
     cap = band[band["unit"] == "N m"]
@@ -319,14 +346,11 @@ def render(design, text, v, both, unc, run) -> str:
         "",
         "![efficiency and losses](real-hub-efficiency.png)",
         "",
-        "## With the oil's heat balance",
+        "## The oil: fixed and at its heat balance",
         "",
-        "The same points with `--oil-temperature balance` (`ballcvt.api.with_oil_temperature"
-        '(v, "balance")`): the oil at the temperature where the hub\'s shell '
-        "(`[design.thermal]`) rejects the point's losses (docs/model.md §15), its viscosity "
-        "by Walther's law. Opt-in (the drive file leaves it commented out, §15).",
+        balance_text(oil_model(v)),
         "",
-        balance_section(solved, balanced),
+        balance_section(fixed, balanced),
         "",
         "## Loss breakdown [W]",
         "",

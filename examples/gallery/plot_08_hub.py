@@ -8,7 +8,8 @@ losses of a real housing (oil churning, two lip seals, a thrust bearing between 
 discs; every value ASSUMED and sized in docs/model.md §11-12). Export it with
 ``ballcvt design export my_hub.toml --design hub`` to edit it.
 
-Here: where its power goes at one point, and its efficiency map under its own cam.
+Here: where its power goes at one point, and its efficiency map under its own cam and
+its oil's heat balance.
 """
 
 import matplotlib.pyplot as plt
@@ -35,7 +36,15 @@ ax1.barh(kinds, [r.losses[k] for k in kinds])
 ax1.set_xlabel("power loss [W]")
 ax1.set_title(f"30 N m, 180 rpm in: eta = {r.eta:.3f}, F_N0 = {r.clamp_force:.0f} N (cam)")
 
-ds = hub.sweep(ratio=np.linspace(0.5, 2.0, 9), output_torque=np.linspace(10.0, 370.0, 10),
+# %%
+# The map runs every point at its own oil temperature: the hub's drive file names the heat
+# balance of its shell (``[models] oil_temperature = "balance"``, docs/model.md §15). Its
+# limit line is not the cam's pressure limit (383 N m with a 40 C oil) but where the shell
+# can no longer reject the losses in steady running: above it the oil runs away (status 2),
+# from about 220 N m at ratio 0.5 to about 110 N m at ratio 2.
+
+ds = hub.sweep(ratio=np.linspace(0.5, 2.0, 7), output_torque=np.linspace(10.0, 290.0, 8),
                clamp_law="cam", input_speed_rpm=180, progress=False)
+print(ds["limit_torque"].squeeze().round(1).values)
 plot_efficiency_map(ds, ax=ax2)
 plt.show()

@@ -24,6 +24,7 @@ from ballcvt import (
     Variator,
     load_builtin,
 )
+from ballcvt.api import with_oil_temperature
 from ballcvt.errors import NoEquilibriumError
 from ballcvt.registry import CLAMP_LAWS, OPERATING_MODES, TRACTION_LAWS
 from ballcvt.solvers.options import SolverOptions
@@ -136,10 +137,11 @@ def python_snippet(inputs: dict) -> str:
     if "fields" not in inputs:
         return ""
     head = (
-        f"import json; from ballcvt import *; d, f = load_builtin({inputs['base']!r}); "
+        f"import json; from ballcvt import *; from ballcvt.api import with_oil_temperature; "
+        f"d, f = load_builtin({inputs['base']!r}); "
         f"d = d.replace(name='random', **json.loads({json.dumps(inputs['fields'])!r})); "
-        f"v = Variator(d, f, {inputs['architecture']!r}, "
-        f"traction_law={inputs['traction_law']!r}); "
+        f"v = with_oil_temperature(Variator(d, f, {inputs['architecture']!r}, "
+        f"traction_law={inputs['traction_law']!r}), 'fixed'); "
     )
     clamp = (
         f"clamp_force={inputs['clamp_force']!r}"
@@ -234,7 +236,13 @@ def draw_drive(task: Task) -> Variator:
             fields["parasitic"] = None  # parasitic losses are refused with the carrier turning
         try:
             d = design.replace(name="random", **fields)
-            v = Variator(d, fluid, case["arch"], traction_law=case["law"])
+            # the oil fixed at the fluid's temperature: the campaign's cases are law x clamp x
+            # architecture x mode x entry, and the hub's file names its oil balance, whose
+            # paths tests/test_oil_paths.py checks (a table under it agrees with solve to
+            # ~4e-6 in eta only: open, docs/model.md §15)
+            v = with_oil_temperature(
+                Variator(d, fluid, case["arch"], traction_law=case["law"]), "fixed"
+            )
         except InputError:
             continue
         task.base = {

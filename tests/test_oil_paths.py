@@ -213,3 +213,11 @@ def test_a_limit_far_below_the_hot_oils_is_found(hub):
     hub.solve(2.0, limit * (1 - 1e-3), **kw)
     with pytest.raises(InputError, match="heat balance"):
         hub.solve(2.0, limit * (1 + 1e-3), **kw)
+
+
+def test_outward_trials_stop_at_the_reach():
+    from ballcvt.analysis.oil_sweep import outward_trial
+
+    assert [float(outward_trial(100.0, 120.0, k)) for k in range(6)] == pytest.approx(
+        [100.05, 100.2, 100.8, 103.2, 112.8, 120.0])
+    assert float(outward_trial(10.0, 0.0, 0)) == pytest.approx(9.995)  # a lower end, down

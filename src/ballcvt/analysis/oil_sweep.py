@@ -41,6 +41,7 @@ __all__ = [
     "balanced_rows",
     "balanced_tops",
     "inward_trial",
+    "outward_trial",
     "limit_ladder",
     "oil_balance_of",
     "LIMIT_SHY",
@@ -309,19 +310,16 @@ def balanced_tops(rows: OperatingRows, thermal, top) -> np.ndarray:
     rows, end = rows.take(idx), out[idx]
     ok = _carries(rows, thermal, end)
     inside, outside = np.where(ok, end, np.nan), np.where(ok, np.nan, end)
-    k = 0
+    reach, k = end * (1.0 + STRETCH_MAX), 0
     while True:  # bracket: outwards where carried, inwards (towards zero) where refused
-        reach = end * (1.0 + STRETCH_MAX)
-        down = np.isnan(inside) & np.isfinite(inward_trial(end, 0.0, k))
-        up = np.isnan(outside)
+        inward = inward_trial(end, 0.0, k)
+        up, down = np.isnan(outside), np.isnan(inside) & np.isfinite(inward)
         live = up | down
         if not live.any():
             break
-        trial = np.where(
-            up, np.minimum(end * (1.0 + STRETCH_RTOL * 4.0**k), reach), inward_trial(end, 0.0, k)
-        )[live]
+        trial = np.where(up, outward_trial(end, reach, k), inward)[live]
         ok = _carries(rows.take(np.flatnonzero(live)), thermal, trial)
-        at_reach = up[live] & (trial >= reach[live])
+        at_reach = up[live] & (trial == reach[live])
         inside[live] = np.where(ok, trial, inside[live])
         outside[live] = np.where(ok & ~at_reach, outside[live], trial)
         k += 1
@@ -335,6 +333,16 @@ def balanced_tops(rows: OperatingRows, thermal, top) -> np.ndarray:
         outside[live] = np.where(ok, outside[live], mid)
     out[idx] = np.where(np.isnan(inside), end, inside)
     return out
+
+
+def outward_trial(end, reach, k) -> np.ndarray:
+    """The ``k``-th torque [N m] tried from a carried ``end`` towards ``reach`` for where a
+    balanced point stops being carried: steps growing fourfold from `STRETCH_RTOL` of
+    ``end``, ``reach`` itself once a step would pass it."""
+    end, reach = np.asarray(end, dtype=float), np.asarray(reach, dtype=float)
+    side = np.sign(reach - end)
+    trial = end + side * STRETCH_RTOL * 4.0**k * np.abs(end)
+    return np.where(side * (trial - reach) >= 0.0, reach, trial)
 
 
 def inward_trial(end, stop, k) -> np.ndarray:

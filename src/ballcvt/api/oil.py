@@ -18,7 +18,7 @@ from typing import Any
 
 from scipy.optimize import brentq
 
-from ..analysis.oil_sweep import STRETCH_MAX, STRETCH_RTOL, inward_trial
+from ..analysis.oil_sweep import STRETCH_MAX, STRETCH_RTOL, inward_trial, outward_trial
 from ..errors import BallCVTError, ConvergenceError, InputError
 from ..model.modes import resolve_mode
 from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
@@ -421,22 +421,21 @@ def _flip(carries, end: float, stop: float, reach: float):
     nearest ``end``, within `STRETCH_RTOL` relative, ``inside`` carried: searched
     outwards as far as ``reach`` where ``end`` is carried (``(reach, None)`` if ``reach``
     is), else inwards as far as ``stop``, the interval's other end
-    (`ballcvt.analysis.oil_sweep.inward_trial`); steps growing fourfold from `STRETCH_RTOL`
-    of ``end``, then bisection. None where nothing before ``stop`` is carried."""
-    side = 1.0 if end > stop else -1.0
-    grow = STRETCH_RTOL
+    (`ballcvt.analysis.oil_sweep.outward_trial`, `inward_trial`: steps growing fourfold
+    from `STRETCH_RTOL` of ``end``), then bisection. None where nothing before ``stop``
+    is carried."""
     inside, outside = None, None
     if carries(end):  # the flip lies further out, before ``reach``
-        inside = end
+        inside, k = end, 0
         while outside is None:
-            trial = end + side * grow * abs(end)
-            if (trial - reach) * side >= 0.0:
+            trial = float(outward_trial(end, reach, k))
+            if trial == reach:
                 if carries(reach):
                     return reach, None
                 outside = reach
                 break
             inside, outside = (trial, None) if carries(trial) else (inside, trial)
-            grow *= 4.0
+            k += 1
     else:  # the flip lies inside, before ``stop``
         outside, k = end, 0
         while inside is None:

@@ -8,9 +8,7 @@ from __future__ import annotations
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import TractionLimitError
-from ..model.clamping import ConstantClamp
-from ..solvers.capacity import Capacity
-from ..solvers.limit import limit_torque
+from ..solvers.capacity import Capacity, no_equilibrium_error
 from ..solvers.options import SolverOptions
 from ..solvers.refusal import beyond_capacity, point_capacity
 
@@ -46,7 +44,7 @@ def refuse_beyond_capacity(
     A converged point whose creep exceeds ``design.creep_limit`` (or, under a
     torque-following law, whose pressure exceeds ``design.max_pressure``) is refused, as is
     an unconverged point outside every admissible interval; where no torque at all is
-    admissible, `ballcvt.solvers.limit.limit_torque` raises `NoEquilibriumError` saying why.
+    admissible, `NoEquilibriumError` says why (`ballcvt.solvers.capacity.no_equilibrium_error`).
 
     Parameters
     ----------
@@ -61,14 +59,14 @@ def refuse_beyond_capacity(
     options : SolverOptions
         Solver options of the capacity search.
     """
-    follows = not isinstance(law, ConstantClamp)
+    follows = law is not None and not law.fixed_force
     why = beyond_capacity(problem, sol, follows)
     if not (why or not sol.converged):
         return
     c_lim = problem.design.creep_limit
     cap = point_capacity(problem, c_lim, options, law)
     if not cap.intervals:  # none at all: NoEquilibriumError says why
-        limit_torque(problem, c_lim, options, law=law)
+        raise no_equilibrium_error(problem, c_lim, options, law if follows else None)
     torque = float(problem.output_torque)
     if why or not cap.admits(torque):
         where = (

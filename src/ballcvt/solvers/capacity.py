@@ -202,8 +202,11 @@ def no_equilibrium_error(
         Naming the point, its force at zero torque and what failed there.
     """
     zero = replace(problem, output_torque=np.asarray(0.0))
+    bound = float(pressure_bound_force(zero, zero.design.max_pressure))
     if law is not None:
-        zero, best = solve_clamped(zero, law, lambda p, x: solve_point(p, options, x))
+        zero, best = solve_clamped(
+            zero, law, lambda p, x: solve_point(p, options, x), None, zero.design.max_pressure
+        )
     else:
         best = solve_point(zero, options)
     force = float(zero.clamp_force)
@@ -216,7 +219,13 @@ def no_equilibrium_error(
         f"{f' by the {law.name} law at zero torque' if law is not None else ''}, "
         f"{said['input_speed']}"
     )
-    if law is not None and force > float(pressure_bound_force(zero, zero.design.max_pressure)):
+    if law is not None and law.implicit and not best.converged and force >= bound:
+        why = (
+            f"the {law.name} law's clamping force finds no balance up to {bound:.4g} N, the "
+            f"force of peak pressure max_pressure = {zero.design.max_pressure:g} Pa: the "
+            "drag the force causes asks for still more force"
+        )
+    elif law is not None and force > bound:
         why = (
             f"the {law.name} law's clamping force {force:.4g} N already exceeds the "
             f"pressure limit max_pressure = {zero.design.max_pressure:g} Pa"

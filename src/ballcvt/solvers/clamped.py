@@ -56,6 +56,8 @@ MAX_SLOPE = 0.9
 #: [-]: smaller changes come too close to the noise floor of ``T_0`` to give a slope, and
 #: the last slope measured is kept.
 SLOPE_RTOL = 1e-7
+#: Largest gain on the step of a fixed point whose force runs away (`_wegstein`) [-].
+MAX_RUNAWAY_GAIN = 16.0
 
 
 def _settles(step, last, force) -> np.ndarray:
@@ -69,22 +71,30 @@ def _wegstein(force, new, memory):
     """The next force [N] of the fixed point ``F <- g(F)`` from ``force`` ``F`` and
     ``new`` ``g(F)`` [N] (Wegstein 1958): ``F + (g(F) - F) / (1 - s)``, with ``s`` the
     slope of ``g`` measured against the previous pair in ``memory`` (a dict it updates;
-    ``s = 0``, the plain step, until a slope is measured and where it is 1 or more),
-    clipped to ``[-1, MAX_SLOPE]``.
+    ``s = 0``, the plain step, until a slope is measured), clipped to ``[-1, MAX_SLOPE]``.
     A contraction of slope ``s`` then converges in a step or two instead of some
-    ``log(1e-10) / log(s)`` plain ones (issue 23, harden 2029:5846)."""
+    ``log(1e-10) / log(s)`` plain ones (issue 23, harden 2029:5846).
+
+    A measured slope of 1 or more is no contraction: the force runs away from any fixed
+    point below it (a loading cam whose drag grows faster with the force than the cam's
+    force does, issue 23, harden 2032:2993). The plain iteration would creep towards the
+    next fixed point above, or the model's pressure ceiling, by ever larger steps; its step
+    is instead multiplied by a gain that doubles at every such iteration (up to
+    `MAX_RUNAWAY_GAIN`), and falls back to 1 once a slope below 1 is measured again (the
+    fixed point is then bracketed and the secant step above takes over)."""
     slope = memory.get("slope", np.zeros(np.shape(force)))
+    gain = memory.get("gain", np.ones(np.shape(force)))
     if "force" in memory:
         df = force - memory["force"]
         with np.errstate(divide="ignore", invalid="ignore"):
             measured = (new - memory["new"]) / df
         fresh = np.isfinite(measured) & (np.abs(df) > SLOPE_RTOL * np.abs(force))
-        # a slope of 1 or more is no contraction (a point beyond the capacity, whose
-        # force runs away): it takes the plain step
         trusted = np.where(measured < 1.0, np.clip(measured, -1.0, MAX_SLOPE), 0.0)
         slope = np.where(fresh, trusted, slope)
-    memory.update(force=force, new=new, slope=slope)
-    return force + (new - force) / (1.0 - slope)
+        away = fresh & (measured >= 1.0) & ((new - force) * (memory["new"] - memory["force"]) > 0)
+        gain = np.where(away, np.minimum(2.0 * gain, MAX_RUNAWAY_GAIN), 1.0)
+    memory.update(force=force, new=new, slope=slope, gain=gain)
+    return force + gain * (new - force) / (1.0 - slope)
 
 
 def with_clamp(problem: EquilibriumProblem, clamp_force) -> EquilibriumProblem:
@@ -117,7 +127,7 @@ def pressure_bound_force(problem: EquilibriumProblem, max_pressure: float) -> np
     return problem.clamp_force * (p_lim / np.max(problem.p_max, axis=-1)) ** 3
 
 
-def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):
+def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None, max_pressure=np.inf):
     """Solve ``problem`` with its clamping force set by ``law``.
 
     Parameters
@@ -132,6 +142,12 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):
         or the point solver).
     x0 : array_like, optional
         Starting creeps.
+    max_pressure : float
+        The fixed point of a law that senses the input torque is sought up to the force
+        of this peak pressure [Pa] (and never past the model's own pressure range): a point
+        whose force asks for more there is left unconverged (the admissibility test of
+        `ballcvt.solvers.limit.solve_admissible` refuses it anyway, and a force that runs
+        away would otherwise be followed to the Roelands ceiling, issue 23).
 
     Returns
     -------
@@ -162,7 +178,12 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None):
         move = np.asarray(sol.converged) & np.isfinite(new) & ~settled
         if not np.any(move):
             break
-        ceiling = pressure_bound_force(pb, np.inf)
+        ceiling = pressure_bound_force(pb, max_pressure)
+        # a force already at the ceiling that asks for more has no fixed point below it:
+        # it moves no more (and is flagged below)
+        move &= ~((pb.clamp_force >= ceiling) & (new > pb.clamp_force))
+        if not np.any(move):
+            break
         target = np.minimum(_wegstein(pb.clamp_force, new, memory), ceiling)
         pb = with_clamp(problem, np.where(move, target, pb.clamp_force))
         sol = solve(pb, sol.state.creep)

@@ -22,6 +22,7 @@ from ..model.traction.base import traction_rises_with_creep
 from .capacity import interval_search, no_equilibrium_error
 from .clamped import pressure_bound_force, solve_clamped, with_clamp
 from .newton import initial_creep, solve_batch, solve_pinned
+from .options import at_residual_floor
 from .peak import peak_limits
 from .point import SolverOptions
 
@@ -145,12 +146,18 @@ class Admissibility:
         The equilibrium (and clamping equation) converged.
     creep : ndarray
         Final creeps, ``(n, n_c)``.
+    beyond : ndarray of bool
+        Inadmissible for a known reason: converged beyond a limit, creeps past the creep
+        limit, or (under a torque-following law) a force that asks for more than the force
+        of ``design.max_pressure`` (`ballcvt.solvers.clamped.solve_clamped` stops it there);
+        an inadmissible point that is none of these did not converge.
     """
 
     problem: EquilibriumProblem
     ok: np.ndarray
     converged: np.ndarray
     creep: np.ndarray
+    beyond: np.ndarray
 
 
 def solve_admissible(
@@ -190,7 +197,13 @@ def solve_admissible(
     if law is not None:
 
         def solve(pb, x, fallback):
-            return solve_clamped(pb, law, lambda p, y: solve_batch(p, options, y, fallback), x)
+            return solve_clamped(
+                pb,
+                law,
+                lambda p, y: solve_batch(p, options, y, fallback),
+                x,
+                pb.design.max_pressure,
+            )
     else:
 
         def solve(pb, x, fallback):
@@ -199,14 +212,21 @@ def solve_admissible(
     pb, sol = solve(problem, x0, False)
     big = np.max(np.abs(sol.state.creep), axis=-1)
     conv, creep = sol.converged.copy(), sol.state.creep.copy()
-    unsure = np.flatnonzero(~conv & ~(big > creep_limit))
+    # a point whose creeps converged but whose clamping equation did not (a force that runs
+    # away) gets nothing from the point solver, which only ever replaces failed creeps
+    balanced = sol.residual_norm <= at_residual_floor(options, pb.fluid).tol
+    unsure = np.flatnonzero(~conv & ~(big > creep_limit) & ~balanced)
     if unsure.size:
         _, again = solve(pb.take(unsure), None if x0 is None else np.asarray(x0)[unsure], True)
         conv[unsure], creep[unsure] = again.converged, again.state.creep
-    ok = conv & (np.max(np.abs(creep), axis=-1) <= creep_limit)
+    big = np.max(np.abs(creep), axis=-1)
+    ok = conv & (big <= creep_limit)
+    beyond = conv | (big > creep_limit)
     if law is not None:
-        ok &= pb.clamp_force <= pressure_bound_force(pb, pb.design.max_pressure) * (1 + 1e-12)
-    return Admissibility(pb, ok, conv, creep)
+        bound = pressure_bound_force(pb, pb.design.max_pressure)
+        ok &= pb.clamp_force <= bound * (1 + 1e-12)
+        beyond |= pb.clamp_force >= bound * (1 - 1e-9)
+    return Admissibility(pb, ok, conv, creep, beyond & ~ok)
 
 
 def _follows_torque(law) -> bool:

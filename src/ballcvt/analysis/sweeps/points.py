@@ -78,11 +78,10 @@ def _solve_chunk(points: OperatingRows, idx, torque, force) -> dict:
     got = solve_admissible(pb, c_lim, points.options, follows)
     used = np.array(got.problem.clamp_force, dtype=float)
     # converged but inadmissible (creep or, under a cam, pressure), or running away
-    beyond = got.converged | (np.max(np.abs(got.creep), axis=-1) > c_lim)
     status = np.where(
         got.ok,
         Status.CONVERGED,
-        np.where(beyond, Status.BEYOND_LIMIT, Status.NOT_CONVERGED),
+        np.where(got.beyond, Status.BEYOND_LIMIT, Status.NOT_CONVERGED),
     ).astype(np.int8)
     creep = np.where(got.ok[:, None], got.creep, np.nan)[:, None]
     out = derived(points.take(idx), used[:, None], torque[:, None], creep, status[:, None])

@@ -2,6 +2,8 @@
 |eta error| <= 1e-4). Targets: max |eta - eta_ref| <= 1e-4, relative creep error <= 1e-3
 (creeps above 1e-6), reference = pole-centred rule at 64 x 64 (centred part 128)."""
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given
@@ -67,6 +69,21 @@ def test_batch_flags_unconverged_points(drive):
     sol = solve_batch(pb, SolverOptions(max_iterations=8), fallback=False)
     assert sol.converged.tolist() == [True, False]
     assert sol.residual_norm[1] > FAST.tol
+
+
+def test_trial_states_that_overflow_are_flagged_without_a_warning(drive):
+    """A start at infinite creeps evaluates NaN states: the point is flagged, and numpy's
+    RuntimeWarnings about the trial stay inside the solver (solvers/trials.py)."""
+    design, fluid = drive
+    pb = build_problem(design, fluid, "double", 1.0, np.array([10.0, 10.0]), 2000.0, SPEED)
+    x0 = np.zeros((2, pb.layout.n_contacts))
+    x0[:, [0, -1]] = [[1e-3, 1e-3], [np.inf, -np.inf]]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        sol = solve_batch(pb, x0=x0, fallback=False)
+    assert sol.converged.tolist() == [True, False]
+    with pytest.warns(RuntimeWarning):  # the same solve, unwrapped, warns
+        solve_batch.__wrapped__(pb, x0=x0, fallback=False)
 
 
 def test_batch_equals_point_solver(double):

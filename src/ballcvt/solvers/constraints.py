@@ -26,9 +26,10 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..registry import ARCHITECTURES
+from .admissible import solve_admissible
 from .capacity import Capacity
 from .clamped import pressure_bound_force
-from .limit import LIMIT_RTOL, solve_admissible
+from .limit import LIMIT_RTOL
 from .options import SolverOptions
 
 __all__ = ["with_constraints", "ZERO_TORQUE", "NO_EQUILIBRIUM", "PAST_END"]

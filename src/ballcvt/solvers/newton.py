@@ -33,6 +33,7 @@ from .continuation import continue_in_torque
 from .newton_step import COMPILED, MAX_STEP, advance_compiled, advance_python, cap
 from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
 from .robust import solve_robust
+from .trials import quiet_trials
 
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "branch_solver"]
 __all__ += ["CREEP_BOUNDS", "MAX_STEP", "PATIENCE"]
@@ -76,6 +77,7 @@ def initial_creep(problem: EquilibriumProblem) -> np.ndarray:
     return np.broadcast_to(x0, problem.shape + x0.shape).copy()
 
 
+@quiet_trials
 def solve_batch(
     problem: EquilibriumProblem, options=None, x0=None, fallback: bool = True, predict: bool = True
 ) -> BatchSolution:
@@ -174,6 +176,7 @@ def branch_pinned(options: SolverOptions):
     return (lambda pb, k, x0: solve_pinned(pb, k, x0, options)), options.tol
 
 
+@quiet_trials
 def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     """Solve with one contact's creep held, for the output torque that goes with it.
 

@@ -181,9 +181,11 @@ def _refine(search: _Search, forces: np.ndarray, eta: np.ndarray, f_c: float, xt
         return float(a)
     from scipy.optimize import minimize_scalar  # loaded when needed (0.4 s import)
 
-    res = minimize_scalar(
-        lambda f: -search(f)[0][0], bounds=(a, b), method="bounded", options={"xatol": xtol}
-    )
+    def loss(force):  # a force whose point fails scores below every efficiency (>= 0)
+        eta = search(force)[0][0]
+        return -eta if np.isfinite(eta) else 1.0
+
+    res = minimize_scalar(loss, bounds=(a, b), method="bounded", options={"xatol": xtol})
     return float(res.x)
 
 

@@ -19,6 +19,7 @@ from ..equilibrium.problem import EquilibriumProblem
 from ..equilibrium.residual import EquilibriumState, evaluate
 from .bracketing import NoBracketError, solve_nested
 from .options import CREEP_BOUNDS, SolverOptions
+from .trials import quiet_trials
 
 __all__ = ["PointSolution", "solve_robust"]
 
@@ -63,6 +64,7 @@ def _attempt(problem, x0, options):
     return sol, count[0]
 
 
+@quiet_trials
 def solve_robust(
     problem: EquilibriumProblem,
     options: SolverOptions,

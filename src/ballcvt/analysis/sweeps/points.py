@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...solvers.limit import solve_admissible
+from ...solvers.admissible import solve_admissible
 from ...status import Status
 from .curves import OperatingRows, at_optimal_forces, derived
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import TractionLimitError
+from ..solvers.admissible import follows_torque
 from ..solvers.capacity import Capacity, no_equilibrium_error
 from ..solvers.options import SolverOptions
 from ..solvers.refusal import beyond_capacity, point_capacity
@@ -59,7 +60,7 @@ def refuse_beyond_capacity(
     options : SolverOptions
         Solver options of the capacity search.
     """
-    follows = law is not None and not law.fixed_force
+    follows = follows_torque(law)
     why = beyond_capacity(problem, sol, follows)
     if not (why or not sol.converged):
         return

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
-from .clamped import pressure_bound_force, solve_clamped
+from .clamped import at_ceiling, pressure_bound_force, solve_clamped
 from .newton import solve_batch
 from .options import SolverOptions, at_residual_floor
 
@@ -114,7 +114,7 @@ def solve_admissible(
     if law is not None:
         bound = pressure_bound_force(pb, pb.design.max_pressure)
         ok &= pb.clamp_force <= bound * (1 + 1e-12)
-        beyond |= pb.clamp_force >= bound * (1 - 1e-9)
+        beyond |= at_ceiling(pb.clamp_force, bound)
     return Admissibility(pb, ok, conv, creep, beyond & ~ok)
 
 

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import NoEquilibriumError
-from .clamped import pressure_bound_force, solve_clamped
+from .clamped import at_ceiling, pressure_bound_force, solve_clamped
 from .point import SolverOptions, solve_point
 
 __all__ = ["Capacity", "interval_search", "no_equilibrium_error", "SCAN_POINTS"]
@@ -219,7 +219,7 @@ def no_equilibrium_error(
         f"{f' by the {law.name} law at zero torque' if law is not None else ''}, "
         f"{said['input_speed']}"
     )
-    if law is not None and law.implicit and not best.converged and force >= bound:
+    if law is not None and law.implicit and not best.converged and at_ceiling(force, bound):
         why = (
             f"the {law.name} law's clamping force finds no balance up to {bound:.4g} N, the "
             f"force of peak pressure max_pressure = {zero.design.max_pressure:g} Pa: the "

@@ -25,6 +25,7 @@ __all__ = [
     "with_clamp",
     "solve_clamped",
     "pressure_bound_force",
+    "at_ceiling",
     "CLAMP_RTOL",
     "MAX_CLAMP_ITERATIONS",
 ]
@@ -58,6 +59,15 @@ MAX_SLOPE = 0.9
 SLOPE_RTOL = 1e-7
 #: Largest gain on the step of a fixed point whose force runs away (`_wegstein`) [-].
 MAX_RUNAWAY_GAIN = 16.0
+#: Relative margin [-] within which a force counts as at its ceiling (`at_ceiling`): a
+#: problem rebuilt at the ceiling gives back its bound only to round-off.
+CEILING_RTOL = 1e-9
+
+
+def at_ceiling(force, bound) -> np.ndarray:
+    """Whether each clamping force [N] stands at its ceiling ``bound`` [N]
+    (`pressure_bound_force`), to `CEILING_RTOL`."""
+    return np.asarray(force) >= np.asarray(bound) * (1.0 - CEILING_RTOL)
 
 
 def _settles(step, last, force) -> np.ndarray:
@@ -146,8 +156,9 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None, max_pressure
         The fixed point of a law that senses the input torque is sought up to the force
         of this peak pressure [Pa] (and never past the model's own pressure range): a point
         whose force asks for more there is left unconverged (the admissibility test of
-        `ballcvt.solvers.limit.solve_admissible` refuses it anyway, and a force that runs
-        away would otherwise be followed to the Roelands ceiling, issue 23).
+        `ballcvt.solvers.admissible.solve_admissible` refuses it anyway, and a force that runs
+        away would otherwise be followed to the Roelands ceiling, issue 23); `at_ceiling`
+        says whether a force was stopped there.
 
     Returns
     -------
@@ -173,15 +184,12 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None, max_pressure
         settled |= np.asarray(sol.converged) & _settles(step, last, pb.clamp_force)
         last = step
         # points whose creeps did not converge keep their force (their torque means
-        # nothing); no force beyond the model's pressure range is tried (such a point
-        # then fails the clamping equation below and is flagged, never clipped silently)
-        move = np.asarray(sol.converged) & np.isfinite(new) & ~settled
-        if not np.any(move):
-            break
+        # nothing); no force beyond the ceiling is tried, and a force already there that
+        # asks for more has no fixed point below it: it moves no more (such a point then
+        # fails the clamping equation below and is flagged, never clipped silently)
         ceiling = pressure_bound_force(pb, max_pressure)
-        # a force already at the ceiling that asks for more has no fixed point below it:
-        # it moves no more (and is flagged below)
-        move &= ~((pb.clamp_force >= ceiling) & (new > pb.clamp_force))
+        stuck = at_ceiling(pb.clamp_force, ceiling) & (new > pb.clamp_force)
+        move = np.asarray(sol.converged) & np.isfinite(new) & ~settled & ~stuck
         if not np.any(move):
             break
         target = np.minimum(_wegstein(pb.clamp_force, new, memory), ceiling)

@@ -81,3 +81,54 @@ def test_refusals_unchanged():
     assert list(got.refused) == [False, True] and math.isnan(got.force[1])
     at = at_optimal_forces(pb, OptimalClamp(), v.options)  # a refused point keeps its force
     assert at.clamp_force[1] == pb.clamp_force[1] and at.clamp_force[0] == got.force[0]
+
+
+def test_a_guess_near_the_optimum_gives_it_in_one_round_with_its_creeps():
+    """Started from a force near the optimum (what a duty cycle's first pass hands its
+    second), the search certifies it on its smallest stencil: one batched solve of three
+    forces, the same efficiency within the certification's bound (1e-7, the module's
+    docstring); its creeps start the solve that follows."""
+    import ballcvt.solvers.optimal_batch as ob
+
+    v = Variator()
+    pb = _points(v, [0.6, 1.0, 1.6], [10.0, 30.0, 50.0])
+    cold = optimal_forces(pb, OptimalClamp(), v.options)
+    calls = []
+    score = ob._Scorer.__call__
+
+    def counted(self, index, u, x0=None):
+        calls.append(index.size)
+        return score(self, index, u, x0)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(ob._Scorer, "__call__", counted)
+        warm = optimal_forces(pb, OptimalClamp(), v.options, guess=cold.force * (1 + 1e-3))
+    assert warm.fast.all() and calls == [9]
+    assert np.max(np.abs(_eta(v, pb, warm.force) - _eta(v, pb, cold.force))) <= 1e-7
+    at = with_clamp(pb, warm.force)
+    sol = solve_batch(at, v.options, warm.creep, predict=False)
+    cold_start = solve_batch(at, v.options)
+    assert sol.converged.all() and np.all(sol.iterations < cold_start.iterations)
+    assert np.allclose(sol.state.creep, cold_start.state.creep, rtol=1e-8, atol=1e-12)
+    # a guess far off still finds the optimum (the stencil walks to it)
+    far = optimal_forces(pb, OptimalClamp(), v.options, guess=cold.force * 1.3)
+    assert np.max(np.abs(_eta(v, pb, far.force) - _eta(v, pb, cold.force))) <= 1e-7
+
+
+def test_a_cycle_hands_its_first_pass_forces_to_the_second():
+    """Under the optimal law a duty cycle's final pass starts each step's search from the
+    first pass's force; each step's efficiency is still `solve`'s at its conditions
+    (within the certification's bound, 1e-7)."""
+    from ballcvt.analysis.cycle_files import cycle_from_arrays
+    from ballcvt.analysis.cycles import run_cycle
+
+    v = Variator()
+    cycle = cycle_from_arrays(time=np.arange(4.0), output_speed=[150.0, 200.0, 260.0, 320.0],
+                              output_torque=[8.0, 25.0, 40.0, 15.0])
+    steps = run_cycle(v, cycle, target_input_speed=W, clamp_law="optimal",
+                      progress=False).steps
+    assert (steps["status"] == 0).all()
+    for _, s in steps.iterrows():
+        p = v.solve(s.ratio, s.output_torque, clamp_law="optimal",
+                    input_speed_rpm=s.input_speed_rpm)
+        assert abs(p.eta - s.eta) <= 1e-7

@@ -194,12 +194,15 @@ def run_cycle(drive, cycle: Cycle, settings: CycleRequest | None = None, **keywo
     with _bar(s, passes * run.size, cycle.size) as bar, pool or nullcontext():
         here = Drive(design, drive.fluid, drive.architecture)
 
-        def solve(ratio, t2, w0, rough=False):
+        def solve(ratio, t2, w0, rough=False, near=None):
+            # ``near``: a pass's result at nearby conditions, whose forces start the
+            # optimal law's search
+            guess = None if near is None or not law.optimises else near["clamp_force"]
             points = OperatingRows.of(
                 here,
                 ratio,
                 w0,
-                clamp_force=law.force if law.fixed_force else None,
+                clamp_force=law.force if law.fixed_force else guess,
                 law=None if law.fixed_force else law,
                 options=coarse if rough else fine,
             )
@@ -262,14 +265,14 @@ def _output_side(plan: _Plan, s: CycleRequest, w2, t2):
         speed_eff = np.where(res["status"] == 0, res["eta_speed"], 1.0)
         ratio2 = np.where(limited, ratio, np.clip(want / speed_eff, *plan.allowed))
         w0 = np.where(limited, w2 / ratio, target)
-        return ratio2, w0, solve(ratio2, t2, w0)
+        return ratio2, w0, solve(ratio2, t2, w0, near=res)
     ratio = _best_ratio(
         lambda r: solve(r, t2, w2 / r, rough=True), t2.size, *plan.allowed, plan.candidates
     )
     first = solve(ratio, t2, w2 / ratio, rough=True)
     speed_eff = np.where(first["status"] == 0, first["eta_speed"], 1.0)
     w0 = w2 / (ratio * speed_eff)  # the output turns at the cycle's speed
-    return ratio, w0, solve(ratio, t2, w0)
+    return ratio, w0, solve(ratio, t2, w0, near=first)
 
 
 def _best_ratio(evaluate, n, r_lo, r_hi, candidates):
@@ -308,9 +311,9 @@ def _input_side(plan: _Plan, w0, power, fixed):
         """The output torque whose input torque is ``P / omega_0``: secant iterations on
         ``T_0(T_2)``, which is nearly affine (a drag plus ``tau_ID T_2 / eta_T``)."""
         t_in = power / w0
-        t2, prev = t_in * ratio * 0.9, None
+        t2, prev, out = t_in * ratio * 0.9, None, None
         for _ in range(POWER_PASSES):
-            out = solve(ratio, t2, w0)
+            out = solve(ratio, t2, w0, near=out)
             ok = out["status"] == 0
             got = np.where(ok, out["input_torque"], np.nan)
             if np.all(~ok | (np.abs(got - t_in) <= POWER_RTOL * t_in)):
@@ -320,7 +323,7 @@ def _input_side(plan: _Plan, w0, power, fixed):
             slope = np.where(np.isfinite(slope) & (slope > 0), slope, ratio)
             prev = (t2, got)
             t2 = np.where(ok, np.maximum(t2 + (t_in - got) / slope, 0.0), t2)
-        out = solve(ratio, t2, w0)
+        out = solve(ratio, t2, w0, near=out)
         missed = (out["status"] == 0) & (np.abs(out["input_torque"] - t_in) > 1e-6 * t_in)
         out["status"] = np.where(missed, Status.NOT_CONVERGED, out["status"])
         # the drive's own losses at zero output torque need more than the cycle's power

@@ -21,6 +21,12 @@ of half-width at most `NEAR` is concave with its vertex within the stencil: the 
 then misses the optimum by some ``2 NEAR^2`` at most, the efficiency by under 1e-7
 (`STEP` bounds the smallest stencil).
 
+Given a force near each point's optimum (``guess``: a duty cycle's first pass hands its
+forces to its second), the search starts there on its smallest stencil (half-width
+`NEAR`) and certifies a point in one round when the guess is within that of the optimum;
+the creeps found at the optimum (``OptimalForces.creep``) start the solve that follows.
+A sweep searches all its points in one batch.
+
 At zero torque the answer is ``min_force`` when it holds the no-load drag within the
 creep limit (the old search's first grid point). Every point not certified (an optimum
 on the creep or pressure limit or at ``min_force``, a torque no force carries, invalid
@@ -73,11 +79,16 @@ class OptimalForces:
         Found by the batched search (else by `search_optimum`).
     refused : ndarray of bool
         No clamping force up to the pressure bound carries the torque.
+    creep : ndarray or None
+        Starting creeps ``(n, n_c)`` [-] at ``force`` where ``fast`` (those of the search's
+        last central force, scaled as ``1/F_N0``; NaN elsewhere), for the solve that
+        follows; None when no point was searched.
     """
 
     force: np.ndarray
     fast: np.ndarray
     refused: np.ndarray
+    creep: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -171,12 +182,18 @@ def _start(x, du):
     return (x[:, None, :] * np.exp(-du)[:, :, None]).reshape(-1, x.shape[-1])
 
 
-def _search(score: _Scorer, index, bounds):
-    """The stencil search of the points ``index`` (positive torque) -> ``(u, certified)``
-    per point: ``u`` the vertex of the last stencil's parabola."""
+def _search(score: _Scorer, index, bounds, start=None):
+    """The stencil search of the points ``index`` (positive torque) -> ``(u, certified,
+    creeps)`` per point: ``u`` the vertex of the last stencil's parabola, the creeps there
+    (`_start`). ``start``: a first ``ln F_N0`` [-] per point (NaN: `_guess`), searched from
+    a half-width of `NEAR` (certified in one round when it is within it of the optimum)."""
     lo, hi = bounds
     centre = _guess(score.problem.take(index), lo, hi)
     width = np.full(index.size, WIDTH)
+    if start is not None:
+        known = np.isfinite(start)
+        width[known] = NEAR
+        centre[known] = np.clip(start[known], lo[known] + NEAR, hi[known] - NEAR)
     u = np.empty((index.size, 3))
     e = np.full((index.size, 3), -np.inf)
     x, xu = None, np.empty(index.size)
@@ -196,7 +213,8 @@ def _search(score: _Scorer, index, bounds):
         live = live[go]
         if not live.size:
             break
-    return _parabola(u, e)[0], done
+    vertex = _parabola(u, e)[0]
+    return vertex, done, _start(x, (vertex - xu)[:, None])
 
 
 def optimal_forces(
@@ -204,6 +222,7 @@ def optimal_forces(
     law: OptimalClamp = OptimalClamp(),
     options: SolverOptions = SolverOptions(),
     fallback: bool = True,
+    guess=None,
 ) -> OptimalForces:
     """Efficiency-optimal clamping forces of a 1-D batch of points (module docstring).
 
@@ -218,6 +237,9 @@ def optimal_forces(
     fallback : bool
         Whether the points the batched search does not certify go to the one-point
         search (`search_optimum`); otherwise their force is NaN (``fast`` False).
+    guess : array_like, optional
+        A force near each point's optimum [N] (NaN where none), e.g. the optimum of a pass
+        on the solver's coarse rule: the search then starts there on its smallest stencil.
 
     Returns
     -------
@@ -231,6 +253,7 @@ def optimal_forces(
     n = problem.size
     force = np.full(n, np.nan)
     fast = np.zeros(n, dtype=bool)
+    creep = np.full((n, problem.layout.n_contacts), np.nan)
     limits = _limits(problem, law)
     if limits is not None:
         c_lim, f_p = limits
@@ -239,19 +262,29 @@ def optimal_forces(
         lo, hi = np.log(law.min_force), np.log(f_p)
         zero = np.flatnonzero((torque == 0) & (hi > lo))
         if zero.size:  # min_force when it holds the drag
-            got, _ = score(zero, np.full(zero.size, lo))
+            got, creep[zero] = score(zero, np.full(zero.size, lo))
             fast[zero] = np.isfinite(got)
             force[zero] = law.min_force
         pos = np.flatnonzero((torque > 0) & (hi > lo + 2 * WIDTH))
         if pos.size:
-            u, done = _search(score, pos, (np.full(pos.size, lo), hi[pos]))
+            bounds = (np.full(pos.size, lo), hi[pos])
+            start = None if guess is None else _log_guess(guess, n)[pos]
+            u, done, creep[pos] = _search(score, pos, bounds, start)
             fast[pos] = done
             force[pos] = np.exp(u)
     force = np.where(fast, force, np.nan)
+    creep[~fast] = np.nan
     refused = np.zeros(n, dtype=bool)
     for j in np.flatnonzero(~fast) if fallback else ():
         force[j], refused[j] = _fallback(problem, int(j), law, options)
-    return OptimalForces(force, fast, refused)
+    return OptimalForces(force, fast, refused, creep)
+
+
+def _log_guess(guess, n) -> np.ndarray:
+    """``ln`` of the guessed forces [N] broadcast to ``n`` points (NaN where none)."""
+    g = np.broadcast_to(np.asarray(guess, dtype=float), (n,))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(np.isfinite(g) & (g > 0), np.log(np.where(g > 0, g, 1.0)), np.nan)
 
 
 def _fallback(problem: EquilibriumProblem, j: int, law: OptimalClamp, options):

@@ -49,7 +49,8 @@ class OperatingRows:
     ratio, input_speed : ndarray
         Ideal ratio [-] and input speed [rad/s] of each row, ``(m,)``.
     clamp_force : ndarray or None
-        ``F_N0`` [N] of each row under the constant law (``law`` None).
+        ``F_N0`` [N] of each row under the constant law (``law`` None); under the optimal
+        law, a force near each row's optimum to start its search from (NaN: none), or None.
     law : clamping law or None
         A law other than constant (`ballcvt.model.clamping`).
     options : SolverOptions
@@ -78,10 +79,11 @@ class OperatingRows:
         creep_limit: float | None = None,
     ) -> OperatingRows:
         """Rows from array-likes: ``clamp_force`` [N] broadcast to the rows (ignored under
-        a ``law``), ``creep_limit`` the design's by default."""
+        a law other than the optimal one, which starts its search there),
+        ``creep_limit`` the design's by default."""
         ratio, speed = (np.atleast_1d(np.asarray(a, dtype=float)) for a in (ratio, input_speed))
         force = None
-        if law is None:
+        if law is None or (law.optimises and clamp_force is not None):
             force = np.broadcast_to(np.asarray(clamp_force, dtype=float), ratio.shape)
             force = force.astype(float)
         c_lim = drive.design.creep_limit if creep_limit is None else float(creep_limit)
@@ -131,8 +133,9 @@ def solve_curves(curves: OperatingRows, torque, limit=None, callback=None) -> di
     When the limit search ran here (or was handed over), every point within the limits is
     solved in one batch, each started from the creeps interpolated in torque between the
     curve's solution at its limit and the creeps at zero torque (or the solver's cold
-    start); otherwise (bare limits given, the optimal law) torque by torque, each started
-    from the last solution (continuation).
+    start); under the optimal law every point is searched on its own, all in one batch;
+    otherwise (bare limits given) torque by torque, each started from the last solution
+    (continuation).
 
     Returns a dict of arrays ``(m, n_T)`` or ``(m, n_T, n_c)`` (and ``limit_torque``,
     ``(m,)``) with the variables of `ballcvt.analysis.sweeps.variables`; run in worker
@@ -152,8 +155,11 @@ def solve_curves(curves: OperatingRows, torque, limit=None, callback=None) -> di
         "iterations": np.zeros((m, nt), dtype=int),
         "residual": np.full((m, nt), np.nan),
     }
-    if search is not None and not curves.optimal:
-        solved = _solve_from_limits(state, curves, torque, search, base)
+    if search is not None or curves.optimal:
+        if curves.optimal:
+            solved = _solve_optimal(state, curves, torque)
+        else:
+            solved = _solve_from_limits(state, curves, torque, search, base)
         for _ in range(nt) if callback is not None else ():
             callback()
     else:
@@ -193,6 +199,17 @@ def _solve_from_limits(state, curves: OperatingRows, torque, search: LimitSearch
     if stray.size:  # another equilibrium than the one reached from T_2 = 0
         _continue_from_below(state, curves, torque, (i[stray], k[stray]), zero)
         return None  # evaluated again in `derived`
+    return pb.take(sol.converged), sol.state.take(sol.converged)
+
+
+def _solve_optimal(state, curves: OperatingRows, torque):
+    """Every point within the limits at its own optimal force, searched all at once (the
+    search starts each point from its own guess: no continuation along the curve);
+    returns the converged points' (problem, state)."""
+    i, k = np.nonzero(state["status"] == Status.NOT_CONVERGED)
+    if not i.size:
+        return None
+    pb, sol = _solve_points(state, curves, torque, (i, k), None)
     return pb.take(sol.converged), sol.state.take(sol.converged)
 
 
@@ -302,16 +319,29 @@ def solve_column(pb, law, options, x0):
         return pb, solve_batch(pb, options, x0)
     if not law.optimises:
         return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x), x0)
-    pb = at_optimal_forces(pb, law, options)
-    return pb, solve_batch(pb, options, x0)
+    pb, start = optimal_start(pb, law, options)
+    x = initial_creep(pb) if x0 is None else np.broadcast_to(x0, start.shape)
+    unknown = np.isnan(start).any(axis=1)
+    sol = solve_batch(pb, options, np.where(unknown[:, None], x, start), predict=unknown.any())
+    return pb, sol
 
 
 def at_optimal_forces(pb, law, options):
     """The points of a 1-D batch at their efficiency-optimal clamping forces (all points
     searched together, `ballcvt.solvers.optimal_batch.optimal_forces`); a point no force
     can carry keeps its force and is flagged by the solve that follows."""
-    got = optimal_forces(pb, law, options)
-    return with_clamp(pb, np.where(got.refused, pb.clamp_force, got.force))
+    return optimal_start(pb, law, options)[0]
+
+
+def optimal_start(pb, law, options, guess=None):
+    """`at_optimal_forces` and the creeps the search found there, ``(n, n_c)`` [-] (NaN
+    rows where it has none); ``guess``: forces near the optima [N] to start from (as in
+    `ballcvt.solvers.optimal_batch.optimal_forces`)."""
+    got = optimal_forces(pb, law, options, guess=guess)
+    creep = got.creep
+    if creep is None:
+        creep = np.full(pb.shape + (pb.layout.n_contacts,), np.nan)
+    return with_clamp(pb, np.where(got.refused, pb.clamp_force, got.force)), creep
 
 
 def _eta_at(curves: OperatingRows, clamp_force, torque, law=None, x0=None):

@@ -12,8 +12,9 @@ from __future__ import annotations
 import numpy as np
 
 from ...solvers.admissible import solve_admissible
+from ...solvers.newton import initial_creep
 from ...status import Status
-from .curves import OperatingRows, at_optimal_forces, derived
+from .curves import OperatingRows, derived, optimal_start
 
 __all__ = ["evaluate_points", "CHUNK"]
 
@@ -73,9 +74,12 @@ def _solve_chunk(points: OperatingRows, idx, torque, force) -> dict:
     law, c_lim = points.law, points.creep_limit
     follows = law if law is not None and not points.optimal else None
     pb = points.problem(idx, torque, force)
-    if points.optimal:  # the optimiser's force, then the constant law
-        pb = at_optimal_forces(pb, law, points.options)
-    got = solve_admissible(pb, c_lim, points.options, follows)
+    x0 = None
+    if points.optimal:  # the optimiser's force (from the rows' forces if given), then constant
+        guess = None if points.clamp_force is None else points.clamp_force[idx]
+        pb, start = optimal_start(pb, law, points.options, guess)
+        x0 = np.where(np.isnan(start), initial_creep(pb), start)
+    got = solve_admissible(pb, c_lim, points.options, follows, x0)
     used = np.array(got.problem.clamp_force, dtype=float)
     # converged but inadmissible (creep or, under a cam, pressure), or running away
     status = np.where(

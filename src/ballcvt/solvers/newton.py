@@ -3,8 +3,9 @@
 All points of a batch iterate together, first with a coarse quadrature (the predictor,
 ``SolverOptions.predictor``) to a loose tolerance, then with the requested one. Each
 iteration evaluates the traction integrals once, with their analytic derivatives
-(`evaluate_with_jacobian`; the last one, which only confirms convergence, without them),
-and updates every point in one compiled loop (`_advance`: the small ``n_c x n_c`` Newton
+(`evaluate_with_jacobian`; near the solution without them, the step then taken with the
+last Jacobian corrected by Broyden's secant update, `ballcvt.solvers.secant`), and
+updates every point in one compiled loop (`_advance`: the small ``n_c x n_c`` Newton
 systems by Gaussian elimination, the caps, the back-offs). Steps are capped so that no
 creep leaves its physical range, and a point whose residual grew is sent back along half
 its previous step (a deferred backtracking line search that costs nothing while Newton
@@ -33,6 +34,7 @@ from .continuation import continue_in_torque
 from .newton_step import COMPILED, MAX_STEP, advance_compiled, advance_python, cap
 from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
 from .robust import solve_robust
+from .secant import SecantCorrection
 from .trials import quiet_trials
 
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "branch_solver"]
@@ -60,8 +62,8 @@ class BatchSolution:
     residual_norm : ndarray
         ``max |residual|`` at the final creeps [-].
     iterations : ndarray of int
-        Residual evaluations of each point (with the Jacobian, or without it where only
-        convergence was left to confirm, `CONFIRM_NORM`); points that needed the point
+        Residual evaluations of each point (with the Jacobian, or without it near the
+        solution, `CONFIRM_NORM`); points that needed the point
         solver add its residual evaluations.
     """
 
@@ -239,10 +241,11 @@ def _predicts(options, n_points: int) -> bool:
 
 
 #: A point whose residual norm is at most this before a Newton step is expected to meet
-#: the tolerance after it (Newton's convergence is quadratic down to the Jacobian's
-#: accuracy, about 1e-5 relative here): when every point still iterating is, the next
-#: evaluation skips the Jacobian; a point that then misses the tolerance is evaluated
-#: again, with it, at the same creeps.
+#: the tolerance after it, or nearly: when every point still iterating is, the next
+#: evaluation skips the Jacobian, and a point that then misses the tolerance steps with
+#: its last Jacobian and the secant correction (`ballcvt.solvers.secant`: the analytic
+#: Jacobian is off by up to ~1 %, so the convergence near the solution is otherwise
+#: linear).
 CONFIRM_NORM = 1e-6
 
 
@@ -272,14 +275,15 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
     stall = np.zeros(n, dtype=int)  # iterations since each point's norm last fell
     confirm = False  # every active point is expected to converge: no Jacobian needed
     m = free.size
+    secant = SecantCorrection.start(n, m)
     for _ in range(options.max_iterations):
         if active.size == 0:
             break
         whole = active.size == n  # every point still iterates: no gathers or scatters
         sub, xa = (flat, x) if whole else (flat.take(active), x[active])
+        jac = None
         if confirm:
             state = evaluate(sub, xa, options.quadrature)
-            jac = np.empty((0, m, m))  # not read: nothing steps after a confirmation
         else:
             state, jac = evaluate_with_jacobian(sub, xa, options.quadrature)
             if pinned is not None:
@@ -288,10 +292,13 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
         final = state if final is None or whole else _scatter(final, state, active)
         fresh[active] = True
         res = np.ascontiguousarray(state.residual[:, :m])
+        # near its solution a point steps with its last Jacobian, corrected
+        jac = secant.update(active, xa[:, free], res, jac)
         before = it.best[active]
-        kept, confirm = _advance(
-            it, active, res, np.ascontiguousarray(jac), free, options.tol, confirm
-        )
+        norm = _norm(res)
+        secant.near[active] = (norm <= CONFIRM_NORM) & (norm < before)
+        kept = _advance(it, active, res, jac, free, options.tol)
+        confirm = bool(secant.near[kept].all())  # no fresh Jacobian needed
         if patience is not None:
             stall[active] = np.where(it.best[active] < before, 0, stall[active] + 1)
             going = kept[stall[kept] < patience]
@@ -342,27 +349,27 @@ class _Iterates:
     fresh: np.ndarray
 
 
-def _advance(it: _Iterates, active, res, jac, free, tol, confirm):
+def _advance(it: _Iterates, active, res, jac, free, tol):
     """One Newton update of the points ``active`` after their evaluation (``res``,
-    ``jac``: their residuals and Jacobians on the free creeps); updates ``it`` in place.
+    ``jac``: their residuals and the Jacobians to step with on the free creeps,
+    `SecantCorrection`); updates ``it`` in place.
 
-    A point whose residual norm meets ``tol`` is done. After a value-only evaluation
-    (``confirm``) the others go round again at the same creeps. Otherwise a point whose
-    norm did not fall below its best goes back along half its previous step (and stops
-    if that step is below 1e-14), and the others take the Newton step, capped in size and
-    kept inside `CREEP_BOUNDS` (`ballcvt.solvers.newton_step.cap`; least squares where the matrix is singular).
+    A point whose residual norm meets ``tol`` is done. Otherwise a point whose norm did
+    not fall below its best goes back along half its previous step (and stops if that
+    step is below 1e-14), and the others take the Newton step, capped in size and kept
+    inside `CREEP_BOUNDS` (`ballcvt.solvers.newton_step.cap`; least squares where the
+    matrix is singular).
 
-    Returns the points still iterating and whether the next evaluation only confirms
-    convergence (every step taken from a norm at most `CONFIRM_NORM`, none went back).
+    Returns the points still iterating.
     """
     lo, hi = CREEP_BOUNDS
     keep = np.zeros(active.size, dtype=np.bool_)
     singular = np.zeros(active.size, dtype=np.bool_)
     step = advance_compiled if COMPILED else advance_python
     x, prev_x, prev_dx, fresh = it.x, it.prev_x, it.prev_dx, it.fresh
-    near = step(
-        active, res, jac, x, free, it.best, prev_x, prev_dx, fresh, tol, confirm,
-        MAX_STEP, lo, hi, CONFIRM_NORM, keep, singular,
+    step(
+        active, res, jac, x, free, it.best, prev_x, prev_dx, fresh, tol,
+        MAX_STEP, lo, hi, keep, singular,
     )  # fmt: skip
     for k in np.flatnonzero(singular):  # rare: a least-squares step, capped
         i = active[k]
@@ -371,7 +378,7 @@ def _advance(it: _Iterates, active, res, jac, free, tol, confirm):
         prev_dx[i] = dx
         x[i, free] += dx
         fresh[i] = False
-    return active[keep], bool(near)
+    return active[keep]
 
 
 def _lstsq(jac, res):

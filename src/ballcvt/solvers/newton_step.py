@@ -58,8 +58,8 @@ _gauss = njit(cache=True)(_gauss_python) if njit is not None else _gauss_python
 # many parameters: compiled by numba, which takes arrays and scalars (an object would not
 # compile); `_advance` is the typed entry point.
 def advance_python(
-    active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, confirm, max_step, lo, hi,
-    confirm_norm, keep, singular,
+    active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, max_step, lo, hi, keep,
+    singular,
 ):  # fmt: skip
     """`_advance`'s loop: Gaussian elimination with partial pivoting for the steps, then
     the caps of `cap`; writes ``keep`` and ``singular`` per point. Compiled by numba
@@ -68,8 +68,6 @@ def advance_python(
     a = np.empty((m, m))
     b = np.empty(m)
     dx = np.empty(m)
-    any_back = False
-    all_near = True
     for k in range(active.size):
         i = active[k]
         norm = 0.0
@@ -79,11 +77,7 @@ def advance_python(
             norm = math.inf
         if norm <= tol:
             continue  # done
-        if confirm:
-            keep[k] = True
-            continue
         if not norm < best[i]:  # worse (or NaN): half the previous step back
-            any_back = True
             big = 0.0
             for r in range(m):
                 prev_dx[i, r] *= 0.5
@@ -93,7 +87,6 @@ def advance_python(
             keep[k] = big > 1e-14
             continue
         keep[k] = True
-        all_near = all_near and norm <= confirm_norm
         best[i] = norm
         for r in range(m):
             b[r] = -res[k, r]
@@ -123,7 +116,6 @@ def advance_python(
         for r in range(m):
             x[i, free[r]] += prev_dx[i, r]
         fresh[i] = False
-    return not confirm and all_near and not any_back  # after a confirmation: the Jacobian
 
 
 def cap(dx, x):

@@ -43,7 +43,6 @@ summits, dropped), so that above it ``f_a = 0`` and the result is exactly the fu
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
@@ -55,6 +54,7 @@ from ..params.models import Design, Fluid
 from ..registry import LUBRICATION_MODELS, TRACTION_LAWS
 from .traction.contact import ContactState, contact_coefficients
 from .traction.isothermal import shear_coefficients
+from .traction.kernels import scalar_powers
 from .traction.quadrature import Quadrature
 
 __all__ = [
@@ -257,13 +257,13 @@ def load_sharing(film, load, ax, ay, asp: Asperities):
 
 
 def _film_factor(keep) -> np.ndarray:
-    """``keep^-e`` (``keep = 1 - f_a``), element by element with `math.pow`: the same bits
-    whatever the batch (NumPy's vectorised power rounds by an element's position), so that
-    a point's result does not depend on the points solved with it."""
+    """``keep^-e`` (``keep = 1 - f_a``), element by element with the C library's ``pow``
+    (`ballcvt.model.traction.kernels.scalar_powers`): the same bits whatever the batch (NumPy's vectorised power
+    rounds by an element's position), so that a point's result does not depend on the
+    points solved with it."""
     keep = np.asarray(keep, dtype=float)
     out = np.ones(keep.shape)
-    wet = keep < 1.0
-    out[wet] = [math.pow(k, -FILM_SHARE_EXPONENT) for k in keep[wet]]
+    scalar_powers(np.ascontiguousarray(keep.reshape(-1)), -FILM_SHARE_EXPONENT, out.reshape(-1))
     return out
 
 

@@ -46,6 +46,7 @@ except ImportError:  # pragma: no cover - numba is a declared dependency
     njit = None
 
 __all__ = ["AVAILABLE", "traction_kernel", "N_OUT", "viscosity_table", "exp_neg", "contact_sums"]
+__all__ += ["scalar_powers"]
 
 AVAILABLE = njit is not None
 #: Fast-math flags that keep IEEE NaN and infinity semantics (a NaN must propagate).
@@ -119,6 +120,20 @@ def viscosity_table(
 #: ``2^-k`` for the exponent of `_exp_neg` (``k`` up to 1099: ``exp(-740)`` is 0 within
 #: the subnormals).
 _POW2 = np.ldexp(1.0, -np.arange(1100))
+
+
+def _powers_python(base, exponent, out):
+    """``out[i] = base[i] ** exponent`` [-] where ``base[i] < 1`` (1-D arrays), one scalar
+    C-library ``pow`` per element (as `math.pow`): no vector maths (numba has none
+    without SVML), so every element's bits are independent of its position in the batch.
+    """
+    for i in range(base.shape[0]):
+        if base[i] < 1.0:
+            out[i] = math.pow(base[i], exponent)
+
+
+#: `_powers_python`, compiled where numba is installed.
+scalar_powers = njit(cache=True)(_powers_python) if AVAILABLE else _powers_python
 
 
 def _kernel_flags(deriv, fl):

@@ -156,8 +156,8 @@ def solve_rows(quick):
 
 def cycle_rows(quick):
     """10,000-step cycles (the example commute repeated), target-input-speed strategy, one
-    process: the Table I drive and the hub, constant and cam clamping; the optimal clamp on
-    fewer steps, scaled to 10,000."""
+    process: the Table I drive and the hub, constant, cam and optimal clamping (quick:
+    1,000 steps, scaled to 10,000)."""
     from bench_cycle import commute, warm_up
 
     from ballcvt import Variator, load_builtin
@@ -169,7 +169,7 @@ def cycle_rows(quick):
         v = with_oil_temperature(Variator(*load_builtin(drive)), "fixed")  # the clamp's cost
         for clamp in ("constant", "cam", "optimal"):
             kw = {"clamp_force": 1500.0} if clamp == "constant" else {"clamp_law": clamp}
-            steps = (20 if quick else 100) if clamp == "optimal" else (1000 if quick else 10_000)
+            steps = 1000 if quick else 10_000
             warm_up(v, **kw)
             c, w, _ = cpu(lambda kw=kw, steps=steps: run_cycle(
                 v, commute(steps), target_input_speed=180 * np.pi / 30, progress=False, **kw))

@@ -25,7 +25,7 @@ from ..solvers.clamped import solve_clamped
 from ..solvers.constraints import with_constraints
 from ..solvers.limit import limit_torque
 from ..solvers.optimal_capacity import capacity_basis
-from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum, optimal_force
+from ..solvers.optimal_clamp import ClampCase, ClampOptimum, clamp_optimum, optimal_start
 from ..solvers.point import SolverOptions, solve_point
 from ..solvers.refusal import point_capacity
 from ..units import rpm_to_rad_s
@@ -126,13 +126,15 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
         )
 
     def _resolve(self, ratio, output_torque, clamp_force, clamp_law, input_speed, input_speed_rpm):
-        """(force law, law name): the optimal law becomes the constant law at its optimum."""
+        """(force law, law name, starting creeps or None): the optimal law becomes the
+        constant law at its optimum, the solve there started from the search's creeps."""
         law = self.clamp_law(clamp_law, clamp_force)
         if not law.optimises:
-            return law, law.name
+            return law, law.name, None
         case = self._clamp_case(ratio, output_torque, input_speed, input_speed_rpm)
         limits = OptimalClamp(law.creep_limit, law.max_pressure)
-        return ConstantClamp(optimal_force(case, limits, self.options)), law.name
+        force, creep = optimal_start(case, limits, self.options)
+        return ConstantClamp(force), law.name, creep
 
     # many parameters: what is computed, in the user's quantities (ratio, torque, force
     # or law, speed in rad/s or rpm), then one settings object; **legacy: old keywords.
@@ -216,7 +218,7 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
                 how.check_capacity,
             )
         try:
-            law, name = self._resolve(
+            law, name, x0 = self._resolve(
                 ratio, output_torque, clamp_force, clamp_law, input_speed, input_speed_rpm
             )
         except TractionLimitError:  # the optimiser found no force: say the capacity
@@ -230,7 +232,7 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
                 problem, law, lambda p, x: solve_point(p, self.options, x)
             )
         else:
-            sol = solve_point(problem, self.options)
+            sol = solve_point(problem, self.options, x0)
         if how.check_capacity:
             refuse_beyond_capacity(problem, sol, law, name, self.options)
         if not sol.converged:

@@ -30,6 +30,7 @@ __all__ = [
     "clamp_optimum",
     "optimal_force",
     "optimal_clamp_force",
+    "optimal_start",
     "point_problem",
 ]
 
@@ -98,10 +99,25 @@ def optimal_force(
     InputError, TractionLimitError
         As `clamp_optimum`.
     """
+    return optimal_start(case, law, options)[0]
+
+
+def optimal_start(
+    case: ClampCase, law: OptimalClamp = OptimalClamp(), options: SolverOptions = SolverOptions()
+) -> tuple[float, np.ndarray | None]:
+    """`optimal_force` and the creeps the batched search found there ``(n_c,)`` [-] (None
+    where the one-point search gave the force), to start the solve at that force.
+
+    Raises
+    ------
+    InputError, TractionLimitError
+        As `clamp_optimum`.
+    """
     found = optimal_forces(point_problem(case), law, options, fallback=False)
     if found.fast[0]:
-        return float(found.force[0])
-    return search_optimum(case, law, options).clamp_force
+        creep = None if found.creep is None else found.creep[0]
+        return float(found.force[0]), creep
+    return search_optimum(case, law, options).clamp_force, None
 
 
 def point_problem(case: ClampCase):

@@ -238,8 +238,8 @@ def draw_drive(task: Task) -> Variator:
             d = design.replace(name="random", **fields)
             # the oil fixed at the fluid's temperature: the campaign's cases are law x clamp x
             # architecture x mode x entry, and the hub's file names its oil balance, whose
-            # paths tests/test_oil_paths.py checks (a table under it agrees with solve to
-            # ~4e-6 in eta only: open, docs/model.md §15)
+            # paths tests/test_oil_paths.py checks (a table's limit under it agrees with
+            # limit_torque to ~2e-3 only: open, docs/model.md §15)
             v = with_oil_temperature(
                 Variator(d, fluid, case["arch"], traction_law=case["law"]), "fixed"
             )

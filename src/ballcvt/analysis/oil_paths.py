@@ -45,9 +45,12 @@ __all__ = [
     "nearest",
 ]
 
-#: Spacing of the ladder's temperatures [K]: the hub's efficiencies interpolated to their
-#: balance agree with `Variator.solve`'s to about 1e-7, their temperatures to 1e-5 K.
-NODE_STEP = 2.5
+#: Spacing of the ladder's temperatures [K]. The efficiency is only once differentiable in
+#: the temperature (the mixed-lubrication tables are cubic Hermite pieces in lambda), so
+#: the interpolation's error falls with the spacing, not faster: on harden task 0:13 (a
+#: random hub-based design with its oil balance) a table's efficiencies agreed with
+#: `Variator.solve`'s to 5.3e-6 at 2.5 K and to 5.6e-9 at 1 K (docs/model.md §15).
+NODE_STEP = 1.0
 #: Spacing of the limit points' ladder [K] (1e-4 relative: the limit searches' own
 #: bracket, `ballcvt.solvers.limit.LIMIT_RTOL`; limit points climb far).
 LIMIT_STEP = 10.0

@@ -109,6 +109,7 @@ def solve_admissible(
                 lambda p, y: solve_batch(p, options, y, fallback, predict),
                 x,
                 pb.design.max_pressure,
+                lambda p, y: solve_batch(p, options, y, fallback, False),
             )
     else:
 

@@ -91,7 +91,7 @@ class Capacity:
         return " or ".join(f"{lo:.4g} to {hi:.4g} N m" for lo, hi in self.intervals)
 
 
-def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float):
+def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float, screen=None):
     """Admissible torque intervals of a 1-D batch by a scan and bisections.
 
     Parameters
@@ -105,6 +105,10 @@ def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float):
         An upper bound on each point's admissible torques [N m], ``(n,)``.
     rtol : float
         Width of the final brackets relative to the ends they bracket [-].
+    screen : callable, optional
+        ``screen(problem) -> Admissibility`` deciding the scan's clear cases cheaply
+        (`ballcvt.solvers.admissible.screen_admissible`): ``admissible`` then solves only
+        the others (`_scan`).
 
     Returns
     -------
@@ -118,9 +122,10 @@ def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float):
     n, nc = flat.size, flat.layout.n_contacts
     grid = _scan_shares()[None, :] * top[:, None]
     rows = np.repeat(np.arange(n), grid.shape[1])
-    scan = admissible(replace(flat.take(rows), output_torque=grid.ravel()), None)
-    ok = scan.ok.reshape(grid.shape)
-    creep = scan.creep.reshape(grid.shape + (nc,))
+    ok, converged, creep = _scan(
+        replace(flat.take(rows), output_torque=grid.ravel()), admissible, screen, grid
+    )
+    ok, creep = ok.reshape(grid.shape), creep.reshape(grid.shape + (nc,))
     # every change between neighbours: its admissible and its inadmissible end
     i, j = np.nonzero(ok[:, :-1] != ok[:, 1:])
     good = np.where(ok[i, j], j, j + 1)
@@ -131,13 +136,66 @@ def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float):
         if act.size == 0:
             break
         mid = 0.5 * (a[act] + b[act])
-        got = admissible(replace(flat.take(i[act]), output_torque=mid), x[act])
+        got = admissible(replace(flat.take(i[act]), output_torque=mid), x[act], False)
         a[act], b[act] = np.where(got.ok, mid, a[act]), np.where(got.ok, b[act], mid)
         x[act] = np.where(got.ok[:, None], got.creep, x[act])
     edge = np.full(grid.shape, np.nan)
     edge[i, j] = a
-    zero = np.where(scan.converged.reshape(grid.shape)[:, :1], creep[:, 0], np.nan)
+    zero = np.where(converged.reshape(grid.shape)[:, :1], creep[:, 0], np.nan)
     return _assemble(ok, grid, edge), _top_creep(ok, creep, (i, j, x)), zero
+
+
+def _scan(points: EquilibriumProblem, admissible, screen, grid):
+    """The admissibility of the scan's ``points`` (a 1-D batch, the torques ``grid``
+    ``(rows, S)`` [N m] in C order): ``(ok, converged, creep)``, flat.
+
+    Without a ``screen``, one ``admissible`` batch from the cold start. With one, the
+    points it decides keep its answer (and its coarse creeps, later only a start); the
+    others, the zero and the top torques, and the points on either side of every change between admissible and
+    inadmissible neighbours (again after each round, until every such point has been
+    solved), are solved by ``admissible`` (`_solve_scan_points`). Every end the bisections
+    start from is then the full rule's, and the screen's decision stands only where the
+    full rule would take the same (its creeps `ballcvt.solvers.admissible.SCREEN_MARGIN`
+    clear of the creep limit) or inside a run of its own decisions.
+    """
+    if screen is None or points.size == 0:
+        got = admissible(points, None)
+        return got.ok, got.converged, got.creep
+    got = screen(points)
+    ok, conv, creep = got.ok.copy(), got.converged.copy(), got.creep.copy()
+    ends = np.zeros(grid.shape, dtype=bool)
+    ends[:, [0, -1]] = True  # their creeps are the search's (the sweeps' starts)
+    todo = ~(got.ok | got.beyond) | ends.ravel() | _next_to_change(ok, grid.shape)
+    done = np.zeros(points.size, dtype=bool)
+    while np.any(todo & ~done):
+        idx = np.flatnonzero(todo & ~done)
+        _solve_scan_points(points, admissible, idx, (ok, conv, creep))
+        done[idx] = True
+        todo |= _next_to_change(ok, grid.shape)
+    return ok, conv, creep
+
+
+def _next_to_change(ok, shape) -> np.ndarray:
+    """Flat mask of the scan points (``ok`` flat, ``shape`` (rows, S)) on either side of a
+    change between admissible and inadmissible neighbours along a row."""
+    grid_ok = ok.reshape(shape)
+    change = grid_ok[:, :-1] != grid_ok[:, 1:]
+    near = np.zeros(shape, dtype=bool)
+    near[:, :-1] |= change
+    near[:, 1:] |= change
+    return near.ravel()
+
+
+def _solve_scan_points(points, admissible, idx, scan) -> None:
+    """Solve the scan's points ``idx`` with ``admissible``, from the creeps in ``scan``
+    (``ok``, ``converged``, ``creep``, updated in place) where they converged (without
+    the predictor stage: they are already near), from the cold start elsewhere."""
+    ok, conv, creep = scan
+    for warm in (True, False):
+        at = idx[conv[idx] == warm]
+        if at.size:
+            again = admissible(points.take(at), creep[at] if warm else None, not warm)
+            ok[at], conv[at], creep[at] = again.ok, again.converged, again.creep
 
 
 def _scan_shares() -> np.ndarray:

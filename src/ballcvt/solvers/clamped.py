@@ -137,7 +137,9 @@ def pressure_bound_force(problem: EquilibriumProblem, max_pressure: float) -> np
     return problem.clamp_force * (p_lim / np.max(problem.p_max, axis=-1)) ** 3
 
 
-def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None, max_pressure=np.inf):
+def solve_clamped(
+    problem: EquilibriumProblem, law, solve, x0=None, max_pressure=np.inf, again=None
+):
     """Solve ``problem`` with its clamping force set by ``law``.
 
     Parameters
@@ -159,6 +161,10 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None, max_pressure
         `ballcvt.solvers.admissible.solve_admissible` refuses it anyway, and a force that runs
         away would otherwise be followed to the Roelands ceiling, issue 23); `at_ceiling`
         says whether a force was stopped there.
+    again : callable, optional
+        The solver of the fixed point's later passes, each from the last pass's creeps
+        (``solve`` by default): e.g. the batched solver without its predictor stage, which
+        would only move a start that close away from the solution (issue 26).
 
     Returns
     -------
@@ -194,7 +200,7 @@ def solve_clamped(problem: EquilibriumProblem, law, solve, x0=None, max_pressure
             break
         target = np.minimum(_wegstein(pb.clamp_force, new, memory), ceiling)
         pb = with_clamp(problem, np.where(move, target, pb.clamp_force))
-        sol = solve(pb, sol.state.creep)
+        sol = (solve if again is None else again)(pb, sol.state.creep)
     new = law.clamp_force(pb.design, sol.state.input_torque, t2)
     held = settled | (np.abs(new - pb.clamp_force) <= CLAMP_RTOL * pb.clamp_force)
     converged = np.asarray(sol.converged) & held

@@ -22,6 +22,8 @@ from ..model.traction.base import traction_rises_with_creep
 from .admissible import (  # noqa: F401 - Admissibility: its old path keeps working
     Admissibility,
     follows_torque,
+    screen_admissible,
+    screens,
     solve_admissible,
 )
 from .capacity import interval_search, no_equilibrium_error
@@ -277,9 +279,16 @@ def limit_search(
     if law is not None:
         spans, creep, x_zero = interval_search(
             flat,
-            lambda pb, x: solve_admissible(pb, creep_limit, options, law, x),
+            lambda pb, x, predict=True: solve_admissible(
+                pb, creep_limit, options, law, x, predict
+            ),
             _law_bound(flat, law),
             rtol,
+            screen=(
+                (lambda pb: screen_admissible(pb, creep_limit, options, law))
+                if screens(options, law, flat.fluid)
+                else None
+            ),
         )
         tick(bisection_steps(rtol))
         return LimitSearch(

@@ -1,0 +1,105 @@
+"""The capacity scan under a cam screens its points on the coarse rule (issue 26): the
+screen decides only what the full rule decides alike, the intervals are those of the scan
+on the full rule, and a Newton run stopped just short of the tolerance is finished from
+where it stopped, not handed to the point solver."""
+
+import math
+
+import numpy as np
+import pytest
+
+import ballcvt.solvers.limit as limit_module
+import ballcvt.solvers.newton as newton_module
+from ballcvt import Variator
+from ballcvt.equilibrium.problem import build_problem
+from ballcvt.model.clamping.cam import CamClamp
+from ballcvt.solvers.admissible import screen_admissible, screens, solve_admissible
+from ballcvt.solvers.limit import limit_search
+from ballcvt.solvers.options import SolverOptions
+
+RPM = 2000.0
+SMALL_PRELOAD = CamClamp(200.0, math.radians(8.0), 0.05, 0.005)
+
+
+@pytest.fixture(scope="module")
+def v():
+    return Variator()
+
+
+def _points(v, ratio, torque, speed_rpm=RPM):
+    n = torque.size
+    return build_problem(
+        v.design,
+        v.fluid,
+        v.architecture,
+        np.full(n, ratio),
+        torque,
+        np.ones(n),
+        np.full(n, speed_rpm * math.pi / 30),
+    )
+
+
+@pytest.mark.parametrize("law", ["design", "small"])
+def test_screen_decides_as_the_full_rule(v, law):
+    law = CamClamp.from_design(v.design) if law == "design" else SMALL_PRELOAD
+    pb = _points(v, 1.3, np.concatenate([np.linspace(0.0, 30.0, 31), np.linspace(40, 400, 10)]))
+    c_lim = v.design.creep_limit
+    fast = screen_admissible(pb, c_lim, SolverOptions(), law)
+    full = solve_admissible(pb, c_lim, SolverOptions(), law)
+    assert np.all(full.ok[fast.ok])
+    assert not np.any(full.ok[fast.beyond])
+    assert np.any(fast.ok | fast.beyond)  # it decides something
+
+
+def test_screen_only_where_the_rules_can_agree(v):
+    cam = CamClamp.from_design(v.design)
+    assert screens(SolverOptions(), cam, v.fluid)
+    assert not screens(SolverOptions(predictor=None), cam, v.fluid)
+    assert not screens(SolverOptions(), CamClamp(1e3, 0.1, 0.05, 0.0, disc="input"), v.fluid)
+    thermal = Variator(traction_law="thermal").fluid
+    assert not screens(SolverOptions(), cam, thermal)
+
+
+@pytest.mark.parametrize("law", ["design", "small"])
+def test_intervals_as_without_the_screen(v, law, monkeypatch):
+    law = CamClamp.from_design(v.design) if law == "design" else SMALL_PRELOAD
+    pb = _points(v, 1.0, np.zeros(6))
+    pb = build_problem(
+        v.design,
+        v.fluid,
+        v.architecture,
+        np.array([0.5, 0.8, 1.0, 1.3, 1.7, 2.0]),
+        np.zeros(6),
+        np.ones(6),
+        pb.input_speed,
+    )
+    c_lim = v.design.creep_limit
+    fast = limit_search(pb, c_lim, law=law)
+    monkeypatch.setattr(limit_module, "screens", lambda *a: False)
+    slow = limit_search(pb, c_lim, law=law)
+    np.testing.assert_array_equal(fast.spans(), slow.spans())
+    np.testing.assert_allclose(fast.creep, slow.creep, rtol=1e-7, atol=1e-12)
+
+
+def test_slow_newton_is_finished_from_where_it_stopped(v, monkeypatch):
+    pb = build_problem(
+        v.design,
+        v.fluid,
+        v.architecture,
+        np.array([1.0, 1.5]),
+        np.array([30.0, 40.0]),
+        np.array([2000.0, 2000.0]),
+        np.full(2, RPM * math.pi / 30),
+    )
+    short = SolverOptions(max_iterations=2)  # stops some 1e-7 short of the tolerance
+    first = newton_module.solve_batch(pb, short, None, fallback=False)
+    assert not np.any(first.converged) and np.all(first.residual_norm <= 1e-6)
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("the point solver was not needed")
+
+    monkeypatch.setattr(newton_module, "solve_robust", refuse)
+    got = solve_admissible(pb, v.design.creep_limit, short)
+    assert np.all(got.converged) and np.all(got.ok)
+    ref = newton_module.solve_batch(pb, SolverOptions())
+    np.testing.assert_allclose(got.creep, ref.state.creep, rtol=1e-8, atol=1e-13)

@@ -153,3 +153,30 @@ def test_mixed_rises_towards_mu_b_as_the_film_thins():
     assert np.all(np.diff(frac) > 0)
     assert frac[-1] > 0.03
     assert np.all(mu >= 0.99 * MU_B * frac)
+
+
+def test_boundary_law_compiled_equals_numpy_with_the_pole_at_the_edge():
+    """A hub contact whose pole sits at the contact's edge (|Y_p| ~ 1: the pole rule's
+    nodes crowd where the pressure is ~0): the boundary law's viscosity table, whose log E
+    falls ~80-fold over its first interval, made the compiled kernel's cubic negative there
+    (|mu| 324 -> 3.5e8 over 3e-7 of creep); its derivatives are now bounded (|E' h| <= 3 E)
+    and the kernel agrees with the NumPy path (found by a hub duty cycle, issue 26)."""
+    from ballcvt.model.traction.kernels import viscosity_table
+
+    d, f = load_builtin("hub")
+    asp = asperities(d)
+    state = ContactState(*(np.atleast_1d(v) for v in (
+        0.010422661314861999, 2.0421266295837968, 4.3362739757501465e-4,
+        5.217377955981099e-4, 809488054.6245488, 383.5642049274727, 0.10221320343559642,
+        2.349991422084524, 1.279448774760789e-07)))
+    for dc in np.linspace(-3e-7, 3e-7, 7):
+        s = state._replace(creep_term=state.creep_term + dc)
+        fast = boundary_coefficients(s, f, asp.boundary_friction, Quadrature(), True,
+                                         asp.creep_stiffness)
+        ref = boundary_coefficients(s, f, asp.boundary_friction, Quadrature(engine="numpy"),
+                                        True, asp.creep_stiffness)
+        for a, b in zip(fast, ref):
+            np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-12)
+    # the bound never acts on a real fluid's table (log E changes by <= 0.01 per interval)
+    _, tab = viscosity_table(f, 4e9)
+    assert np.all(np.abs(tab[:, 1]) <= 0.011 * tab[:, 0])

@@ -113,6 +113,13 @@ def viscosity_table(
     capped = log_e > LOG_E_MAX
     e = np.exp(np.minimum(log_e, LOG_E_MAX))
     de = np.where(capped, 0.0, e * log_slope(p) * (top / n))
+    # |E' h| <= 3 E at every node keeps every interval's cubic positive (it is then at
+    # least (1 - t)^3 E_k + t^3 E_k+1). Never active where log E changes by at most
+    # `log_step` per interval (|E' h| <= 0.01 E); active only where the interval cap leaves
+    # the table coarser than that: the boundary film's law (`ballcvt.model.lubrication`,
+    # limiting shear 1 Pa + mu_b p) falls by a factor ~80 over its first interval, and the
+    # unbounded cubic went negative there, the kernel's saturation with it (|mu| ~ 1e6).
+    de = np.clip(de, -3.0 * e, 3.0 * e)
     fl = np.array([tl0, slope_tl, n / top, float(modulus)])
     return fl, np.column_stack([e, de])
 

@@ -204,6 +204,24 @@ def _interpolated(xs, us, es, u):
     return out.reshape(-1, xs.shape[-1])
 
 
+def _first_round(score: _Scorer, index, u):
+    """``(scores, creeps)`` of the first stencils ``u`` ``(k, 3)``, as one flat batch:
+    where the batch runs the predictor stage, the centres first from the cold start and
+    their neighbours from the centres' creeps (`_start`), about half the iterations of
+    all three from the cold start; else all three together."""
+    options = score.options
+    if 3 * index.size < options.predictor_min_points or options.predictor is None:
+        return score(np.repeat(index, 3), u.reshape(-1))
+    mid, x_mid = score(index, u[:, 1])
+    sides = u[:, [0, 2]]
+    x0 = _start(x_mid, sides - u[:, 1:2])
+    got, x_sides = score(np.repeat(index, 2), sides.reshape(-1), x0)
+    got, x_sides = got.reshape(-1, 2), x_sides.reshape(index.size, 2, -1)
+    scores = np.column_stack([got[:, 0], mid, got[:, 1]]).reshape(-1)
+    creeps = np.stack([x_sides[:, 0], x_mid, x_sides[:, 1]], axis=1)
+    return scores, creeps.reshape(-1, x_mid.shape[-1])
+
+
 def _search(score: _Scorer, index, bounds, start=None):
     """The stencil search of the points ``index`` (positive torque) -> ``(u, certified,
     creeps)`` per point: ``u`` the vertex of the last stencil's parabola, the creeps there
@@ -225,8 +243,11 @@ def _search(score: _Scorer, index, bounds, start=None):
     for _ in range(ROUNDS):
         last = u[live].copy()
         u[live] = centre[live, None] + width[live, None] * np.array([-1.0, 0.0, 1.0])
-        x0 = None if xs is None else _interpolated(xs[live], last, e[live], u[live])
-        got, creep = score(np.repeat(index[live], 3), u[live].reshape(-1), x0)
+        if xs is None:
+            got, creep = _first_round(score, index, u)
+        else:
+            x0 = _interpolated(xs[live], last, e[live], u[live])
+            got, creep = score(np.repeat(index[live], 3), u[live].reshape(-1), x0)
         e[live] = got.reshape(-1, 3)
         if xs is None:
             xs = np.empty((index.size, 3, creep.shape[-1]))

@@ -258,9 +258,9 @@ def load_sharing(film, load, ax, ay, asp: Asperities):
 
 def _film_factor(keep) -> np.ndarray:
     """``keep^-e`` (``keep = 1 - f_a``), element by element with the C library's ``pow``
-    (`ballcvt.model.traction.kernels.scalar_powers`): the same bits whatever the batch (NumPy's vectorised power
-    rounds by an element's position), so that a point's result does not depend on the
-    points solved with it."""
+    (`ballcvt.model.traction.kernels.scalar_powers`): the same bits whatever the batch
+    (NumPy's vectorised power rounds by an element's position), so that a point's result
+    does not depend on the points solved with it."""
     keep = np.asarray(keep, dtype=float)
     out = np.ones(keep.shape)
     scalar_powers(np.ascontiguousarray(keep.reshape(-1)), -FILM_SHARE_EXPONENT, out.reshape(-1))

@@ -131,9 +131,15 @@ def solve_admissible(
     beyond = conv | (big > creep_limit)
     if law is not None:
         bound = pressure_bound_force(pb, pb.design.max_pressure)
-        ok &= pb.clamp_force <= bound * (1 + 1e-12)
+        ok &= ~_over_pressure(pb, bound)
         beyond |= at_ceiling(pb.clamp_force, bound)
     return Admissibility(pb, ok, conv, creep, beyond & ~ok)
+
+
+def _over_pressure(pb: EquilibriumProblem, bound) -> np.ndarray:
+    """Whether each point's clamping force [N] exceeds ``bound`` [N], the force of peak
+    pressure ``design.max_pressure`` (`pressure_bound_force`), beyond round-off."""
+    return pb.clamp_force > bound * (1 + 1e-12)
 
 
 def _restart(problem: EquilibriumProblem, x0, sol, unsure) -> np.ndarray:
@@ -195,7 +201,7 @@ def screen_admissible(
     ok = conv & (big <= creep_limit * (1.0 - SCREEN_MARGIN))
     beyond = conv & (big > creep_limit * (1.0 + SCREEN_MARGIN))
     if law is not None:
-        over = pb.clamp_force > pressure_bound_force(pb, pb.design.max_pressure) * (1 + 1e-12)
+        over = _over_pressure(pb, pressure_bound_force(pb, pb.design.max_pressure))
         ok, beyond = ok & ~over, beyond | over
     return Admissibility(pb, ok, conv, sol.state.creep, beyond & ~ok)
 

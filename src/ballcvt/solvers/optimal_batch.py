@@ -79,16 +79,16 @@ class OptimalForces:
         Found by the batched search (else by `search_optimum`).
     refused : ndarray of bool
         No clamping force up to the pressure bound carries the torque.
-    creep : ndarray or None
-        Starting creeps ``(n, n_c)`` [-] at ``force`` where ``fast`` (those of the search's
-        last central force, scaled as ``1/F_N0``; NaN elsewhere), for the solve that
-        follows; None when no point was searched.
+    creep : ndarray
+        Starting creeps ``(n, n_c)`` [-] at ``force`` where ``fast`` (interpolated to it
+        from the search's last stencil, `_interpolated`; NaN elsewhere), for the solve
+        that follows.
     """
 
     force: np.ndarray
     fast: np.ndarray
     refused: np.ndarray
-    creep: np.ndarray | None = None
+    creep: np.ndarray
 
 
 @dataclass(frozen=True)
@@ -241,7 +241,7 @@ def _search(score: _Scorer, index, bounds, start=None):
     done = np.zeros(index.size, dtype=bool)
     live = np.arange(index.size)
     for _ in range(ROUNDS):
-        last = u[live].copy()
+        last = u[live].copy() if xs is not None else None
         u[live] = centre[live, None] + width[live, None] * np.array([-1.0, 0.0, 1.0])
         if xs is None:
             got, creep = _first_round(score, index, u)

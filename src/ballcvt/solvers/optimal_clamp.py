@@ -115,8 +115,7 @@ def optimal_start(
     """
     found = optimal_forces(point_problem(case), law, options, fallback=False)
     if found.fast[0]:
-        creep = None if found.creep is None else found.creep[0]
-        return float(found.force[0]), creep
+        return float(found.force[0]), found.creep[0]
     return search_optimum(case, law, options).clamp_force, None
 
 

@@ -81,10 +81,10 @@ class SecantCorrection:
         s = x - self.last_x[active]
         y = res - self.last_res[active]
         ss = np.einsum("ij,ij->i", s, s)
-        near = (np.abs(res).max(axis=1) < NEAR_NORM) & (
+        linear = (np.abs(res).max(axis=1) < NEAR_NORM) & (
             np.abs(self.last_res[active]).max(axis=1) < NEAR_NORM
         )
-        use = near & (ss > 0) & np.isfinite(y).all(axis=1) & np.isfinite(ss)
+        use = linear & (ss > 0) & np.isfinite(y).all(axis=1) & np.isfinite(ss)
         if use.any():
             k = active[use]
             s_u = s[use]

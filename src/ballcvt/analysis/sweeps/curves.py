@@ -338,10 +338,7 @@ def optimal_start(pb, law, options, guess=None):
     rows where it has none); ``guess``: forces near the optima [N] to start from (as in
     `ballcvt.solvers.optimal_batch.optimal_forces`)."""
     got = optimal_forces(pb, law, options, guess=guess)
-    creep = got.creep
-    if creep is None:
-        creep = np.full(pb.shape + (pb.layout.n_contacts,), np.nan)
-    return with_clamp(pb, np.where(got.refused, pb.clamp_force, got.force)), creep
+    return with_clamp(pb, np.where(got.refused, pb.clamp_force, got.force)), got.creep
 
 
 def _eta_at(curves: OperatingRows, clamp_force, torque, law=None, x0=None):

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import traceback
 from dataclasses import dataclass, field
@@ -43,6 +44,11 @@ ETA_TOL = 1e-6  # sweep/map/table/cycle/study against solve
 CREEP_SLACK = CREEP_RTOL
 LIMIT_TOL = 1e-3  # limit searches against each other; 1.001 x the limit is "above"
 ETA_SLACK = 1e-12  # round-off allowed outside [0, 1]
+#: One task in this many runs its drive with the oil model its file names (the hub's heat
+#: balance: every path then solves each point at its own oil temperature, docs/model.md
+#: §15, some 20 times the cost of a point); the others at the fluid's own temperature.
+#: ``HARDEN_OIL=drive`` runs every task so.
+OWN_OIL_EVERY = 8
 
 
 class Unsupported(Exception):
@@ -140,8 +146,9 @@ def python_snippet(inputs: dict) -> str:
         f"import json; from ballcvt import *; from ballcvt.api import with_oil_temperature; "
         f"d, f = load_builtin({inputs['base']!r}); "
         f"d = d.replace(name='random', **json.loads({json.dumps(inputs['fields'])!r})); "
-        f"v = with_oil_temperature(Variator(d, f, {inputs['architecture']!r}, "
-        f"traction_law={inputs['traction_law']!r}), 'fixed'); "
+        f"v = Variator(d, f, {inputs['architecture']!r}, "
+        f"traction_law={inputs['traction_law']!r}); "
+        + ("" if inputs.get("oil") == "drive" else "v = with_oil_temperature(v, 'fixed'); ")
     )
     clamp = (
         f"clamp_force={inputs['clamp_force']!r}"
@@ -219,6 +226,13 @@ def draw_cam(rng, rs: float) -> dict:
     }
 
 
+def own_oil(task: Task) -> bool:
+    """Whether the task's drive keeps the oil model its file names (`OWN_OIL_EVERY`)."""
+    if os.environ.get("HARDEN_OIL") == "drive":
+        return True
+    return int(task.where.get("task", 0)) % OWN_OIL_EVERY == OWN_OIL_EVERY - 1
+
+
 def draw_drive(task: Task) -> Variator:
     """A buildable variator for the task's case; sets ``task.base`` (its inputs)."""
     rng, case = task.rng, task.case
@@ -236,13 +250,9 @@ def draw_drive(task: Task) -> Variator:
             fields["parasitic"] = None  # parasitic losses are refused with the carrier turning
         try:
             d = design.replace(name="random", **fields)
-            # the oil fixed at the fluid's temperature: the campaign's cases are law x clamp x
-            # architecture x mode x entry, and the hub's file names its oil balance, whose
-            # paths tests/test_oil_paths.py checks (a table's limit under it agrees with
-            # limit_torque to ~2e-3 only: open, docs/model.md §15)
-            v = with_oil_temperature(
-                Variator(d, fluid, case["arch"], traction_law=case["law"]), "fixed"
-            )
+            v = Variator(d, fluid, case["arch"], traction_law=case["law"])
+            oil = "drive" if own_oil(task) else "fixed"
+            v = v if oil == "drive" else with_oil_temperature(v, "fixed")
         except InputError:
             continue
         task.base = {
@@ -254,6 +264,7 @@ def draw_drive(task: Task) -> Variator:
             "clamp_law": case["clamp"],
             "mode": case["mode"],
             "entry": case["entry"],
+            "oil": oil,
         }
         return v
     raise RuntimeError("no buildable design in 500 draws")

@@ -43,6 +43,7 @@ __all__ = [
     "balance_weights",
     "interpolate",
     "nearest",
+    "bracketing",
 ]
 
 #: Spacing of the ladder's temperatures [K]. The efficiency is only once differentiable in
@@ -231,6 +232,15 @@ def nearest(values: np.ndarray, ladder: Ladder, temperature, outcome) -> np.ndar
     idx = np.where(outcome >= 0, outcome, idx)
     out = np.take_along_axis(values, idx.reshape((1, -1) + (1,) * (values.ndim - 2)), axis=0)[0]
     return out
+
+
+def bracketing(ladder: Ladder, temperature) -> tuple[np.ndarray, np.ndarray]:
+    """Indices ``(below, above)`` ``(n,)`` of the rungs either side of each temperature
+    [K] (both the rung's own at a rung, the end rung's beyond the ladder)."""
+    temps = ladder.temperatures
+    above = np.clip(np.searchsorted(temps, temperature), 0, temps.size - 1)
+    below = np.where(temps[above] <= temperature, above, np.maximum(above - 1, 0))
+    return below, above
 
 
 def runaways_at_top(ladder: Ladder, temperature, weights, outcome) -> None:

@@ -17,14 +17,18 @@ import xarray as xr
 
 from ..errors import InputError
 from ..model.clamping import clamp_law as clamp_law_of
+from ..model.oil import fluid_at
 from ..params.drive import Drive
 from ..params.models import Design, Fluid
 from ..performance.efficiency import LOSS_KINDS
 from ..solvers.limit import LimitSearch
+from ..status import Status
 from .oil_paths import (
+    BALANCED,
     LIMIT_STEP,
     Ladder,
     balance_weights,
+    bracketing,
     climb,
     interpolate,
     nearest,
@@ -363,9 +367,34 @@ def inward_trial(end, stop, k) -> np.ndarray:
 
 
 def _carries(rows: OperatingRows, thermal, torque: np.ndarray) -> np.ndarray:
-    """Whether each row carries its ``torque`` [N m] at its own oil balance."""
-    _, res = balanced_rows(rows, thermal, lambda r: (torque, evaluate_points(r, torque)))
-    return res["status"] == 0
+    """Whether each row carries its ``torque`` [N m] at its own oil balance, judged as
+    `ballcvt.api.oil`'s scalar path judges it: the balance from the losses of every
+    converged point, within the capacity or beyond it (as `Variator.solve` with
+    ``check_capacity=False`` gives them), and the verdict at that temperature: the rungs'
+    either side where they agree, else the row solved at its own temperature (a rung up
+    to 0.5 K away decided it before: the limit 0.17 % off, docs/model.md §15). A row not
+    converged at a rung below its balance, or running away, is refused."""
+    total = LOSS_KINDS.index("total")
+
+    def at(f: Fluid):
+        res = evaluate_points(_with_fluid(rows, f), torque, beyond=True)
+        return res["status"] == Status.CONVERGED, res["losses"][:, total]
+
+    ladder = climb(rows.drive.fluid, thermal, at)
+    temp, _, outcome = balance_weights(ladder)
+    below, above = bracketing(ladder, temp)
+    ok = np.stack(ladder.results)
+    n = np.arange(temp.size)
+    carried = ok[below, n] & ok[above, n] & (outcome == BALANCED)
+    for i in np.flatnonzero((outcome == BALANCED) & (ok[below, n] != ok[above, n])):
+        one = _with_fluid(rows.take(np.array([i])), fluid_at(rows.drive.fluid, temp[i]))
+        carried[i] = evaluate_points(one, torque[i : i + 1])["status"][0] == Status.CONVERGED
+    return carried
+
+
+def _with_fluid(rows: OperatingRows, fluid: Fluid) -> OperatingRows:
+    """``rows`` with the drive's fluid ``fluid``."""
+    return replace(rows, drive=replace(rows.drive, fluid=fluid))
 
 
 def _moved(rows: OperatingRows, thermal, top: np.ndarray, at_top: tuple) -> tuple:

@@ -22,7 +22,9 @@ __all__ = ["evaluate_points", "CHUNK"]
 CHUNK = 1024
 
 
-def evaluate_points(points: OperatingRows, output_torque, callback=None, executor=None) -> dict:
+def evaluate_points(
+    points: OperatingRows, output_torque, callback=None, executor=None, beyond: bool = False
+) -> dict:
     """Solve scattered operating points and report every quantity of a sweep at each.
 
     Parameters
@@ -37,6 +39,10 @@ def evaluate_points(points: OperatingRows, output_torque, callback=None, executo
         Called with the number of points done after each chunk (progress bars).
     executor : concurrent.futures.Executor, optional
         Solve the chunks in its worker processes (the same results, to round-off).
+    beyond : bool
+        Whether the points converged beyond the capacity (``status`` 1) are reported too
+        (else NaN): the oil's heat balance takes their losses, as `Variator.solve` with
+        ``check_capacity=False`` gives them (`ballcvt.analysis.oil_sweep.balanced_tops`).
 
     Returns
     -------
@@ -44,7 +50,7 @@ def evaluate_points(points: OperatingRows, output_torque, callback=None, executo
         ``status`` (`ballcvt.status.Status`: converged within the capacity, beyond it,
         not converged), ``clamp_force`` [N], and the point, contact and loss variables of a
         sweep (`ballcvt.analysis.sweeps.variables`) with a leading axis of length ``n``
-        (NaN where ``status`` is not converged).
+        (NaN where ``status`` is not converged, or not 0 unless ``beyond``).
     """
     torque = np.atleast_1d(np.asarray(output_torque, dtype=float))
     n, law = points.size, points.law
@@ -54,10 +60,13 @@ def evaluate_points(points: OperatingRows, output_torque, callback=None, executo
     # the same chunks with or without worker processes: the same results to round-off
     parts = np.array_split(np.arange(n), -(-n // CHUNK))
     if executor is not None and len(parts) > 1:
-        futures = [executor.submit(evaluate_points, points.take(i), torque[i]) for i in parts]
+        futures = [
+            executor.submit(evaluate_points, points.take(i), torque[i], None, None, beyond)
+            for i in parts
+        ]
         chunks = ((i, f.result()) for i, f in zip(parts, futures))
     else:
-        chunks = ((i, _solve_chunk(points, i, torque[i], force[i])) for i in parts)
+        chunks = ((i, _solve_chunk(points, i, torque[i], force[i], beyond)) for i in parts)
     out: dict = {}
     for idx, got in chunks:  # each chunk into the output arrays, then dropped
         if not out:  # allocated once: every point is written by its chunk
@@ -69,7 +78,7 @@ def evaluate_points(points: OperatingRows, output_torque, callback=None, executo
     return out
 
 
-def _solve_chunk(points: OperatingRows, idx, torque, force) -> dict:
+def _solve_chunk(points: OperatingRows, idx, torque, force, beyond: bool = False) -> dict:
     """Solve and report the points ``idx`` (one chunk; see `evaluate_points`)."""
     law, c_lim = points.law, points.creep_limit
     follows = law if law is not None and not points.optimal else None
@@ -87,8 +96,10 @@ def _solve_chunk(points: OperatingRows, idx, torque, force) -> dict:
         Status.CONVERGED,
         np.where(got.beyond, Status.BEYOND_LIMIT, Status.NOT_CONVERGED),
     ).astype(np.int8)
-    creep = np.where(got.ok[:, None], got.creep, np.nan)[:, None]
-    out = derived(points.take(idx), used[:, None], torque[:, None], creep, status[:, None])
+    shown = got.converged if beyond else got.ok
+    creep = np.where(shown[:, None], got.creep, np.nan)[:, None]
+    listed = np.where(shown, Status.CONVERGED, status)[:, None]  # the points derived
+    out = derived(points.take(idx), used[:, None], torque[:, None], creep, listed)
     out = {k: v[:, 0] for k, v in out.items()}
     out["status"] = status
     out["clamp_force"] = np.where(status == Status.CONVERGED, used, np.nan)

@@ -12,8 +12,9 @@ range, away from the creep and pressure limits: it is the maximum of a smooth ef
 that condition with finite-difference derivatives: three forces ``u_c - h, u_c, u_c + h``
 per round, solved together in one batched solve (`solve_batch`, warm from the creeps of
 the last round's centre, scaled as ``1/F_N0``), the next centre the vertex of their
-parabola and the next half-width ``h`` the step taken or the vertex's error (some
-``2 h^2``), at most half the last (quadratic convergence). Where the parabola is not
+parabola and the next half-width the vertex's error (some ``2 h^2``, the cubic term's
+bias) where the vertex lies within the stencil, else the step taken, at most half the
+last (quadratic convergence). Where the parabola is not
 concave or its vertex lies far outside the stencil, the stencil moves to its best force
 (doubling its width), or halves around it when a neighbour has no admissible
 equilibrium (below the creep bound). A point is certified when the parabola of a stencil
@@ -159,10 +160,12 @@ def _next(u, e, bounds):
     step = np.abs(vertex - b)
     newton = concave & (step <= 2 * h)
     done = newton & (step <= h) & (h <= NEAR * (1 + 1e-9))
-    # Newton: the vertex, the next stencil as wide as the step or the vertex's error
-    # (some 2 h^2: quadratic convergence), at most half the last
+    # Newton: the vertex, the next stencil as wide as the vertex's error (some 2 h^2:
+    # quadratic convergence) where it lies within the stencil, else as the step taken,
+    # at most half the last
     centre = np.where(newton, vertex, b)
-    width = np.where(newton, np.clip(np.maximum(step, 2 * h * h), STEP, 0.5 * h), 0.5 * h)
+    error = np.where(step <= h, 2 * h * h, np.maximum(step, 2 * h * h))
+    width = np.where(newton, np.clip(error, STEP, 0.5 * h), 0.5 * h)
     # otherwise (an infeasible neighbour, below the creep bound) the best force with the
     # width halved; or the best force at an end: move the stencil there
     up, down = ~newton & (best == 2), ~newton & (best == 0)

@@ -323,7 +323,7 @@ def limit_with_oil(variator, choice: str | float, ratio: float, point: dict, who
         drive = at_temperature(variator, temperature)
         cap = drive.capacity(ratio, **point) if whole else drive.limit_torque(ratio, **point)
         found[temperature] = cap
-        top = cap.intervals[-1][1] if whole and cap.intervals else cap
+        top = cap if not whole else cap.intervals[-1][1] if cap.intervals else float("nan")
         if not top >= 0.0:  # (no admissible torque)
             return _Idle()
         top = top * (1.0 - LIMIT_SHY)

@@ -14,16 +14,19 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import BallCVTError
+from ...errors import BallCVTError, InputError
 from ...model.architectures import contact_layout
 from ...model.clamping import clamp_law
 from ...model.clamping.base import names_fixed_force
 from ...model.kinematics import ratio_range
+from ...model.oil import fluid_at
 from ...params.drive import PAPER_POINT, Drive
+from ...params.drive_models import DriveModels
 from ...params.io import resolve_drive
 from ...params.models import Design, Fluid
 from ...status import Status
 from ...units import rpm_to_rad_s
+from ..oil_sweep import balanced_limits, balanced_rows, oil_balance_of
 from ..sweeps.curves import OperatingRows, limit_search_curves
 from ..sweeps.points import evaluate_points
 from .spec import OBJECTIVES, StudySpec
@@ -68,7 +71,7 @@ class Context:
 
 def make_context(spec: StudySpec) -> Context:
     """Resolve the study's drive, fluid and operating points."""
-    design, fluid = resolve_drive(spec.study.drive)
+    design, fluid = _oil_model(*resolve_drive(spec.study.drive), spec.study.oil_temperature)
     fluid = fluid.with_traction_law(spec.study.traction_law)
     op = spec.operating
     if op.cycle is None:
@@ -98,6 +101,25 @@ def make_context(spec: StudySpec) -> Context:
         weights / weights.sum() if weights.size else weights,
         np.asarray(cap, dtype=float),
     )
+
+
+def _oil_model(design: Design, fluid: Fluid, choice) -> tuple[Design, Fluid]:
+    """The drive with the study's oil model ``choice`` (`StudySettings.oil_temperature`):
+    None keeps the drive file's; a temperature [K] sets the fluid there, at a fixed oil."""
+    if choice is None:
+        return design, fluid
+    if choice == "balance" and design.thermal is None:
+        raise InputError("study.oil_temperature", choice, "a drive with a [design.thermal]")
+    if not isinstance(choice, str):
+        design, fluid = _oil_model(design, fluid, "fixed")
+        return design, fluid_at(fluid, float(choice))
+    models = design.models
+    named = (
+        models.model_copy(update={"oil_temperature": choice})
+        if models is not None
+        else DriveModels(oil_temperature=choice)
+    )
+    return design.model_copy(update={"models": named}), fluid
 
 
 def envelope_diameter(design: Design) -> float:
@@ -176,23 +198,12 @@ def _points_life(ctx: Context, drive: Drive, res: dict) -> float:
 
 def _cycle_life(ctx: Context, design, force, law) -> float:
     """System L10 over the study's duty cycle by Miner's rule [h] (docs/life.md)."""
-    from ..cycle_files import read_cycle
-    from ..cycles import run_cycle
     from ..life import cycle_life
 
     op = ctx.spec.operating
     drive = Drive(design, ctx.fluid, ctx.spec.study.architecture)
     target = None if op.target_input_speed_rpm is None else rpm_to_rad_s(op.target_input_speed_rpm)
-    assert op.cycle is not None
-    run = run_cycle(
-        drive,
-        read_cycle(op.cycle),
-        strategy=op.strategy,
-        target_input_speed=target,
-        clamp_force=None if law else force,
-        clamp_law=law,
-        progress=False,
-    )
+    run = _run_cycle(ctx, drive, None if law else force, law, target)
     return float(cycle_life(drive, run).summary["life"]["l10_hours"])
 
 
@@ -215,7 +226,7 @@ def _evaluate(ctx: Context, values: dict):
     if spec.operating.cycle is None:
         drive = Drive(design, ctx.fluid, spec.study.architecture)
         points = OperatingRows.of(drive, ctx.ratio, ctx.speed, None if law else force, law_obj)
-        res = evaluate_points(points, ctx.torque)
+        res = _evaluated(points, ctx.torque)
         pst, eta = res["status"].astype(np.int8), res["eta"]
         beyond = int(np.sum(pst != 0))
         metrics["max_pressure"] = float(np.nanmax(res["p_max"])) if beyond < pst.size else np.nan
@@ -261,14 +272,32 @@ def _evaluate(ctx: Context, values: dict):
         None if law_obj is not None else force,
         law_obj,
     )
-    _, search = limit_search_curves(rows)
-    limits = search.torque
+    limits = _limits(rows)
     metrics["capacity"] = float(np.min(limits))
     volume = math.pi * (metrics["outer_diameter"] / 2) ** 2 * 2 * design.roller_radius
     mass = design.n_rollers * design.material.density * 4 / 3 * math.pi * design.roller_radius**3
     metrics["torque_per_volume"] = metrics["capacity"] / volume
     metrics["torque_per_mass"] = metrics["capacity"] / mass
     return _constraints(ctx, metrics, limits) + (metrics, eta, pst)
+
+
+def _evaluated(points: OperatingRows, torque: np.ndarray) -> dict:
+    """`evaluate_points` of a design's points, each at its own oil temperature where the
+    drive file names the oil's heat balance (docs/model.md §15), as `Variator.solve` and
+    `ballcvt uncertainty` solve it; else with the fluid as given."""
+    thermal = oil_balance_of(points.drive.design)
+    if thermal is None:
+        return evaluate_points(points, torque)
+    return balanced_rows(points, thermal, lambda r: (torque, evaluate_points(r, torque)))[1]
+
+
+def _limits(rows: OperatingRows) -> np.ndarray:
+    """The limiting torques [N m] of a design's capacity rows, at the oil temperature each
+    limit point produces under the drive file's heat balance (as `_evaluated`)."""
+    thermal = oil_balance_of(rows.drive.design)
+    if thermal is None:
+        return limit_search_curves(rows)[1].torque
+    return balanced_limits(rows, thermal)[0]
 
 
 def _constraints(ctx: Context, metrics: dict, limits) -> tuple[int, str]:
@@ -305,26 +334,14 @@ def _cycle_speed(ctx: Context) -> float:
 def _cycle(ctx: Context, design, force, law) -> dict:
     """Efficiency, steps beyond capacity, highest peak pressure [Pa] and lowest film
     thickness ratio [-] (over the solved steps and their contacts; NaN if none solved) of
-    the study's duty cycle."""
-    from ..cycle_files import read_cycle
-    from ..cycles import run_cycle
-
+    the study's duty cycle (`_run_cycle`)."""
     op = ctx.spec.operating
     v = Drive(design, ctx.fluid, ctx.spec.study.architecture)
     # held by target-input-speed only (under max-efficiency: the capacity speed)
     target = (
         rpm_to_rad_s(op.target_input_speed_rpm) if op.strategy == "target-input-speed" else None
     )
-    assert op.cycle is not None
-    res = run_cycle(
-        v,
-        read_cycle(op.cycle),
-        strategy=op.strategy,
-        target_input_speed=target,
-        clamp_force=None if law else force,
-        clamp_law=law,
-        progress=False,
-    )
+    res = _run_cycle(ctx, v, None if law else force, law, target)
     s = res.summary
     beyond = int(s.get("flags", {}).get("beyond_capacity", {}).get("steps", 0))
     eff = s["efficiency"]
@@ -335,3 +352,28 @@ def _cycle(ctx: Context, design, force, law) -> dict:
         "max_pressure": float(solved["max_pressure"].max()) if len(solved) else np.nan,
         "min_lambda": float(solved["min_lambda"].min()) if len(solved) else np.nan,
     }
+
+
+def _run_cycle(ctx: Context, drive: Drive, force, law, target):
+    """The study's duty cycle on ``drive`` (``force`` [N] or ``law``, ``target`` input speed
+    [rad/s] or None): under the oil's lumped transient where the drive file names the
+    oil's heat balance and its housing a thermal mass, as `Variator.run_cycle` runs it
+    (docs/model.md §15); else with the fluid as given."""
+    from ..cycle_files import read_cycle
+    from ..cycle_request import CycleRequest
+    from ..cycles import run_cycle
+    from ..oil_cycle import OilTransient, run_cycle_with_oil
+
+    op = ctx.spec.operating
+    assert op.cycle is not None
+    request = CycleRequest(
+        strategy=op.strategy,
+        target_input_speed=target,
+        clamp_force=force,
+        clamp_law=law,
+        progress=False,
+    )
+    thermal = oil_balance_of(drive.design)
+    if thermal is not None and thermal.thermal_mass is not None:
+        return run_cycle_with_oil(drive, read_cycle(op.cycle), request, OilTransient(thermal))
+    return run_cycle(drive, read_cycle(op.cycle), request)

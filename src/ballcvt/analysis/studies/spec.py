@@ -9,7 +9,9 @@ line naming it (`read_study`).
     ``samples`` (designs drawn by a sampling method), or ``population`` and
     ``generations`` (NSGA-II); ``seed``; ``chunk`` (designs per task); ``choose`` (the
     objective that picks the chosen design on the Pareto front; by default the design
-    nearest the ideal point, objectives scaled to [0, 1]).
+    nearest the ideal point, objectives scaled to [0, 1]); ``oil_temperature``
+    (``"fixed"``, ``"balance"`` or a temperature [K]; by default the drive file's
+    ``[models]``: the built-in ``hub``'s oil balance, some 25 s of CPU a design).
 ``[parameters]``
     Design fields to vary: ``{min = .., max = ..}`` (continuous; ``integer = true`` for a
     whole-number range) or ``{values = [..]}`` (a list). ``clamp_force`` [N] may be varied
@@ -38,6 +40,7 @@ from pydantic import Field, model_validator
 
 from ...errors import InputError
 from ...model.clamping.base import names_fixed_force
+from ...model.oil import MAX_OIL_TEMPERATURE
 from ...params.io import parse_toml, read_text
 from ...params.models import ARCHITECTURES, Design, ParameterModel
 from ...registry import TRACTION_LAWS
@@ -233,6 +236,24 @@ class StudySettings(ParameterModel):
     traction_law: str | None = Field(
         None, description="a name in ballcvt.registry.TRACTION_LAWS (None: the fluid's)"
     )
+    oil_temperature: Literal["fixed", "balance"] | float | None = Field(
+        None,
+        description=(
+            "the oil's model: 'fixed', 'balance' or a temperature [K] (None: the drive "
+            "file's [models])"
+        ),
+    )
+
+    @model_validator(mode="after")
+    def _oil(self) -> StudySettings:
+        t = self.oil_temperature
+        if isinstance(t, float) and not 150.0 < t < MAX_OIL_TEMPERATURE:
+            raise InputError(
+                "study.oil_temperature",
+                t,
+                f"'fixed', 'balance' or 150 to {MAX_OIL_TEMPERATURE:g} K",
+            )
+        return self
 
 
 class StudySpec(ParameterModel):

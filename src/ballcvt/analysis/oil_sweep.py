@@ -265,14 +265,15 @@ def oil_balance_of(design: Design):
 def balanced_rows(rows: OperatingRows, thermal, evaluate) -> tuple[np.ndarray, dict]:
     """Scattered points (`evaluate_points`' rows) each at its oil balance.
 
-    ``evaluate(rows) -> (output torque [N m] (n,), evaluate_points' dict)`` solves the rows
-    at their fluid (e.g. at a given input power); returned interpolated to each point's
-    balance, with ``oil_temperature`` [K] (NaN where not solved) and the status of the
-    rung nearest (a runaway's 2).
+    ``evaluate(rows, idx) -> (output torque [N m] (m,), evaluate_points' dict)`` solves
+    the rows ``rows`` (the points ``idx`` of ``rows``, an index or a slice) at their fluid
+    (e.g. at a given input power); returned interpolated to each point's balance, with
+    ``oil_temperature`` [K] (NaN where not solved) and the status of the rung nearest (a
+    runaway's 2), then each balanced point solved at its own temperature (`_settle`).
     """
 
     def at(f: Fluid):
-        t2, res = evaluate(replace(rows, drive=replace(rows.drive, fluid=f)))
+        t2, res = evaluate(_with_fluid(rows, f), slice(None))
         ok = res["status"] == 0
         return (t2, res), np.where(ok, res["losses"][:, LOSS_KINDS.index("total")], np.nan)
 
@@ -289,7 +290,43 @@ def balanced_rows(rows: OperatingRows, thermal, evaluate) -> tuple[np.ndarray, d
         np.stack([np.broadcast_to(r[0], temp.shape) for r in ladder.results]), weights
     )
     res["oil_temperature"] = np.where(res["status"] == 0, temp, np.nan)
+    _settle(rows, (thermal, evaluate), (ladder, temp, outcome), (t2, res))
     return t2, res
+
+
+def _settle(rows: OperatingRows, how, balance, out) -> None:
+    """Each point balanced between two rungs solved once more at its own temperature,
+    in place in ``out`` = ``(t2, res)`` of `balanced_rows` (``how`` = ``(thermal,
+    evaluate)``, ``balance`` = ``(ladder, temperature, outcome)``): one Newton step on its
+    balance from the interpolated temperature (the excess solved there, the slope the
+    secant of the rungs either side), then the point solved at that temperature. The
+    polynomial through the rungs cannot follow a kink of a point's efficiency in the
+    temperature: 1.7e-4 off `Variator.solve`'s on a 48 rpm cam drive (harden task
+    4242:31, docs/model.md §15); solved at its own temperature, to the balance's own
+    tolerance."""
+    thermal, evaluate = how
+    ladder, temp, outcome = balance
+    t2, res = out
+    below, above = bracketing(ladder, temp)
+    n = np.arange(temp.size)
+    e, t = ladder.excess, ladder.temperatures
+    slope = (e[above, n] - e[below, n]) / np.where(above > below, t[above] - t[below], np.nan)
+    total = LOSS_KINDS.index("total")
+    todo = (outcome == BALANCED) & (res["status"] == 0) & (above > below)
+    for i in np.flatnonzero(todo & np.isfinite(slope) & (slope < 0.0)):
+        one = rows.take(np.array([i]))
+        got = evaluate(_with_fluid(one, fluid_at(rows.drive.fluid, temp[i])), [i])
+        loss = got[1]["losses"][0, total]
+        excess = loss - thermal.conductance * (temp[i] - thermal.ambient_temperature)
+        if not np.isfinite(excess):
+            continue
+        t_oil = float(np.clip(temp[i] - excess / slope[i], t[below[i]], t[above[i]]))
+        t_i, got = evaluate(_with_fluid(one, fluid_at(rows.drive.fluid, t_oil)), [i])
+        for key in res:
+            if key in got:
+                res[key][i] = got[key][0]
+        t2[i] = np.broadcast_to(t_i, (1,))[0]
+        res["oil_temperature"][i] = t_oil if got["status"][0] == 0 else np.nan
 
 
 def balanced_tops(rows: OperatingRows, thermal, top) -> np.ndarray:
@@ -406,6 +443,8 @@ def _moved(rows: OperatingRows, thermal, top: np.ndarray, at_top: tuple) -> tupl
     moved = np.flatnonzero(np.isfinite(new) & (new != top))
     if moved.size:
         shy = new[moved] * (1.0 - LIMIT_SHY)
-        _, res = balanced_rows(rows.take(moved), thermal, lambda r: (shy, evaluate_points(r, shy)))
+        _, res = balanced_rows(
+            rows.take(moved), thermal, lambda r, i: (shy[i], evaluate_points(r, shy[i]))
+        )
         eta[moved], temp[moved] = res["eta"], res["oil_temperature"]
     return new, eta, temp

@@ -288,7 +288,9 @@ def _evaluated(points: OperatingRows, torque: np.ndarray) -> dict:
     thermal = oil_balance_of(points.drive.design)
     if thermal is None:
         return evaluate_points(points, torque)
-    return balanced_rows(points, thermal, lambda r: (torque, evaluate_points(r, torque)))[1]
+    return balanced_rows(points, thermal, lambda r, i: (torque[i], evaluate_points(r, torque[i])))[
+        1
+    ]
 
 
 def _limits(rows: OperatingRows) -> np.ndarray:

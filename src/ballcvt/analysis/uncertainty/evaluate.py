@@ -149,10 +149,10 @@ def _solve(ctx: Context, drive: Drive, law, out: dict, row: int) -> None:
     caps = _rows(ctx, drive, law, duty.capacity_ratio, duty.capacity_speed)
     thermal = oil_balance_of(drive.design)  # the drive's [models] name the oil's balance
 
-    def solved(rows):
+    def solved(rows, idx=slice(None)):
         if duty.power:
-            return _at_power(rows, duty.load)
-        return duty.load, evaluate_points(rows, duty.load)
+            return _at_power(rows, duty.load[idx])
+        return duty.load[idx], evaluate_points(rows, duty.load[idx])
 
     if thermal is not None:  # each point and each limit at its own oil temperature, §15
         t2, res = balanced_rows(points, thermal, solved)

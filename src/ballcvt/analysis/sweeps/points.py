@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...solvers.admissible import solve_admissible
-from ...solvers.newton import initial_creep
+from ...solvers.newton import initial_creep, solve_batch
 from ...status import Status
 from .curves import OperatingRows, derived, optimal_start
 
@@ -96,11 +96,27 @@ def _solve_chunk(points: OperatingRows, idx, torque, force, beyond: bool = False
         Status.CONVERGED,
         np.where(got.beyond, Status.BEYOND_LIMIT, Status.NOT_CONVERGED),
     ).astype(np.int8)
-    shown = got.converged if beyond else got.ok
-    creep = np.where(shown[:, None], got.creep, np.nan)[:, None]
+    shown, solved = (got.ok, got.creep) if not beyond else _beyond(got, follows, points.options)
+    creep = np.where(shown[:, None], solved, np.nan)[:, None]
     listed = np.where(shown, Status.CONVERGED, status)[:, None]  # the points derived
     out = derived(points.take(idx), used[:, None], torque[:, None], creep, listed)
     out = {k: v[:, 0] for k, v in out.items()}
     out["status"] = status
     out["clamp_force"] = np.where(status == Status.CONVERGED, used, np.nan)
     return out
+
+
+def _beyond(got, law, options) -> tuple[np.ndarray, np.ndarray]:
+    """``(converged, creeps)`` of every point of ``got`` (`Admissibility`) with the points
+    whose run stopped as soon as a creep passed the limit (beyond the capacity at once)
+    solved on to convergence, as `Variator.solve` with ``check_capacity=False`` solves
+    them (a law's force fixed before the solve; a law that senses the input torque keeps
+    the shortcut)."""
+    conv, creep = got.converged.copy(), np.array(got.creep, dtype=float)
+    if law is not None and law.implicit:
+        return conv, creep
+    redo = np.flatnonzero(got.beyond & ~conv & np.all(np.isfinite(creep), axis=-1))
+    if redo.size:
+        sol = solve_batch(got.problem.take(redo), options, creep[redo])
+        conv[redo], creep[redo] = sol.converged, sol.state.creep
+    return conv, creep

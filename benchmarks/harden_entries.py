@@ -410,12 +410,15 @@ def planetary_checks(v, p) -> list:
     return bad
 
 
-def reference(task: Task, v, cond: dict, torque: float, ratio=None, rpm=None):
+def reference(task: Task, v, cond: dict, torque: float, ratio=None, rpm=None, oil=None):
     """``Variator.solve`` at a point, once per task: ``("ok", result)`` or
-    ``("flagged"|"bug", exception)``."""
+    ``("flagged"|"bug", exception)``; ``oil``: with the oil at this temperature [K] (a
+    cycle's step under the oil's transient)."""
     ratio = cond["ratio"] if ratio is None else float(ratio)
     rpm = cond["rpm"] if rpm is None else float(rpm)
-    key = (ratio, float(torque), rpm)
+    key = (ratio, float(torque), rpm, oil)
+    if oil is not None:
+        v = with_oil_temperature(v, oil)
     if key not in task.cache:
         mode = task.case["mode"]
         how = None if OPERATING_MODES.get(mode).is_default else SolveSettings(mode=mode)

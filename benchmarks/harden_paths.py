@@ -338,7 +338,10 @@ def run_cycle(task, v, cond):
             cycle_output_torque=ts,
             **at,
         )
-        ref = reference(task, v, cond, t, **at)
+        # under the oil's transient a step runs at its own oil temperature, not the balance
+        oil = row.get("oil_temperature_C")
+        oil = float(oil) + 273.15 if oil is not None and math.isfinite(oil) else None
+        ref = reference(task, v, cond, t, **at, oil=oil)
         status, eta = int(row["status"]), float(row["eta"])
         bad = agree("cycle step", status, eta, ref)
         if status == 0:

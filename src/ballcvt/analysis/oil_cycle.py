@@ -32,7 +32,7 @@ from .cycles import CycleResult, _summary, run_cycle
 __all__ = ["OilTransient", "run_cycle_with_oil", "GRID_STEP"]
 
 #: Spacing of the bulk temperatures the cycle is solved at [K].
-GRID_STEP = 2.0
+GRID_STEP = 1.0
 
 
 @dataclass(frozen=True)

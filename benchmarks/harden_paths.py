@@ -156,7 +156,7 @@ def run_limit(task, v, cond):
                         f"{lim:.6g} N m (|creep| {creep:.4g}), unflagged",
                     )
                 )
-            elif not isinstance(got, TractionLimitError):
+            elif not isinstance(got, TractionLimitError) and not _runaway(got):
                 bad.append(
                     (
                         "flag above the limit",
@@ -439,3 +439,9 @@ RUNNERS = {
     "cycle step": run_cycle,
     "study evaluation": run_study,
 }
+
+
+def _runaway(exc) -> bool:
+    """Whether ``exc`` refuses a point as a thermal runaway of the oil (no heat balance
+    below 150 C): the flag above a limit the runaway bounds (docs/model.md §15)."""
+    return isinstance(exc, InputError) and "no oil heat balance" in str(exc)

@@ -376,6 +376,8 @@ def run_study(task, v, cond):
             "architecture": task.case["arch"],
             "traction_law": task.case["law"],
             "capacity_ratios": [cond["ratio"]],
+            # the oil model of the task's drive (a study runs its drive file's by default)
+            **({} if task.base.get("oil") == "drive" else {"oil_temperature": "fixed"}),
         },
         "parameters": {"n_rollers": {"values": [n]}},
         "fixed": fields,

@@ -43,6 +43,8 @@ __all__ = [
     "balanced_sweep",
     "balanced_limits",
     "balanced_rows",
+    "at_own_oil",
+    "limits_at_own_oil",
     "balanced_tops",
     "inward_trial",
     "outward_trial",
@@ -260,6 +262,26 @@ def oil_balance_of(design: Design):
     models = design.models
     named = getattr(models, "oil_temperature", None) if models is not None else None
     return design.thermal if named == "balance" and design.thermal is not None else None
+
+
+def at_own_oil(rows: OperatingRows, evaluate) -> tuple[np.ndarray, dict]:
+    """``evaluate`` (as `balanced_rows` takes it) of the rows under the oil model their
+    drive file names: each point at its own oil balance where it names the balance
+    (`balanced_rows`), else with the fluid as given."""
+    thermal = oil_balance_of(rows.drive.design)
+    if thermal is None:
+        return evaluate(rows, slice(None))
+    return balanced_rows(rows, thermal, evaluate)
+
+
+def limits_at_own_oil(rows: OperatingRows) -> np.ndarray:
+    """The rows' limiting torques [N m] under the oil model their drive file names: at the
+    oil temperature each limit point produces where it names the balance
+    (`balanced_limits`), else with the fluid as given."""
+    thermal = oil_balance_of(rows.drive.design)
+    if thermal is None:
+        return limit_search_curves(rows)[1].torque
+    return balanced_limits(rows, thermal)[0]
 
 
 def balanced_rows(rows: OperatingRows, thermal, evaluate) -> tuple[np.ndarray, dict]:

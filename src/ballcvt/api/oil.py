@@ -22,7 +22,7 @@ from ..analysis.oil_sweep import STRETCH_MAX, STRETCH_RTOL, inward_trial, outwar
 from ..errors import BallCVTError, ConvergenceError, InputError
 from ..model.modes import resolve_mode
 from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
-from ..params.drive_models import DriveModels
+from ..params.drive_models import with_oil_model
 from ..results.planetary import PlanetaryResult
 from ..solvers.refusal import CREEP_RTOL
 
@@ -253,14 +253,7 @@ def cycle_with_oil(variator, cycle, settings, clamp: dict, mode):
 def at_temperature(variator, temperature: float):
     """``variator`` with its fluid at ``temperature`` [K] and its oil model ``"fixed"``
     (the paths run on it as on any drive)."""
-    design = variator.design
-    models = design.models
-    fixed = (
-        models.model_copy(update={"oil_temperature": "fixed"})
-        if models is not None
-        else DriveModels(oil_temperature="fixed")
-    )
-    design = design.model_copy(update={"models": fixed})
+    design = with_oil_model(variator.design, "fixed")
     return replace(variator, design=design, fluid=fluid_at(variator.fluid, temperature))
 
 
@@ -459,11 +452,4 @@ def with_oil_temperature(variator, value: Any):
     choice = oil_choice(value, ("fixed", "balance"))
     if isinstance(choice, float):
         return at_temperature(variator, choice)
-    design = variator.design
-    models = design.models
-    named = (
-        models.model_copy(update={"oil_temperature": choice})
-        if models is not None
-        else DriveModels(oil_temperature=choice)
-    )
-    return replace(variator, design=design.model_copy(update={"models": named}))
+    return replace(variator, design=with_oil_model(variator.design, choice))

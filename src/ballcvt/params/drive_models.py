@@ -31,7 +31,14 @@ from ..registry import (
 from .base import ParameterModel, _opt
 from .lubrication import Lubrication
 
-__all__ = ["DriveModels", "MODEL_KEYS", "PACKAGE_DEFAULTS", "effective_models", "drive_clamp"]
+__all__ = [
+    "DriveModels",
+    "MODEL_KEYS",
+    "PACKAGE_DEFAULTS",
+    "effective_models",
+    "drive_clamp",
+    "with_oil_model",
+]
 
 #: ``[models]`` key -> the registry its names are checked against.
 MODEL_KEYS: dict[str, Registry[Any]] = {
@@ -76,6 +83,18 @@ class DriveModels(ParameterModel):
     def given(self) -> dict[str, str]:
         """The keys the table gives, with their names."""
         return {k: v for k in MODEL_KEYS if (v := getattr(self, k)) is not None}
+
+
+def with_oil_model(design: Any, choice: str) -> Any:
+    """``design`` whose ``[models]`` name the oil temperature model ``choice`` (e.g.
+    ``"fixed"``, ``"balance"``), its other models kept."""
+    models = design.models
+    named = (
+        models.model_copy(update={"oil_temperature": choice})
+        if models is not None
+        else DriveModels(oil_temperature=choice)
+    )
+    return design.model_copy(update={"models": named})
 
 
 def _drive_clamp_law(design: Any) -> str | None:

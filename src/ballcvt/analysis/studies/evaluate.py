@@ -21,13 +21,13 @@ from ...model.clamping.base import names_fixed_force
 from ...model.kinematics import ratio_range
 from ...model.oil import fluid_at
 from ...params.drive import PAPER_POINT, Drive
-from ...params.drive_models import DriveModels
+from ...params.drive_models import with_oil_model
 from ...params.io import resolve_drive
 from ...params.models import Design, Fluid
 from ...status import Status
 from ...units import rpm_to_rad_s
-from ..oil_sweep import balanced_limits, balanced_rows, oil_balance_of
-from ..sweeps.curves import OperatingRows, limit_search_curves
+from ..oil_sweep import at_own_oil, limits_at_own_oil, oil_balance_of
+from ..sweeps.curves import OperatingRows
 from ..sweeps.points import evaluate_points
 from .spec import OBJECTIVES, StudySpec
 
@@ -111,15 +111,8 @@ def _oil_model(design: Design, fluid: Fluid, choice) -> tuple[Design, Fluid]:
     if choice == "balance" and design.thermal is None:
         raise InputError("study.oil_temperature", choice, "a drive with a [design.thermal]")
     if not isinstance(choice, str):
-        design, fluid = _oil_model(design, fluid, "fixed")
-        return design, fluid_at(fluid, float(choice))
-    models = design.models
-    named = (
-        models.model_copy(update={"oil_temperature": choice})
-        if models is not None
-        else DriveModels(oil_temperature=choice)
-    )
-    return design.model_copy(update={"models": named}), fluid
+        return with_oil_model(design, "fixed"), fluid_at(fluid, float(choice))
+    return with_oil_model(design, choice), fluid
 
 
 def envelope_diameter(design: Design) -> float:
@@ -226,7 +219,8 @@ def _evaluate(ctx: Context, values: dict):
     if spec.operating.cycle is None:
         drive = Drive(design, ctx.fluid, spec.study.architecture)
         points = OperatingRows.of(drive, ctx.ratio, ctx.speed, None if law else force, law_obj)
-        res = _evaluated(points, ctx.torque)
+        torque = ctx.torque  # each point at its own oil temperature where the drive names it
+        _, res = at_own_oil(points, lambda r, i: (torque[i], evaluate_points(r, torque[i])))
         pst, eta = res["status"].astype(np.int8), res["eta"]
         beyond = int(np.sum(pst != 0))
         metrics["max_pressure"] = float(np.nanmax(res["p_max"])) if beyond < pst.size else np.nan
@@ -272,34 +266,13 @@ def _evaluate(ctx: Context, values: dict):
         None if law_obj is not None else force,
         law_obj,
     )
-    limits = _limits(rows)
+    limits = limits_at_own_oil(rows)
     metrics["capacity"] = float(np.min(limits))
     volume = math.pi * (metrics["outer_diameter"] / 2) ** 2 * 2 * design.roller_radius
     mass = design.n_rollers * design.material.density * 4 / 3 * math.pi * design.roller_radius**3
     metrics["torque_per_volume"] = metrics["capacity"] / volume
     metrics["torque_per_mass"] = metrics["capacity"] / mass
     return _constraints(ctx, metrics, limits) + (metrics, eta, pst)
-
-
-def _evaluated(points: OperatingRows, torque: np.ndarray) -> dict:
-    """`evaluate_points` of a design's points, each at its own oil temperature where the
-    drive file names the oil's heat balance (docs/model.md §15), as `Variator.solve` and
-    `ballcvt uncertainty` solve it; else with the fluid as given."""
-    thermal = oil_balance_of(points.drive.design)
-    if thermal is None:
-        return evaluate_points(points, torque)
-    return balanced_rows(points, thermal, lambda r, i: (torque[i], evaluate_points(r, torque[i])))[
-        1
-    ]
-
-
-def _limits(rows: OperatingRows) -> np.ndarray:
-    """The limiting torques [N m] of a design's capacity rows, at the oil temperature each
-    limit point produces under the drive file's heat balance (as `_evaluated`)."""
-    thermal = oil_balance_of(rows.drive.design)
-    if thermal is None:
-        return limit_search_curves(rows)[1].torque
-    return balanced_limits(rows, thermal)[0]
 
 
 def _constraints(ctx: Context, metrics: dict, limits) -> tuple[int, str]:

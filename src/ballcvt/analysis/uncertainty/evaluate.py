@@ -23,8 +23,8 @@ from ...params.models import Design, Fluid
 from ...params.uncertainty import with_values
 from ...solvers import SolverOptions
 from ...status import Status
-from ..oil_sweep import balanced_limits, balanced_rows, oil_balance_of
-from ..sweeps.curves import OperatingRows, limit_search_curves
+from ..oil_sweep import at_own_oil, limits_at_own_oil
+from ..sweeps.curves import OperatingRows
 from ..sweeps.points import evaluate_points
 
 __all__ = ["Duty", "Context", "evaluate_chunk", "POWER_PASSES"]
@@ -147,25 +147,21 @@ def _solve(ctx: Context, drive: Drive, law, out: dict, row: int) -> None:
     duty = ctx.duty
     points = _rows(ctx, drive, law, duty.ratio, duty.input_speed)
     caps = _rows(ctx, drive, law, duty.capacity_ratio, duty.capacity_speed)
-    thermal = oil_balance_of(drive.design)  # the drive's [models] name the oil's balance
 
-    def solved(rows, idx=slice(None)):
+    def solved(rows, idx):
         if duty.power:
             return _at_power(rows, duty.load[idx])
         return duty.load[idx], evaluate_points(rows, duty.load[idx])
 
-    if thermal is not None:  # each point and each limit at its own oil temperature, §15
-        t2, res = balanced_rows(points, thermal, solved)
-        out["capacity"][row] = balanced_limits(caps, thermal)[0]
-    else:
-        t2, res = solved(points)
+    # each point and each limit at its own oil temperature where the drive names the
+    # oil's balance (docs/model.md §15)
+    t2, res = at_own_oil(points, solved)
+    out["capacity"][row] = limits_at_own_oil(caps)
     out["status"][row] = res["status"]
     ok = res["status"] == Status.CONVERGED
     out["eta"][row] = np.where(ok, res["eta"], np.nan)
     out["output_torque"][row] = np.where(ok, t2, np.nan)
     out["input_torque"][row] = np.where(ok, res["input_torque"], np.nan)
-    if thermal is None:
-        out["capacity"][row] = limit_search_curves(caps)[1].torque
 
 
 def _at_power(points: OperatingRows, power: np.ndarray):

@@ -7,10 +7,18 @@ any step length), the loss of a step evaluated at the temperature the step start
 
 The steps are solved batched, as every cycle: the whole cycle is run (`run_cycle`) with the
 fluid at a few bulk temperatures `GRID_STEP` apart, each run only when the temperature
-reaches it; a step at ``T`` between two of them takes their rows interpolated linearly in
-``T`` (the flag and status of the nearer; a step that failed at either takes the nearer's
-row as it is). The temperature never jumps a grid interval in one step unnoticed: every
-step reads the two runs around its own temperature.
+reaches it; a step at ``T`` between two of them takes the rows of the four runs about it
+(one below and two above; from the start's run up between the first two) interpolated by
+the cubic through them in ``T`` (Lagrange), the flag and status of the nearest. Where the
+step failed or changed its flag at one of the outer two, the two runs about it are
+interpolated linearly; where at either of those, the nearer's row is taken as it is. The
+temperature never jumps a grid interval in one step unnoticed: every step reads the runs
+around its own temperature.
+
+Linear interpolation was not enough: on the built-in hub a step's efficiency curves in the
+oil's temperature by ``d2 eta / dT2`` ~ -2e-4 1/K^2, so the chord of runs 1 K apart was up
+to 2.2e-5 under the step solved at its temperature (``h^2 |eta''| / 8``); the cubic's error
+is of the fourth order in the spacing (docs/model.md §15).
 """
 
 from __future__ import annotations
@@ -28,11 +36,15 @@ from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, transient_step
 from .cycle_files import Cycle
 from .cycle_request import CycleRequest
 from .cycles import CycleResult, _summary, run_cycle
+from .oil_paths import lagrange
 
 __all__ = ["OilTransient", "run_cycle_with_oil", "GRID_STEP"]
 
 #: Spacing of the bulk temperatures the cycle is solved at [K].
 GRID_STEP = 1.0
+#: The runs a step at ``t0 + (j + w) GRID_STEP`` reads, as offsets from ``j - 1`` (from
+#: ``j = 0``, the start's run, they begin there: a warming cycle runs none below it).
+STENCIL = (0, 1, 2, 3)
 
 
 @dataclass(frozen=True)
@@ -79,12 +91,14 @@ def run_cycle_with_oil(drive, cycle: Cycle, request: CycleRequest, oil: OilTrans
         thermal.ambient_temperature if oil.initial_temperature is None else oil.initial_temperature
     )
     runs: dict[int, CycleResult] = {}
+    records: dict[int, list] = {}  # each run's steps as rows (read once per step each)
 
-    def run(j: int):
+    def run(j: int) -> list:
         if j not in runs:
             hot = replace(drive, fluid=fluid_at(drive.fluid, t0 + j * GRID_STEP))
             runs[j] = run_cycle(hot, cycle, request)
-        return runs[j].steps
+            records[j] = runs[j].steps.to_dict("records")
+        return records[j]
 
     temps = np.empty(cycle.size + 1)
     temps[0] = t0
@@ -93,8 +107,8 @@ def run_cycle_with_oil(drive, cycle: Cycle, request: CycleRequest, oil: OilTrans
     for k in range(cycle.size):
         x = (temps[k] - t0) / GRID_STEP
         j = math.floor(x)
-        w = x - j
-        row = _blend(run(j).iloc[k], run(j + 1).iloc[k], w)
+        low = -1 if j != 0 else 0  # from the start up: the runs from it (none below)
+        row = _blend([run(j + low + m)[k] for m in range(len(STENCIL))], x - j - low)
         rows.append(row)
         loss = 0.0 if row["flag"] == "idle" or not row["status"] == 0 else float(row["loss_total"])
         temps[k + 1] = transient_step(temps[k], loss, float(durations[k]), thermal)
@@ -133,16 +147,29 @@ def run_cycle_with_oil(drive, cycle: Cycle, request: CycleRequest, oil: OilTrans
     return CycleResult(steps=steps, summary=summary)
 
 
-def _blend(lo, hi, w: float):
-    """The row ``(1 - w) lo + w hi`` (numbers), the nearer's flag and status; the nearer
-    row as it is where either failed."""
+def _blend(rows: list, x: float):
+    """The step's row at ``x`` in [0, 3] over the four `STENCIL` runs ``rows`` (module
+    docstring): the cubic through the four, else the chord of the two about ``x``, else
+    the nearer of those as it is."""
+    i = min(int(x), 2)
+    lo, hi = rows[i], rows[i + 1]
+    w = x - i
     near = lo if w < 0.5 else hi
-    if lo["status"] != hi["status"] or lo["flag"] != hi["flag"] or near["status"] != 0:
-        return near.copy()
-    out = near.copy()
-    for key, a in lo.items():
+    if not _alike(lo, hi) or near["status"] != 0:
+        return dict(near)
+    if all(_alike(near, r) for r in rows):
+        weights = lagrange(np.asarray(STENCIL, dtype=float), x)
+    else:
+        rows, weights = [lo, hi], np.array([1.0 - w, w])
+    out = dict(near)
+    for key, a in near.items():
         if key in ("flag", "status", "time", "duration"):
             continue
         if isinstance(a, float | np.floating):
-            out[key] = (1.0 - w) * a + w * hi[key]
+            out[key] = float(sum(c * r[key] for c, r in zip(weights, rows, strict=True)))
     return out
+
+
+def _alike(a, b) -> bool:
+    """Whether two runs' rows of a step share their status and flag."""
+    return a["status"] == b["status"] and a["flag"] == b["flag"]

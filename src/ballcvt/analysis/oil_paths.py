@@ -44,6 +44,7 @@ __all__ = [
     "interpolate",
     "nearest",
     "bracketing",
+    "lagrange",
 ]
 
 #: Spacing of the ladder's temperatures [K]. The efficiency is only once differentiable in
@@ -137,7 +138,7 @@ def _ladder(got: list) -> Ladder:
     )
 
 
-def _lagrange(nodes: np.ndarray, t: float) -> np.ndarray:
+def lagrange(nodes: np.ndarray, t: float) -> np.ndarray:
     """The Lagrange basis through ``nodes`` at ``t``."""
     w = np.ones(nodes.size)
     for j in range(nodes.size):
@@ -152,7 +153,7 @@ def _root(nodes: np.ndarray, values: np.ndarray, lo: float, hi: float) -> float:
     positive at ``lo`` and not at ``hi`` (bisection)."""
     for _ in range(ROOT_STEPS):
         mid = 0.5 * (lo + hi)
-        if _lagrange(nodes, mid) @ values > 0.0:
+        if lagrange(nodes, mid) @ values > 0.0:
             lo = mid
         else:
             hi = mid
@@ -184,7 +185,7 @@ def _point(temps: np.ndarray, e: np.ndarray) -> tuple[int, float, np.ndarray]:
         top += 1
     use = np.arange(max(0, j - BELOW), top + 1)
     root = _root(temps[use], e[use], float(temps[j - 1]), float(temps[j]))
-    weights[use] = _lagrange(temps[use], root)
+    weights[use] = lagrange(temps[use], root)
     return BALANCED, root, weights
 
 

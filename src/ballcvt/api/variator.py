@@ -442,7 +442,7 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
         cycle : Cycle or path
             A `ballcvt.analysis.cycles.Cycle`, or a cycle CSV file (docs/cycles.md).
         clamp_force, clamp_law
-            As in `solve`.
+            As in `solve` (neither: the drive file's law, `drive_clamp`).
         settings : CycleSettings, optional
             Strategy (``"target-input-speed"`` or ``"max-efficiency"``), the target input
             speed [rad/s] or [rpm], candidate ratios per step, the ratio range [-], progress
@@ -464,6 +464,8 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
         how = merge_settings(CycleSettings, settings, legacy, "run_cycle")
         if not isinstance(cycle, Cycle):
             cycle = read_cycle(cycle)
+        # the drive file's law when the call names none, as `solve` and `sweep` take it
+        clamp_law, clamp_force = drive_clamp(self.design, clamp_law, clamp_force)
         clamp = {"clamp_force": clamp_force, "clamp_law": clamp_law}
         how = replace(
             how, oil_temperature=oil.drive_choice(self.design, how.oil_temperature, True, mode)

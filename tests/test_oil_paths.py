@@ -57,6 +57,55 @@ def test_ladder_outcomes_ambient_failed_and_runaway():
     assert got.tolist() == [Status.CONVERGED, Status.NOT_CONVERGED, 1, Status.NOT_CONVERGED]
 
 
+def test_a_stencil_across_a_kink_is_in_doubt():
+    """`oil_grid.in_doubt`: a point whose quantity is smooth over its six rungs 1 K apart
+    is not re-solved; one whose stencil spans a kink (a jump of the second derivative, as
+    the mixed-lubrication tables' cubic Hermite pieces give) or only two rungs is."""
+    from ballcvt.analysis.oil_grid import SETTLE_TOL, in_doubt
+
+    temps = 293.15 + np.arange(8.0)
+    root = 296.4
+    excess = np.repeat((root - temps)[:, None], 3, axis=1)
+    excess[:, 2] = 293.6 - temps  # the third balanced in the first interval,
+    excess[2:, 2] = np.nan  # not solved above it: a chord
+    ladder = Ladder(temps, [None] * temps.size, excess)
+    t, w, outcome = balance_weights(ladder)
+    assert (outcome == -1).all() and t == pytest.approx([root, root, 293.6])
+    x = temps - 293.15
+    smooth = 0.9 + 3e-3 * x - 2e-4 * x**2 + 1e-6 * x**3
+    kink = smooth - 5e-5 * np.maximum(x - 3.5, 0.0) ** 2  # d2/dT2 jumps by 1e-4 at 3.5 K
+    eta = np.stack([smooth, kink, smooth], axis=1)
+    loss = np.full((temps.size, 3), 10.0)
+    doubt = in_doubt(ladder, t, w, (eta, loss))
+    assert doubt.tolist() == [False, True, True]
+    assert SETTLE_TOL <= 1e-8  # well within harden's 1e-6 (benchmarks/harden_paths.py)
+
+
+def test_points_laid_out_as_a_sweep():
+    """`oil_grid._as_grid`: `evaluate_points`' losses by kind and contact variables laid
+    out as a sweep's (components and subtotals, the sweep's contact axis), so a point
+    re-solved at its own oil temperature replaces its row of the dataset exactly."""
+    from ballcvt.analysis.oil_grid import _as_grid
+    from ballcvt.analysis.sweeps.curves import OperatingRows
+    from ballcvt.analysis.sweeps.points import evaluate_points
+    from ballcvt.params.drive import Drive
+
+    design, fluid = load_builtin("table1")
+    for arch in ("double", "single"):
+        v = Variator(design, fluid, arch)
+        ds = v.sweep(ratio=[1.2], output_torque=[10.0], clamp_force=[2000.0],
+                     input_speed_rpm=[1000.0])  # fmt: skip
+        rows = OperatingRows.of(Drive(design, fluid, arch), [1.2], [1000.0 * np.pi / 30],
+                                [2000.0], None)  # fmt: skip
+        contacts = [str(c) for c in ds["contact"].values]
+        got = _as_grid(evaluate_points(rows, np.array([10.0])), arch, contacts)
+        point = ds.isel(architecture=0, clamp_force=0, input_speed_rpm=0, ratio=0,
+                        output_torque=0)  # fmt: skip
+        for name in ("eta", "losses", "loss_subtotals", "creep", "spin", "p_max", "warnings"):
+            np.testing.assert_allclose(got[name][0], point[name].values, rtol=1e-9,
+                                       err_msg=f"{arch} {name}")  # fmt: skip
+
+
 def test_hub_sweep_follows_the_balance_and_agrees_with_solve(hub):
     assert path_choice(hub) == "balance"
     ds = hub.sweep(ratio=[1.0], output_torque=[5.0, 20.0], input_speed_rpm=SPEED)

@@ -1,11 +1,13 @@
-"""A sweep under the oil's heat balance: each point, and each curve's limiting torque, at
-its own oil temperature (docs/model.md §15; the method: `ballcvt.analysis.oil_paths`).
+"""Scattered points and limit curves under the oil's heat balance, each at its own oil
+temperature (docs/model.md §15; the method: `ballcvt.analysis.oil_paths`; a sweep's grid:
+`ballcvt.analysis.oil_grid`).
 
-The sweep is run at each rung of the ladder of oil temperatures; each point's quantities
-are interpolated to its balance temperature, and each curve's ``limit_torque`` and
-``eta_at_limit`` to the temperature its limit point produces (the limit point solved at
-each rung; the rungs climb on for the limits as far as they need). The dataset gains
-``oil_temperature`` [K] at every point and ``oil_temperature_at_limit`` [K] per curve.
+Points (`balanced_rows`: studies, uncertainty) are solved at each rung of the
+ladder of oil temperatures, interpolated to their balance temperature and then solved
+once more at it (`settle`); each curve's limiting torque (`balanced_limits`) is found at
+the temperature its limit point produces (the limit point solved at each rung; the rungs
+climb on for the limits as far as they need), then moved to where the balanced point flips
+between carried and refused (`balanced_tops`).
 """
 
 from __future__ import annotations
@@ -36,11 +38,12 @@ from .oil_paths import (
     runaways_at_top,
 )
 from .sweeps.curves import OperatingRows, limit_search_curves
-from .sweeps.grid import SweepRequest, sweep
 from .sweeps.points import evaluate_points
 
 __all__ = [
-    "balanced_sweep",
+    "settle",
+    "curve_rows",
+    "moved_tops",
     "balanced_limits",
     "balanced_rows",
     "at_own_oil",
@@ -56,115 +59,11 @@ __all__ = [
 #: The limit point is solved this fraction below the limiting torque (at the limit itself
 #: the admissibility test may fall either way by round-off) [-].
 LIMIT_SHY = 1e-6
-#: Variables taken at the nearest rung rather than interpolated (counts and codes).
-CODES = ("status", "warnings", "iterations")
 #: Relative resolution [-] of the search for where a balanced point flips between carried
 #: and refused, from the ends found at the fixed point's temperature (`balanced_tops`,
 #: `ballcvt.api.oil`'s `_balanced_ends`), and its reach above the largest end [-] (an end
 #: between two intervals may move as far as its neighbour).
 STRETCH_RTOL, STRETCH_MAX = 5e-4, 0.2
-
-
-def balanced_sweep(design: Design, fluid: Fluid, thermal, request: SweepRequest) -> xr.Dataset:
-    """`ballcvt.analysis.sweeps.grid.sweep` with every point at its oil balance.
-
-    Parameters
-    ----------
-    design, fluid : Design, Fluid
-        The drive (the fluid with its viscosity-temperature data).
-    thermal : ThermalModel
-        The housing, ``[design.thermal]``.
-    request : SweepRequest
-        The grid, without ``limit_torque`` (each temperature searches its own).
-
-    Returns
-    -------
-    xarray.Dataset
-        As `sweep`, with ``oil_temperature`` [K] at each point and
-        ``oil_temperature_at_limit`` [K] per curve, and the attribute ``oil_model``
-        ``"balance"``.
-    """
-    if request.limit_torque is not None:
-        raise InputError(
-            "limit_torque",
-            "given",
-            "None under the oil's heat balance (each temperature searches its own limits)",
-        )
-
-    def at(f: Fluid):
-        ds = sweep(design, f, request)
-        return ds, _points(ds, ds["losses"].sel(loss="total")).ravel()
-
-    ladder = climb(fluid, thermal, at)
-    first = ladder.results[0]
-    out = _interpolated(ladder, list(first["status"].dims))
-    _limits_into(out, design, fluid, thermal, (request, ladder))
-    out.attrs.update(first.attrs, oil_model="balance", oil_rungs=len(ladder.temperatures))
-    return out
-
-
-def _limits_into(out: xr.Dataset, design, fluid, thermal, run) -> None:
-    """``out`` gains the curves' balanced ``limit_torque``, ``eta_at_limit`` and
-    ``oil_temperature_at_limit``; ``run`` is the request and the points' ladder."""
-    request, points = run
-    first = points.results[0]
-    dims = first["limit_torque"].dims
-    flat = {
-        float(t): tuple(
-            r[v].transpose(*dims).values.ravel() for v in ("limit_torque", "eta_at_limit")
-        )
-        for t, r in zip(points.temperatures, points.results, strict=True)
-    }
-    ladder = limit_ladder(_curve_rows(design, fluid, first, request), thermal, flat)
-    temp, weights, outcome = balance_weights(ladder)
-    runaways_at_top(ladder, temp, weights, outcome)
-    shape = first["limit_torque"].shape
-    rows = _curve_rows(design, fluid, first, request)
-    top = interpolate(np.stack([r[0] for r in ladder.results]), weights)
-    eta = interpolate(np.stack([r[1] for r in ladder.results]), weights)
-    top, eta, temp = _moved(rows, thermal, top, (eta, temp))
-    for name, values in (("limit_torque", top), ("eta_at_limit", eta)):
-        out[name] = xr.Variable(dims, values.reshape(shape), first[name].attrs)
-    temp = np.where(np.isfinite(top), temp, np.nan)
-    out["oil_temperature_at_limit"] = xr.Variable(
-        dims,
-        temp.reshape(shape),
-        {"long_name": "oil temperature the limit point produces", "units": "K"},
-    )
-
-
-def _points(ds: xr.Dataset, var: xr.DataArray) -> np.ndarray:
-    """``var`` with the point dimensions of ``ds`` (its ``status``'s) first, in order."""
-    dims = list(ds["status"].dims)
-    return var.transpose(*dims, ...).values
-
-
-def _interpolated(ladder: Ladder, dims: list[str]) -> xr.Dataset:
-    """The variables of the rungs' datasets over ``dims`` at each point's balance."""
-    temp, weights, outcome = balance_weights(ladder)
-    first = ladder.results[0]
-    shape = tuple(first.sizes[d] for d in dims)
-    data = {}
-    for name, var in first.data_vars.items():
-        if tuple(var.dims[: len(dims)]) != tuple(dims):
-            continue
-        stack = np.stack([r[name].values for r in ladder.results])
-        stack = stack.reshape((stack.shape[0], -1) + stack.shape[1 + len(dims) :])
-        if name in CODES:
-            values = nearest(stack, ladder, temp, outcome)
-            values = runaway_status(values, outcome) if name == "status" else values
-        else:
-            values = interpolate(stack.astype(float), weights)
-        data[name] = xr.Variable(var.dims, values.reshape(var.shape).astype(var.dtype), var.attrs)
-    status = data.get("status")
-    bad = outcome != -1
-    temperature = np.where(bad, np.nan, temp).reshape(shape)
-    if status is not None:  # a failed point's values are NaN (its rung's status says why)
-        temperature = np.where(np.asarray(status.values) == 0, temperature, np.nan)
-    data["oil_temperature"] = xr.Variable(
-        dims, temperature, {"long_name": "bulk oil temperature (heat balance)", "units": "K"}
-    )
-    return xr.Dataset(data, coords=first.coords)
 
 
 def limit_ladder(rows: OperatingRows, thermal, cached: dict | None = None) -> Ladder:
@@ -223,7 +122,7 @@ def balanced_limits(rows: OperatingRows, thermal) -> tuple[np.ndarray, np.ndarra
     temp, weights, outcome = balance_weights(ladder)
     runaways_at_top(ladder, temp, weights, outcome)
     torque = interpolate(np.stack([r[0] for r in ladder.results]), weights)
-    torque, _, temp = _moved(rows, thermal, torque, (torque, temp))
+    torque, _, temp = moved_tops(rows, thermal, torque, (torque, temp))
     k = np.abs(ladder.temperatures[:, None] - temp[None, :]).argmin(axis=0)
     searches = [r[2] for r in ladder.results]
     base = searches[0].flat()
@@ -236,7 +135,7 @@ def balanced_limits(rows: OperatingRows, thermal) -> tuple[np.ndarray, np.ndarra
     return torque, np.where(np.isfinite(torque), temp, np.nan), search
 
 
-def _curve_rows(design: Design, fluid: Fluid, ds: xr.Dataset, request) -> OperatingRows:
+def curve_rows(design: Design, fluid: Fluid, ds: xr.Dataset, request) -> OperatingRows:
     """The curves of a sweep dataset as rows (in the C order of its ``limit_torque``)."""
     if ds.sizes["architecture"] != 1:
         raise InputError(
@@ -291,7 +190,7 @@ def balanced_rows(rows: OperatingRows, thermal, evaluate) -> tuple[np.ndarray, d
     the rows ``rows`` (the points ``idx`` of ``rows``, an index or a slice) at their fluid
     (e.g. at a given input power); returned interpolated to each point's balance, with
     ``oil_temperature`` [K] (NaN where not solved) and the status of the rung nearest (a
-    runaway's 2), then each balanced point solved at its own temperature (`_settle`).
+    runaway's 2), then each balanced point solved at its own temperature (`settle`).
     """
 
     def at(f: Fluid):
@@ -312,14 +211,16 @@ def balanced_rows(rows: OperatingRows, thermal, evaluate) -> tuple[np.ndarray, d
         np.stack([np.broadcast_to(r[0], temp.shape) for r in ladder.results]), weights
     )
     res["oil_temperature"] = np.where(res["status"] == 0, temp, np.nan)
-    _settle(rows, (thermal, evaluate), (ladder, temp, outcome), (t2, res))
+    settle(rows, (thermal, evaluate), (ladder, temp, outcome), (t2, res))
     return t2, res
 
 
-def _settle(rows: OperatingRows, how, balance, out) -> None:
+def settle(rows: OperatingRows, how, balance, out, only=None) -> None:
     """Each point balanced between two rungs solved once more at its own temperature,
     in place in ``out`` = ``(t2, res)`` of `balanced_rows` (``how`` = ``(thermal,
-    evaluate)``, ``balance`` = ``(ladder, temperature, outcome)``): one Newton step on its
+    evaluate)``, ``balance`` = ``(ladder, temperature, outcome)``; ``only``: a mask of
+    the points to settle, all when None; ``evaluate``'s ``losses`` have the total last, as
+    `LOSS_KINDS` and a sweep's `SWEEP_LOSSES`): one Newton step on its
     balance from the interpolated temperature (the excess solved there, the slope the
     secant of the rungs either side), then the point solved at that temperature. The
     polynomial through the rungs cannot follow a kink of a point's efficiency in the
@@ -333,12 +234,12 @@ def _settle(rows: OperatingRows, how, balance, out) -> None:
     n = np.arange(temp.size)
     e, t = ladder.excess, ladder.temperatures
     slope = (e[above, n] - e[below, n]) / np.where(above > below, t[above] - t[below], np.nan)
-    total = LOSS_KINDS.index("total")
     todo = (outcome == BALANCED) & (res["status"] == 0) & (above > below)
-    for i in np.flatnonzero(todo & np.isfinite(slope) & (slope < 0.0)):
+    todo &= np.isfinite(slope) & (slope < 0.0) & (True if only is None else only)
+    for i in np.flatnonzero(todo):
         one = rows.take(np.array([i]))
         got = evaluate(_with_fluid(one, fluid_at(rows.drive.fluid, temp[i])), [i])
-        loss = got[1]["losses"][0, total]
+        loss = got[1]["losses"][0, -1]  # the total
         excess = loss - thermal.conductance * (temp[i] - thermal.ambient_temperature)
         if not np.isfinite(excess):
             continue
@@ -456,7 +357,7 @@ def _with_fluid(rows: OperatingRows, fluid: Fluid) -> OperatingRows:
     return replace(rows, drive=replace(rows.drive, fluid=fluid))
 
 
-def _moved(rows: OperatingRows, thermal, top: np.ndarray, at_top: tuple) -> tuple:
+def moved_tops(rows: OperatingRows, thermal, top: np.ndarray, at_top: tuple) -> tuple:
     """``(top, eta, oil temperature)`` with the tops moved (`balanced_tops`); a moved
     row's efficiency and oil temperature those of its new limit point (`LIMIT_SHY` below
     it), the others' ``at_top`` as given."""

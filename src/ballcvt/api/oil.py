@@ -267,9 +267,9 @@ def sweep_with_oil(variator, choice: str | float, request):
     """`Variator.sweep` of ``request`` (`ballcvt.analysis.sweeps.grid.SweepRequest`) under
     the oil model ``choice``: ``"fixed"`` the fluid as given, a temperature [K] the fluid
     there, ``"balance"`` each point at its own heat balance
-    (`ballcvt.analysis.oil_sweep.balanced_sweep`). Not ``"fixed"``: the dataset has
+    (`ballcvt.analysis.oil_grid.balanced_sweep`). Not ``"fixed"``: the dataset has
     ``oil_temperature`` [K] at each point and the attribute ``oil_model``."""
-    from ..analysis.oil_sweep import balanced_sweep
+    from ..analysis.oil_grid import balanced_sweep
     from ..analysis.sweeps.grid import sweep
 
     if choice == "fixed":

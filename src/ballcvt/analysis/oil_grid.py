@@ -195,7 +195,8 @@ def in_doubt(ladder: Ladder, temperature, weights, stacks) -> np.ndarray:
 def _settled(out: xr.Dataset, run: tuple, rows, thermal) -> None:
     """The points of ``out`` in doubt (`in_doubt`) solved again at their own oil
     temperature (`settle`), in place; ``run`` is the ladder and its `balance_weights`,
-    ``rows`` the curves (`curve_rows`)."""
+    ``rows`` the curves (`curve_rows`). A re-solved point's ``iterations`` and
+    ``residual_norm`` stay those of the rungs (`evaluate_points` reports neither)."""
     ladder, (temp, weights, outcome) = run
     first = ladder.results[0]
     dims = list(first["status"].dims)

@@ -18,7 +18,6 @@ import xarray as xr
 from ..errors import InputError
 from ..model.architectures import CONTACT_NAMES
 from ..params.models import Design, Fluid
-from ..performance.efficiency import LOSS_KINDS
 from .oil_paths import (
     Ladder,
     balance_weights,
@@ -32,7 +31,12 @@ from .oil_paths import (
 from .oil_sweep import curve_rows, limit_ladder, moved_tops, settle
 from .sweeps.grid import SweepRequest, sweep
 from .sweeps.points import evaluate_points
-from .sweeps.variables import CONTACT_VARIABLES, LOSS_SUBTOTALS, component_losses
+from .sweeps.variables import (
+    CONTACT_VARIABLES,
+    component_losses,
+    contact_columns,
+    subtotal_losses,
+)
 
 __all__ = ["balanced_sweep", "in_doubt", "SETTLE_TOL"]
 
@@ -85,15 +89,15 @@ def balanced_sweep(design: Design, fluid: Fluid, thermal, request: SweepRequest)
     out = _interpolated(ladder, list(first["status"].dims), balance)
     rows = curve_rows(design, fluid, first, request)
     _settled(out, (ladder, balance), rows, thermal)
-    _limits_into(out, design, fluid, thermal, (request, ladder))
+    _limits_into(out, rows, thermal, ladder)
     out.attrs.update(first.attrs, oil_model="balance", oil_rungs=len(ladder.temperatures))
     return out
 
 
-def _limits_into(out: xr.Dataset, design, fluid, thermal, run) -> None:
+def _limits_into(out: xr.Dataset, rows, thermal, points: Ladder) -> None:
     """``out`` gains the curves' balanced ``limit_torque``, ``eta_at_limit`` and
-    ``oil_temperature_at_limit``; ``run`` is the request and the points' ladder."""
-    request, points = run
+    ``oil_temperature_at_limit``; ``rows`` are the curves (`curve_rows`), ``points`` the
+    points' ladder."""
     first = points.results[0]
     dims = first["limit_torque"].dims
     flat = {
@@ -102,11 +106,10 @@ def _limits_into(out: xr.Dataset, design, fluid, thermal, run) -> None:
         )
         for t, r in zip(points.temperatures, points.results, strict=True)
     }
-    ladder = limit_ladder(curve_rows(design, fluid, first, request), thermal, flat)
+    ladder = limit_ladder(rows, thermal, flat)
     temp, weights, outcome = balance_weights(ladder)
     runaways_at_top(ladder, temp, weights, outcome)
     shape = first["limit_torque"].shape
-    rows = curve_rows(design, fluid, first, request)
     top = interpolate(np.stack([r[0] for r in ladder.results]), weights)
     eta = interpolate(np.stack([r[1] for r in ladder.results]), weights)
     top, eta, temp = moved_tops(rows, thermal, top, (eta, temp))
@@ -233,10 +236,9 @@ def _as_grid(got: dict, arch: str, contacts: list) -> dict:
     the sweep's components and subtotals, its contact variables on the sweep's contact
     axis ``contacts`` (as `ballcvt.analysis.sweeps.chunks.SweepArrays.write`)."""
     out = dict(got)
-    kinds = got["losses"]
-    out["losses"] = component_losses(kinds)
-    out["loss_subtotals"] = kinds[..., [LOSS_KINDS.index(k) for k in LOSS_SUBTOTALS]]
-    cols = [contacts.index(c) for c in CONTACT_NAMES[arch]]
+    out["losses"] = component_losses(got["losses"])
+    out["loss_subtotals"] = subtotal_losses(got["losses"])
+    cols = contact_columns(contacts, CONTACT_NAMES[arch])
     for name in CONTACT_VARIABLES:
         wide = np.full(got[name].shape[:1] + (len(contacts),), np.nan)
         wide[:, cols] = got[name]

@@ -23,11 +23,12 @@ from ...solvers.limit import LimitSearch, bisection_steps
 from .curves import OperatingRows, solve_curves
 from .variables import (
     CONTACT_VARIABLES,
-    LOSS_KINDS,
     LOSS_SUBTOTALS,
     POINT_VARIABLES,
     SWEEP_LOSSES,
     component_losses,
+    contact_columns,
+    subtotal_losses,
 )
 
 __all__ = ["CHUNK_POINTS", "SweepArrays", "solve_chunked", "curve_chunks"]
@@ -86,11 +87,11 @@ class SweepArrays:
         d, at = self.data, (arch_index, rows)
         for name in (*CURVE_VARIABLES, *POINT_OUTPUTS):
             d[name][at] = result[name]
-        cols = [self.contacts.index(c) for c in CONTACT_NAMES[arch]]
+        cols = contact_columns(self.contacts, CONTACT_NAMES[arch])
         for name in CONTACT_VARIABLES:
             d[name][arch_index][rows, :, cols] = result[name]  # one advanced index
         kinds = result["losses"]
-        d["loss_subtotals"][at] = kinds[..., [LOSS_KINDS.index(k) for k in LOSS_SUBTOTALS]]
+        d["loss_subtotals"][at] = subtotal_losses(kinds)
         d["losses"][at] = component_losses(kinds)
         if "clamp_force" in d:
             d["clamp_force"][at] = result["clamp_force"]

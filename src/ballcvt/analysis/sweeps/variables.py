@@ -26,6 +26,8 @@ __all__ = [
     "LOSS_SUBTOTALS",
     "SWEEP_LOSSES",
     "component_losses",
+    "subtotal_losses",
+    "contact_columns",
     "attrs_for",
     "SWEEP_CODES",
 ]
@@ -53,6 +55,18 @@ def component_losses(kinds: np.ndarray) -> np.ndarray:
     user = np.where(np.abs(user) <= 1e-12 * np.maximum(1.0, np.abs(k["parasitic"])), 0.0, user)
     parts = [k[name] for name in LOSS_COMPONENTS[:-1]]
     return np.stack([*parts, user, k["total"]], axis=-1)
+
+
+def subtotal_losses(kinds: np.ndarray) -> np.ndarray:
+    """The `LOSS_SUBTOTALS` [W] (``loss_subtotals``) from losses by every kind of
+    `LOSS_KINDS` (last axis)."""
+    return kinds[..., [LOSS_KINDS.index(k) for k in LOSS_SUBTOTALS]]
+
+
+def contact_columns(contacts: list, names) -> list[int]:
+    """The columns of a sweep's ``contact`` axis ``contacts`` that an architecture's
+    contacts ``names`` (`ballcvt.model.architectures.CONTACT_NAMES`) take, in their order."""
+    return [contacts.index(c) for c in names]
 
 
 #: The ``status`` codes a sweep writes (`ballcvt.status.Status`).

@@ -19,9 +19,12 @@ Then (Eqs. 57-66, lever arms with their semi-axes, docs/model.md §3)
 from __future__ import annotations
 
 import math
+import threading
+from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import NamedTuple
 
 import numpy as np
 
@@ -280,11 +283,58 @@ def table_pressure(p_max: float) -> float:
     return TABLE_PRESSURE * 2.0 ** math.ceil(math.log2(p_max / TABLE_PRESSURE))
 
 
-@lru_cache(maxsize=32)
+class TableFluid(NamedTuple):
+    """The values of a fluid its viscosity table depends on (Eqs. 51, 54): the table
+    cache's key, and the fluid `kernels.viscosity_table` reads."""
+
+    viscosity: float
+    pole_viscosity: float
+    roelands_index: float
+    pole_pressure: float
+    limiting_shear_stress: float
+    limiting_shear_slope: float
+
+    @classmethod
+    def of(cls, fluid: Fluid) -> TableFluid:
+        """The fluid's values; where its viscosity does not grow with the pressure
+        (``eta_0 = eta_inf``: the asperities' boundary law, `ballcvt.model.lubrication`)
+        the Roelands index and pole pressure multiply a zero in the table and are keyed
+        as 1, so that fluids differing only there (the same oil at two temperatures)
+        share one table, the same to the bit."""
+        z, cp = float(fluid.roelands_index), float(fluid.pole_pressure)
+        if fluid.viscosity == fluid.pole_viscosity:
+            z, cp = 1.0, 1.0
+        return cls(
+            float(fluid.viscosity), float(fluid.pole_viscosity), z, cp,
+            float(fluid.limiting_shear_stress), float(fluid.limiting_shear_slope),
+        )  # fmt: skip
+
+
+#: Bytes the cached viscosity tables may hold together (`_viscosity_table`): a table is
+#: 0.4 MB for a traction fluid, up to 16 MB for the boundary law's; an oil balance or an
+#: uncertainty run meets hundreds of oil temperatures, each a fluid.
+TABLE_CACHE_BYTES = 256 * 2**20
+_tables: OrderedDict = OrderedDict()
+_tables_lock = threading.Lock()
+
+
 def _viscosity_table(fluid: Fluid, p_max: float, modulus: float):
-    """`kernels.viscosity_table`, kept for the iterations of a solve (same fluid and
-    pressure range: the same table, so caching changes no result)."""
-    return kernels.viscosity_table(fluid, p_max, modulus=modulus)
+    """`kernels.viscosity_table`, kept for the iterations of a solve and for the other
+    solves at the same fluid values and pressure range (the same table, so caching
+    changes no result); the least recently used dropped beyond `TABLE_CACHE_BYTES`."""
+    key = (TableFluid.of(fluid), p_max, modulus)
+    with _tables_lock:
+        got = _tables.get(key)
+        if got is not None:
+            _tables.move_to_end(key)
+            return got
+    got = kernels.viscosity_table(key[0], p_max, modulus=modulus)
+    with _tables_lock:
+        _tables[key] = got
+        size = sum(t[1].nbytes for t in _tables.values())
+        while size > TABLE_CACHE_BYTES and len(_tables) > 1:
+            size -= _tables.popitem(last=False)[1][1].nbytes
+    return got
 
 
 @lru_cache(maxsize=16)

@@ -6,14 +6,14 @@ import math
 
 import numpy as np
 import pytest
+from drives import fixed_oil_hub
 from scipy.integrate import quad
 
 from ballcvt import Variator, load_builtin
+from ballcvt.model.greenwood_tripp import _gt, _hermite, solve_share, solve_share_numpy
 from ballcvt.model.lubrication import (
     LAMBDA_CUTOFF,
     Asperities,
-    _gt,
-    _hermite,
     asperity_integral,
     load_sharing,
     lubricated_coefficients,
@@ -21,7 +21,6 @@ from ballcvt.model.lubrication import (
 from ballcvt.model.traction.contact import ContactState, contact_coefficients
 from ballcvt.params.models import Design
 from ballcvt.registry import LUBRICATION_MODELS
-from drives import fixed_oil_hub
 
 DESIGN, FLUID = fixed_oil_hub()[:2]
 ASP = Asperities("mixed", 0.07e-6, 2.31e11, 0.1, 0.04, 1e-3)
@@ -136,3 +135,14 @@ def test_paper_drive_untouched_and_hub_mixed():
         ratio=1.0, output_torque=torque, input_speed_rpm=speed, clamp_law="cam"
     )
     assert full.eta == ref.eta and full.losses["total"] == ref.losses["total"]
+
+
+def test_the_compiled_share_has_the_numpy_paths_bits():
+    """`solve_share` (compiled, issue 26) against the NumPy iteration it replaced, over
+    film parameters from the boundary to the cutoff and load scales over six decades."""
+    rng = np.random.default_rng(5)
+    lam_s = np.concatenate([rng.uniform(0.0, LAMBDA_CUTOFF, 4000), [0.0, 1e-9, 3.999999]])
+    scale = np.concatenate([10 ** rng.uniform(-4, 2, 4000), [1e-3, 50.0, 1.0]])
+    fast, ref = solve_share(lam_s, scale), solve_share_numpy(lam_s, scale)
+    assert np.array_equal(fast, ref)
+    assert np.all((fast >= 0.0) & (fast < 1.0))

@@ -48,13 +48,18 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy.special import gamma, pbdv
 
 from ..params.models import Design, Fluid
 from ..registry import LUBRICATION_MODELS, TRACTION_LAWS
+from .greenwood_tripp import (
+    FILM_SHARE_EXPONENT,
+    LAMBDA_CUTOFF,
+    asperity_integral,
+    film_factor,
+    solve_share,
+)
 from .traction.contact import ContactState, contact_coefficients
 from .traction.isothermal import shear_coefficients
-from .traction.kernels import scalar_powers
 from .traction.quadrature import Quadrature
 
 __all__ = [
@@ -72,11 +77,6 @@ __all__ = [
     "lubricated_coefficients",
 ]
 
-#: Film parameter ``h / sigma`` above which no asperity touches (``f_a = 0`` exactly) [-].
-LAMBDA_CUTOFF = 4.0
-#: ``h = h_s (1 - f_a)^-e``: ``e = 0.67 - 0.53`` from the speed and material exponents of
-#: Eq. 56 under the scaling of Johnson, Greenwood and Poon (1972) [-].
-FILM_SHARE_EXPONENT = 0.14
 #: Relative step of the derivative with respect to the film thickness [-].
 _STEP = 1e-6
 #: Kalker's longitudinal creep coefficient ``C_11`` of a circular contact at Poisson's
@@ -167,63 +167,6 @@ def asperities(design: Design) -> Asperities:
     )
 
 
-def _gt(t, n: float):
-    """Greenwood-Tripp's ``F_n(t)`` through the parabolic cylinder function:
-    ``F_n(t) = Gamma(n + 1) (2 pi)^-1/2 exp(-t^2/4) D_-(n+1)(t)`` [-]."""
-    t = np.asarray(t, dtype=float)
-    return gamma(n + 1.0) / np.sqrt(2.0 * np.pi) * np.exp(-0.25 * t * t) * pbdv(-n - 1.0, t)[0]
-
-
-#: Intervals of the tables of ``F_5/2``, ``F_3/2``, ``F_1/2`` on ``[0, LAMBDA_CUTOFF]``:
-#: cubic Hermite interpolation with the exact slopes ``dF_n/dt = -n F_(n-1)`` is then
-#: within 1e-13 of `_gt` (tested), at a hundredth of its cost.
-_INTERVALS = 2000
-_STEP_T = LAMBDA_CUTOFF / _INTERVALS
-_GRID = np.linspace(0.0, LAMBDA_CUTOFF, _INTERVALS + 1)
-_TABLE = {n: _gt(_GRID, n) for n in (2.5, 1.5, 0.5)}
-
-
-def _hermite(t: np.ndarray, n: float) -> np.ndarray:
-    """``F_n(t)`` for ``0 <= t <= LAMBDA_CUTOFF`` from the table (``n`` 2.5 or 1.5)."""
-    x = np.clip(t / _STEP_T, 0.0, _INTERVALS - 1e-9)
-    i = x.astype(np.intp)
-    s = x - i
-    s2, s3 = s * s, s * s * s
-    v, d = _TABLE[n], -n * _TABLE[n - 1.0] * _STEP_T
-    return (
-        (2 * s3 - 3 * s2 + 1) * v[i]
-        + (s3 - 2 * s2 + s) * d[i]
-        + (3 * s2 - 2 * s3) * v[i + 1]
-        + (s3 - s2) * d[i + 1]
-    )
-
-
-_F52_CUT, _F32_CUT = float(_TABLE[2.5][-1]), float(_TABLE[1.5][-1])
-
-
-def asperity_integral(lam):
-    """Greenwood-Tripp's ``F_5/2(lambda)`` joined C1 to zero at `LAMBDA_CUTOFF`, and its
-    derivative (``dF_5/2 / dt = -5/2 F_3/2``).
-
-    Parameters
-    ----------
-    lam : array_like
-        Film parameter ``h / sigma`` >= 0 [-].
-
-    Returns
-    -------
-    value, slope : ndarray
-        ``F_5/2(l) - F_5/2(l_c) + 5/2 F_3/2(l_c) (l - l_c)`` for ``l < l_c``, else 0, and
-        its derivative [-].
-    """
-    lam = np.asarray(lam, dtype=float)
-    below = lam < LAMBDA_CUTOFF
-    t = np.where(below, lam, LAMBDA_CUTOFF)
-    value = _hermite(t, 2.5) - _F52_CUT + 2.5 * _F32_CUT * (t - LAMBDA_CUTOFF)
-    slope = -2.5 * (_hermite(t, 1.5) - _F32_CUT)
-    return np.where(below, value, 0.0), np.where(below, slope, 0.0)
-
-
 def load_sharing(film, load, ax, ay, asp: Asperities):
     """Asperity load fraction ``f_a`` and film parameter ``h / sigma`` of contacts.
 
@@ -252,44 +195,8 @@ def load_sharing(film, load, ax, ay, asp: Asperities):
     frac = np.zeros(lam_s.shape)
     on = lam_s < LAMBDA_CUTOFF
     if np.any(on):
-        frac[on] = _solve_share(lam_s[on], scale[on])
-    return frac, lam_s * _film_factor(1.0 - frac)
-
-
-def _film_factor(keep) -> np.ndarray:
-    """``keep^-e`` (``keep = 1 - f_a``), element by element with the C library's ``pow``
-    (`ballcvt.model.traction.kernels.scalar_powers`): the same bits whatever the batch
-    (NumPy's vectorised power rounds by an element's position), so that a point's result
-    does not depend on the points solved with it."""
-    keep = np.asarray(keep, dtype=float)
-    out = np.ones(keep.shape)
-    scalar_powers(np.ascontiguousarray(keep.reshape(-1)), -FILM_SHARE_EXPONENT, out.reshape(-1))
-    return out
-
-
-def _solve_share(lam_s: np.ndarray, scale: np.ndarray) -> np.ndarray:
-    """The root ``f`` of ``f - scale F_5/2(lam_s (1 - f)^-e) = 0`` in ``[0, 1)``.
-
-    Each contact iterates until its own step is below 1e-15 and then stops, so that its
-    root does not depend on the other contacts of the batch."""
-    e = FILM_SHARE_EXPONENT
-    lo, hi = np.zeros(lam_s.shape), np.full(lam_s.shape, 1.0 - 1e-12)  # f < 1: some film
-    f = np.zeros(lam_s.shape)
-    on = np.arange(lam_s.size)
-    for _ in range(100):
-        x, ls, sc = f[on], lam_s[on], scale[on]
-        lam = ls * _film_factor(1.0 - x)
-        value, slope = asperity_integral(lam)
-        phi = x - sc * value
-        lo[on] = np.where(phi <= 0.0, x, lo[on])
-        hi[on] = np.where(phi >= 0.0, x, hi[on])
-        new = x - phi / (1.0 - sc * slope * e * lam / (1.0 - x))
-        new = np.where((new > lo[on]) & (new < hi[on]), new, 0.5 * (lo[on] + hi[on]))
-        f[on] = new
-        on = on[np.abs(new - x) > 1e-15]
-        if on.size == 0:
-            break
-    return f
+        frac[on] = solve_share(lam_s[on], scale[on])
+    return frac, lam_s * film_factor(1.0 - frac)
 
 
 @lru_cache(maxsize=16)
@@ -380,7 +287,7 @@ def _mixed_values(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrat
     film_state = state.replace(
         load=state.load * keep,
         p_max=state.p_max * keep,
-        film=state.film * _film_factor(keep),
+        film=state.film * film_factor(keep),
     )
     film = contact_coefficients(film_state, fluid, q, d)
     boundary = boundary_coefficients(

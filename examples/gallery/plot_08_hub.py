@@ -43,7 +43,7 @@ ax1.set_title(f"30 N m, 180 rpm in: eta = {r.eta:.3f}, F_N0 = {r.clamp_force:.0f
 # can no longer reject the losses in steady running: above it the oil runs away (status 2),
 # from about 220 N m at ratio 0.5 to about 110 N m at ratio 2.
 
-ds = hub.sweep(ratio=np.linspace(0.5, 2.0, 7), output_torque=np.linspace(10.0, 290.0, 8),
+ds = hub.sweep(ratio=np.linspace(0.5, 2.0, 5), output_torque=np.linspace(10.0, 290.0, 6),
                clamp_law="cam", input_speed_rpm=180, progress=False)
 print(ds["limit_torque"].squeeze().round(1).values)
 plot_efficiency_map(ds, ax=ax2)

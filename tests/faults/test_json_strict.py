@@ -43,7 +43,7 @@ CASES = {
     "shift": [[*SHIFT, "--skew", "1"], [*SHIFT, "--tilt-rate", "20"],
               [*SHIFT, "--skew", "9.99", "--speed", "1e5", "--torque", "1e6"],
               ["--design", "hub", "--from", "0.5", "--to", "1.8", "--skew", "0.01"]],
-    "uncertainty": [["--samples", "4", "--power", "100", "--speed", "114"],
+    "uncertainty": [["--samples", "2", "--power", "100", "--speed", "114"],  # oil balance
                     ["--samples", "2", "--torque", "1e6", "--speed", "1e5"]],
 }
 NEEDS_OUT = ("cycle", "fit-fluid", "explore", "shift", "uncertainty")

@@ -19,8 +19,8 @@ COMMANDS = {
                        "traction_curve.csv"),
     "fit-fluid": (["fit-fluid", str(DATA / "tiny_curves.csv")], "fluid.toml"),
     "explore": (["explore", str(DATA / "study_tiny.toml"), "--in-process"], "designs.csv"),
-    "uncertainty": (["uncertainty", "--samples", "2", "--power", "100", "--speed", "114"],
-                    "band.csv"),
+    "uncertainty": (["uncertainty", "--samples", "2", "--power", "100", "--speed", "114",
+                     "--oil-temperature", "40"], "band.csv"),  # fixed oil: seconds, not minutes
 }
 
 

@@ -49,15 +49,19 @@ _INTERVALS = 2000
 _STEP_T = LAMBDA_CUTOFF / _INTERVALS
 _GRID = np.linspace(0.0, LAMBDA_CUTOFF, _INTERVALS + 1)
 _TABLE = {n: _gt(_GRID, n) for n in (2.5, 1.5, 0.5)}
+#: The slopes ``dF_n/dt = -n F_(n-1)`` times the step, of ``F_5/2`` and ``F_3/2``.
+_SLOPE = {n: -n * _TABLE[n - 1.0] * _STEP_T for n in (2.5, 1.5)}
+#: Largest ``t / step`` interpolated: inside the last interval.
+_TOP = _INTERVALS - 1e-9
 
 
 def _hermite(t: np.ndarray, n: float) -> np.ndarray:
     """``F_n(t)`` for ``0 <= t <= LAMBDA_CUTOFF`` from the table (``n`` 2.5 or 1.5)."""
-    x = np.clip(t / _STEP_T, 0.0, _INTERVALS - 1e-9)
+    x = np.clip(t / _STEP_T, 0.0, _TOP)
     i = x.astype(np.intp)
     s = x - i
     s2, s3 = s * s, s * s * s
-    v, d = _TABLE[n], -n * _TABLE[n - 1.0] * _STEP_T
+    v, d = _TABLE[n], _SLOPE[n]
     return (
         (2 * s3 - 3 * s2 + 1) * v[i]
         + (s3 - 2 * s2 + s) * d[i]
@@ -128,10 +132,10 @@ def solve_share_numpy(lam_s: np.ndarray, scale: np.ndarray) -> np.ndarray:
     return f
 
 
-def _hermite_scalar(t, v, d, top):
+def _hermite_scalar(t, v, d):
     """`_hermite` of one ``t`` on the table ``v`` with slopes ``d`` (times the step)."""
     x = t / _STEP_T
-    x = min(max(x, 0.0), top)
+    x = min(max(x, 0.0), _TOP)
     i = int(x)
     s = x - i
     s2, s3 = s * s, s * s * s
@@ -147,7 +151,7 @@ def _share_python(lam_s, scale, tables, out):
     """`solve_share_numpy`'s iteration, one contact ``k`` at a time, into ``out[k]``;
     ``tables``: ``F_5/2``, its slope times the step, ``F_3/2``, its slope times the step."""
     v25, d25, v15, d15 = tables
-    e, cutoff, top = FILM_SHARE_EXPONENT, LAMBDA_CUTOFF, _INTERVALS - 1e-9
+    e, cutoff = FILM_SHARE_EXPONENT, LAMBDA_CUTOFF
     for k in range(lam_s.shape[0]):
         ls, sc = lam_s[k], scale[k]
         lo, hi, f = 0.0, 1.0 - 1e-12, 0.0
@@ -157,9 +161,9 @@ def _share_python(lam_s, scale, tables, out):
             lam = ls * (math.pow(keep, -e) if keep < 1.0 else 1.0)
             value, slope = 0.0, 0.0
             if lam < cutoff:
-                value = _hermite_scalar(lam, v25, d25, top) - _F52_CUT
+                value = _hermite_scalar(lam, v25, d25) - _F52_CUT
                 value = value + 2.5 * _F32_CUT * (lam - cutoff)
-                slope = -2.5 * (_hermite_scalar(lam, v15, d15, top) - _F32_CUT)
+                slope = -2.5 * (_hermite_scalar(lam, v15, d15) - _F32_CUT)
             phi = x - sc * value
             if phi <= 0.0:
                 lo = x
@@ -174,9 +178,7 @@ def _share_python(lam_s, scale, tables, out):
         out[k] = f
 
 
-_TABLES = (
-    _TABLE[2.5], -2.5 * _TABLE[1.5] * _STEP_T, _TABLE[1.5], -1.5 * _TABLE[0.5] * _STEP_T
-)  # fmt: skip
+_TABLES = (_TABLE[2.5], _SLOPE[2.5], _TABLE[1.5], _SLOPE[1.5])
 if AVAILABLE:
     _hermite_scalar = njit(cache=True, inline="always")(_hermite_scalar)
     _share_compiled = njit(cache=True)(_share_python)

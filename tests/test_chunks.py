@@ -6,6 +6,7 @@ from __future__ import annotations
 import filecmp
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import ballcvt.analysis.sweeps.chunks as chunks
@@ -120,11 +121,32 @@ def test_csv_streams_the_same_table(monkeypatch, tmp_path):
         architecture=["double", "single"],
         progress=False,
     )
-    to_frame(ds).to_csv(tmp_path / "whole.csv", index=False)
+    monkeypatch.setattr(export, "CSV_ROWS", 10**9)
+    to_csv(ds, tmp_path / "whole.csv")
     for rows in (1, 5, 1000):
         monkeypatch.setattr(export, "CSV_ROWS", rows)
         to_csv(ds, tmp_path / f"rows{rows}.csv")
         assert filecmp.cmp(tmp_path / "whole.csv", tmp_path / f"rows{rows}.csv", shallow=False)
+    # the values of pandas' table to the bit: the same columns, NaN in the same places
+    ours, frame = pd.read_csv(tmp_path / "whole.csv"), to_frame(ds)
+    assert list(ours.columns) == list(frame.columns)
+    for name in frame.columns:
+        want = frame[name].to_numpy()
+        if want.dtype.kind == "f":
+            np.testing.assert_array_equal(ours[name].to_numpy(), want)  # NaN == NaN here
+        else:
+            assert ours[name].astype(str).tolist() == frame[name].astype(str).tolist()
+
+
+def test_csv_writes_pandas_spellings(tmp_path):
+    """Booleans as ``True``/``False`` and NaN as an empty field, as pandas writes them;
+    floats in their shortest round-trip form."""
+    frame = pd.DataFrame({"a": [1.0, np.nan, 3.5e-8], "b": [True, False, True], "c": ["x", "y", "z"]})
+    with open(tmp_path / "t.csv", "wb") as fh:
+        export._write_csv(frame, fh, True)
+    assert (tmp_path / "t.csv").read_text().splitlines() == [
+        "a,b,c", "1.0,True,x", ",False,y", "3.5e-8,True,z"
+    ]
 
 
 def test_map_cli_workers_same_data(tmp_path, monkeypatch):

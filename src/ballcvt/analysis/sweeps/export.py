@@ -162,12 +162,32 @@ def write_table(frame, path, units: dict | None = None) -> Path:
 def to_csv(ds: xr.Dataset, path) -> Path:
     """Write ``ds`` as a CSV table (see `to_frame`), units in the column names.
 
-    The table is built and written `CSV_ROWS` rows at a time (the same file as
-    ``to_frame(ds).to_csv(path, index=False)``, in bounded memory)."""
+    The table is built and written `CSV_ROWS` rows at a time, in bounded memory, by
+    polars' writer (about 20 times faster than pandas' on a map: 0.3 s instead of 5.3 s
+    for 90,000 rows of 72 columns, issue 26). It holds the values of
+    ``to_frame(ds).to_csv(path, index=False)`` to the bit: every float is written in the
+    shortest form that reads back to the same double, but exponents are not padded
+    (``3.5e-8``, ``3.3e-5`` written ``0.000033``); a NaN is an empty field, as in pandas,
+    and a boolean ``True``/``False``."""
     path = Path(path)
     flat = _flat(ds)
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+    with atomic_path(path) as tmp, open(tmp, "wb") as fh:
         for k, block in enumerate(_blocks(flat, list(flat.dims), CSV_ROWS)):
             frame = _with_units(block.to_dataframe().reset_index(), flat)
-            frame.to_csv(fh, index=False, header=k == 0)
+            _write_csv(frame, fh, k == 0)
     return path
+
+
+def _write_csv(frame, fh, header: bool) -> None:
+    """Append the DataFrame ``frame`` to the binary file ``fh`` as CSV rows (polars)."""
+    import polars as pl
+
+    columns = []
+    for name in frame.columns:
+        values = frame[name].to_numpy()
+        if values.dtype == bool:  # pandas' spelling, not polars' true/false
+            values = np.where(values, "True", "False")
+        elif values.dtype.kind not in "fiu":
+            values = values.astype(str)
+        columns.append(pl.Series(name, values, nan_to_null=values.dtype.kind == "f"))
+    pl.DataFrame(columns).write_csv(fh, include_header=header)

@@ -280,8 +280,10 @@ def boundary_coefficients(
     return out
 
 
-def _mixed_values(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrature, d: bool):
-    """``f_a`` and the film and boundary coefficients of the mixed model."""
+def _mixed_values(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrature, d: bool,
+                  boundary=None):  # fmt: skip
+    """``f_a`` and the film and boundary coefficients of the mixed model; ``boundary``: the
+    boundary coefficients when known (they depend on the slip alone, not on the film)."""
     frac, _ = load_sharing(state.film, state.load, state.ax, state.ay, asp)
     keep = 1.0 - frac
     film_state = state.replace(
@@ -290,15 +292,18 @@ def _mixed_values(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrat
         film=state.film * film_factor(keep),
     )
     film = contact_coefficients(film_state, fluid, q, d)
-    boundary = boundary_coefficients(
-        state, fluid, asp.boundary_friction, q, d, asp.creep_stiffness
-    )
+    if boundary is None:
+        boundary = boundary_coefficients(
+            state, fluid, asp.boundary_friction, q, d, asp.creep_stiffness
+        )
     return frac, film, boundary
 
 
-def _mixed(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrature, d: bool):
-    """``mu, chi`` (and derivatives) of the mixed model, without the film-thickness column."""
-    frac, film, boundary = _mixed_values(state, fluid, asp, q, d)
+def _mixed(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrature, d: bool,
+           boundary=None):  # fmt: skip
+    """``mu, chi`` (and derivatives) of the mixed model, without the film-thickness column,
+    ``f_a`` and the boundary coefficients (``boundary``: as in `_mixed_values`)."""
+    frac, film, boundary = _mixed_values(state, fluid, asp, q, d, boundary)
     keep, wet = 1.0 - frac, frac > 0.0  # where no asperity touches: the film's, exactly
     out = [np.where(wet, keep * a + frac * b, a) for a, b in zip(film[:2], boundary[:2])]
     if d:
@@ -306,7 +311,7 @@ def _mixed(state: ContactState, fluid: Fluid, asp: Asperities, q: Quadrature, d:
         out += [
             np.where(wet_d, keep_d * a + frac_d * b, a) for a, b in zip(film[2:], boundary[2:])
         ]
-    return tuple(out), frac
+    return tuple(out), frac, boundary
 
 
 def mixed_coefficients(
@@ -319,14 +324,16 @@ def mixed_coefficients(
     film alone) and ``log h_s`` at a fixed ``u_ref / h_s`` (the load sharing's, by a
     difference of step `_STEP`; zero where no asperity touches).
     """
-    (mu, chi, *rest), frac = _mixed(state, fluid, asp, quadrature, derivatives)
+    (mu, chi, *rest), frac, boundary = _mixed(state, fluid, asp, quadrature, derivatives)
     if not derivatives:
         return mu, chi
     dmu, dchi = (np.concatenate([g, np.zeros(g.shape[:-1] + (1,))], axis=-1) for g in rest)
     wet = frac > 0.0
     if np.any(wet):
         up = state.replace(film=state.film * (1 + _STEP), u_ref=state.u_ref * (1 + _STEP))
-        (mu_up, chi_up), _ = _mixed(up, fluid, asp, quadrature, False)
+        # the boundary law depends on the slip alone, the same at ``up`` (where ``u_ref``
+        # moves with the film): only the film's share and coefficients are solved again
+        (mu_up, chi_up), _, _ = _mixed(up, fluid, asp, quadrature, False, boundary[:2])
         dmu[..., 3] = np.where(wet, (mu_up - mu) / np.log1p(_STEP), 0.0)
         dchi[..., 3] = np.where(wet, (chi_up - chi) / np.log1p(_STEP), 0.0)
     return mu, chi, dmu, dchi

@@ -100,14 +100,13 @@ def run(args) -> int:
 
 
 def _write(ds, out, args) -> None:
-    """map.nc, map.csv and the figure (map.png, map.svg) in ``out``."""
+    """map.nc, the figure (map.png, map.svg) and map.csv in ``out``."""
     import matplotlib
 
     matplotlib.use("Agg")  # the CLI writes files only
     from ...plotting import efficiency_map, save, shift_effort_map
 
     to_netcdf(ds, out / "map.nc")
-    to_csv(ds, out / "map.csv")
     one = _for_figure(ds.squeeze(drop=True))
     save(
         efficiency_map(
@@ -137,6 +136,8 @@ def _write(ds, out, args) -> None:
             out,
             "shift_effort",
         )
+    # last: the CSV writer's library (polars, ~35 MB) then loads after the figure's peak
+    to_csv(ds, out / "map.csv")
 
 
 #: Most ratios and torques a figure draws: a larger map is drawn on every k-th of them

@@ -71,3 +71,54 @@ def test_a_point_beyond_the_capacity_on_the_way_to_its_balance_has_losses():
     assert got["status"][0] == 1  # beyond the creep limit at this oil temperature
     assert 0.76 < got["eta"][0] < 0.77 and got["losses"][0].min() >= 0.0  # 0.76618
     assert np.isnan(evaluate_points(rows, np.array([94.287]))["eta"][0])  # the default
+
+
+FIELDS_30 = json.loads(
+    '{"aspect_ratio": 1.2405409561313507, "roller_radius": 0.02781995724176246, '
+    '"theta0_deg": 58.45367582111593, "theta2_deg": 54.23295667905798, '
+    '"alpha_deg": 24.460889511989897, "n_rollers": 3, '
+    '"roller_bearing_diameter": 0.021316620621591783, '
+    '"idler_bearing_diameter": 0.007060641320250169, '
+    '"disc_groove_ratio": 1.7884782056845592, "idler_groove_ratio": 1.5266691474398812, '
+    '"single_idler_groove_ratio": Infinity, "tilt_safety_factor": 0.5270806351742231, '
+    '"creep_limit": 0.1010927501862938, "min_roller_gap": 0.00048546611329105264, '
+    '"cam": {"disc": "output", "preload": 344.79279879064995, '
+    '"ramp_angle_deg": 6.005124470002885, "mean_radius": 0.05353387789268339, '
+    '"friction": 0.03736826943267844}}'
+)
+#: Harden task 2719:30's cycle: output speeds [rad/s] and torques [N m], one step a second.
+SPEED_30 = [3.6102836963802187, 3.643833122739064, 3.540902244030548, 3.529688130239486, 3.573963857828056, 3.6629173161795663, 3.6915571762294705, 3.6095286957010604, 3.504514727658006, 3.658360450932037, 3.528313521895382, 3.54432608014051, 3.5033029619667273, 3.710350177425629, 3.694231197001443]
+TORQUE_30 = [10.08840916451613, 11.943188970729132, 5.774342507495622, 10.74012152488915, 11.687117195579717, 8.550663173522565, 7.907888962154971, 6.093869344227491, 7.833582204427633, 11.773120077441915, 6.9116394426075844, 1.3282935384438348, 10.277171146703132, 19.454316026670796, 28.100678705191147]
+
+
+def test_a_cycle_step_near_a_flag_change_of_its_runs_is_solved_at_its_oil_temperature():
+    """Harden task 2719:30 (session 19): a cycle under the oil's transient, every step near
+    the creep limit (0.101) at 20 C ambient. A step's efficiency there falls 9e-3 per K of
+    oil, and at 21 C the step is beyond the capacity: with the run at 21 C failed, the step
+    took the 20 C run's row as it was, 1.4e-5 above `solve` at its own 20.0015 C. A step
+    whose four runs do not share its status and flag is now solved alone at its own
+    temperature: the same as `solve` there (here to the bit)."""
+    import numpy as np
+
+    from ballcvt.analysis.cycle_files import cycle_from_arrays
+    from ballcvt.api import CycleSettings, with_oil_temperature
+
+    design, fluid = load_builtin("hub")
+    v = Variator(design.replace(name="random", **FIELDS_30), fluid, "single",
+                 traction_law="viscoelastic")  # fmt: skip
+    cycle = cycle_from_arrays(time=np.arange(15.0), output_speed=SPEED_30,
+                              output_torque=TORQUE_30)  # fmt: skip
+    res = v.run_cycle(cycle, clamp_law="cam",
+                      settings=CycleSettings(target_input_speed_rpm=28.20188519097594,
+                                             progress=False))  # fmt: skip
+    assert res.summary["oil_temperature"]["steps_solved_alone"] >= 1
+    solved = 0
+    for row in res.steps.to_dict("records"):
+        if row["status"] != 0:
+            continue
+        hot = with_oil_temperature(v, row["oil_temperature_C"] + 273.15)
+        ref = hot.solve(row["ratio"], row["output_torque"], clamp_law="cam",
+                        input_speed_rpm=row["input_speed_rpm"])  # fmt: skip
+        assert abs(row["eta"] - ref.eta) <= 1e-9
+        solved += 1
+    assert solved == 5

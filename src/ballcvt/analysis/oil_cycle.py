@@ -10,10 +10,12 @@ fluid at a few bulk temperatures `GRID_STEP` apart, each run only when the tempe
 reaches it; a step at ``T`` between two of them takes the rows of the four runs about it
 (one below and two above; from the start's run up between the first two) interpolated by
 the cubic through them in ``T`` (Lagrange), the flag and status of the nearest. Where the
-step failed or changed its flag at one of the outer two, the two runs about it are
-interpolated linearly; where at either of those, the nearer's row is taken as it is. The
-temperature never jumps a grid interval in one step unnoticed: every step reads the runs
-around its own temperature.
+step failed or changed its flag at any of the four, no interpolation holds (the step's
+efficiency can turn steeply where a creep nears its limit: 9e-3 per K on harden task
+2719:30, so even the nearer run's row 0.0015 K away was 1.4e-5 off), and the step is solved
+alone at its own temperature (`_alone`); where it failed alike at the two runs about it, it
+takes the nearer's row as it is. The temperature never jumps a grid interval in one step
+unnoticed: every step reads the runs around its own temperature.
 
 Linear interpolation was not enough: on the built-in hub a step's efficiency curves in the
 oil's temperature by ``d2 eta / dT2`` ~ -2e-4 1/K^2, so the chord of runs 1 K apart was up
@@ -100,6 +102,7 @@ def run_cycle_with_oil(drive, cycle: Cycle, request: CycleRequest, oil: OilTrans
             records[j] = runs[j].steps.to_dict("records")
         return records[j]
 
+    alone = 0  # steps solved alone at their own temperature
     temps = np.empty(cycle.size + 1)
     temps[0] = t0
     rows = []
@@ -109,6 +112,8 @@ def run_cycle_with_oil(drive, cycle: Cycle, request: CycleRequest, oil: OilTrans
         j = math.floor(x)
         low = -1 if j != 0 else 0  # from the start up: the runs from it (none below)
         row = _blend([run(j + low + m)[k] for m in range(len(STENCIL))], x - j - low)
+        if row is None:
+            row, alone = _alone(drive, cycle, request, (k, temps[k])), alone + 1
         rows.append(row)
         loss = 0.0 if row["flag"] == "idle" or not row["status"] == 0 else float(row["loss_total"])
         temps[k + 1] = transient_step(temps[k], loss, float(durations[k]), thermal)
@@ -143,24 +148,24 @@ def run_cycle_with_oil(drive, cycle: Cycle, request: CycleRequest, oil: OilTrans
         "final_C": float(temps[-1]) - C_TO_K,
         "time_constant_s": thermal.time_constant,
         "solved_at_C": sorted(t0 + j * GRID_STEP - C_TO_K for j in runs),
+        "steps_solved_alone": alone,
     }
     return CycleResult(steps=steps, summary=summary)
 
 
 def _blend(rows: list, x: float):
     """The step's row at ``x`` in [0, 3] over the four `STENCIL` runs ``rows`` (module
-    docstring): the cubic through the four, else the chord of the two about ``x``, else
-    the nearer of those as it is."""
+    docstring): the cubic through the four where they share its status and flag; the
+    nearer of the two about ``x`` as it is where both failed alike; else None (to be
+    solved at its own temperature)."""
     i = min(int(x), 2)
     lo, hi = rows[i], rows[i + 1]
-    w = x - i
-    near = lo if w < 0.5 else hi
-    if not _alike(lo, hi) or near["status"] != 0:
+    near = lo if x - i < 0.5 else hi
+    if _alike(lo, hi) and near["status"] != 0:
         return dict(near)
-    if all(_alike(near, r) for r in rows):
-        weights = lagrange(np.asarray(STENCIL, dtype=float), x)
-    else:
-        rows, weights = [lo, hi], np.array([1.0 - w, w])
+    if not all(_alike(near, r) for r in rows):
+        return None
+    weights = lagrange(np.asarray(STENCIL, dtype=float), x)
     out = dict(near)
     for key, a in near.items():
         if key in ("flag", "status", "time", "duration"):
@@ -168,6 +173,28 @@ def _blend(rows: list, x: float):
         if isinstance(a, float | np.floating):
             out[key] = float(sum(c * r[key] for c, r in zip(weights, rows, strict=True)))
     return out
+
+
+#: A `Cycle`'s per-step columns.
+_COLUMNS = (
+    "time", "output_speed", "output_torque", "input_speed", "input_power", "ratio",
+    "vehicle_speed",
+)  # fmt: skip
+
+
+def _alone(drive, cycle: Cycle, request: CycleRequest, at: tuple) -> dict:
+    """The row of step ``k`` solved alone with the fluid at ``temperature`` [K] (``at`` =
+    ``(k, temperature)``; its time and duration those of the whole cycle's step)."""
+    k, temperature = at
+    one = replace(
+        cycle,
+        **{c: getattr(cycle, c)[k : k + 1] for c in _COLUMNS if getattr(cycle, c) is not None},
+    )
+    settings = replace(request, workers=1, progress=False)
+    hot = replace(drive, fluid=fluid_at(drive.fluid, float(temperature)))
+    row = run_cycle(hot, one, settings).steps.to_dict("records")[0]
+    row.update(time=float(cycle.time[k]), duration=float(cycle.durations[k]))
+    return row
 
 
 def _alike(a, b) -> bool:

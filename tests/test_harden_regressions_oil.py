@@ -122,3 +122,36 @@ def test_a_cycle_step_near_a_flag_change_of_its_runs_is_solved_at_its_oil_temper
         assert abs(row["eta"] - ref.eta) <= 1e-9
         solved += 1
     assert solved == 5
+
+
+FIELDS_153 = json.loads(
+    '{"aspect_ratio": 6.640757154305697, "roller_radius": 0.008199572924710338, '
+    '"theta0_deg": 56.8420093376884, "theta2_deg": 70.70731018288711, '
+    '"alpha_deg": 84.0840444500404, "n_rollers": 9, '
+    '"roller_bearing_diameter": 0.004020011004438964, '
+    '"idler_bearing_diameter": 0.0008702183439789268, '
+    '"disc_groove_ratio": 1.0713664011687816, "idler_groove_ratio": Infinity, '
+    '"single_idler_groove_ratio": 5.5132759832279055, '
+    '"tilt_safety_factor": 0.6150022644630091, "creep_limit": 0.24620773760943332, '
+    '"min_roller_gap": 0.0003808865853319412, "cam": {"disc": "output", '
+    '"preload": 123.4603487137352, "ramp_angle_deg": 17.636898652827703, '
+    '"mean_radius": 0.0248646214988077, "friction": 0.001893971269180178}}'
+)
+
+
+def test_a_limit_curve_whose_capacity_vanishes_between_two_rungs_is_balanced_alone():
+    """Harden task 2719:153 (session 19): under the oil balance, a drive whose capacity is
+    0.082 N m with the oil at 20 C and none at 30-50 C (not even zero torque carried). The
+    limit curve's ladder (rungs 10 K apart) found no limit point at 30 C and gave NaN;
+    `limit_torque` (one balance, Brent's method on the limit point's loss) found 0.0416 N m
+    at 23 C. Such a row is now balanced alone between its two rungs: the same limit."""
+    design, fluid = load_builtin("hub")
+    v = Variator(design.replace(name="random", **FIELDS_153), fluid, "single",
+                 traction_law="viscoelastic")  # fmt: skip
+    kw = dict(clamp_law="cam", input_speed_rpm=562.4551095892948)
+    ratio = 0.18771236364447458
+    limit = v.limit_torque(ratio, **kw)
+    curve = v.limit_curve([ratio], progress=False, **kw)
+    assert limit == pytest.approx(0.0416, rel=1e-3)
+    assert curve.torque[0] == pytest.approx(limit, rel=1e-6)
+    assert 20.0 < curve.oil_temperature[0] - 273.15 < 30.0

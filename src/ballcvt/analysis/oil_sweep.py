@@ -16,6 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 import xarray as xr
+from scipy.optimize import brentq
 
 from ..errors import InputError
 from ..model.clamping import clamp_law as clamp_law_of
@@ -64,6 +65,8 @@ LIMIT_SHY = 1e-6
 #: `ballcvt.api.oil`'s `_balanced_ends`), and its reach above the largest end [-] (an end
 #: between two intervals may move as far as its neighbour).
 STRETCH_RTOL, STRETCH_MAX = 5e-4, 0.2
+#: Tolerance of a row's balance found alone (`_balanced_alone`) [K].
+ROOT_TOL = 1e-4
 
 
 def limit_ladder(rows: OperatingRows, thermal, cached: dict | None = None) -> Ladder:
@@ -122,17 +125,63 @@ def balanced_limits(rows: OperatingRows, thermal) -> tuple[np.ndarray, np.ndarra
     temp, weights, outcome = balance_weights(ladder)
     runaways_at_top(ladder, temp, weights, outcome)
     torque = interpolate(np.stack([r[0] for r in ladder.results]), weights)
+    alone = _balanced_alone(rows, thermal, ladder, outcome)
+    for i, (t, found) in alone.items():
+        torque[i], temp[i] = found.torque.ravel()[0], t
     torque, _, temp = moved_tops(rows, thermal, torque, (torque, temp))
     k = np.abs(ladder.temperatures[:, None] - temp[None, :]).argmin(axis=0)
     searches = [r[2] for r in ladder.results]
     base = searches[0].flat()
-    pick = [searches[j].flat().take(np.array([i])) for i, j in enumerate(k)]
+    pick = [
+        alone[i][1].flat() if i in alone else searches[j].flat().take(np.array([i]))
+        for i, j in enumerate(k)
+    ]
     search = LimitSearch(
         torque,
         np.concatenate([p.creep for p in pick]) if pick else base.creep,
         np.concatenate([p.creep_zero for p in pick]) if pick else base.creep_zero,
     )
     return torque, np.where(np.isfinite(torque), temp, np.nan), search
+
+
+def _balanced_alone(rows: OperatingRows, thermal, ladder: Ladder, outcome) -> dict:
+    """The rows whose limit point has a balance to seek at one rung and no admissible
+    torque at the next (the capacity vanishes between them: harden task 2719:153, a
+    capacity of 0.08 N m at 20 C, none at 30 C), each balanced alone between the two: the
+    limit at a trial temperature, and its limit point's loss (none where no torque is
+    admissible, as `Variator.limit_torque`'s balance takes it), to the temperature where
+    it meets the heat the housing rejects (Brent's method, `ROOT_TOL`). ``{row: (T [K],
+    LimitSearch of the row there)}``; a row whose balance is not bracketed so is left
+    out."""
+    out = {}
+    temps = ladder.temperatures
+    for i in np.flatnonzero(outcome >= 1):
+        j = int(outcome[i])
+        if not ladder.excess[j - 1, i] > 0.0:
+            continue
+        one = rows.take(np.array([i]))
+        found: dict = {}
+
+        def excess(t: float, one=one, found=found) -> float:
+            r = _with_fluid(one, fluid_at(rows.drive.fluid, t))
+            search = limit_search_curves(r)[1]
+            limit = search.torque.ravel() if search is not None else np.full(1, np.nan)
+            loss = 0.0
+            if np.isfinite(limit[0]):
+                point = evaluate_points(r, limit * (1.0 - LIMIT_SHY))
+                loss = float(point["losses"][0, LOSS_KINDS.index("total")])
+                found[t] = search
+            return loss - thermal.conductance * (t - thermal.ambient_temperature)
+
+        try:
+            root = brentq(excess, temps[j - 1], temps[j], xtol=ROOT_TOL)
+        except ValueError:  # (a NaN loss, or no change of sign: left as it was)
+            continue
+        below = [t for t in found if t <= root]
+        if below:  # the warmest trial at or below the root with an admissible torque
+            t = max(below)
+            out[int(i)] = (t, found[t])
+    return out
 
 
 def curve_rows(design: Design, fluid: Fluid, ds: xr.Dataset, request) -> OperatingRows:

@@ -6,10 +6,11 @@ zero: a TypeError. It is now refused in one line, as at a fixed oil."""
 
 import json
 
+import numpy as np
 import pytest
 
 from ballcvt import Variator, load_builtin
-from ballcvt.errors import TractionLimitError
+from ballcvt.errors import InputError, TractionLimitError
 
 FIELDS = json.loads(
     '{"aspect_ratio": 3.984068845432138, "roller_radius": 0.016744705901889763, '
@@ -155,3 +156,67 @@ def test_a_limit_curve_whose_capacity_vanishes_between_two_rungs_is_balanced_alo
     assert limit == pytest.approx(0.0416, rel=1e-3)
     assert curve.torque[0] == pytest.approx(limit, rel=1e-6)
     assert 20.0 < curve.oil_temperature[0] - 273.15 < 30.0
+
+
+FIELDS_2720_11 = json.loads(
+    '{"aspect_ratio": 2.4045693728679307, "roller_radius": 0.00935547022285549, '
+    '"theta0_deg": 44.976325324004705, "theta2_deg": 44.862266460799525, '
+    '"alpha_deg": 13.93591573690753, "n_rollers": 3, '
+    '"roller_bearing_diameter": 0.004957467637503604, '
+    '"idler_bearing_diameter": 0.008328764115360163, '
+    '"disc_groove_ratio": 3.1374049673726687, "idler_groove_ratio": 2.4612088437858506, '
+    '"single_idler_groove_ratio": Infinity, "tilt_safety_factor": 0.6655134260728978, '
+    '"creep_limit": 0.05008791163109262, "min_roller_gap": 0.0008260827806432416, '
+    '"cam": {"disc": "output", "preload": 37.8828925568106, '
+    '"ramp_angle_deg": 2.015261230323121, "mean_radius": 0.009171311516467983, '
+    '"friction": 0.03575234546771804}}'
+)
+
+
+def test_an_optimal_clamp_trial_of_the_oil_balance_says_its_capacity_at_its_own_oil():
+    """Harden task 2720:11 (session 19): the limit with the optimal clamp under the oil
+    balance. A trial of the balance (a solve at a fixed oil temperature) whose optimiser
+    found no force asked the drive's capacity to say why, and the capacity ran the drive
+    file's balance, whose trials solved the point again: a RecursionError. The capacity is
+    now the trial's own, at its fixed oil."""
+    design, fluid = load_builtin("hub")
+    v = Variator(design.replace(name="random", **FIELDS_2720_11), fluid, "single",
+                 traction_law="viscoelastic")  # fmt: skip
+    kw = dict(clamp_law="optimal", input_speed_rpm=332.1808171241499)
+    limit = v.limit_torque(0.30322941254576086, **kw)
+    assert limit >= 0.0
+    v.solve(0.30322941254576086, limit, **kw)  # carried there
+
+
+FIELDS_2720_23 = json.loads(
+    '{"aspect_ratio": 1.801723800621378, "roller_radius": 0.018737781036281164, '
+    '"theta0_deg": 39.876581830167, "theta2_deg": 61.896867889035, '
+    '"alpha_deg": 20.02340726495088, "n_rollers": 8, '
+    '"roller_bearing_diameter": 0.00530163988305487, '
+    '"idler_bearing_diameter": 0.006643168716552575, '
+    '"disc_groove_ratio": 2.996357682272229, "idler_groove_ratio": 4.842584996758772, '
+    '"single_idler_groove_ratio": Infinity, "tilt_safety_factor": 0.6452125453273726, '
+    '"creep_limit": 0.1628785693067723, "min_roller_gap": 0.0003053354499746505, '
+    '"cam": {"disc": "output", "preload": 1608.826103156056, '
+    '"ramp_angle_deg": 5.080526251199557, "mean_radius": 0.05375347904484559, '
+    '"friction": 0.011562571869675103}}'
+)
+
+
+def test_a_drive_whose_oil_runs_away_at_every_torque_has_no_balanced_limit():
+    """Harden task 2720:23 (session 19): at 8243 rpm the drive loses
+    5.5 kW at zero torque with the oil at 150 C, 11 times what its housing rejects: every
+    torque runs away. `limit_torque` reported the 150 C oil's limit, 9.17 N m, and the
+    limit curve too, which `solve` refuses. Both now say there is none: `limit_torque`
+    raises the runaway, as `solve` does at zero torque, and the curve is NaN."""
+    design, fluid = load_builtin("hub")
+    v = Variator(design.replace(name="random", **FIELDS_2720_23), fluid, "single",
+                 traction_law="isothermal")  # fmt: skip
+    kw = dict(clamp_force=353.89167369998955, input_speed_rpm=8242.689514121577)
+    ratio = 0.9966910158760929
+    with pytest.raises(InputError, match="runaway"):
+        v.solve(ratio, 0.0, **kw)
+    with pytest.raises(InputError, match="runaway"):
+        v.limit_torque(ratio, **kw)
+    curve = v.limit_curve([ratio], progress=False, **kw)
+    assert np.isnan(curve.torque[0])

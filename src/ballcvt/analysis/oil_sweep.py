@@ -314,7 +314,10 @@ def balanced_tops(rows: OperatingRows, thermal, top) -> np.ndarray:
     `Variator.limit_torque`, batched: from ``top`` in steps growing fourfold from
     `STRETCH_RTOL` (outwards as far as `STRETCH_MAX` above it where it is carried, else
     inwards towards zero), then bisection; every step one balanced solve of the rows still
-    searching. A row carried nowhere below ``top`` keeps it (as the scalar path does).
+    searching. A row carried nowhere below ``top`` has the limit 0 if it carries zero
+    torque, else none (NaN): its oil runs away at every torque, say (harden task 2720:23,
+    where the 150 C oil's limit was kept, refused by `Variator.solve`; the scalar path
+    then raises why).
     """
     out = np.array(top, dtype=float)
     idx = np.flatnonzero(np.isfinite(out) & (out > 0.0))
@@ -344,7 +347,11 @@ def balanced_tops(rows: OperatingRows, thermal, top) -> np.ndarray:
         ok = _carries(rows.take(np.flatnonzero(live)), thermal, mid)
         inside[live] = np.where(ok, mid, inside[live])
         outside[live] = np.where(ok, outside[live], mid)
-    out[idx] = np.where(np.isnan(inside), end, inside)
+    nowhere = np.flatnonzero(np.isnan(inside))
+    if nowhere.size:  # refused down to the smallest torque tried: zero torque decides
+        zero = _carries(rows.take(nowhere), thermal, np.zeros(nowhere.size))
+        inside[nowhere] = np.where(zero, 0.0, np.nan)
+    out[idx] = inside
     return out
 
 

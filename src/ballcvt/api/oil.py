@@ -19,7 +19,7 @@ from typing import Any
 from scipy.optimize import brentq
 
 from ..analysis.oil_sweep import STRETCH_MAX, STRETCH_RTOL, inward_trial, outward_trial
-from ..errors import BallCVTError, ConvergenceError, InputError
+from ..errors import BallCVTError, ConvergenceError, InputError, NoEquilibriumError
 from ..model.modes import resolve_mode
 from ..model.oil import C_TO_K, MAX_OIL_TEMPERATURE, fluid_at, steady_temperature
 from ..params.drive_models import with_oil_model
@@ -386,8 +386,16 @@ def _balanced_ends(variator, ratio: float, point: dict, cap):
         return inside, (label if outside is None else refused.get(outside, label))
 
     if not hasattr(cap, "intervals"):
-        top = moved(cap, 0.0, cap * (1.0 + STRETCH_MAX), "")[0] if cap > 0.0 else None
-        return cap if top is None else top
+        if not cap > 0.0:
+            return cap
+        top = moved(cap, 0.0, cap * (1.0 + STRETCH_MAX), "")[0]
+        if top is not None:
+            return top
+        # carried nowhere at its own balance down to the smallest torque tried (harden
+        # task 2720:23: the oil runs away at every torque, and the 150 C oil's capacity
+        # was reported): zero torque decides, refused as `Variator.solve` refuses it
+        variator.solve(ratio, 0.0, **kw)
+        return 0.0 if carries(0.0) else _no_balanced_torque(ratio, refused.get(0.0))
     kept: list = []
     ends = [iv[0] for iv in cap.intervals[1:]] + [cap.largest * (1.0 + STRETCH_MAX)]
     for ((lo, hi), why), nxt in zip(zip(cap.intervals, cap.constraints), ends):
@@ -406,6 +414,16 @@ def _balanced_ends(variator, ratio: float, point: dict, cap):
         cap,
         intervals=tuple(k[0] for k in kept),
         constraints=tuple(tuple(k[1]) for k in kept),
+    )
+
+
+def _no_balanced_torque(ratio: float, why: str | None):
+    """Raise: no output torque is carried at its own oil balance (``why``: what refuses
+    zero torque)."""
+    raise NoEquilibriumError(
+        f"no admissible equilibrium at any output torque with the oil at its own heat "
+        f"balance (ratio {ratio:g}): zero torque is refused ({why or 'creep'})",
+        {"ratio": f"ratio {ratio:g}"},
     )
 
 

@@ -223,7 +223,11 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
             )
         except TractionLimitError:  # the optimiser found no force: say the capacity
             speeds = {"input_speed": input_speed, "input_speed_rpm": input_speed_rpm}
-            cap = self.capacity(ratio, clamp_force=clamp_force, clamp_law=clamp_law, **speeds)
+            # with the fluid as this solve has it (a trial of the oil's balance runs here
+            # at a fixed temperature: the drive file's balance would start another, and
+            # that one this trial again, harden task 2720:11)
+            given = oil.with_oil_temperature(self, "fixed")
+            cap = given.capacity(ratio, clamp_force=clamp_force, clamp_law=clamp_law, **speeds)
             raise optimal_refusal(float(output_torque), ratio, cap) from None
         problem = self._problem(ratio, output_torque, law, input_speed, input_speed_rpm)
         follows = not isinstance(law, ConstantClamp)

@@ -30,7 +30,7 @@ from ..equilibrium.residual import (
     evaluate_with_jacobian,
 )
 from ..model.traction.base import has_multiple_equilibria
-from .continuation import continue_in_torque
+from .continuation import REACH_STEP, continue_in_torque
 from .newton_step import COMPILED, MAX_STEP, advance_compiled, advance_python, cap
 from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
 from .robust import solve_robust
@@ -113,7 +113,10 @@ def solve_batch(
     flat = problem.flat()
     if has_multiple_equilibria(problem.fluid):
         x, iterations, _ = continue_in_torque(
-            flat, branch_solver(options, predict), pinned=branch_pinned(options)
+            flat,
+            branch_solver(options, predict),
+            min_step=REACH_STEP,
+            pinned=branch_pinned(options),
         )
         sol = _flat_solution(evaluate(flat, x, options.quadrature), iterations + 1, options.tol)
     else:

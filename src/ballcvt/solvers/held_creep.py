@@ -154,12 +154,14 @@ def reach_torque(flat, pinned: Pinned, solve: Solve, tol, torque, x):
         ``(n, n_c)``; the start ``x`` where not converged.
     """
     ok, out = np.zeros(flat.size, dtype=bool), np.array(x, dtype=float)
+    past = np.zeros(flat.size, dtype=bool)  # the first contact's march passed the fold
     for k in (0, flat.layout.n_contacts - 1):
-        todo = np.flatnonzero(~ok)
+        todo = np.flatnonzero(~ok & ~past)
         if todo.size == 0:
             break
         sub = flat.take(todo)
         lo, hi = bracket_in_creep(sub, pinned, k, tol, torque[todo], x[todo])
+        past[todo] = _past_fold(lo, hi)
         xs = _secant(sub, pinned, k, tol, lo, hi)
         found = np.flatnonzero(np.all(np.isfinite(xs), axis=-1))
         if found.size:
@@ -167,6 +169,15 @@ def reach_torque(flat, pinned: Pinned, solve: Solve, tol, torque, x):
             good = np.asarray(good, dtype=bool)
             ok[todo[found[good]]], out[todo[found[good]]] = True, np.asarray(xr)[good]
     return ok, out
+
+
+def _past_fold(lo, hi) -> np.ndarray:
+    """The points `bracket_in_creep` left unbracketed at a fold of their branch: the torque
+    fell at a converged step in the held creep (``lo``'s fourth entry), so the target lies
+    above the branch's largest torque; the other disc's held creep would march to the same
+    fold (it cost a thermal cam sweep a fifth of its time). Not so where only failed steps
+    stopped the march: the other contact's march may get through."""
+    return np.isnan(hi[1]) & lo[3]
 
 
 def _goal(flat):
@@ -184,7 +195,8 @@ def bracket_in_creep(flat, pinned: Pinned, k, tol, torque, x):
     reversed: a march turned back past the fold would bracket the equilibrium past it.
 
     Returns the brackets ``(lo, hi)``, each ``(creep (n,), |torque| (n,), creeps (n,
-    n_c))``: ``lo`` below the target, ``hi`` past it (NaN where not bracketed).
+    n_c))``: ``lo`` below the target, ``hi`` past it (NaN where not bracketed); ``lo``
+    has a fourth entry, whether the torque fell at a converged step (a fold) ``(n,)``.
     """
     goal, sign = _goal(flat)
     lo_x, lo_t = np.array(x, dtype=float), sign * np.asarray(torque, dtype=float)
@@ -192,6 +204,7 @@ def bracket_in_creep(flat, pinned: Pinned, k, tol, torque, x):
     scale = np.maximum(np.abs(lo_x[:, k]), 1e-6)
     step = np.where(lo_x[:, k] < 0, -1.0, 1.0) * 0.01 * scale
     active = np.arange(flat.size)
+    fell = np.zeros(flat.size, dtype=bool)
     for _ in range(MAX_FOLD_STEPS):
         active = active[np.abs(step[active]) >= FOLD_CREEP_RTOL * scale[active]]
         if active.size == 0:
@@ -200,6 +213,7 @@ def bracket_in_creep(flat, pinned: Pinned, k, tol, torque, x):
         got, xs = _pinned_step(pinned, flat.take(active), k, lo_x[active], trial, tol)
         got = sign[active] * got
         up = got > lo_t[active]
+        fell[active[np.isfinite(got) & ~up]] = True
         past = up & (got >= goal[active])
         rise = up & ~past
         lo_t[active[rise]], lo_x[active[rise]] = got[rise], xs[rise]
@@ -211,7 +225,7 @@ def bracket_in_creep(flat, pinned: Pinned, k, tol, torque, x):
         step[active[~up]] *= 0.25
         hi_t[active[past]], hi_x[active[past]] = got[past], xs[past]
         active = active[~past]
-    return (lo_x[:, k], lo_t, lo_x), (hi_x[:, k], hi_t, hi_x)
+    return (lo_x[:, k], lo_t, lo_x, fell), (hi_x[:, k], hi_t, hi_x)
 
 
 def _secant(flat, pinned: Pinned, k, tol, lo, hi):
@@ -219,7 +233,7 @@ def _secant(flat, pinned: Pinned, k, tol, lo, hi):
     of contact ``k`` within the bracket ``(lo, hi)`` (`bracket_in_creep`); NaN rows where
     there is no bracket or a step failed."""
     goal, sign = _goal(flat)
-    (c_lo, t_lo, x_lo), (c_hi, t_hi, x_hi) = lo, hi
+    (c_lo, t_lo, x_lo, _), (c_hi, t_hi, x_hi) = lo, hi
     ends = [[c_lo.copy(), t_lo - goal, x_lo.copy()], [c_hi.copy(), t_hi - goal, x_hi.copy()]]
     out = np.full_like(x_lo, np.nan)
     close = np.abs(ends[1][1]) <= REACH_RTOL * goal

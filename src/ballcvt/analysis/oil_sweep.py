@@ -91,21 +91,27 @@ def limit_ladder(rows: OperatingRows, thermal, cached: dict | None = None) -> La
     known = cached or {}
 
     def at(f: Fluid):
-        r = replace(rows, drive=replace(rows.drive, fluid=f))
         got = known.get(f.inlet_temperature)  # (fluid_at sets it)
-        search = None
-        if got is None:
-            search = limit_search_curves(r)[1]
-            limit = search.torque.ravel() if search is not None else np.full(r.size, np.nan)
-        else:
-            limit = got[0]
-        point = evaluate_points(r, np.nan_to_num(limit * (1.0 - LIMIT_SHY), nan=0.0))
-        finite = np.isfinite(limit)
-        loss = np.where(finite, point["losses"][:, LOSS_KINDS.index("total")], np.nan)
-        eta = got[1] if got is not None else np.where(finite, point["eta"], np.nan)
-        return (limit, eta, search), loss
+        limit, eta, search, loss = _limit_points(
+            _with_fluid(rows, f), None if got is None else got[0]
+        )
+        return (limit, eta if got is None else got[1], search), loss
 
     return climb(rows.drive.fluid, thermal, at, LIMIT_STEP)
+
+
+def _limit_points(rows: OperatingRows, limit=None) -> tuple:
+    """``(limit [N m], eta [-], LimitSearch or None, total loss [W])`` of the rows at their
+    fluid: their limits (searched unless ``limit`` is given) and their limit points solved
+    `LIMIT_SHY` below them (NaN where a row has no limit)."""
+    search = None
+    if limit is None:
+        search = limit_search_curves(rows)[1]
+        limit = search.torque.ravel() if search is not None else np.full(rows.size, np.nan)
+    point = evaluate_points(rows, np.nan_to_num(limit * (1.0 - LIMIT_SHY), nan=0.0))
+    finite = np.isfinite(limit)
+    loss = np.where(finite, point["losses"][:, LOSS_KINDS.index("total")], np.nan)
+    return limit, np.where(finite, point["eta"], np.nan), search, loss
 
 
 def balanced_limits(rows: OperatingRows, thermal) -> tuple[np.ndarray, np.ndarray, LimitSearch]:
@@ -163,15 +169,11 @@ def _balanced_alone(rows: OperatingRows, thermal, ladder: Ladder, outcome) -> di
         found: dict = {}
 
         def excess(t: float, one=one, found=found) -> float:
-            r = _with_fluid(one, fluid_at(rows.drive.fluid, t))
-            search = limit_search_curves(r)[1]
-            limit = search.torque.ravel() if search is not None else np.full(1, np.nan)
-            loss = 0.0
+            limit, _, search, loss = _limit_points(_with_fluid(one, fluid_at(rows.drive.fluid, t)))
             if np.isfinite(limit[0]):
-                point = evaluate_points(r, limit * (1.0 - LIMIT_SHY))
-                loss = float(point["losses"][0, LOSS_KINDS.index("total")])
                 found[t] = search
-            return loss - thermal.conductance * (t - thermal.ambient_temperature)
+            heat = float(loss[0]) if np.isfinite(limit[0]) else 0.0
+            return heat - thermal.conductance * (t - thermal.ambient_temperature)
 
         try:
             root = brentq(excess, temps[j - 1], temps[j], xtol=ROOT_TOL)

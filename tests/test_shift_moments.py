@@ -45,6 +45,37 @@ def test_zero_tilt_rate(paper):
     assert abs(got.holding_moment) < 1e-12 and not got.saturated
 
 
+@pytest.mark.parametrize("law", ["isothermal", "thermal", "viscoelastic"])
+def test_odd_lateral_laws_have_no_lateral_force_without_side_slip(law):
+    """A law that declares ``odd_lateral`` (its ``mu_y`` odd in the side slip) gives
+    ``mu_y`` = 0 at zero side slip by its quadrature too, at every contact of a spinning,
+    loaded point; `solve` then stores a holding moment of exactly zero without integrating
+    it, and `lateral_coefficients` gives exactly zero. The Maxwell film does not declare
+    it, and its holding moment is not zero."""
+    from ballcvt.equilibrium.problem import build_problem
+    from ballcvt.model.traction.base import TRACTION_LAWS, lateral_coefficients
+    from ballcvt.results.moments import tilt_contacts
+    from ballcvt.solvers.newton import solve_batch
+
+    v = Variator(traction_law=law)
+    got = v.solve(0.7, 40.0, **POINT)
+    declared = TRACTION_LAWS.get(law).odd_lateral
+    assert declared == (law != "viscoelastic")
+    pb = build_problem(v.design, v.fluid, v.architecture, np.array([0.7]), 40.0, 2000.0,
+                       2000.0 * math.pi / 30)
+    st = solve_batch(pb, v.options).state
+    c = tilt_contacts(pb, st, v.options.quadrature)
+    raw = TRACTION_LAWS.get(law).lateral  # the law's quadrature, as registered
+    mu, mu_y, _ = raw(c.state, v.fluid, 0.0, c.quadrature, c.entry)
+    if declared:
+        assert np.all(np.abs(mu_y) <= 1e-12 * np.max(np.abs(mu)))
+        assert np.all(lateral_coefficients(c.state, v.fluid, 0.0, c.quadrature)[1] == 0.0)
+        assert got.holding_moment == 0.0
+    else:
+        assert np.any(np.abs(mu_y) > 1e-12 * np.max(np.abs(mu)))
+        assert got.holding_moment != 0.0
+
+
 def test_viscoelastic_holding_moment_is_small_and_finite():
     """The Maxwell film's entry memory gives a spinning contact a small lateral force."""
     v = Variator(traction_law="viscoelastic")

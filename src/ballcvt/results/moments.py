@@ -58,15 +58,18 @@ def steady_moments(
     """Holding moment and moment about the skew axis per ball at zero tilt rate [N m].
 
     The holding moment is `ballcvt.model.shift.tilt_moments` at rate 0 (the film's
-    lateral force at zero side slip; NaN under a registered traction law without a
+    lateral force at zero side slip; zero under a law whose lateral force is odd in the
+    side slip, ``TractionLaw.odd_lateral``; NaN under a registered traction law without a
     side-slip form, ``TractionLaw.lateral``); the skew moment is
     `ballcvt.model.shift.skew_axis_moment` of the solver's own tractions and spin moments
     (``state.force``, ``state.moment``), so it closes the ball's moment balance:
     ``M_k = -sin(gamma) M_s + cos(gamma) M_u``.
     """
-    lay = problem.layout
-    if getattr(traction_law(problem.fluid), "lateral", None) is None:
+    lay, law = problem.layout, traction_law(problem.fluid)
+    if getattr(law, "lateral", None) is None:
         holding = np.full(np.shape(state.omega_s), np.nan)
+    elif getattr(law, "odd_lateral", False):  # no lateral force without side slip
+        holding = np.zeros(np.shape(state.omega_s))
     else:
         holding = tilt_moments(tilt_contacts(problem, state, quadrature), 0.0).holding
     skew = skew_axis_moment(

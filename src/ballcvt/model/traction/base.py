@@ -28,6 +28,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
 from ..._compat import warn_renamed
 from ...errors import InputError
 from ...params.models import Fluid
@@ -94,6 +96,12 @@ class TractionLaw:
         return the one the drive reaches, followed continuously in torque from zero torque
         at the point's speed (`ballcvt.solvers.continuation`, docs/model.md §14); a law
         opts in by this attribute alone. False (the paper's law): Newton from any start.
+    odd_lateral : bool
+        Whether ``mu_y`` is odd in the lateral creep, so that it vanishes without side
+        slip (a rigid-plastic law: the stress follows the local sliding, with no memory of
+        the film's entry edge; docs/model.md §17). A steady point's holding moment is then
+        zero, and `ballcvt.results.moments.steady_moments` does not integrate it. False:
+        integrated (a Maxwell film's ``mu_y`` at zero side slip is small, not zero).
     film_coefficients : callable, optional
         ``(state, fluid, quadrature)`` -> ``mu, chi, dmu, dchi`` with a fourth derivative
         column, by ``log h`` at a fixed ``u_ref / h`` (as a lubrication model's,
@@ -117,6 +125,7 @@ class TractionLaw:
     with_rise: Callable[[ContactState, Fluid, Quadrature], tuple] | None = None
     multiple_equilibria: bool = False
     lateral: Callable[[ContactState, Fluid, Any, Quadrature, Any], tuple] | None = None
+    odd_lateral: bool = False
     film_coefficients: Callable[[ContactState, Fluid, Quadrature], tuple] | None = None
     residual_floor: float = 0.0
 
@@ -167,6 +176,7 @@ for _law in (
         shear_coefficients,
         "the paper's rigid-plastic law, Eq. 53 (Tomaselli et al. 2020)",
         lateral=_isothermal_lateral,
+        odd_lateral=True,
     ),
     TractionLaw(
         "thermal",
@@ -182,6 +192,7 @@ for _law in (
         with_rise=thermal_law_rise,
         multiple_equilibria=True,
         lateral=thermal_lateral_coefficients,
+        odd_lateral=True,
         film_coefficients=thermal_law_film_coefficients,
         residual_floor=THERMAL_RESIDUAL_FLOOR,
     ),
@@ -232,7 +243,8 @@ def lateral_coefficients(
     -------
     mu, mu_y, chi : ndarray
         Longitudinal and lateral traction coefficients, spin-moment coefficient [-].
-        Without side slip use `contact_coefficients` (the solvers' path, unchanged).
+        Without side slip use `contact_coefficients` (the solvers' path, unchanged);
+        ``mu_y`` is then exactly zero under a law with ``odd_lateral``.
     """
     law = traction_law(fluid)
     if law.lateral is None:
@@ -240,7 +252,10 @@ def lateral_coefficients(
         raise InputError(
             "traction_law", law.name, "a law with side slip: " + ", ".join(with_lateral)
         )
-    return law.lateral(state, fluid, lateral, quadrature, entry)
+    mu, mu_y, chi = law.lateral(state, fluid, lateral, quadrature, entry)
+    if law.odd_lateral:  # zero without side slip, not the quadrature's round-off
+        mu_y = np.where(np.asarray(lateral) == 0.0, 0.0, mu_y)
+    return mu, mu_y, chi
 
 
 def traction_rises_with_creep(fluid: Fluid) -> bool:

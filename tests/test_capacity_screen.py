@@ -103,3 +103,39 @@ def test_slow_newton_is_finished_from_where_it_stopped(v, monkeypatch):
     assert np.all(got.converged) and np.all(got.ok)
     ref = newton_module.solve_batch(pb, SolverOptions())
     np.testing.assert_allclose(got.creep, ref.state.creep, rtol=1e-8, atol=1e-13)
+
+
+def test_the_scan_creeps_start_a_cam_sweeps_points(v):
+    """A cam's limit search keeps its scan (torques and creeps, `LimitSearch.scan_torque`,
+    ``scan_creep``), through `flat` and `take`; its creeps interpolated to a torque between
+    two scan torques start that point near its solution on the full rule (within the
+    coarse rule's error and the interpolation's), so a cam sweep solves its points without
+    the predictor stage: the same efficiencies as a sweep whose points start cold."""
+    from ballcvt.solvers.clamped import solve_clamped
+    from ballcvt.solvers.newton import solve_batch
+
+    law = CamClamp.from_design(v.design)
+    ratio = np.array([[0.6, 1.0], [1.4, 1.9]])
+    pb = build_problem(v.design, v.fluid, v.architecture, ratio, 0.0, 1.0,
+                       RPM * math.pi / 30)
+    search = limit_search(pb, v.design.creep_limit, law=law)
+    assert search.scan_torque.shape[:2] == (2, 2) and search.scan_creep.shape[:2] == (2, 2)
+    flat = search.flat()
+    assert flat.take(np.array([3])).scan_torque.shape == (1, search.scan_torque.shape[-1])
+    torque = 0.37 * flat.torque  # between scan torques, within the capacity
+    x0 = flat.start_between(np.arange(4), torque)
+    pts = build_problem(v.design, v.fluid, v.architecture, ratio.ravel(), torque, 1.0,
+                        RPM * math.pi / 30)
+    _, sol = solve_clamped(pts, law, lambda p, x: solve_batch(p, v.options, x))
+    assert sol.converged.all()
+    np.testing.assert_allclose(x0, sol.state.creep, rtol=0.02, atol=2e-6)
+    # the sweep: the same answers as from the cold start
+    grid = {"ratio": [0.6, 1.4], "output_torque": np.linspace(0.0, 60.0, 7)}
+    swept = v.sweep(**grid, clamp_law="cam", input_speed_rpm=RPM, progress=False)
+    assert np.isfinite(swept.eta.values).sum() >= 10
+    for r in grid["ratio"]:
+        for t in grid["output_torque"]:
+            e = float(swept.eta.sel(ratio=r, output_torque=t).squeeze())
+            if np.isfinite(e):
+                got = v.solve(r, t, clamp_law="cam", input_speed_rpm=RPM)
+                assert abs(got.eta - e) <= 1e-9

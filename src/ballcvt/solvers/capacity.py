@@ -118,6 +118,10 @@ def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float, scre
         ``(n, n_c)`` creeps at the largest admissible torque (NaN where there is none).
     creep_zero : ndarray
         ``(n, n_c)`` creeps at zero torque (NaN where that did not converge).
+    scan : (ndarray, ndarray)
+        The scan's torques ``(n, S)`` [N m] and the creeps found there ``(n, S, n_c)``
+        [-] (the screen's coarse ones where it decided; NaN where none converged): warm
+        starts for points between them.
     """
     n, nc = flat.size, flat.layout.n_contacts
     grid = _scan_shares()[None, :] * top[:, None]
@@ -141,8 +145,10 @@ def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float, scre
         x[act] = np.where(got.ok[:, None], got.creep, x[act])
     edge = np.full(grid.shape, np.nan)
     edge[i, j] = a
-    zero = np.where(converged.reshape(grid.shape)[:, :1], creep[:, 0], np.nan)
-    return _assemble(ok, grid, edge), _top_creep(ok, creep, (i, j, x)), zero
+    conv = converged.reshape(grid.shape)
+    zero = np.where(conv[:, :1], creep[:, 0], np.nan)
+    scan = (grid, np.where(conv[..., None], creep, np.nan))
+    return _assemble(ok, grid, edge), _top_creep(ok, creep, (i, j, x)), zero, scan
 
 
 def _scan(points: EquilibriumProblem, admissible, screen, grid):

@@ -151,12 +151,19 @@ class LimitSearch:
         The admissible torques, ``(..., k, 2)`` rows ``(lo, hi)`` [N m], NaN-padded
         (`ballcvt.solvers.capacity.Capacity`); None: ``(0, torque)`` where ``torque`` is
         finite. ``torque`` is the largest ``hi``.
+    scan_torque, scan_creep : ndarray, optional
+        The torques ``(..., S)`` [N m] of a capacity scan (a torque-following law,
+        `ballcvt.solvers.capacity.interval_search`) and the creeps found there
+        ``(..., S, n_c)`` [-] (NaN where none): warm starts for the points between them
+        (`start_between`). None without a scan.
     """
 
     torque: np.ndarray
     creep: np.ndarray
     creep_zero: np.ndarray
     intervals: np.ndarray | None = None
+    scan_torque: np.ndarray | None = None
+    scan_creep: np.ndarray | None = None
 
     def spans(self) -> np.ndarray:
         """``intervals``, or ``(0, torque)`` rows where it is None: ``(..., k, 2)``."""
@@ -181,13 +188,45 @@ class LimitSearch:
             self.creep.reshape(-1, nc),
             self.creep_zero.reshape(-1, nc),
             self.spans().reshape(-1, k, 2),
+            *self._scan(lambda a, tail: a.reshape((-1,) + a.shape[a.ndim - tail :])),
         )
 
     def take(self, index) -> LimitSearch:
         """The points ``index`` of a 1-D batch."""
         return LimitSearch(
-            self.torque[index], self.creep[index], self.creep_zero[index], self.spans()[index]
+            self.torque[index],
+            self.creep[index],
+            self.creep_zero[index],
+            self.spans()[index],
+            *self._scan(lambda a, tail: a[index]),
         )
+
+    def _scan(self, fn):
+        """``(fn(scan_torque, 1), fn(scan_creep, 2))`` (the trailing axes per point), or
+        ``(None, None)`` without a scan."""
+        if self.scan_torque is None or self.scan_creep is None:
+            return None, None
+        return fn(self.scan_torque, 1), fn(self.scan_creep, 2)
+
+    def start_between(self, index, torque):
+        """Starting creeps ``(m, n_c)`` [-] of points ``index`` (of a 1-D batch) at
+        ``torque`` ``(m,)`` [N m] within their limits, or None without a scan: the creeps
+        of the scan's two torques around each one, interpolated linearly in torque (the
+        nearest converged one where only one of them converged; NaN where neither)."""
+        if self.scan_torque is None or self.scan_creep is None:
+            return None
+        grid, creep = self.scan_torque[index], self.scan_creep[index]
+        t = np.asarray(torque, dtype=float)
+        hi = np.clip((grid < t[:, None]).sum(axis=1), 1, grid.shape[1] - 1)
+        lo = hi - 1
+        rows = np.arange(t.size)
+        a, b = grid[rows, lo], grid[rows, hi]
+        share = np.clip(np.divide(t - a, b - a, out=np.zeros(t.size), where=b > a), 0, 1)
+        xa, xb = creep[rows, lo], creep[rows, hi]
+        x = xa + share[:, None] * (xb - xa)
+        x = np.where(np.isnan(x) & (share < 0.5)[:, None], xa, x)
+        x = np.where(np.isnan(x), np.where(np.isnan(xb), xa, xb), x)
+        return x
 
 
 def limit_torque_batch(
@@ -277,7 +316,7 @@ def limit_search(
     x_zero = np.full((flat.size, nc), np.nan)
     shape = problem.shape
     if law is not None:
-        spans, creep, x_zero = interval_search(
+        spans, creep, x_zero, (scan_t, scan_x) = interval_search(
             flat,
             lambda pb, x, predict=True: solve_admissible(
                 pb, creep_limit, options, law, x, predict
@@ -296,6 +335,8 @@ def limit_search(
             creep.reshape(shape + (nc,)),
             x_zero.reshape(shape + (nc,)),
             spans.reshape(shape + spans.shape[-2:]),
+            scan_t.reshape(shape + scan_t.shape[-1:]),
+            scan_x.reshape(shape + scan_x.shape[-2:]),
         )
     torque, creep = _pinned_limits(flat, creep_limit, options, initial_creep(flat))
     tick()

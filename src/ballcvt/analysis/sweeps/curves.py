@@ -133,7 +133,9 @@ def solve_curves(curves: OperatingRows, torque, limit=None, callback=None) -> di
     When the limit search ran here (or was handed over), every point within the limits is
     solved in one batch, each started from the creeps interpolated in torque between the
     curve's solution at its limit and the creeps at zero torque (or the solver's cold
-    start); under the optimal law every point is searched on its own, all in one batch;
+    start), or, after a capacity scan (a torque-following law), between the scan's two
+    torques around it, without the predictor stage (`LimitSearch.start_between`: within
+    1 % of the solution); under the optimal law every point is searched on its own, all in one batch;
     otherwise (bare limits given) torque by torque, each started from the last solution
     (continuation).
 
@@ -194,7 +196,10 @@ def _solve_from_limits(state, curves: OperatingRows, torque, search: LimitSearch
     share = np.divide(torque[k], lim, out=np.zeros(lim.size), where=lim > 0)[:, None]
     zero = np.where(np.isnan(search.creep_zero), initial_creep(base), search.creep_zero)
     x0 = zero[i] + share * (search.creep[i] - zero[i])
-    pb, sol = _solve_points(state, curves, torque, (i, k), x0)
+    near = search.start_between(i, torque[k])  # a capacity scan's creeps, when it ran
+    if near is not None:
+        x0 = np.where(np.isnan(near), x0, near)
+    pb, sol = _solve_points(state, curves, torque, (i, k), x0, near is None)
     stray = _off_branch(state, (i, k), sol, curves.creep_limit)
     if stray.size:  # another equilibrium than the one reached from T_2 = 0
         _continue_from_below(state, curves, torque, (i[stray], k[stray]), zero)
@@ -265,12 +270,13 @@ def _continue_from_below(state, curves: OperatingRows, torque, points, zero):
         _off_branch(state, at, sol, curves.creep_limit)
 
 
-def _solve_points(state, curves: OperatingRows, torque, points, x0):
+def _solve_points(state, curves: OperatingRows, torque, points, x0, predict=True):
     """Solve the ``points`` (curve ``i[j]``, torque ``k[j]``) in one batch; record them in
-    ``state`` and return the problem (at the forces used) and the batch solution."""
+    ``state`` and return the problem (at the forces used) and the batch solution
+    (``predict``: as in `solve_column`)."""
     i, k = points
     pb = curves.problem(i, torque[k], state["force"][i, k])
-    pb, sol = solve_column(pb, curves.law, curves.options, x0)
+    pb, sol = solve_column(pb, curves.law, curves.options, x0, predict)
     good = sol.converged
     state["force"][i, k] = pb.clamp_force
     state["creep"][i[good], k[good]] = sol.state.creep[good]
@@ -313,12 +319,14 @@ def limit_search_curves(curves: OperatingRows, callback=None, limit=None):
     return base, search
 
 
-def solve_column(pb, law, options, x0):
-    """Solve the points of one torque under ``law`` -> (problem at the forces used, sol)."""
+def solve_column(pb, law, options, x0, predict=True):
+    """Solve the points of one torque under ``law`` -> (problem at the forces used, sol);
+    ``predict``: whether the solves start with the predictor stage (False: ``x0`` is
+    already near, as in `ballcvt.solvers.newton.solve_batch`)."""
     if law is None:
-        return pb, solve_batch(pb, options, x0)
+        return pb, solve_batch(pb, options, x0, predict=predict)
     if not law.optimises:
-        return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x), x0)
+        return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x, predict=predict), x0)
     pb, start = optimal_start(pb, law, options)
     x = initial_creep(pb) if x0 is None else np.broadcast_to(x0, start.shape)
     unknown = np.isnan(start).any(axis=1)

@@ -15,6 +15,7 @@ import numpy as np
 from ...equilibrium.problem import build_problem
 from ...equilibrium.residual import evaluate
 from ...model.clamping import axial_force
+from ...model.traction.base import has_multiple_equilibria
 from ...params.drive import Drive
 from ...performance.efficiency import efficiency, loss_breakdown, power_losses
 from ...performance.validity import validity
@@ -199,7 +200,10 @@ def _solve_from_limits(state, curves: OperatingRows, torque, search: LimitSearch
     near = search.start_between(i, torque[k])  # a capacity scan's creeps, when it ran
     if near is not None:
         x0 = np.where(np.isnan(near), x0, near)
-    pb, sol = _solve_points(state, curves, torque, (i, k), x0, near is None)
+    # (under a law with more than one equilibrium the solves follow each point from zero
+    # torque whatever the start: their continuation keeps its predictor)
+    predict = near is None or has_multiple_equilibria(base.fluid)
+    pb, sol = _solve_points(state, curves, torque, (i, k), x0, predict)
     stray = _off_branch(state, (i, k), sol, curves.creep_limit)
     if stray.size:  # another equilibrium than the one reached from T_2 = 0
         _continue_from_below(state, curves, torque, (i[stray], k[stray]), zero)

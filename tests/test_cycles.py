@@ -231,3 +231,15 @@ def test_ratio_range_restricts_every_strategy(hub, cruise):
     res = run_cycle(hub, rig, clamp_force=2000.0, ratio_range=(0.8, 1.5), progress=False)
     assert np.allclose(res.steps["ratio"], [0.8, 1.5])
     assert list(res.steps["flag"]) == ["ratio_limited", "ratio_limited"]
+
+
+def test_take_keeps_every_column_of_the_steps():
+    """`Cycle.take`: the steps asked for, every array column cut alike, the rest kept."""
+    c = cycle_from_arrays(time=[0.0, 1.0, 2.0, 3.0], input_speed=np.full(4, 2000 * RPM),
+                          input_power=[100.0, 200.0, 300.0, 400.0], ratio=[0.8, 0.9, 1.0, 1.1],
+                          vehicle_speed=[1.0, 2.0, 3.0, 4.0], name="ramp")
+    one = c.take(slice(2, 3))
+    assert (one.kind, one.name, one.size) == (c.kind, "ramp", 1)
+    assert one.time.tolist() == [2.0] and one.ratio.tolist() == [1.0]
+    assert one.input_power.tolist() == [300.0] and one.vehicle_speed.tolist() == [3.0]
+    assert one.output_speed is None and one.output_torque is None

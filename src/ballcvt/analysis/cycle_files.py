@@ -17,7 +17,7 @@ units are listed in `UNITS`. Values are converted to SI on reading.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -96,6 +96,13 @@ class Cycle:
             return np.zeros(1)
         edges = np.concatenate([[t[0]], 0.5 * (t[1:] + t[:-1]), [t[-1]]])
         return np.diff(edges)
+
+    def take(self, index) -> Cycle:
+        """The steps ``index`` (a slice or an index array) as a cycle of their own."""
+        steps = {f.name: getattr(self, f.name) for f in fields(self)}
+        return replace(
+            self, **{k: v[index] for k, v in steps.items() if isinstance(v, np.ndarray)}
+        )
 
     @property
     def distance(self) -> float | None:

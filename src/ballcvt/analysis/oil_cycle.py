@@ -175,21 +175,11 @@ def _blend(rows: list, x: float):
     return out
 
 
-#: A `Cycle`'s per-step columns.
-_COLUMNS = (
-    "time", "output_speed", "output_torque", "input_speed", "input_power", "ratio",
-    "vehicle_speed",
-)  # fmt: skip
-
-
 def _alone(drive, cycle: Cycle, request: CycleRequest, at: tuple) -> dict:
     """The row of step ``k`` solved alone with the fluid at ``temperature`` [K] (``at`` =
     ``(k, temperature)``; its time and duration those of the whole cycle's step)."""
     k, temperature = at
-    one = replace(
-        cycle,
-        **{c: getattr(cycle, c)[k : k + 1] for c in _COLUMNS if getattr(cycle, c) is not None},
-    )
+    one = cycle.take(slice(k, k + 1))
     settings = replace(request, workers=1, progress=False)
     hot = replace(drive, fluid=fluid_at(drive.fluid, float(temperature)))
     row = run_cycle(hot, one, settings).steps.to_dict("records")[0]

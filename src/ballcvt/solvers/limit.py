@@ -211,11 +211,11 @@ class LimitSearch:
     def start_between(self, index, torque):
         """Starting creeps ``(m, n_c)`` [-] of points ``index`` (of a 1-D batch) at
         ``torque`` ``(m,)`` [N m] within their limits, or None without a scan: the creeps
-        of the scan's two torques around each one, interpolated linearly in torque (the
-        nearest converged one where only one of them converged; NaN where neither)."""
-        if self.scan_torque is None or self.scan_creep is None:
+        of the scan's two torques around each one, interpolated linearly in torque (the one
+        that converged where only one did; NaN where neither)."""
+        grid, creep = self._scan(lambda a, tail: a[index])
+        if grid is None or creep is None:
             return None
-        grid, creep = self.scan_torque[index], self.scan_creep[index]
         t = np.asarray(torque, dtype=float)
         hi = np.clip((grid < t[:, None]).sum(axis=1), 1, grid.shape[1] - 1)
         lo = hi - 1
@@ -224,9 +224,7 @@ class LimitSearch:
         share = np.clip(np.divide(t - a, b - a, out=np.zeros(t.size), where=b > a), 0, 1)
         xa, xb = creep[rows, lo], creep[rows, hi]
         x = xa + share[:, None] * (xb - xa)
-        x = np.where(np.isnan(x) & (share < 0.5)[:, None], xa, x)
-        x = np.where(np.isnan(x), np.where(np.isnan(xb), xa, xb), x)
-        return x
+        return np.where(np.isnan(x), np.where(np.isnan(xa), xb, xa), x)
 
 
 def limit_torque_batch(

@@ -11,10 +11,11 @@ fold: with that creep held, one Newton solve gives the other creeps and the outp
 that goes with them (`ballcvt.solvers.newton.solve_pinned`, the ``Pinned`` callable
 here). Two walks use it:
 
-* `march_to_fold`: the largest torque on the branch (the limiting torque at a fold);
-* `reach_torque`: the equilibrium on the branch at a given torque below the fold, where
-  the continuation stopped short of it (`bracket_in_creep`, then the secant method in the
-  held creep, then Newton at the torque itself).
+* `ballcvt.solvers.fold.climb_to_fold`: the largest torque on the branch (the limiting
+  torque at a fold);
+* `reach_torque` (here): the equilibrium on the branch at a given torque below the fold,
+  where the continuation stopped short of it (`bracket_in_creep`, then the secant method
+  in the held creep, `secant_in_creep`, then Newton at the torque itself).
 
 Both step the held creep up from the last equilibrium on the branch, doubling the step
 after a success and shrinking it where the torque does not rise (or the solve fails, or
@@ -31,7 +32,6 @@ import numpy as np
 from ..equilibrium.problem import EquilibriumProblem
 
 __all__ = [
-    "march_to_fold",
     "reach_torque",
     "FOLD_CREEP_RTOL",
     "PINNED_SLACK",
@@ -39,16 +39,17 @@ __all__ = [
     "MAX_CREEP_STEP",
     "REACH_RTOL",
     "SECANT_STEPS",
+    "secant_in_creep",
 ]
 
-#: Smallest creep step of a march, as a share of the creep scale (``C_lim`` for the
-#: march to the fold, the held creep where it starts for `reach_torque`) [-].
+#: Smallest creep step of a walk, as a share of the creep scale (``C_lim`` for the
+#: climb to the fold, the held creep where it starts for `reach_torque`) [-].
 FOLD_CREEP_RTOL = 1e-4
 #: Residual norm, in solver tolerances, up to which a held-creep step counts [-]: the
 #: thermal residual has a noise floor near the tolerance at large loads, and only the
 #: torque of the step is used (a solve at the torque itself decides convergence).
 PINNED_SLACK = 100.0
-#: Most steps of a march.
+#: Most steps of a walk.
 MAX_FOLD_STEPS = 80
 #: Largest creep step of `bracket_in_creep`, as a share of the held creep where it starts [-]:
 #: a long step could pass the fold and still land above the last torque.
@@ -73,58 +74,6 @@ def _pinned_step(pinned: Pinned, flat, k, x, creep, tol):
     got, sol = pinned(flat, k, x0)
     ok = (sol.residual_norm <= PINNED_SLACK * tol) & np.isfinite(got)
     return np.where(ok, got, np.nan), sol.state.creep
-
-
-def march_to_fold(flat, pinned: Pinned, pin, tol, torque, x):
-    """The largest torque on each point's branch beyond ``(torque, x)``: each disc
-    contact's creep held and stepped up from ``x``, the step reversed and quartered where
-    the torque does not rise (or the step fails, or a creep passes ``pin``), until it is
-    below `FOLD_CREEP_RTOL` of ``pin``.
-
-    Parameters
-    ----------
-    flat : EquilibriumProblem
-        Operating points, 1-D batch ``(n,)``.
-    pinned : callable
-        `Pinned`.
-    pin : float
-        Creep bound [-] (the creep limit, a hair below).
-    tol : float
-        Solver tolerance [-] (a step counts up to `PINNED_SLACK` times it).
-    torque, x : ndarray
-        Equilibria on the branch: torques ``(n,)`` [N m] and creeps ``(n, n_c)`` [-].
-
-    Returns
-    -------
-    torque : ndarray
-        ``(n,)`` [N m].
-    fold : ndarray of bool
-        Whether each is that of a fold (not of a creep at ``pin``).
-    """
-    nc = flat.layout.n_contacts
-    best_t = torque.copy()
-    fold = np.zeros(flat.size, dtype=bool)
-    for k in (0, nc - 1):
-        t, xk = torque.copy(), x.copy()
-        at_pin = np.zeros(flat.size, dtype=bool)
-        step = np.where(xk[:, k] < 0, -1.0, 1.0) * 0.02 * pin
-        active = np.arange(flat.size)
-        for _ in range(MAX_FOLD_STEPS):
-            active = active[np.abs(step[active]) >= FOLD_CREEP_RTOL * pin]
-            if active.size == 0:
-                break
-            trial = np.clip(xk[active, k] + step[active], -pin, pin)
-            got, xs = _pinned_step(pinned, flat.take(active), k, xk[active], trial, tol)
-            up = (got > t[active]) & (np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9))
-            acc, rej = active[up], active[~up]
-            t[acc], xk[acc] = got[up], xs[up]
-            at_pin[acc] = np.abs(xs[up, k]) >= pin * (1.0 - 1e-12)
-            step[acc] *= 2.0
-            step[rej] *= -0.25
-        better = t > best_t
-        best_t = np.where(better, t, best_t)
-        fold = np.where(better, ~at_pin, fold)
-    return best_t, fold
 
 
 def reach_torque(flat, pinned: Pinned, solve: Solve, tol, torque, x):
@@ -162,7 +111,7 @@ def reach_torque(flat, pinned: Pinned, solve: Solve, tol, torque, x):
         sub = flat.take(todo)
         lo, hi = bracket_in_creep(sub, pinned, k, tol, torque[todo], x[todo])
         past[todo] = _past_fold(lo, hi)
-        xs = _secant(sub, pinned, k, tol, lo, hi)
+        xs = secant_in_creep(sub, pinned, k, tol, lo, hi)
         found = np.flatnonzero(np.all(np.isfinite(xs), axis=-1))
         if found.size:
             good, xr = solve(sub.take(found), xs[found])
@@ -228,7 +177,7 @@ def bracket_in_creep(flat, pinned: Pinned, k, tol, torque, x):
     return (lo_x[:, k], lo_t, lo_x, fell), (hi_x[:, k], hi_t, hi_x)
 
 
-def _secant(flat, pinned: Pinned, k, tol, lo, hi):
+def secant_in_creep(flat, pinned: Pinned, k, tol, lo, hi):
     """The creeps at each point's target torque by the Illinois method in the held creep
     of contact ``k`` within the bracket ``(lo, hi)`` (`bracket_in_creep`); NaN rows where
     there is no bracket or a step failed."""

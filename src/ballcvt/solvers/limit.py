@@ -271,7 +271,7 @@ def limit_search(
     whose traction can fall with the creep (the thermal law), the torque at the creep
     limit may lie past the peak of the curve ``T_2(C)``: there the limit is the fold of
     the branch followed from zero torque, or where a creep reaches the limit first (a
-    torque continuation, then a march in a disc's held creep to the fold;
+    torque continuation, then a climb in a disc's held creep to the fold;
     `ballcvt.solvers.peak.peak_limits`, docs/model.md §8, §14). A creep is held
     `PIN_MARGIN` below ``creep_limit``, on the admissible side.
 

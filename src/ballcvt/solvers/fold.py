@@ -1,0 +1,231 @@
+"""The fold of the branch from zero torque, located in a disc contact's held creep.
+
+Where the traction can fall with the creep (the thermal law, docs/model.md §14), the
+output torque along the branch of equilibria from zero torque, parametrised by the held
+creep ``c`` of a disc contact (`ballcvt.solvers.newton.solve_pinned`, regular through the
+fold), rises to a largest value and falls past it: the fold. `climb_to_fold` finds that
+largest torque as a one-dimensional maximisation of ``T(c)``, each evaluation one pinned
+solve started from the nearest point already solved:
+
+* the held creep is stepped up from an equilibrium on the branch, the step doubled while
+  the torque rises, until a step gives a lower torque (or fails, or takes a creep past the
+  limit): the fold then lies between the last two rising points and that step;
+* the bracket is then narrowed by successive parabolic interpolation of ``T(c)``, with a
+  golden-section step wherever the parabola's vertex falls outside the bracket or next to
+  its best point, and a bisection towards a failed end, until the vertex moves less than
+  `FOLD_CREEP_RTOL` of the creep limit or the bracket is narrower than that (Brent 1973,
+  *Algorithms for minimization without derivatives*, ch. 5).
+
+Near a smooth maximum ``T(c)`` is a parabola to third order, so the vertex converges in a
+few steps where the march of halving steps it replaces took some fifteen per contact.
+The largest torque met is the fold; the climb also returns the highest point met below a
+given share of it, on the rising side, from which the limit just below the fold is
+reached (`ballcvt.solvers.peak`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .held_creep import FOLD_CREEP_RTOL, MAX_FOLD_STEPS, Pinned, _pinned_step
+
+__all__ = ["climb_to_fold", "Climb", "FIRST_CREEP_STEP", "GOLDEN"]
+
+#: First step of the held creep, as a share of the creep limit [-].
+FIRST_CREEP_STEP = 0.02
+#: Share of the larger side of the bracket taken by a golden-section step [-].
+GOLDEN = 0.381966
+
+
+@dataclass
+class Climb:
+    """The result of `climb_to_fold` for a 1-D batch ``(n,)``.
+
+    Attributes
+    ----------
+    torque : ndarray
+        The largest torque met on each branch [N m].
+    creep : ndarray
+        The creeps there ``(n, n_c)`` [-].
+    at_pin : ndarray of bool
+        Whether that torque is at the held creep's bound (the creep limit), not at a fold.
+    clean : ndarray of bool
+        Whether the bracket's far end is a converged point with a lower torque and every
+        creep within the bound (a fold), not a step that failed or took another creep
+        past the bound (the other disc contact's climb may then go further).
+    below : tuple of ndarray
+        ``(creep of the contact (n,), torque (n,), creeps (n, n_c))`` of the highest point
+        met on the rising side with a torque below ``share`` times the largest.
+    """
+
+    torque: np.ndarray
+    creep: np.ndarray
+    at_pin: np.ndarray
+    clean: np.ndarray
+    below: tuple
+
+    @classmethod
+    def empty(cls, n: int, nc: int) -> Climb:
+        """``n`` points with nothing met yet (NaN torques)."""
+        nan = np.full(n, np.nan)
+        creeps = np.full((n, nc), np.nan)
+        false = np.zeros(n, dtype=bool)
+        return cls(nan, creeps, false, false.copy(), (nan.copy(), nan.copy(), creeps.copy()))
+
+    def take(self, index) -> Climb:
+        """The points ``index`` (integer or boolean array)."""
+        return Climb(self.torque[index], self.creep[index], self.at_pin[index],
+                     self.clean[index], tuple(v[index] for v in self.below))  # fmt: skip
+
+    def put(self, index, other: Climb) -> None:
+        """Set the points ``index`` to ``other``'s, in place."""
+        self.torque[index], self.creep[index] = other.torque, other.creep
+        self.at_pin[index], self.clean[index] = other.at_pin, other.clean
+        for mine, theirs in zip(self.below, other.below, strict=True):
+            mine[index] = theirs
+
+
+def climb_to_fold(flat, pinned: Pinned, k: int, pin: float, tol: float, start, share: float):
+    """The largest torque on each point's branch beyond the equilibria ``start``, found in
+    the held creep of disc contact ``k`` (module docstring).
+
+    Parameters
+    ----------
+    flat : EquilibriumProblem
+        Operating points, 1-D batch ``(n,)``.
+    pinned : callable
+        `ballcvt.solvers.held_creep.Pinned`.
+    k : int
+        The contact whose creep is held.
+    pin : float
+        Creep bound [-] (the creep limit, a hair below).
+    tol : float
+        Solver tolerance [-].
+    start : tuple of ndarray
+        Equilibria on the branch: torques ``(n,)`` [N m] and creeps ``(n, n_c)`` [-].
+    share : float
+        `Climb.below` is the highest point under ``share`` times the largest torque [-].
+
+    Returns
+    -------
+    Climb
+    """
+    t0, x0 = start
+    br = _Bracket.start(t0, x0[:, k], x0, FIRST_CREEP_STEP * pin)
+    history = [(x0[:, k].copy(), t0.copy(), x0.copy(), np.ones(flat.size, dtype=bool))]
+    least = FOLD_CREEP_RTOL * pin
+    done = np.zeros(flat.size, dtype=bool)
+    for _ in range(MAX_FOLD_STEPS):
+        bracketed = np.isfinite(br.c_c)
+        br.at_pin |= ~bracketed & (np.abs(br.b_c) >= pin * (1.0 - 1e-12))
+        trial = np.where(bracketed, _refine(br.ends(), br.torques()), br.b_c + br.step)
+        trial = np.clip(trial, -pin, pin)
+        narrow = (np.abs(trial - br.b_c) < least) | (np.abs(br.c_c - br.a_c) < least)
+        done |= br.at_pin | (bracketed & narrow)
+        active = np.flatnonzero(~done)
+        if active.size == 0:
+            break
+        u = trial[active]
+        got, xs = _pinned_step(pinned, flat.take(active), k, br.b_x[active], u, tol)
+        valid = np.isfinite(got) & (np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9))
+        got = np.where(valid, got, -np.inf)
+        history.append(_record(flat.size, active, (u, got, xs, valid), x0))
+        br.update(active, u, got, xs, bracketed[active])
+    clean = np.isfinite(br.c_t) & ~br.at_pin
+    below = _below(history, br.b_t * share, br.b_c, br.direction)
+    return Climb(br.b_t, br.b_x, br.at_pin, clean, below)
+
+
+@dataclass
+class _Bracket:
+    """The climb's points per contact: ``a`` before the best, ``b`` the best (creeps
+    ``b_x``), ``c`` past it (NaN until a step falls; torque -inf where it failed), and the
+    step of the held creep while no step has fallen."""
+
+    a_c: np.ndarray
+    a_t: np.ndarray
+    b_c: np.ndarray
+    b_t: np.ndarray
+    b_x: np.ndarray
+    c_c: np.ndarray
+    c_t: np.ndarray
+    step: np.ndarray
+    direction: np.ndarray
+    at_pin: np.ndarray
+
+    @classmethod
+    def start(cls, t0, c0, x0, step) -> _Bracket:
+        n = t0.size
+        direction = np.where(c0 < 0, -1.0, 1.0)
+        nan = np.full(n, np.nan)
+        return cls(c0.copy(), t0.copy(), c0.copy(), t0.copy(), x0.copy(), nan, nan.copy(),
+                   direction * step, direction, np.zeros(n, dtype=bool))  # fmt: skip
+
+    def ends(self):
+        return self.a_c, self.b_c, self.c_c
+
+    def torques(self):
+        return self.a_t, self.b_t, self.c_t
+
+    def update(self, active, u, got, xs, bracketed) -> None:
+        """The points ``active`` after a solve at the held creeps ``u`` (torques ``got``,
+        -inf where it failed; creeps ``xs``): a higher point becomes the best, the old
+        best bounding it on its side; a lower one bounds the bracket on its side."""
+        up = got > self.b_t[active]
+        beyond = ((u - self.b_c[active]) * self.direction[active] > 0.0) | ~bracketed
+        i, left = active[up], beyond[up]  # the old best lies before the new one
+        self.a_c[i[left]], self.a_t[i[left]] = self.b_c[i[left]], self.b_t[i[left]]
+        self.c_c[i[~left]], self.c_t[i[~left]] = self.b_c[i[~left]], self.b_t[i[~left]]
+        self.b_c[i], self.b_t[i], self.b_x[i] = u[up], got[up], xs[up]
+        self.step[i[~bracketed[up]]] *= 2.0
+        i, right, uu, gg = active[~up], beyond[~up], u[~up], got[~up]
+        self.c_c[i[right]], self.c_t[i[right]] = uu[right], gg[right]
+        self.a_c[i[~right]], self.a_t[i[~right]] = uu[~right], gg[~right]
+
+
+def _record(n, active, step, x0):
+    """One entry of the climb's history: the held creeps, torques, creeps and whether
+    each converged within the bound, over all ``n`` points (NaN / -inf / False where not
+    ``active``)."""
+    u, got, xs, valid = step
+    full_u, full_t, full_x = np.full(n, np.nan), np.full(n, -np.inf), np.full_like(x0, np.nan)
+    record = np.zeros(n, dtype=bool)
+    full_u[active], full_t[active], full_x[active], record[active] = u, got, xs, valid
+    return full_u, full_t, full_x, record
+
+
+def _refine(c, t) -> np.ndarray:
+    """The next held creep inside the brackets ``c = (a, b, c)`` with torques ``t`` (``b``
+    the best): the vertex of the parabola through the three points where it lies inside
+    the bracket and not next to ``b``, else a golden-section step into the larger side;
+    towards an end that failed (torque -inf), halfway to it."""
+    (a, b, cc), (ta, tb, tc) = c, t
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p = (b - a) ** 2 * (tb - tc) - (b - cc) ** 2 * (tb - ta)
+        q = (b - a) * (tb - tc) - (b - cc) * (tb - ta)
+        vertex = b - 0.5 * p / q
+    lo, hi = np.minimum(a, cc), np.maximum(a, cc)
+    golden = np.where(np.abs(cc - b) >= np.abs(b - a), b + GOLDEN * (cc - b), b + GOLDEN * (a - b))
+    usable = np.isfinite(vertex) & (vertex > lo) & (vertex < hi) & (a != b)
+    out = np.where(usable, vertex, golden)
+    failed = ~np.isfinite(tc)
+    return np.where(failed, 0.5 * (b + cc), np.where(np.isfinite(ta), out, 0.5 * (a + b)))
+
+
+def _below(history, limit, best_c, direction):
+    """The highest recorded point with a torque below ``limit`` and a held creep before
+    ``best_c`` (`Climb.below`); NaN where none was met."""
+    cs, ts, xs, ok = (np.stack(v) for v in zip(*history, strict=True))
+    fits = ok & (ts < limit) & ((cs - best_c) * direction <= 0.0)
+    score = np.where(fits, ts, -np.inf)
+    pick = np.argmax(score, axis=0)
+    cols = np.arange(cs.shape[1])
+    found = np.isfinite(score[pick, cols])
+    nan = np.nan
+    return (
+        np.where(found, cs[pick, cols], nan),
+        np.where(found, ts[pick, cols], nan),
+        np.where(found[:, None], xs[pick, cols], nan),
+    )

@@ -2,6 +2,7 @@
 and the branch of equilibria reached from zero torque (docs/model.md §8, §14)."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -11,8 +12,8 @@ from ballcvt.errors import TractionLimitError
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.solvers.clamped import solve_clamped
 from ballcvt.solvers.limit import limit_search, solve_admissible
-from ballcvt.solvers.newton import solve_batch, solve_pinned
-from ballcvt.solvers.options import SolverOptions
+from ballcvt.solvers.newton import on_branch, solve_batch, solve_pinned
+from ballcvt.solvers.options import SolverOptions, at_residual_floor
 from ballcvt.solvers.peak import peak_limits
 from ballcvt.registry import TRACTION_LAWS
 
@@ -106,3 +107,35 @@ def test_thermal_limit_is_the_largest_torque_solve_reaches(ratio, rpm):
     assert max(creeps) <= THERMAL.design.creep_limit * (1 + 1e-9)
     with pytest.raises(TractionLimitError):
         THERMAL.solve(ratio=ratio, output_torque=limit * (1 + 1e-3), **kw)
+
+
+def test_a_start_past_the_fold_is_refused_by_the_branch_check():
+    """`solve_batch` with ``below`` (the creeps at the limit, as a sweep passes them):
+    Newton from a start past the fold reaches the other equilibrium (0.8935), whose
+    output creep lies beyond the limit's; `on_branch` refuses it and the point is
+    followed from zero torque to the branch's (0.9247). From a start on the branch the
+    direct solve is kept, with fewer residual evaluations than the continuation."""
+    pb = build_problem(THERMAL.design, THERMAL.fluid, THERMAL.architecture,
+                       np.array([RATIOS[1]]), np.array([130.0]), 2000.0, 1000.0 * RPM)
+    options = at_residual_floor(SolverOptions(), THERMAL.fluid)
+    flat = pb.flat()
+    limit, at_limit = peak_limits(replace(flat, output_torque=np.zeros(1)), 0.1, options)
+    assert limit[0] > 130.0
+    far = np.array([[0.06, 0.0, 0.0, 0.06]])
+    branch = solve_batch(pb, options, far)  # followed from zero torque
+    alone = _newton_alone(flat, options, far)
+    assert alone.converged.all() and not on_branch(alone.state.creep, at_limit)[0]
+    checked = solve_batch(pb, options, far, below=at_limit)
+    assert checked.converged.all()
+    np.testing.assert_allclose(checked.state.creep, branch.state.creep, rtol=0, atol=1e-9)
+    near = solve_batch(pb, options, branch.state.creep * 0.98, below=at_limit)
+    assert near.converged.all() and near.iterations[0] < branch.iterations[0]
+    np.testing.assert_allclose(near.state.creep, branch.state.creep, rtol=0, atol=1e-9)
+
+
+def _newton_alone(flat, options, x0):
+    """Newton from ``x0`` without the continuation (what `solve_batch` tries first when
+    given ``below``)."""
+    from ballcvt.solvers.newton import _solve_flat
+
+    return _solve_flat(flat, np.array(x0, dtype=float), options, False, True)

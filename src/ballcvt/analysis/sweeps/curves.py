@@ -200,10 +200,14 @@ def _solve_from_limits(state, curves: OperatingRows, torque, search: LimitSearch
     near = search.start_between(i, torque[k])  # a capacity scan's creeps, when it ran
     if near is not None:
         x0 = np.where(np.isnan(near), x0, near)
-    # (under a law with more than one equilibrium the solves follow each point from zero
-    # torque whatever the start: their continuation keeps its predictor)
-    predict = near is None or has_multiple_equilibria(base.fluid)
-    pb, sol = _solve_points(state, curves, torque, (i, k), x0, predict)
+    # (under a law with more than one equilibrium the solves keep their predictor: at a
+    # constant force each is started between the creeps at zero torque and at its curve's
+    # limit and kept where it lies on the branch below the limit, `on_branch`; under a
+    # torque-following law each is followed from zero torque at its own force)
+    multiple = has_multiple_equilibria(base.fluid)
+    predict = near is None or multiple
+    below = search.creep[i] if multiple and curves.law is None else None
+    pb, sol = _solve_points(state, curves, torque, (i, k), x0, (predict, below))
     stray = _off_branch(state, (i, k), sol, curves.creep_limit)
     if stray.size:  # another equilibrium than the one reached from T_2 = 0
         _continue_from_below(state, curves, torque, (i[stray], k[stray]), zero)
@@ -274,13 +278,13 @@ def _continue_from_below(state, curves: OperatingRows, torque, points, zero):
         _off_branch(state, at, sol, curves.creep_limit)
 
 
-def _solve_points(state, curves: OperatingRows, torque, points, x0, predict=True):
+def _solve_points(state, curves: OperatingRows, torque, points, x0, how=(True, None)):
     """Solve the ``points`` (curve ``i[j]``, torque ``k[j]``) in one batch; record them in
     ``state`` and return the problem (at the forces used) and the batch solution
-    (``predict``: as in `solve_column`)."""
+    (``how``: ``(predict, below)`` as in `solve_column`)."""
     i, k = points
     pb = curves.problem(i, torque[k], state["force"][i, k])
-    pb, sol = solve_column(pb, curves.law, curves.options, x0, predict)
+    pb, sol = solve_column(pb, curves.law, curves.options, x0, *how)
     good = sol.converged
     state["force"][i, k] = pb.clamp_force
     state["creep"][i[good], k[good]] = sol.state.creep[good]
@@ -323,12 +327,13 @@ def limit_search_curves(curves: OperatingRows, callback=None, limit=None):
     return base, search
 
 
-def solve_column(pb, law, options, x0, predict=True):
+def solve_column(pb, law, options, x0, predict=True, below=None):
     """Solve the points of one torque under ``law`` -> (problem at the forces used, sol);
     ``predict``: whether the solves start with the predictor stage (False: ``x0`` is
-    already near, as in `ballcvt.solvers.newton.solve_batch`)."""
+    already near); ``below``: at a constant force, creeps on each point's branch at a
+    torque at least its own (both as in `ballcvt.solvers.newton.solve_batch`)."""
     if law is None:
-        return pb, solve_batch(pb, options, x0, predict=predict)
+        return pb, solve_batch(pb, options, x0, predict=predict, below=below)
     if not law.optimises:
         return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x, predict=predict), x0)
     pb, start = optimal_start(pb, law, options)

@@ -27,6 +27,7 @@ Rows that use several processes (``--workers``, Dask) are wall times and say so.
 from __future__ import annotations
 
 import argparse
+import gc
 import json
 import os
 import platform
@@ -67,7 +68,11 @@ class Row:
 
 
 def cpu(fn):
-    """(CPU seconds, wall seconds, result) of one call."""
+    """(CPU seconds, wall seconds, result) of one call, after a full garbage collection:
+    the earlier rows' garbage collected inside a short row cost it up to a third (a 10 x
+    10 thermal sweep, 0.26 s: 2.6 or 3.4 ms per point by whether Python's collector ran
+    during it)."""
+    gc.collect()
     c, w = time.process_time(), time.perf_counter()
     out = fn()
     return time.process_time() - c, time.perf_counter() - w, out

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .held_creep import FOLD_CREEP_RTOL, MAX_FOLD_STEPS, Pinned, _pinned_step
+from .held_creep import FOLD_CREEP_RTOL, MAX_FOLD_STEPS, Pinned, pinned_step
 
 __all__ = ["climb_to_fold", "Climb", "FIRST_CREEP_STEP", "GOLDEN"]
 
@@ -128,7 +128,7 @@ def climb_to_fold(flat, pinned: Pinned, k: int, pin: float, tol: float, start, s
         if active.size == 0:
             break
         u = trial[active]
-        got, xs = _pinned_step(pinned, flat.take(active), k, br.b_x[active], u, tol)
+        got, xs = pinned_step(pinned, flat.take(active), k, br.b_x[active], u, tol)
         valid = np.isfinite(got) & (np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9))
         got = np.where(valid, got, -np.inf)
         history.append(_record(flat.size, active, (u, got, xs, valid), x0))

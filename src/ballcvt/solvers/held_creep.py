@@ -40,6 +40,7 @@ __all__ = [
     "REACH_RTOL",
     "SECANT_STEPS",
     "secant_in_creep",
+    "pinned_step",
 ]
 
 #: Smallest creep step of a walk, as a share of the creep scale (``C_lim`` for the
@@ -66,7 +67,7 @@ Pinned = Callable[[EquilibriumProblem, int, np.ndarray], tuple]
 Solve = Callable[[EquilibriumProblem, np.ndarray], tuple]
 
 
-def _pinned_step(pinned: Pinned, flat, k, x, creep, tol):
+def pinned_step(pinned: Pinned, flat, k, x, creep, tol):
     """Held creep ``creep`` of contact ``k`` (the other creeps from ``x``): the torque
     (NaN where the solve failed) and the creeps."""
     x0 = x.copy()
@@ -159,7 +160,7 @@ def bracket_in_creep(flat, pinned: Pinned, k, tol, torque, x):
         if active.size == 0:
             break
         trial = lo_x[active, k] + step[active]
-        got, xs = _pinned_step(pinned, flat.take(active), k, lo_x[active], trial, tol)
+        got, xs = pinned_step(pinned, flat.take(active), k, lo_x[active], trial, tol)
         got = sign[active] * got
         up = got > lo_t[active]
         fell[active[np.isfinite(got) & ~up]] = True
@@ -195,7 +196,7 @@ def secant_in_creep(flat, pinned: Pinned, k, tol, lo, hi):
         (ca, fa, xa), (cb, fb, _) = ends
         a, b = fa[active], fb[active]
         c = ca[active] - a * (cb[active] - ca[active]) / (b - a)
-        got, xs = _pinned_step(pinned, flat.take(active), k, xa[active], c, tol)
+        got, xs = pinned_step(pinned, flat.take(active), k, xa[active], c, tol)
         err = sign[active] * got - goal[active]
         bad = ~np.isfinite(err)
         side = (err >= 0).astype(int)

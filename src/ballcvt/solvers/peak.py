@@ -66,11 +66,12 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
     keep = np.flatnonzero(np.isfinite(torque))
     if keep.size:
         sub = flat.take(keep)
-        climb, k = _climb(sub, branch_pinned(options), pin, (torque[keep], x[keep]))
+        pinned = branch_pinned(options)
+        climb, k = _climb(sub, pinned, pin, (torque[keep], x[keep]))
         top = np.where(climb.at_pin, climb.torque, climb.torque * (1.0 - FOLD_MARGIN))
         idx = np.flatnonzero(top > torque[keep])
         if idx.size:  # a solve must converge there
-            good, xr = _reach_top(sub.take(idx), (solve, options), climb.take(idx), k[idx],
+            good, xr = _reach_top(sub.take(idx), (solve, pinned), climb.take(idx), k[idx],
                                   top[idx])  # fmt: skip
             good &= admissible(xr)
             torque[keep[idx[good]]], x[keep[idx[good]]] = top[idx[good]], xr[good]
@@ -87,7 +88,7 @@ def _climb(flat, pinned, pin, start):
     nc = flat.layout.n_contacts
     t0, x0 = start
     first = np.where(np.abs(x0[:, 0]) >= np.abs(x0[:, -1]), 0, nc - 1)
-    best, contact = None, first.copy()
+    best, contact = Climb.empty(flat.size, nc), first.copy()
     for attempt in range(2):
         for k in (0, nc - 1):
             on = (first == k) if attempt == 0 else (first != k) & ~best.clean
@@ -96,8 +97,6 @@ def _climb(flat, pinned, pin, start):
                 continue
             got = climb_to_fold(flat.take(idx), pinned_solve, k, pin, tol,
                                 (t0[idx], x0[idx]), 1.0 - FOLD_MARGIN)  # fmt: skip
-            if best is None:
-                best = Climb.empty(flat.size, nc)
             better = ~np.isfinite(best.torque[idx]) | (got.torque > best.torque[idx])
             best.put(idx[better], got.take(better))
             contact[idx[better]] = k
@@ -110,8 +109,8 @@ def _reach_top(flat, solvers, climb, k, top):
     and its largest torque (`ballcvt.solvers.held_creep`), then Newton at the torque from
     there (`solve_twice`), else the solve's own continuation from zero torque.
     Returns ``(converged (n,), creeps (n, n_c))``."""
-    solve, options = solvers
-    pinned, tol = branch_pinned(options)
+    solve, branch = solvers  # the continuation's solver, and (`Pinned`, tol)
+    pinned, tol = branch
     at = replace(flat, output_torque=top)
     start = np.where(climb.at_pin[:, None], climb.creep, np.nan)
     for kk in np.unique(k):
@@ -130,7 +129,6 @@ def _reach_top(flat, solvers, climb, k, top):
         good[ready], xr[ready] = ok, xs
     far = np.flatnonzero(~good)
     if far.size:
-        xf, _, reached = continue_in_torque(at.take(far), solve, top[far],
-                                            pinned=branch_pinned(options))  # fmt: skip
+        xf, _, reached = continue_in_torque(at.take(far), solve, top[far], pinned=branch)
         good[far], xr[far] = reached == top[far], xf
     return good, xr

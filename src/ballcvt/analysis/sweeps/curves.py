@@ -207,7 +207,7 @@ def _solve_from_limits(state, curves: OperatingRows, torque, search: LimitSearch
     multiple = has_multiple_equilibria(base.fluid)
     predict = near is None or multiple
     below = search.creep[i] if multiple and curves.law is None else None
-    pb, sol = _solve_points(state, curves, torque, (i, k), x0, (predict, below))
+    pb, sol = _solve_points(state, curves, torque, (i, k), x0, predict, below)
     stray = _off_branch(state, (i, k), sol, curves.creep_limit)
     if stray.size:  # another equilibrium than the one reached from T_2 = 0
         _continue_from_below(state, curves, torque, (i[stray], k[stray]), zero)
@@ -278,13 +278,13 @@ def _continue_from_below(state, curves: OperatingRows, torque, points, zero):
         _off_branch(state, at, sol, curves.creep_limit)
 
 
-def _solve_points(state, curves: OperatingRows, torque, points, x0, how=(True, None)):
+def _solve_points(state, curves: OperatingRows, torque, points, x0, predict=True, below=None):
     """Solve the ``points`` (curve ``i[j]``, torque ``k[j]``) in one batch; record them in
     ``state`` and return the problem (at the forces used) and the batch solution
-    (``how``: ``(predict, below)`` as in `solve_column`)."""
+    (``predict``, ``below``: as in `solve_column`)."""
     i, k = points
     pb = curves.problem(i, torque[k], state["force"][i, k])
-    pb, sol = solve_column(pb, curves.law, curves.options, x0, *how)
+    pb, sol = solve_column(pb, curves.law, curves.options, x0, predict, below)
     good = sol.converged
     state["force"][i, k] = pb.clamp_force
     state["creep"][i[good], k[good]] = sol.state.creep[good]

@@ -243,3 +243,24 @@ def test_take_keeps_every_column_of_the_steps():
     assert one.time.tolist() == [2.0] and one.ratio.tolist() == [1.0]
     assert one.input_power.tolist() == [300.0] and one.vehicle_speed.tolist() == [3.0]
     assert one.output_speed is None and one.output_torque is None
+
+
+def test_optimal_clamp_cycle_meets_the_speed_and_equals_single_points(hub, cruise):
+    """The first pass (coarse rule, the predictor's tolerance: `cycles._coarse`) only
+    corrects the ratio for the creep and starts the optimiser: the output still turns at
+    the cycle's speed, and a step equals `solve` at its ratio with the optimal clamp."""
+    from ballcvt.analysis.cycles import _coarse
+    from ballcvt.solvers.options import SolverOptions
+
+    fine = SolverOptions()
+    assert _coarse(fine).tol == fine.predictor_tol
+    assert _coarse(fine).quadrature == fine.predictor
+    res = run_cycle(hub, cruise, target_input_speed=180 * RPM, clamp_law="optimal",
+                    progress=False)
+    row = res.steps.iloc[5]
+    # the creep correction is the coarse rule's: 3.4e-4 off here at the optimal clamp's
+    # lower force, with the first pass at 1e-11 (before session 22) as at 1e-6
+    assert row["output_speed_rpm"] == pytest.approx(190.0, rel=1e-3)
+    r = hub.solve(row["ratio"], 12.0, clamp_law="optimal", input_speed=180 * RPM)
+    assert row["eta"] == pytest.approx(r.eta, abs=1e-6)
+    assert row["clamp_force"] == pytest.approx(r.clamp_force, rel=1e-3)

@@ -187,9 +187,10 @@ def run_cycle(drive, cycle: Cycle, settings: CycleRequest | None = None, **keywo
     if cycle.kind == "input":
         passes = POWER_PASSES * (1 if commanded else s.candidates + 1)
     # the ratio search and the creep correction run on the solver's coarse rule (the
-    # predictor); every reported value comes from a final solve on the full rule
+    # predictor) to the predictor's tolerance (`_coarse`); every reported value comes
+    # from a final solve on the full rule
     fine = getattr(drive, "options", None) or SolverOptions()
-    coarse = replace(fine, quadrature=fine.predictor or fine.quadrature, predictor=None)
+    coarse = _coarse(fine)
     pool = ProcessPoolExecutor(max_workers=s.workers) if s.workers > 1 else None
     with _bar(s, passes * run.size, cycle.size) as bar, pool or nullcontext():
         here = Drive(design, drive.fluid, drive.architecture)
@@ -252,6 +253,23 @@ def _step_flags(cycle: Cycle) -> np.ndarray:
     flag[load < 0] = "negative_torque"
     flag[(speed <= 0) | (load == 0)] = "idle"
     return flag
+
+
+def _coarse(fine: SolverOptions) -> SolverOptions:
+    """The options of the ratio search and the creep correction: the coarse rule (the
+    predictor), solved to the predictor's tolerance (as a solve's predictor stage is).
+
+    The coarse rule's creeps differ from the full rule's by far more than that tolerance,
+    so a tighter one buys nothing; and on it the optimal clamp's efficiency is not smooth
+    in the force below about 1e-6, where Newton at 1e-11 took up to 30 iterations at some
+    forces (benchmarks/bench_table.py, cycle rows: the optimal clamp's first pass, 0.73 of
+    its 1.1 s per 1,000 steps)."""
+    return replace(
+        fine,
+        quadrature=fine.predictor or fine.quadrature,
+        predictor=None,
+        tol=max(fine.tol, fine.predictor_tol),
+    )
 
 
 def _output_side(plan: _Plan, s: CycleRequest, w2, t2):

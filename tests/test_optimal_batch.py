@@ -132,3 +132,34 @@ def test_a_cycle_hands_its_first_pass_forces_to_the_second():
         p = v.solve(s.ratio, s.output_torque, clamp_law="optimal",
                     input_speed_rpm=s.input_speed_rpm)
         assert abs(p.eta - s.eta) <= 1e-7
+
+
+def test_a_large_batch_starts_on_the_coarse_rule_and_finds_the_same_optimum(monkeypatch):
+    """A batch large enough for the predictor stage solves its first round on the coarse
+    rule (session 22): the optimum is the one-point search's to 1e-6 in efficiency, and
+    each point's searched alone (its first round on the full rule) to 1e-8."""
+    import ballcvt.solvers.optimal_batch as ob
+
+    v = Variator()
+    ratio, torque = np.meshgrid([0.6, 0.9, 1.3, 1.8], [5.0, 20.0, 40.0])
+    pb = _points(v, ratio.ravel(), torque.ravel())
+    assert 3 * pb.size >= v.options.predictor_min_points
+    rules, call = [], ob._Scorer.__call__
+
+    def spy(self, index, u, x0=None):
+        rules.append(self.options.quadrature)
+        return call(self, index, u, x0)
+
+    monkeypatch.setattr(ob._Scorer, "__call__", spy)
+    got = optimal_forces(pb, OptimalClamp(), v.options)
+    assert rules[0] == v.options.predictor and rules[-1] == v.options.quadrature
+    assert got.fast.all()
+    eta = _eta(v, pb, got.force)
+    rules.clear()
+    alone = np.array([optimal_forces(pb.take([j]), OptimalClamp(), v.options).force[0]
+                      for j in range(pb.size)])
+    assert v.options.predictor not in rules
+    assert np.max(np.abs(eta - _eta(v, pb, alone))) <= 1e-8
+    assert np.allclose(got.force, alone, rtol=5e-4)
+    ref = np.array([o.eta for o in _old(v, pb)])
+    assert np.max(np.abs(eta - ref)) <= 1e-6

@@ -26,7 +26,9 @@ Given a force near each point's optimum (``guess``: a duty cycle's first pass ha
 forces to its second), the search starts there on its smallest stencil (half-width
 `NEAR`) and certifies a point in one round when the guess is within that of the optimum;
 the creeps found at the optimum (``OptimalForces.creep``) start the solve that follows.
-A sweep searches all its points in one batch.
+A sweep searches all its points in one batch; where the batch runs the predictor stage
+and has no guess, its first round (stencils `WIDTH` wide) is solved on the predictor's
+coarse rule to the predictor's tolerance (`_first_round`).
 
 At zero torque the answer is ``min_force`` when it holds the no-load drag within the
 creep limit (the old search's first grid point). Every point not certified (an optimum
@@ -207,14 +209,22 @@ def _interpolated(xs, us, es, u):
     return out.reshape(-1, xs.shape[-1])
 
 
-def _first_round(score: _Scorer, index, u):
+def _first_round(score: _Scorer, index, u, coarse: bool = False):
     """``(scores, creeps)`` of the first stencils ``u`` ``(k, 3)``, as one flat batch:
     where the batch runs the predictor stage, the centres first from the cold start and
     their neighbours from the centres' creeps (`_start`), about half the iterations of
-    all three from the cold start; else all three together."""
+    all three from the cold start; else all three together.
+
+    ``coarse`` (a search from `_guess`, whose stencils are `WIDTH` wide): the round is
+    solved on the predictor's rule to its tolerance instead (`_coarse`), where the batch
+    runs the predictor stage. Its vertex only places the next stencil, some ``2 WIDTH^2``
+    from the optimum, and the coarse rule's optimum lies within that of the full rule's;
+    the next round starts from its creeps as a solve starts from its predictor stage."""
     options = score.options
     if 3 * index.size < options.predictor_min_points or options.predictor is None:
         return score(np.repeat(index, 3), u.reshape(-1))
+    if coarse:
+        score = _coarse(score)
     mid, x_mid = score(index, u[:, 1])
     sides = u[:, [0, 2]]
     x0 = _start(x_mid, sides - u[:, 1:2])
@@ -223,6 +233,21 @@ def _first_round(score: _Scorer, index, u):
     scores = np.column_stack([got[:, 0], mid, got[:, 1]]).reshape(-1)
     creeps = np.stack([x_sides[:, 0], x_mid, x_sides[:, 1]], axis=1)
     return scores, creeps.reshape(-1, x_mid.shape[-1])
+
+
+def _coarse(score: _Scorer) -> _Scorer:
+    """``score`` on the predictor's rule, to the predictor's tolerance, with no
+    predictor stage of its own."""
+    o = score.options
+    return replace(
+        score,
+        options=replace(
+            o,
+            quadrature=o.predictor or o.quadrature,
+            predictor=None,
+            tol=max(o.tol, o.predictor_tol),
+        ),
+    )
 
 
 def _search(score: _Scorer, index, bounds, start=None):
@@ -247,7 +272,7 @@ def _search(score: _Scorer, index, bounds, start=None):
         last = u[live].copy() if xs is not None else None
         u[live] = centre[live, None] + width[live, None] * np.array([-1.0, 0.0, 1.0])
         if xs is None:
-            got, creep = _first_round(score, index, u)
+            got, creep = _first_round(score, index, u, coarse=start is None)
         else:
             x0 = _interpolated(xs[live], last, e[live], u[live])
             got, creep = score(np.repeat(index[live], 3), u[live].reshape(-1), x0)

@@ -21,7 +21,8 @@ several minutes).
 
 Times are CPU seconds of the process that does the work (``time.process_time``), not wall
 time: the machine these figures come from is shared and its wall times drift by 2-4x.
-Rows that use several processes (``--workers``, Dask) are wall times and say so.
+Rows that use several processes (``--workers``, Dask) are wall times and say so. A sweep
+row whose call takes under a second is the median of three calls (`cpu_median`).
 """
 
 from __future__ import annotations
@@ -78,6 +79,18 @@ def cpu(fn):
     return time.process_time() - c, time.perf_counter() - w, out
 
 
+def cpu_median(fn, short=1.0, repeats=3):
+    """`cpu` of ``fn``, the median of ``repeats`` calls where one takes under ``short``
+    CPU seconds: a single call of a fraction of a second varied by up to 15 % between
+    runs on this machine (session 22: a 10 x 10 optimal sweep read 2.26 and 2.12 ms per
+    point in two runs, 1.89-1.98 in eight calls back to back)."""
+    first = cpu(fn)
+    if first[0] >= short:
+        return first
+    runs = sorted([first] + [cpu(fn) for _ in range(repeats - 1)], key=lambda r: r[0])
+    return runs[len(runs) // 2]
+
+
 # ------------------------------------------------------------------------- the rows
 
 
@@ -94,7 +107,7 @@ def sweep_rows(quick, clamps=("constant", "cam")):
             n = 10 if quick else 30
             grid = {"ratio": np.linspace(0.5, 2.0, n), "output_torque": np.linspace(5.0, 70.0, n)}
             v.sweep(ratio=[1.0], output_torque=[10.0, 20.0], **kw, **OP, progress=False)
-            c, w, _ = cpu(lambda g=grid, kw=kw: v.sweep(**g, **kw, **OP, progress=False))
+            c, w, _ = cpu_median(lambda g=grid, kw=kw: v.sweep(**g, **kw, **OP, progress=False))
             ms = c / n / n * 1e3
             rate = 1000 if law == "thermal" or clamp == "optimal" else 2000
             rows.append(Row(f"sweep-{law}-{clamp}", f"sweep {n} x {n}, {law} law, {clamp} clamp",

@@ -163,3 +163,20 @@ def test_a_large_batch_starts_on_the_coarse_rule_and_finds_the_same_optimum(monk
     assert np.allclose(got.force, alone, rtol=5e-4)
     ref = np.array([o.eta for o in _old(v, pb)])
     assert np.max(np.abs(eta - ref)) <= 1e-6
+
+
+def test_a_first_stencil_below_the_creep_bound_moves_up_past_it():
+    """The hub at 5000 rpm, ratios 1.67-2, light torques: the first stencil, about
+    ``F = 200 + 14 T``, lies wholly below the creep bound (no admissible force in it). The
+    batched search moves up past it and certifies the one-point search's optimum; until
+    session 22 these points left it for the one-point search (as did five of a 4 x 4
+    thermal sweep's sixteen, 1.8 s each)."""
+    v = Variator(*fixed_oil_hub())
+    ratio = [5 / 3, 11 / 6, 11 / 6, 2.0, 2.0, 2.0]
+    torque = [2.0, 2.0, 86 / 9, 2.0, 86 / 9, 154 / 9]
+    pb = _points(v, ratio, torque, 5000.0 * math.pi / 30)
+    first = optimal_forces(pb, OptimalClamp(), v.options, fallback=False)
+    assert first.fast.all()
+    eta = _eta(v, pb, first.force)
+    ref = np.array([o.eta for o in _old(v, pb)])
+    assert np.max(np.abs(eta - ref)) <= 1e-6

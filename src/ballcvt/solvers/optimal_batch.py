@@ -17,7 +17,9 @@ bias) where the vertex lies within the stencil, else the step taken, at most hal
 last (quadratic convergence). Where the parabola is not
 concave or its vertex lies far outside the stencil, the stencil moves to its best force
 (doubling its width), or halves around it when a neighbour has no admissible
-equilibrium (below the creep bound). A point is certified when the parabola of a stencil
+equilibrium (below the creep bound); a stencil with no admissible force at all lies wholly
+below the creep bound (the guess too low for the torque), and the next starts a
+half-width above its top. A point is certified when the parabola of a stencil
 of half-width at most `NEAR` is concave with its vertex within the stencil: the vertex
 then misses the optimum by some ``2 NEAR^2`` at most, the efficiency by under 1e-7
 (`STEP` bounds the smallest stencil).
@@ -68,6 +70,10 @@ WIDTH = 0.1
 ITERATIONS = 30
 #: Rounds (one batched solve each) before a point is handed to `search_optimum`.
 ROUNDS = 12
+#: Stencils in a row with no admissible force (each a half-width above the last: up to
+#: ``0.9`` in ``ln F_N0`` from the first at `WIDTH`) before a point is handed to
+#: `search_optimum` (as a torque no force carries does, after them).
+CLIMBS = 3
 
 
 @dataclass(frozen=True)
@@ -174,8 +180,14 @@ def _next(u, e, bounds):
     centre = np.where(up, np.where(c < hi, c, np.nan), centre)
     centre = np.where(down, np.where(a > lo, a, np.nan), centre)
     width = np.where(up | down, np.minimum(2 * h, WIDTH), width)
+    # no admissible force at all: the stencil lies below the creep bound (the guess too
+    # low for the torque); the next one starts a half-width above its top
+    none = ~np.isfinite(e).any(axis=1)
+    centre = np.where(none, c + 2 * h, centre)
+    width = np.where(none, h, width)
     centre = np.clip(centre, lo + width, hi - width)
-    centre = np.where(np.isfinite(e).any(axis=1) & (hi - lo > 2 * width), centre, np.nan)
+    moves = ~none | (c + h <= hi)
+    centre = np.where(moves & (hi - lo > 2 * width), centre, np.nan)
     return centre, width, done
 
 
@@ -267,6 +279,7 @@ def _search(score: _Scorer, index, bounds, start=None):
     e = np.full((index.size, 3), -np.inf)
     xs = None
     done = np.zeros(index.size, dtype=bool)
+    climbs = np.zeros(index.size, dtype=int)  # stencils in a row with no admissible force
     live = np.arange(index.size)
     for _ in range(ROUNDS):
         last = u[live].copy() if xs is not None else None
@@ -282,7 +295,8 @@ def _search(score: _Scorer, index, bounds, start=None):
         xs[live] = creep.reshape(live.size, 3, -1)
         nxt, w, certified = _next(u[live], e[live], (lo[live], hi[live]))
         done[live[certified]] = True
-        go = ~certified & np.isfinite(nxt)
+        climbs[live] = np.where(np.isfinite(e[live]).any(axis=1), 0, climbs[live] + 1)
+        go = ~certified & np.isfinite(nxt) & (climbs[live] <= CLIMBS)
         centre[live], width[live] = nxt, w
         live = live[go]
         if not live.size:

@@ -148,3 +148,36 @@ def test_thermal_capacity_force_does_not_depend_on_the_batch(monkeypatch):
         for i in range(4)
     ]  # fmt: skip
     assert batch.tolist() == alone
+
+
+# Harden task 0:28: a hub-derived design whose efficiency has a kink in the clamping force
+# next to its optimum (3827 N: the slope falls from +2e-6 to -0.7e-6 per N).
+TASK_0_28 = (
+    '{"aspect_ratio": 4.731570287476876, "roller_radius": 0.017228841031036553, '
+    '"theta0_deg": 45.08868892823976, "theta2_deg": 52.69776781233699, '
+    '"alpha_deg": 9.524291373185298, "n_rollers": 9, '
+    '"roller_bearing_diameter": 0.005172236195644021, '
+    '"idler_bearing_diameter": 0.004827810839893421, "disc_groove_ratio": 1.6451820903188903, '
+    '"idler_groove_ratio": 3.0401146183893175, "single_idler_groove_ratio": 14.748098338264537, '
+    '"tilt_safety_factor": 0.7065229652401077, "creep_limit": 0.089833878284545, '
+    '"min_roller_gap": 0.0019800285619062615, "cam": {"disc": "input", '
+    '"preload": 3221.917120644948, "ramp_angle_deg": 10.088707023741865, '
+    '"mean_radius": 0.021574065371601864, "friction": 0.04507258810681003}}'
+)
+
+
+def test_optimal_sweep_equals_solve_at_a_kink_of_the_efficiency():
+    """0:28: with the first round of a large batch alone on the coarse rule (3bf7d44), a
+    table or sweep certified 3839 N and `solve` 3827 N, 1.6e-5 apart in efficiency; every
+    batch size now takes the same path (`ballcvt.solvers.optimal_batch._first_round`)."""
+    from ballcvt.api import with_oil_temperature
+
+    d, f = load_builtin("hub")
+    d = d.replace(name="random", **json.loads(TASK_0_28))
+    v = with_oil_temperature(Variator(d, f, "double", traction_law="isothermal"), "fixed")
+    ratio, top, rpm = 0.8855605378778486, 291.30494426069623, 298.27855595515643
+    kw = {"clamp_law": "optimal", "input_speed_rpm": rpm}
+    ds = v.sweep(ratio=[ratio], output_torque=np.linspace(top / 12, top, 12), progress=False, **kw)
+    one = v.solve(ratio, top, **kw)
+    assert float(ds["eta"].values.ravel()[-1]) == pytest.approx(one.eta, abs=1e-6)
+    assert float(ds["clamp_force"].values.ravel()[-1]) == pytest.approx(one.clamp_force, rel=1e-6)

@@ -134,10 +134,12 @@ def test_a_cycle_hands_its_first_pass_forces_to_the_second():
         assert abs(p.eta - s.eta) <= 1e-7
 
 
-def test_a_large_batch_starts_on_the_coarse_rule_and_finds_the_same_optimum(monkeypatch):
-    """A batch large enough for the predictor stage solves its first round on the coarse
-    rule (session 22): the optimum is the one-point search's to 1e-6 in efficiency, and
-    each point's searched alone (its first round on the full rule) to 1e-8."""
+def test_the_first_round_runs_on_the_coarse_rule_in_a_batch_of_any_size(monkeypatch):
+    """Without a guess the first round of stencils is solved on the coarse rule (session
+    22), alike in a batch of any size: the batch gives each point the force it gets
+    searched alone (the same path: a table, a sweep and `solve` agree even where the
+    efficiency has a kink near its optimum, harden task 0:28), and the one-point search's
+    optimum to 1e-6 in efficiency."""
     import ballcvt.solvers.optimal_batch as ob
 
     v = Variator()
@@ -154,13 +156,12 @@ def test_a_large_batch_starts_on_the_coarse_rule_and_finds_the_same_optimum(monk
     got = optimal_forces(pb, OptimalClamp(), v.options)
     assert rules[0] == v.options.predictor and rules[-1] == v.options.quadrature
     assert got.fast.all()
-    eta = _eta(v, pb, got.force)
     rules.clear()
     alone = np.array([optimal_forces(pb.take([j]), OptimalClamp(), v.options).force[0]
                       for j in range(pb.size)])
-    assert v.options.predictor not in rules
-    assert np.max(np.abs(eta - _eta(v, pb, alone))) <= 1e-8
-    assert np.allclose(got.force, alone, rtol=5e-4)
+    assert rules.count(v.options.predictor) == pb.size  # one coarse round each
+    np.testing.assert_allclose(got.force, alone, rtol=1e-9)
+    eta = _eta(v, pb, got.force)
     ref = np.array([o.eta for o in _old(v, pb)])
     assert np.max(np.abs(eta - ref)) <= 1e-6
 

@@ -28,9 +28,9 @@ Given a force near each point's optimum (``guess``: a duty cycle's first pass ha
 forces to its second), the search starts there on its smallest stencil (half-width
 `NEAR`) and certifies a point in one round when the guess is within that of the optimum;
 the creeps found at the optimum (``OptimalForces.creep``) start the solve that follows.
-A sweep searches all its points in one batch; where the batch runs the predictor stage
-and has no guess, its first round (stencils `WIDTH` wide) is solved on the predictor's
-coarse rule to the predictor's tolerance (`_first_round`).
+A sweep searches all its points in one batch. Without a guess, the first round (stencils
+`WIDTH` wide) is solved on the predictor's coarse rule to the predictor's tolerance
+(`_first_round`), in a batch of any size.
 
 At zero torque the answer is ``min_force`` when it holds the no-load drag within the
 creep limit (the old search's first grid point). Every point not certified (an optimum
@@ -222,21 +222,27 @@ def _interpolated(xs, us, es, u):
 
 
 def _first_round(score: _Scorer, index, u, coarse: bool = False):
-    """``(scores, creeps)`` of the first stencils ``u`` ``(k, 3)``, as one flat batch:
-    where the batch runs the predictor stage, the centres first from the cold start and
-    their neighbours from the centres' creeps (`_start`), about half the iterations of
-    all three from the cold start; else all three together.
+    """``(scores, creeps)`` of the first stencils ``u`` ``(k, 3)``, as one flat batch.
 
-    ``coarse`` (a search from `_guess`, whose stencils are `WIDTH` wide): the round is
-    solved on the predictor's rule to its tolerance instead (`_coarse`), where the batch
-    runs the predictor stage. Its vertex only places the next stencil, some ``2 WIDTH^2``
-    from the optimum, and the coarse rule's optimum lies within that of the full rule's;
-    the next round starts from its creeps as a solve starts from its predictor stage."""
+    ``coarse`` (a search from `_guess`, whose stencils are `WIDTH` wide, with a predictor
+    rule in the options): all three forces from the cold start on the predictor's rule, to
+    its tolerance (`_coarse`). The round's vertex only places the next stencil, some
+    ``2 WIDTH^2`` from the optimum, and the coarse rule's optimum lies within that of the
+    full rule's; the next round starts from its creeps as a solve starts from its
+    predictor stage. Every point takes the same path in a batch of any size (Newton's
+    iterates of a point do not depend on its batch), so a table, a sweep and `solve`
+    certify the same force even where the efficiency has a kink near its optimum.
+
+    Otherwise (a guess, or no predictor rule): where the batch runs the predictor stage,
+    the centres first from the cold start and their neighbours from the centres' creeps
+    (`_start`), about half the iterations of all three from the cold start; else all
+    three together. Both converge to the tolerance, so the path again does not depend on
+    the batch beyond it."""
     options = score.options
+    if coarse and options.predictor is not None:
+        return _coarse(score)(np.repeat(index, 3), u.reshape(-1))
     if 3 * index.size < options.predictor_min_points or options.predictor is None:
         return score(np.repeat(index, 3), u.reshape(-1))
-    if coarse:
-        score = _coarse(score)
     mid, x_mid = score(index, u[:, 1])
     sides = u[:, [0, 2]]
     x0 = _start(x_mid, sides - u[:, 1:2])

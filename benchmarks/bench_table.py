@@ -68,12 +68,14 @@ class Row:
     note: str = ""
 
 
-def cpu(fn):
+def cpu(fn, collect=True):
     """(CPU seconds, wall seconds, result) of one call, after a full garbage collection:
     the earlier rows' garbage collected inside a short row cost it up to a third (a 10 x
     10 thermal sweep, 0.26 s: 2.6 or 3.4 ms per point by whether Python's collector ran
-    during it)."""
-    gc.collect()
+    during it). ``collect=False``: no collection (calls of a millisecond, timed in a loop
+    after one: a collection before each made `solve` 1.6-1.7x slower, session 22)."""
+    if collect:
+        gc.collect()
     c, w = time.process_time(), time.perf_counter()
     out = fn()
     return time.process_time() - c, time.perf_counter() - w, out
@@ -156,16 +158,18 @@ def mode_rows(quick):
 
 
 def solve_rows(quick):
-    """``solve`` one point, constant and optimal clamping (median of repeated calls)."""
+    """``solve`` one point, constant and optimal clamping (median of 40 and 10 calls in a
+    row, after one garbage collection and one call)."""
     from ballcvt import Variator
 
     v, rows = Variator(), []
     for clamp, target, bound in (("constant", "< 1 ms median", 1.0),
                                  ("optimal", "<= 5 ms median", 5.0)):
         kw = CLAMPS[clamp]
+        gc.collect()  # once, then a call to warm up: the first after a collection is slow
         v.solve(1.0, 40.0, **kw, **OP)
-        times = [cpu(lambda kw=kw: v.solve(1.0, 40.0, **kw, **OP))[0]
-                 for _ in range(5 if quick or clamp == "optimal" else 40)]
+        times = [cpu(lambda kw=kw: v.solve(1.0, 40.0, **kw, **OP), collect=False)[0]
+                 for _ in range(40 if clamp == "constant" else 10)]
         ms = float(np.median(times)) * 1e3
         rows.append(Row(f"solve-{clamp}", f"solve one point, {clamp} clamp", ms, "ms/point",
                         target, ms <= bound if clamp == "optimal" else ms < bound))

@@ -45,7 +45,7 @@ from ..model.clamping import clamp_law as resolve_law
 from ..params.drive import Drive
 from ..performance.efficiency import LOSS_KINDS
 from ..results.losses import LossBreakdown
-from ..solvers.options import SolverOptions
+from ..solvers.options import SolverOptions, coarse_options
 from ..status import Status
 from ..units import rad_s_to_rpm, rpm_to_rad_s
 from .cycle_files import STRATEGIES, Cycle
@@ -257,19 +257,15 @@ def _step_flags(cycle: Cycle) -> np.ndarray:
 
 def _coarse(fine: SolverOptions) -> SolverOptions:
     """The options of the ratio search and the creep correction: the coarse rule (the
-    predictor), solved to the predictor's tolerance (as a solve's predictor stage is).
+    predictor), solved to the predictor's tolerance (as a solve's predictor stage is,
+    `coarse_options`).
 
     The coarse rule's creeps differ from the full rule's by far more than that tolerance,
     so a tighter one buys nothing; and on it the optimal clamp's efficiency is not smooth
     in the force below about 1e-6, where Newton at 1e-11 took up to 30 iterations at some
     forces (benchmarks/bench_table.py, cycle rows: the optimal clamp's first pass, 0.73 of
     its 1.1 s per 1,000 steps)."""
-    return replace(
-        fine,
-        quadrature=fine.predictor or fine.quadrature,
-        predictor=None,
-        tol=max(fine.tol, fine.predictor_tol),
-    )
+    return coarse_options(fine)
 
 
 def _output_side(plan: _Plan, s: CycleRequest, w2, t2):

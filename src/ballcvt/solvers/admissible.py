@@ -8,7 +8,7 @@ limit search (`ballcvt.solvers.limit`) and of the sweeps' point status.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -16,7 +16,7 @@ from ..equilibrium.problem import EquilibriumProblem
 from ..model.traction.base import has_multiple_equilibria, traction_rises_with_creep
 from .clamped import at_ceiling, pressure_bound_force, solve_clamped
 from .newton import initial_creep, solve_batch
-from .options import SolverOptions, at_residual_floor
+from .options import SolverOptions, at_residual_floor, coarse_options
 
 __all__ = ["Admissibility", "solve_admissible", "screen_admissible", "screens", "follows_torque"]
 
@@ -189,12 +189,7 @@ def screen_admissible(
     coarse rule's).
     """
     law = law if follows_torque(law) else None
-    coarse = replace(
-        options,
-        quadrature=options.predictor or options.quadrature,
-        tol=options.predictor_tol,
-        predictor=None,
-    )
+    coarse = coarse_options(options)
     if law is not None:
         pb, sol = solve_clamped(problem, law, lambda p, y: solve_batch(p, coarse, y, False), x0)
     else:

@@ -38,8 +38,7 @@ from .secant import SecantCorrection
 from .trials import quiet_trials
 
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "branch_solver"]
-__all__ += ["on_branch"]
-__all__ += ["CREEP_BOUNDS", "MAX_STEP", "PATIENCE"]
+__all__ += ["on_branch", "CREEP_BOUNDS", "MAX_STEP", "PATIENCE"]
 
 #: Consecutive Newton iterations without a lower residual after which a step of the
 #: torque continuation gives up (`branch_solver`); the continuation then tries that

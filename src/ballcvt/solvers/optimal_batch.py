@@ -51,7 +51,7 @@ from ..performance.efficiency import efficiency
 from .clamped import pressure_bound_force, with_clamp
 from .newton import solve_batch
 from .optimal_search import ClampCase, search_optimum
-from .options import SolverOptions
+from .options import SolverOptions, coarse_options
 from .refusal import CREEP_RTOL
 
 __all__ = ["OptimalForces", "optimal_forces", "STEP", "NEAR"]
@@ -254,18 +254,8 @@ def _first_round(score: _Scorer, index, u, coarse: bool = False):
 
 
 def _coarse(score: _Scorer) -> _Scorer:
-    """``score`` on the predictor's rule, to the predictor's tolerance, with no
-    predictor stage of its own."""
-    o = score.options
-    return replace(
-        score,
-        options=replace(
-            o,
-            quadrature=o.predictor or o.quadrature,
-            predictor=None,
-            tol=max(o.tol, o.predictor_tol),
-        ),
-    )
+    """``score`` on the predictor's rule, to the predictor's tolerance (`coarse_options`)."""
+    return replace(score, options=coarse_options(score.options))
 
 
 def _search(score: _Scorer, index, bounds, start=None):

@@ -7,7 +7,7 @@ from dataclasses import dataclass, replace
 from ..model.traction.base import residual_floor
 from ..model.traction.quadrature import Quadrature
 
-__all__ = ["SolverOptions", "METHODS", "CREEP_BOUNDS", "at_residual_floor"]
+__all__ = ["SolverOptions", "METHODS", "CREEP_BOUNDS", "at_residual_floor", "coarse_options"]
 
 #: Creeps outside this open interval are unphysical (speeds reverse) [-].
 CREEP_BOUNDS = (-0.5, 0.98)
@@ -64,3 +64,16 @@ def at_residual_floor(options: SolverOptions, fluid) -> SolverOptions:
     whose coefficients carry rounding noise; none under the paper's law)."""
     floor = residual_floor(fluid)
     return options if options.tol >= floor else replace(options, tol=floor)
+
+
+def coarse_options(options: SolverOptions) -> SolverOptions:
+    """``options`` on their predictor's rule, to the predictor's tolerance (never below
+    ``tol``), with no predictor stage of their own: the cheap solves whose answers only
+    steer the full rule's (a capacity scan's screen, a duty cycle's first pass, the
+    optimal clamp's first round of stencils)."""
+    return replace(
+        options,
+        quadrature=options.predictor or options.quadrature,
+        predictor=None,
+        tol=max(options.tol, options.predictor_tol),
+    )

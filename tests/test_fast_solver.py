@@ -114,6 +114,40 @@ def test_numba_kernels_equal_numpy_path(drive):
             assert np.all(np.abs(a - b) <= 1e-5 * scale)
 
 
+@pytest.mark.parametrize("n_radial", [10, 12, 13, 20])
+def test_kernels_pad_rays_to_whole_vectors_without_changing_the_sums(drive, n_radial):
+    """Rays of 10-20 radial nodes (the predictor's 12 among them) are padded with zero-weight
+    copies of the last node to a multiple of 8 where that adds 3 or more (`_ray_nodes`,
+    session 23): the compiled sums equal those on the unpadded rays to round-off (both
+    rules and their blend, derivatives, the visco-elastic factor), and stay finite."""
+    from ballcvt.model.traction import kernels
+    from ballcvt.model.traction.isothermal import VECTOR_NODES, kernel_rule, kernel_table
+    from ballcvt.model.traction.quadrature import radial_rule
+
+    _, fluid = drive
+    padded = kernel_rule(Quadrature("pole", n_radial, 8, 12))
+    r01, wr = radial_rule(n_radial)
+    pad = -n_radial % VECTOR_NODES
+    assert padded[0].size == (n_radial + pad if pad >= 3 else n_radial)
+    assert np.all(padded[1][n_radial:] == 0.0) and np.all(padded[0][n_radial:] == r01[-1])
+    plain = (r01, wr) + padded[2:]
+    rng = np.random.default_rng(n_radial)
+    n = 60
+    state = ContactState(rng.uniform(-0.05, 0.05, n), rng.uniform(-0.2, 0.2, n), 1.2e-3,
+                         0.45e-3, rng.uniform(0.8e9, 2.5e9, n), 2000.0, 0.03, 15.0, 1.5e-7)
+    par = np.ascontiguousarray(state.stacked()[0])
+    assert np.any(np.abs(par[0] / (par[1] * par[3] / par[6])) > 0.8)  # blend, centred rule
+    for modulus in (0.0, 0.5e9):
+        table = kernel_table(fluid, float(par[4].max()), modulus)
+        for deriv in (False, True):
+            a, b = np.empty((n, kernels.N_OUT)), np.empty((n, kernels.N_OUT))
+            kernels.traction_kernel(par, padded, table, deriv, a)
+            kernels.traction_kernel(par, plain, table, deriv, b)
+            k = kernels.N_OUT if deriv else 2
+            assert np.all(np.isfinite(a[:, :k]))
+            assert np.all(np.abs(a - b)[:, :k] <= 1e-13 * np.max(np.abs(b[:, :k]), axis=0))
+
+
 def test_analytic_jacobian_matches_finite_differences(drive):
     design, fluid = drive
     pb = build_problem(design, fluid, "double", 0.8, 40.0, 2000.0, SPEED)

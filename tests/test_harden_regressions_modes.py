@@ -48,3 +48,29 @@ def test_every_load_below_the_limit_is_carried_and_above_refused(drive):
         assert math.isfinite(r.eta) and 0.0 < r.eta < 1.0
     with pytest.raises((TractionLimitError, InputError)):
         _solve(drive, limit * (1 + 1e-3))
+
+
+# Harden task 2125:54 (thermal-only campaign, session 23): the capacity of a planetary mode
+# under the thermal law. With `PATIENCE` 3 a continuation step gave up while still
+# converging, and the capacity came out 0.124 N m, far short of the fold (2.95 N m):
+# `solve` carried 1.001 times it unflagged. 4 (and 6) find the fold.
+FIELDS_2125 = json.loads("""{"aspect_ratio": 2.7413813893432595, "roller_radius": 0.010245657899410586, "theta0_deg": 47.47390912449763, "theta2_deg": 52.901625941717064, "alpha_deg": 6.953037379463055, "n_rollers": 10, "roller_bearing_diameter": 0.001679202534485802, "idler_bearing_diameter": 0.007701845906618227, "disc_groove_ratio": 3.371559154934108, "idler_groove_ratio": 3.286123255674579, "single_idler_groove_ratio": 4.1257607527972375, "tilt_safety_factor": 0.5881013381209527, "creep_limit": 0.16423116573340174, "min_roller_gap": 0.0012595173220265041, "cam": {"disc": "input", "preload": 375.1688794350057, "ramp_angle_deg": 8.282905816834395, "mean_radius": 0.012167761757068435, "friction": 0.0409093092002516}, "parasitic": null}""")
+MODE_2125 = "disc0_held_disc2_drives"
+
+
+def test_a_thermal_mode_capacity_is_the_fold_not_a_step_given_up_short_of_it():
+    from ballcvt.registry import OPERATING_MODES
+
+    d, f = load_builtin("table1")
+    v = Variator(d.replace(name="random", **FIELDS_2125), f, "single", traction_law="thermal")
+    ratio, rpm, force = 1.7641418912106819, 2884.1295847640163, 1474.8197624624106
+    kw = {"driver_speed_rpm": rpm, "clamp_force": force}
+    zero = v.planetary_map(MODE_2125, ratio, 0.0, **kw)
+    sign = float(zero.braking_direction(OPERATING_MODES.get(MODE_2125))[0])
+    cap = float(v.planetary_capacity(MODE_2125, [ratio], **kw)[0])
+    assert cap > 1.0
+    how = SolveSettings(mode=MODE_2125)
+    at = v.solve(ratio, sign * cap, clamp_force=force, input_speed_rpm=rpm, settings=how)
+    assert at.eta > 0
+    with pytest.raises(TractionLimitError):
+        v.solve(ratio, sign * cap * 1.001, clamp_force=force, input_speed_rpm=rpm, settings=how)

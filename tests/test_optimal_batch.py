@@ -136,7 +136,7 @@ def test_a_cycle_hands_its_first_pass_forces_to_the_second():
 
 def test_the_first_round_runs_on_the_coarse_rule_in_a_batch_of_any_size(monkeypatch):
     """Without a guess the first round of stencils is solved on the coarse rule (session
-    22), alike in a batch of any size: the batch gives each point the force it gets
+    22; the smooth search rule since session 24), alike in a batch of any size: the batch gives each point the force it gets
     searched alone (the same path: a table, a sweep and `solve` agree even where the
     efficiency has a kink near its optimum, harden task 0:28), and the one-point search's
     optimum to 1e-6 in efficiency."""
@@ -154,12 +154,12 @@ def test_the_first_round_runs_on_the_coarse_rule_in_a_batch_of_any_size(monkeypa
 
     monkeypatch.setattr(ob._Scorer, "__call__", spy)
     got = optimal_forces(pb, OptimalClamp(), v.options)
-    assert rules[0] == v.options.predictor and rules[-1] == v.options.quadrature
+    assert rules[0] == v.options.search_rule and rules[-1] == v.options.quadrature
     assert got.fast.all()
     rules.clear()
     alone = np.array([optimal_forces(pb.take([j]), OptimalClamp(), v.options).force[0]
                       for j in range(pb.size)])
-    assert rules.count(v.options.predictor) == pb.size  # one coarse round each
+    assert rules.count(v.options.search_rule) == pb.size  # one coarse round each
     np.testing.assert_allclose(got.force, alone, rtol=1e-9)
     eta = _eta(v, pb, got.force)
     ref = np.array([o.eta for o in _old(v, pb)])

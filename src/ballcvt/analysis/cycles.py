@@ -190,7 +190,7 @@ def run_cycle(drive, cycle: Cycle, settings: CycleRequest | None = None, **keywo
     # predictor) to the predictor's tolerance (`_coarse`); every reported value comes
     # from a final solve on the full rule
     fine = getattr(drive, "options", None) or SolverOptions()
-    coarse = _coarse(fine)
+    coarse = _coarse(fine, law.optimises)
     pool = ProcessPoolExecutor(max_workers=s.workers) if s.workers > 1 else None
     with _bar(s, passes * run.size, cycle.size) as bar, pool or nullcontext():
         here = Drive(design, drive.fluid, drive.architecture)
@@ -255,9 +255,10 @@ def _step_flags(cycle: Cycle) -> np.ndarray:
     return flag
 
 
-def _coarse(fine: SolverOptions) -> SolverOptions:
+def _coarse(fine: SolverOptions, search: bool = False) -> SolverOptions:
     """The options of the ratio search and the creep correction: the coarse rule (the
-    predictor), solved to the predictor's tolerance (as a solve's predictor stage is,
+    predictor; ``search``, under the optimal clamp: the options' smooth ``search_rule``),
+    solved to the predictor's tolerance (as a solve's predictor stage is,
     `coarse_options`).
 
     The coarse rule's creeps differ from the full rule's by far more than that tolerance,
@@ -265,7 +266,7 @@ def _coarse(fine: SolverOptions) -> SolverOptions:
     in the force below about 1e-6, where Newton at 1e-11 took up to 30 iterations at some
     forces (benchmarks/bench_table.py, cycle rows: the optimal clamp's first pass, 0.73 of
     its 1.1 s per 1,000 steps)."""
-    return coarse_options(fine)
+    return coarse_options(fine, search)
 
 
 def _output_side(plan: _Plan, s: CycleRequest, w2, t2):

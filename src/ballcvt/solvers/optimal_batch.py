@@ -254,8 +254,9 @@ def _first_round(score: _Scorer, index, u, coarse: bool = False):
 
 
 def _coarse(score: _Scorer) -> _Scorer:
-    """``score`` on the predictor's rule, to the predictor's tolerance (`coarse_options`)."""
-    return replace(score, options=coarse_options(score.options))
+    """``score`` on the options' search rule, to the predictor's tolerance
+    (`coarse_options`)."""
+    return replace(score, options=coarse_options(score.options, search=True))
 
 
 def _search(score: _Scorer, index, bounds, start=None):

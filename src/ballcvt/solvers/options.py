@@ -35,6 +35,15 @@ class SolverOptions:
         (a cheap starting point for the iterations on ``quadrature``); None to skip.
     predictor_tol : float
         Tolerance of the predictor stage [-].
+    search_rule : Quadrature or None
+        Rule of the coarse passes that compare efficiencies across clamping forces (the
+        optimal clamp's first round of stencils, a duty cycle's first pass under it), to
+        ``predictor_tol``; None: the predictor's. The centred rule's nodes stay put as the
+        creep moves the pole, so its efficiency is smooth in the force; the predictor's
+        pole-centred nodes move with the pole, and on 12 x 8 of them the traction
+        coefficient's slope in the creep was off by up to 3.4x (Table I, a disc contact's
+        pole in ``0.6 < |Y_p| < 1``; the centred 12 x 8 rule within 2 %, docs/model.md
+        §3).
     predictor_min_points : int
         Smallest batch that runs the predictor stage. On a few points an iteration
         costs the same on either rule (Python, not the integrals, dominates), and Newton
@@ -52,6 +61,7 @@ class SolverOptions:
     predictor: Quadrature | None = Quadrature("pole", 12, 8, 12)
     predictor_tol: float = 1e-6
     predictor_min_points: int = 32
+    search_rule: Quadrature | None = Quadrature("centred", 12, 8, 8)
 
     def __post_init__(self):
         if self.method not in METHODS:
@@ -66,14 +76,19 @@ def at_residual_floor(options: SolverOptions, fluid) -> SolverOptions:
     return options if options.tol >= floor else replace(options, tol=floor)
 
 
-def coarse_options(options: SolverOptions) -> SolverOptions:
+def coarse_options(options: SolverOptions, search: bool = False) -> SolverOptions:
     """``options`` on their predictor's rule, to the predictor's tolerance (never below
     ``tol``), with no predictor stage of their own: the cheap solves whose answers only
     steer the full rule's (a capacity scan's screen, a duty cycle's first pass, the
-    optimal clamp's first round of stencils)."""
+    optimal clamp's first round of stencils). ``search``: on the ``search_rule`` instead
+    (where there is a predictor), for the passes that compare efficiencies across forces.
+    """
+    rule = options.predictor or options.quadrature
+    if search and options.predictor is not None and options.search_rule is not None:
+        rule = options.search_rule
     return replace(
         options,
-        quadrature=options.predictor or options.quadrature,
+        quadrature=rule,
         predictor=None,
         tol=max(options.tol, options.predictor_tol),
     )

@@ -196,8 +196,8 @@ def run_cycle(drive, cycle: Cycle, settings: CycleRequest | None = None, **keywo
         here = Drive(design, drive.fluid, drive.architecture)
 
         def solve(ratio, t2, w0, rough=False, near=None):
-            # ``near``: a pass's result at nearby conditions, whose forces start the
-            # optimal law's search
+            # ``near``: a pass's result at nearby conditions, whose creeps start the solves
+            # (and whose forces the optimal law's search)
             guess = None if near is None or not law.optimises else near["clamp_force"]
             points = OperatingRows.of(
                 here,
@@ -207,7 +207,8 @@ def run_cycle(drive, cycle: Cycle, settings: CycleRequest | None = None, **keywo
                 law=None if law.fixed_force else law,
                 options=coarse if rough else fine,
             )
-            return evaluate_points(points, t2, callback=bar.update, executor=pool)
+            start = None if near is None else near["creep"]
+            return evaluate_points(points, t2, callback=bar.update, executor=pool, start=start)
 
         plan = _Plan(solve, allowed, s.candidates, flag, run)
         if cycle.kind == "output":

@@ -49,7 +49,7 @@ from ..errors import TractionLimitError
 from ..model.clamping import OptimalClamp
 from ..performance.efficiency import efficiency
 from .clamped import pressure_bound_force, with_clamp
-from .newton import solve_batch
+from .newton import initial_creep, solve_batch
 from .optimal_search import ClampCase, search_optimum
 from .options import SolverOptions, coarse_options
 from .refusal import CREEP_RTOL
@@ -221,7 +221,7 @@ def _interpolated(xs, us, es, u):
     return out.reshape(-1, xs.shape[-1])
 
 
-def _first_round(score: _Scorer, index, u, coarse: bool = False):
+def _first_round(score: _Scorer, index, u, coarse: bool = False, x0=None):
     """``(scores, creeps)`` of the first stencils ``u`` ``(k, 3)``, as one flat batch.
 
     ``coarse`` (a search from `_guess`, whose stencils are `WIDTH` wide, with a predictor
@@ -237,13 +237,16 @@ def _first_round(score: _Scorer, index, u, coarse: bool = False):
     the centres first from the cold start and their neighbours from the centres' creeps
     (`_start`), about half the iterations of all three from the cold start; else all
     three together. Both converge to the tolerance, so the path again does not depend on
-    the batch beyond it."""
+    the batch beyond it.
+
+    ``x0``: creeps at each centre (a duty cycle's first pass's, at its forces): the
+    centres start there, without the predictor stage, and their neighbours from them."""
     options = score.options
     if coarse and options.predictor is not None:
         return _coarse(score)(np.repeat(index, 3), u.reshape(-1))
-    if 3 * index.size < options.predictor_min_points or options.predictor is None:
+    if x0 is None and (3 * index.size < options.predictor_min_points or options.predictor is None):
         return score(np.repeat(index, 3), u.reshape(-1))
-    mid, x_mid = score(index, u[:, 1])
+    mid, x_mid = score(index, u[:, 1], x0)
     sides = u[:, [0, 2]]
     x0 = _start(x_mid, sides - u[:, 1:2])
     got, x_sides = score(np.repeat(index, 2), sides.reshape(-1), x0)
@@ -259,12 +262,13 @@ def _coarse(score: _Scorer) -> _Scorer:
     return replace(score, options=coarse_options(score.options, search=True))
 
 
-def _search(score: _Scorer, index, bounds, start=None):
+def _search(score: _Scorer, index, bounds, start=None, x_start=None):
     """The stencil search of the points ``index`` (positive torque) -> ``(u, certified,
     creeps)`` per point: ``u`` the vertex of the last stencil's parabola, the creeps there
     (`_interpolated`). ``start``: a first ``ln F_N0`` [-] per point (NaN: `_guess`),
     searched from a half-width of `NEAR` (certified in one round when it is within it of
-    the optimum)."""
+    the optimum); ``x_start``: creeps at those forces (`_centred`), which start the first
+    round's centres."""
     lo, hi = bounds
     centre = _guess(score.problem.take(index), lo, hi)
     width = np.full(index.size, WIDTH)
@@ -282,7 +286,8 @@ def _search(score: _Scorer, index, bounds, start=None):
         last = u[live].copy() if xs is not None else None
         u[live] = centre[live, None] + width[live, None] * np.array([-1.0, 0.0, 1.0])
         if xs is None:
-            got, creep = _first_round(score, index, u, coarse=start is None)
+            x0 = _centred(score, index, x_start, start, u)
+            got, creep = _first_round(score, index, u, start is None, x0)
         else:
             x0 = _interpolated(xs[live], last, e[live], u[live])
             got, creep = score(np.repeat(index[live], 3), u[live].reshape(-1), x0)
@@ -302,12 +307,25 @@ def _search(score: _Scorer, index, bounds, start=None):
     return vertex, done, _interpolated(xs, u, e, vertex[:, None])
 
 
+def _centred(score: _Scorer, index, x_start, start, u):
+    """Starting creeps at the first centres ``u[:, 1]`` of the points ``index``: from the
+    creeps ``x_start`` at the forces ``exp(start)`` (`_start`), the cold start
+    (`initial_creep`) where a point has none; None without ``x_start``."""
+    if x_start is None or start is None:
+        return None
+    known = np.all(np.isfinite(x_start), axis=1) & np.isfinite(start)
+    cold = initial_creep(score.problem.take(index))
+    du = np.where(known, u[:, 1] - np.where(known, start, 0.0), 0.0)[:, None]
+    return np.where(known[:, None], _start(np.where(known[:, None], x_start, 0.0), du), cold)
+
+
 def optimal_forces(
     problem: EquilibriumProblem,
     law: OptimalClamp = OptimalClamp(),
     options: SolverOptions = SolverOptions(),
     fallback: bool = True,
     guess=None,
+    creep=None,
 ) -> OptimalForces:
     """Efficiency-optimal clamping forces of a 1-D batch of points (module docstring).
 
@@ -325,6 +343,10 @@ def optimal_forces(
     guess : array_like, optional
         A force near each point's optimum [N] (NaN where none), e.g. the optimum of a pass
         on the solver's coarse rule: the search then starts there on its smallest stencil.
+    creep : array_like, optional
+        Creeps ``(n, n_c)`` [-] at the guessed forces (e.g. that pass's; NaN rows: none):
+        the first stencils' centres start from them (or from the cold start) without the
+        predictor stage.
 
     Returns
     -------
@@ -338,6 +360,7 @@ def optimal_forces(
     n = problem.size
     force = np.full(n, np.nan)
     fast = np.zeros(n, dtype=bool)
+    creep_guess = None if creep is None else np.asarray(creep, dtype=float)
     creep = np.full((n, problem.layout.n_contacts), np.nan)
     limits = _limits(problem, law)
     if limits is not None:
@@ -354,7 +377,8 @@ def optimal_forces(
         if pos.size:
             bounds = (np.full(pos.size, lo), hi[pos])
             start = None if guess is None else _log_guess(guess, n)[pos]
-            u, done, creep[pos] = _search(score, pos, bounds, start)
+            x_start = None if creep_guess is None else creep_guess[pos]
+            u, done, creep[pos] = _search(score, pos, bounds, start, x_start)
             fast[pos] = done
             force[pos] = np.exp(u)
     force = np.where(fast, force, np.nan)

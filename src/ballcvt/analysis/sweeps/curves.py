@@ -350,11 +350,11 @@ def at_optimal_forces(pb, law, options):
     return optimal_start(pb, law, options)[0]
 
 
-def optimal_start(pb, law, options, guess=None):
+def optimal_start(pb, law, options, guess=None, creep=None):
     """`at_optimal_forces` and the creeps the search found there, ``(n, n_c)`` [-] (NaN
-    rows where it has none); ``guess``: forces near the optima [N] to start from (as in
-    `ballcvt.solvers.optimal_batch.optimal_forces`)."""
-    got = optimal_forces(pb, law, options, guess=guess)
+    rows where it has none); ``guess``: forces near the optima [N] to start from, and
+    ``creep`` the creeps there (as in `ballcvt.solvers.optimal_batch.optimal_forces`)."""
+    got = optimal_forces(pb, law, options, guess=guess, creep=creep)
     return with_clamp(pb, np.where(got.refused, pb.clamp_force, got.force)), got.creep
 
 

@@ -23,7 +23,12 @@ CHUNK = 1024
 
 
 def evaluate_points(
-    points: OperatingRows, output_torque, callback=None, executor=None, beyond: bool = False
+    points: OperatingRows,
+    output_torque,
+    callback=None,
+    executor=None,
+    beyond: bool = False,
+    start=None,
 ) -> dict:
     """Solve scattered operating points and report every quantity of a sweep at each.
 
@@ -43,6 +48,10 @@ def evaluate_points(
         Whether the points converged beyond the capacity (``status`` 1) are reported too
         (else NaN): the oil's heat balance takes their losses, as `Variator.solve` with
         ``check_capacity=False`` gives them (`ballcvt.analysis.oil_sweep.balanced_tops`).
+    start : array_like, optional
+        Creeps ``(n, n_c)`` [-] near each point's solution (a duty cycle's first pass's,
+        on the coarse rule, at nearby conditions; NaN rows: none): the solves start there
+        without the predictor stage (`_solve_chunk`).
 
     Returns
     -------
@@ -59,14 +68,31 @@ def evaluate_points(
     points.problem(slice(None), torque, force)  # validate all
     # the same chunks with or without worker processes: the same results to round-off
     parts = np.array_split(np.arange(n), -(-n // CHUNK))
+    x0 = None if start is None else np.asarray(start, dtype=float)
     if executor is not None and len(parts) > 1:
         futures = [
-            executor.submit(evaluate_points, points.take(i), torque[i], None, None, beyond)
+            executor.submit(
+                evaluate_points,
+                points.take(i),
+                torque[i],
+                None,
+                None,
+                beyond,
+                None if x0 is None else x0[i],
+            )  # fmt: skip
             for i in parts
         ]
         chunks = ((i, f.result()) for i, f in zip(parts, futures))
     else:
-        chunks = ((i, _solve_chunk(points, i, torque[i], force[i], beyond)) for i in parts)
+        chunks = (
+            (
+                i,
+                _solve_chunk(
+                    points, i, torque[i], force[i], beyond, None if x0 is None else x0[i]
+                ),
+            )
+            for i in parts
+        )
     out: dict = {}
     for idx, got in chunks:  # each chunk into the output arrays, then dropped
         if not out:  # allocated once: every point is written by its chunk
@@ -78,17 +104,20 @@ def evaluate_points(
     return out
 
 
-def _solve_chunk(points: OperatingRows, idx, torque, force, beyond: bool = False) -> dict:
-    """Solve and report the points ``idx`` (one chunk; see `evaluate_points`)."""
+def _solve_chunk(points: OperatingRows, idx, torque, force, beyond=False, start=None) -> dict:
+    """Solve and report the points ``idx`` (one chunk; see `evaluate_points`; ``start``:
+    the chunk's starting creeps, or None)."""
     law, c_lim = points.law, points.creep_limit
     follows = law if law is not None and not points.optimal else None
     pb = points.problem(idx, torque, force)
-    x0 = None
+    x0, predict = None, True
     if points.optimal:  # the optimiser's force (from the rows' forces if given), then constant
         guess = None if points.clamp_force is None else points.clamp_force[idx]
-        pb, start = optimal_start(pb, law, points.options, guess)
-        x0 = np.where(np.isnan(start), initial_creep(pb), start)
-    got = solve_admissible(pb, c_lim, points.options, follows, x0)
+        pb, found = optimal_start(pb, law, points.options, guess, start)
+        x0 = np.where(np.isnan(found), initial_creep(pb), found)
+    elif start is not None:  # near the solutions: Newton on the full rule at once
+        x0, predict = np.where(np.isnan(start), initial_creep(pb), start), False
+    got = solve_admissible(pb, c_lim, points.options, follows, x0, predict)
     used = np.array(got.problem.clamp_force, dtype=float)
     # converged but inadmissible (creep or, under a cam, pressure), or running away
     status = np.where(

@@ -28,9 +28,13 @@ Given a force near each point's optimum (``guess``: a duty cycle's first pass ha
 forces to its second), the search starts there on its smallest stencil (half-width
 `NEAR`) and certifies a point in one round when the guess is within that of the optimum;
 the creeps found at the optimum (``OptimalForces.creep``) start the solve that follows.
-A sweep searches all its points in one batch. Without a guess, the first round (stencils
-`WIDTH` wide) is solved on the predictor's coarse rule to the predictor's tolerance
-(`_first_round`), in a batch of any size.
+A sweep searches all its points in one batch. Without a guess (and with a predictor rule
+in the options) the search first runs on the options' ``search_rule`` to the predictor's
+tolerance, certified on stencils of half-width `COARSE_NEAR` (`_coarse_search`: two
+rounds mostly, ``h = 0.1`` then ``0.02``, each a third of a full-rule round's cost), and
+its vertex and creeps there start the search on the full rule as a guess does (one round
+mostly; since session 24: before, the first round alone was coarse and two or three
+followed on the full rule).
 
 At zero torque the answer is ``min_force`` when it holds the no-load drag within the
 creep limit (the old search's first grid point). Every point not certified (an optimum
@@ -62,6 +66,11 @@ STEP = 1e-4
 #: Largest distance in ``ln F_N0`` [-] of the best force's nearest neighbour at
 #: certification (the parabola is then local).
 NEAR = 5e-3
+#: Largest half-width in ``ln F_N0`` [-] of the certified stencils of the search on the
+#: search rule that starts a search without a guess (`_coarse_search`): its vertex then
+#: misses the search rule's optimum by some ``2 COARSE_NEAR^2`` (8e-4), well within the
+#: `NEAR` stencil the full rule's search starts on.
+COARSE_NEAR = 0.02
 #: Half-width in ``ln F_N0`` [-] of the first three forces around the guess.
 WIDTH = 0.1
 #: Newton iterations (per stage) of a solve in the search (the coarse rule a duty cycle
@@ -156,10 +165,10 @@ def _parabola(u, e):
     return vertex, concave
 
 
-def _next(u, e, bounds):
+def _next(u, e, bounds, near=NEAR):
     """The next stencil of each point, ``(centre, half-width)`` in ``ln F_N0``, and whether
-    it is certified (module docstring); ``bounds`` = ``(lo, hi)``; NaN centre: the point
-    leaves for `search_optimum`."""
+    it is certified (module docstring; on stencils of half-width at most ``near``);
+    ``bounds`` = ``(lo, hi)``; NaN centre: the point leaves for `search_optimum`."""
     lo, hi = bounds
     best = np.argmax(e, axis=1)
     vertex, concave = _parabola(u, e)
@@ -167,7 +176,7 @@ def _next(u, e, bounds):
     h = 0.5 * (c - a)
     step = np.abs(vertex - b)
     newton = concave & (step <= 2 * h)
-    done = newton & (step <= h) & (h <= NEAR * (1 + 1e-9))
+    done = newton & (step <= h) & (h <= near * (1 + 1e-9))
     # Newton: the vertex, the next stencil as wide as the vertex's error (some 2 h^2:
     # quadratic convergence) where it lies within the stencil, else as the step taken,
     # at most half the last
@@ -221,41 +230,28 @@ def _interpolated(xs, us, es, u):
     return out.reshape(-1, xs.shape[-1])
 
 
-def _first_round(score: _Scorer, index, u, coarse: bool = False, x0=None):
+def _first_round(score: _Scorer, index, u, x0=None):
     """``(scores, creeps)`` of the first stencils ``u`` ``(k, 3)``, as one flat batch.
 
-    ``coarse`` (a search from `_guess`, whose stencils are `WIDTH` wide, with a predictor
-    rule in the options): all three forces from the cold start on the predictor's rule, to
-    its tolerance (`_coarse`). The round's vertex only places the next stencil, some
-    ``2 WIDTH^2`` from the optimum, and the coarse rule's optimum lies within that of the
-    full rule's; the next round starts from its creeps as a solve starts from its
-    predictor stage. Every point takes the same path in a batch of any size (Newton's
-    iterates of a point do not depend on its batch), so a table, a sweep and `solve`
-    certify the same force even where the efficiency has a kink near its optimum.
-
-    Otherwise (a guess, or no predictor rule, as in a duty cycle's first pass): the centres
-    first from the cold start (through the predictor stage where the batch runs it) and
-    their neighbours from the centres' creeps (`_start`), about half the iterations of
-    all three from the cold start (a cycle's first round on the coarse rule: 0.21 s
-    instead of 0.27 for the hub's 802 points); all three together only in a batch too
-    small for the predictor stage of a rule that has one. Both converge to the
-    tolerance, so the path again does not depend on the batch beyond it.
-
-    ``x0``: creeps at each centre (a duty cycle's first pass's, at its forces): the
-    centres start there, without the predictor stage, and their neighbours from them."""
+    Given ``x0``, creeps near each centre (a coarse search's, a duty cycle's first
+    pass's), all three forces start from them scaled to their forces (`_start`), without
+    the predictor stage. Otherwise, on a rule with a predictor and in a batch of at least
+    ``predictor_min_points`` forces, the centres come first from the cold start through
+    the predictor stage and their neighbours from the centres' creeps, about half the
+    iterations of all three from the cold start; else all three start cold together.
+    Given ``x0`` or on a rule without a predictor (the search rule, whose solves stop at
+    the predictor's tolerance, 1e-6), a point's Newton iterates depend on its own start
+    only, never on its batch: a table, a sweep and `solve` then certify the same force
+    even where the efficiency has a kink near its optimum (harden task 0:28)."""
     options = score.options
-    if coarse and options.predictor is not None:
-        return _coarse(score)(np.repeat(index, 3), u.reshape(-1))
-    if (
-        x0 is None
-        and options.predictor is not None
-        and 3 * index.size < options.predictor_min_points
-    ):
+    x = None if x0 is None else _start(x0, u - u[:, 1:2])
+    if x is not None or options.predictor is None:
+        return score(np.repeat(index, 3), u.reshape(-1), x)
+    if 3 * index.size < options.predictor_min_points:
         return score(np.repeat(index, 3), u.reshape(-1))
-    mid, x_mid = score(index, u[:, 1], x0)
+    mid, x_mid = score(index, u[:, 1])
     sides = u[:, [0, 2]]
-    x0 = _start(x_mid, sides - u[:, 1:2])
-    got, x_sides = score(np.repeat(index, 2), sides.reshape(-1), x0)
+    got, x_sides = score(np.repeat(index, 2), sides.reshape(-1), _start(x_mid, sides - u[:, 1:2]))
     got, x_sides = got.reshape(-1, 2), x_sides.reshape(index.size, 2, -1)
     scores = np.column_stack([got[:, 0], mid, got[:, 1]]).reshape(-1)
     creeps = np.stack([x_sides[:, 0], x_mid, x_sides[:, 1]], axis=1)
@@ -268,13 +264,13 @@ def _coarse(score: _Scorer) -> _Scorer:
     return replace(score, options=coarse_options(score.options, search=True))
 
 
-def _search(score: _Scorer, index, bounds, start=None, x_start=None):
+def _search(score: _Scorer, index, bounds, start=None, x_start=None, near=NEAR):
     """The stencil search of the points ``index`` (positive torque) -> ``(u, certified,
     creeps)`` per point: ``u`` the vertex of the last stencil's parabola, the creeps there
     (`_interpolated`). ``start``: a first ``ln F_N0`` [-] per point (NaN: `_guess`),
     searched from a half-width of `NEAR` (certified in one round when it is within it of
     the optimum); ``x_start``: creeps at those forces (`_centred`), which start the first
-    round's centres."""
+    round's centres; ``near``: the certified stencils' largest half-width."""
     lo, hi = bounds
     centre = _guess(score.problem.take(index), lo, hi)
     width = np.full(index.size, WIDTH)
@@ -293,7 +289,7 @@ def _search(score: _Scorer, index, bounds, start=None, x_start=None):
         u[live] = centre[live, None] + width[live, None] * np.array([-1.0, 0.0, 1.0])
         if xs is None:
             x0 = _centred(score, index, x_start, start, u)
-            got, creep = _first_round(score, index, u, start is None, x0)
+            got, creep = _first_round(score, index, u, x0)
         else:
             x0 = _interpolated(xs[live], last, e[live], u[live])
             got, creep = score(np.repeat(index[live], 3), u[live].reshape(-1), x0)
@@ -301,7 +297,7 @@ def _search(score: _Scorer, index, bounds, start=None, x_start=None):
         if xs is None:
             xs = np.empty((index.size, 3, creep.shape[-1]))
         xs[live] = creep.reshape(live.size, 3, -1)
-        nxt, w, certified = _next(u[live], e[live], (lo[live], hi[live]))
+        nxt, w, certified = _next(u[live], e[live], (lo[live], hi[live]), near)
         done[live[certified]] = True
         climbs[live] = np.where(np.isfinite(e[live]).any(axis=1), 0, climbs[live] + 1)
         go = ~certified & np.isfinite(nxt) & (climbs[live] <= CLIMBS)
@@ -384,6 +380,8 @@ def optimal_forces(
             bounds = (np.full(pos.size, lo), hi[pos])
             start = None if guess is None else _log_guess(guess, n)[pos]
             x_start = None if creep_guess is None else creep_guess[pos]
+            if start is None and options.predictor is not None:  # a coarse search first
+                start, x_start = _coarse_search(score, pos, bounds)
             u, done, creep[pos] = _search(score, pos, bounds, start, x_start)
             fast[pos] = done
             force[pos] = np.exp(u)
@@ -393,6 +391,14 @@ def optimal_forces(
     for j in np.flatnonzero(~fast) if fallback else ():
         force[j], refused[j] = _fallback(problem, int(j), law, options)
     return OptimalForces(force, fast, refused, creep)
+
+
+def _coarse_search(score: _Scorer, index, bounds):
+    """``(ln F_N0, creeps)`` of the points ``index`` from a search on the search rule
+    certified on stencils of half-width `COARSE_NEAR` (NaN forces where it certified
+    none): the start of the search on the full rule (module docstring)."""
+    u, done, x = _search(_coarse(score), index, bounds, near=COARSE_NEAR)
+    return np.where(done, u, np.nan), x
 
 
 def _log_guess(guess, n) -> np.ndarray:

@@ -37,6 +37,7 @@ from ...errors import InputError
 from ...files import atomic_write_text, check_output_dir, write_json
 from ...params.io import drive_to_toml
 from ...params.models import Design
+from .cluster import local_client
 from .evaluate import DESIGN_CODES, Context, _design, evaluate_chunk, make_context
 from .lock import folder_lock
 from .pareto import choose, pareto_mask
@@ -155,21 +156,6 @@ def design_vectors(spec: StudySpec, n: int | None = None) -> np.ndarray:
     return np.column_stack(
         [spec.parameters[name].scale(u[:, j]) for j, name in enumerate(spec.names)]
     )
-
-
-def local_client(workers: int):
-    """A Dask client on a new ``LocalCluster`` of ``workers`` single-threaded processes,
-    bound to 127.0.0.1."""
-    from distributed import Client, LocalCluster
-
-    cluster = LocalCluster(
-        n_workers=workers,
-        threads_per_worker=1,
-        processes=True,
-        host="127.0.0.1",
-        dashboard_address="127.0.0.1:0",
-    )
-    return Client(cluster)
 
 
 def task_size(n: int, chunk: int, workers: int) -> int:

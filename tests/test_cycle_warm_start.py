@@ -24,7 +24,7 @@ def _points(v, ratio, torque):
                                    {"clamp_law": "optimal"}])
 def test_the_second_pass_starts_from_the_first_pass_creeps(monkeypatch, clamp):
     """The first pass's creeps (coarse rule, nearby ratio) start the second pass's solves
-    without the predictor stage (under the optimal clamp: its search's first centres),
+    without the predictor stage (under the optimal clamp: its search's first stencils),
     and the answer is the cold start's to the solver's tolerance."""
     import ballcvt.analysis.cycles as cycles
     import ballcvt.analysis.sweeps.points as points

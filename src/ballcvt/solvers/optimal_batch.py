@@ -245,10 +245,8 @@ def _first_round(score: _Scorer, index, u, x0=None):
     even where the efficiency has a kink near its optimum (harden task 0:28)."""
     options = score.options
     x = None if x0 is None else _start(x0, u - u[:, 1:2])
-    if x is not None or options.predictor is None:
+    if x is not None or options.predictor is None or 3 * index.size < options.predictor_min_points:
         return score(np.repeat(index, 3), u.reshape(-1), x)
-    if 3 * index.size < options.predictor_min_points:
-        return score(np.repeat(index, 3), u.reshape(-1))
     mid, x_mid = score(index, u[:, 1])
     sides = u[:, [0, 2]]
     got, x_sides = score(np.repeat(index, 2), sides.reshape(-1), _start(x_mid, sides - u[:, 1:2]))
@@ -269,8 +267,8 @@ def _search(score: _Scorer, index, bounds, start=None, x_start=None, near=NEAR):
     creeps)`` per point: ``u`` the vertex of the last stencil's parabola, the creeps there
     (`_interpolated`). ``start``: a first ``ln F_N0`` [-] per point (NaN: `_guess`),
     searched from a half-width of `NEAR` (certified in one round when it is within it of
-    the optimum); ``x_start``: creeps at those forces (`_centred`), which start the first
-    round's centres; ``near``: the certified stencils' largest half-width."""
+    the optimum); ``x_start``: creeps at those forces, which start the first round
+    (`_centred`); ``near``: the certified stencils' largest half-width."""
     lo, hi = bounds
     centre = _guess(score.problem.take(index), lo, hi)
     width = np.full(index.size, WIDTH)
@@ -316,9 +314,8 @@ def _centred(score: _Scorer, index, x_start, start, u):
     if x_start is None or start is None:
         return None
     known = np.all(np.isfinite(x_start), axis=1) & np.isfinite(start)
-    cold = initial_creep(score.problem.take(index))
-    du = np.where(known, u[:, 1] - np.where(known, start, 0.0), 0.0)[:, None]
-    return np.where(known[:, None], _start(np.where(known[:, None], x_start, 0.0), du), cold)
+    scaled = _start(x_start, (u[:, 1] - start)[:, None])  # NaN rows where not known
+    return np.where(known[:, None], scaled, initial_creep(score.problem)[index])
 
 
 def optimal_forces(
@@ -347,7 +344,7 @@ def optimal_forces(
         on the solver's coarse rule: the search then starts there on its smallest stencil.
     creep : array_like, optional
         Creeps ``(n, n_c)`` [-] at the guessed forces (e.g. that pass's; NaN rows: none):
-        the first stencils' centres start from them (or from the cold start) without the
+        the first stencils start from them (or from the cold start) without the
         predictor stage.
 
     Returns

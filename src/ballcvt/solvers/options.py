@@ -37,13 +37,13 @@ class SolverOptions:
         Tolerance of the predictor stage [-].
     search_rule : Quadrature or None
         Rule of the coarse passes that compare efficiencies across clamping forces (the
-        optimal clamp's first round of stencils, a duty cycle's first pass under it), to
+        optimal clamp's coarse search, a duty cycle's first pass under it), to
         ``predictor_tol``; None: the predictor's. The centred rule's nodes stay put as the
         creep moves the pole, so its efficiency is smooth in the force; the predictor's
         pole-centred nodes move with the pole, and on 12 x 8 of them the traction
-        coefficient's slope in the creep was off by up to 3.4x (Table I, a disc contact's
-        pole in ``0.6 < |Y_p| < 1``; the centred 12 x 8 rule within 2 %, docs/model.md
-        §3).
+        coefficient's slope in the creep swung from 0.3 to 2.3 times the full rule's
+        (Table I, a disc contact's pole in ``0.6 < |Y_p| < 1``; the centred 12 x 8 rule
+        within 2 %, docs/model.md §3).
     predictor_min_points : int
         Smallest batch that runs the predictor stage. On a few points an iteration
         costs the same on either rule (Python, not the integrals, dominates), and Newton
@@ -80,7 +80,7 @@ def coarse_options(options: SolverOptions, search: bool = False) -> SolverOption
     """``options`` on their predictor's rule, to the predictor's tolerance (never below
     ``tol``), with no predictor stage of their own: the cheap solves whose answers only
     steer the full rule's (a capacity scan's screen, a duty cycle's first pass, the
-    optimal clamp's first round of stencils). ``search``: on the ``search_rule`` instead
+    optimal clamp's coarse search). ``search``: on the ``search_rule`` instead
     (where there is a predictor), for the passes that compare efficiencies across forces.
     """
     rule = options.predictor or options.quadrature

@@ -69,29 +69,21 @@ def evaluate_points(
     # the same chunks with or without worker processes: the same results to round-off
     parts = np.array_split(np.arange(n), -(-n // CHUNK))
     x0 = None if start is None else np.asarray(start, dtype=float)
+
+    def starts(i):
+        return None if x0 is None else x0[i]
+
     if executor is not None and len(parts) > 1:
         futures = [
             executor.submit(
-                evaluate_points,
-                points.take(i),
-                torque[i],
-                None,
-                None,
-                beyond,
-                None if x0 is None else x0[i],
-            )  # fmt: skip
+                evaluate_points, points.take(i), torque[i], None, None, beyond, starts(i)
+            )
             for i in parts
         ]
         chunks = ((i, f.result()) for i, f in zip(parts, futures))
     else:
         chunks = (
-            (
-                i,
-                _solve_chunk(
-                    points, i, torque[i], force[i], beyond, None if x0 is None else x0[i]
-                ),
-            )
-            for i in parts
+            (i, _solve_chunk(points, i, torque[i], force[i], beyond, starts(i))) for i in parts
         )
     out: dict = {}
     for idx, got in chunks:  # each chunk into the output arrays, then dropped
@@ -110,13 +102,14 @@ def _solve_chunk(points: OperatingRows, idx, torque, force, beyond=False, start=
     law, c_lim = points.law, points.creep_limit
     follows = law if law is not None and not points.optimal else None
     pb = points.problem(idx, torque, force)
-    x0, predict = None, True
+    # given starting creeps (near the solutions), Newton on the full rule at once
+    x0, predict = start, start is None
     if points.optimal:  # the optimiser's force (from the rows' forces if given), then constant
         guess = None if points.clamp_force is None else points.clamp_force[idx]
-        pb, found = optimal_start(pb, law, points.options, guess, start)
-        x0 = np.where(np.isnan(found), initial_creep(pb), found)
-    elif start is not None:  # near the solutions: Newton on the full rule at once
-        x0, predict = np.where(np.isnan(start), initial_creep(pb), start), False
+        pb, x0 = optimal_start(pb, law, points.options, guess, start)
+        predict = True  # from the search's creeps (cold where it found none), as before
+    if x0 is not None:
+        x0 = np.where(np.isnan(x0), initial_creep(pb), x0)
     got = solve_admissible(pb, c_lim, points.options, follows, x0, predict)
     used = np.array(got.problem.clamp_force, dtype=float)
     # converged but inadmissible (creep or, under a cam, pressure), or running away

@@ -78,13 +78,16 @@ class SecantCorrection:
         Jacobians to step with, ``J_a + E`` ``(k, m, m)``: the fresh one where the point is
         not ``near``, its last one otherwise.
         """
-        s = x - self.last_x[active]
-        y = res - self.last_res[active]
-        ss = np.einsum("ij,ij->i", s, s)
-        linear = (np.abs(res).max(axis=1) < NEAR_NORM) & (
-            np.abs(self.last_res[active]).max(axis=1) < NEAR_NORM
-        )
-        use = linear & (ss > 0) & np.isfinite(y).all(axis=1) & np.isfinite(ss)
+        last_res = self.last_res[active]
+        # (NaN norms, before a point's first evaluation, compare False)
+        linear = (np.abs(res).max(axis=1) < NEAR_NORM) & (np.abs(last_res).max(axis=1) < NEAR_NORM)
+        if linear.any():  # (most evaluations are far from the solution: no update)
+            s = x - self.last_x[active]
+            y = res - last_res
+            ss = np.einsum("ij,ij->i", s, s)
+            use = linear & (ss > 0) & np.isfinite(y).all(axis=1) & np.isfinite(ss)
+        else:
+            use = linear
         if use.any():
             k = active[use]
             s_u = s[use]

@@ -63,12 +63,12 @@ class ContactState(NamedTuple):
     @property
     def shape(self) -> tuple[int, ...]:
         """The broadcast shape of the quantities (that of the coefficients)."""
-        return np.broadcast_shapes(*(np.shape(v) for v in self.values()))
+        return np.broadcast(*self).shape  # (C: a few microseconds less than broadcast_shapes)
 
     def stacked(self) -> tuple[np.ndarray, tuple[int, ...]]:
         """The quantities as rows of a ``(9, n)`` float array (broadcast, flattened), and
         their broadcast shape."""
-        shape = np.broadcast_shapes(*(np.shape(v) for v in self))
+        shape = np.broadcast(*self).shape
         out = np.empty((9,) + shape)
         for i, value in enumerate(self):
             out[i, ...] = value

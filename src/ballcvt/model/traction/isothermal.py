@@ -187,9 +187,11 @@ def _compiled(params, fluid: Fluid, q: Quadrature, derivatives: bool, modulus: f
     return out.T
 
 
+@lru_cache(maxsize=16)
 def kernel_rule(q: Quadrature) -> tuple:
     """The rule ``q`` as the compiled kernels take it: ``(r01, wr, pole_rays,
-    centred_rays, blend)`` (`ballcvt.model.traction.kernels.traction_kernel`)."""
+    centred_rays, blend)`` (`ballcvt.model.traction.kernels.traction_kernel`; cached: the
+    rules are frozen, their arrays read-only)."""
     r01, wr, sin_phi, cos_phi = _ray_nodes(q.n_radial, q.n_angular)
     rays = (sin_phi, cos_phi, 2.0 * np.pi / q.n_angular)
     if q.method == "centred":

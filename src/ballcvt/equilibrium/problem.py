@@ -12,7 +12,6 @@ from typing import Any
 import numpy as np
 
 from .._compat import moved_names
-from ..errors import InputError
 from ..model.architectures import ContactLayout, contact_layout
 from ..model.hertz import hertz_contact, rolling_curvature_ratio, transverse_curvature_ratio
 from ..model.inertia import (
@@ -24,15 +23,21 @@ from ..model.inertia import (
 )
 from ..model.kinematics import (
     body_speeds,
-    check_ratio,
     rolling_radius,
     spin_axis_projection,
     tilt_from_ratio,
 )
-from ..model.losses import PARASITIC_KINDS, active_terms, drag_magnitudes
-from ..model.rheology import roelands_pressure_limit
+from ..model.losses import PARASITIC_KINDS, drag_magnitudes
 from ..params.drive import Drive
 from ..params.models import Design, Fluid
+from .checks import (  # noqa: F401 (MIN_POSITIVE: named here as before)
+    MIN_POSITIVE,
+    check_idler_loads,
+    check_inputs,
+    check_no_drags,
+    check_positive,
+    check_pressure,
+)
 
 __all__ = [
     "EquilibriumProblem",
@@ -40,6 +45,7 @@ __all__ = [
     "CarrierFrame",
     "make_problem",
     "build_problem",
+    "with_clamp_force",
     # the inertia of the balls lives in the model layer; named here as before
     "roller_mass",
     "centrifugal_force",
@@ -50,11 +56,6 @@ __all__ = [
 
 #: Renamed (one name per body: the paper's "roller"); answered with a warning.
 __getattr__ = moved_names(__name__, {"ball_mass": "ballcvt.model.inertia:roller_mass"})
-
-#: Smallest clamping force [N] and input speed [rad/s] accepted: far below any physical
-#: use (one revolution in 72 days), and above the range where the film thickness and the
-#: traction integrals underflow double precision (docs/model.md §10).
-MIN_POSITIVE = 1e-6
 
 #: Fields with the batch shape ``(...)`` and with a trailing axis, ``(..., n_c)`` or
 #: ``(..., n_kinds)``.
@@ -327,34 +328,20 @@ def make_problem(
         )
     )
     weights = (float(frame.torque_weights[0]), float(frame.torque_weights[1]))
-    _check_inputs(
+    check_inputs(
         design, weights == (0.0, 1.0) and not frame.signed_torque, (ratio, t2, fn0, w0, wc)
     )
     tilt = tilt_from_ratio(ratio, design.theta0, design.theta2, design.aspect_ratio)
     rs = design.roller_radius
     rx = rolling_curvature_ratio(layout.radius, design.aspect_ratio) * rs
-    ry = transverse_curvature_ratio(layout.groove_ratio) * rs
-    load = fn0[..., None] * layout.load_factor
     turning = bool(np.any(wc != 0.0))
     if turning:
-        _check_no_drags(design)
+        check_no_drags(design)
+    centrifugal = None
     if turning and frame.centrifugal:
-        _check_idler_loads(design, layout, fn0, wc)
-        load = load - centrifugal_force(design, wc)[..., None] * idler_share(layout, design)
-    ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
-    _check_pressure(fluid, fn0, p_max)
-    # parasitic drags' magnitudes at the creep-free speeds; their directions follow the
-    # solved speeds in the residual (docs/model.md §12)
-    omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
-    drags = drag_magnitudes(
-        design,
-        fluid,
-        w0,
-        omega[..., -1],
-        omega_s,
-        design.n_rollers * fn0 * np.sin(design.theta0),
-        t2,
-    )
+        check_idler_loads(design, layout, fn0, wc)
+        centrifugal = centrifugal_force(design, wc)[..., None] * idler_share(layout, design)
+    forced = _force_fields(drive, layout, (tilt, rx), (fn0, w0, t2), centrifugal)
     return EquilibriumProblem(
         design=design,
         fluid=fluid,
@@ -362,106 +349,76 @@ def make_problem(
         ratio=ratio,
         tilt=tilt,
         output_torque=t2,
-        clamp_force=fn0,
         input_speed=w0,
         rho=rolling_radius(layout, tilt),
         sz=spin_axis_projection(layout, tilt),
-        load=load,
         radius=layout.radius * rs,
         rx=rx,
-        ay=ay,
-        ax=ax,
-        p_max=p_max,
-        roller_drag=drags.roller,
-        input_drag=drags.input,
-        output_drag=drags.output,
-        disc_drag=drags.between,
         carrier_speed=wc,
         gyro_factor=(
             gyro_factor(design, tilt, wc) if turning and frame.gyroscopic else np.zeros(wc.shape)
         ),
         torque_weights=weights,
-        drag_kinds=drags.kinds,
+        **forced,
     )
 
 
-def _check_inputs(design: Design, torque_given: bool, inputs) -> None:
-    """Refuse out-of-range operating inputs ``(ratio, T_2, F_N0, omega_0, omega_c)``."""
-    ratio, t2, fn0, w0, wc = inputs
-    if torque_given:
-        _check("output_torque", t2, "N m", strict=False)
-    elif not np.all(np.isfinite(t2)):
-        raise InputError("load_torque", float(t2[~np.isfinite(t2)].flat[0]), "finite")
-    if not np.all(np.isfinite(wc)):
-        raise InputError("carrier_speed", float(wc[~np.isfinite(wc)].flat[0]), "finite")
-    _check("clamp_force", fn0, "N", floor=MIN_POSITIVE)
-    _check("input_speed", w0, "rad/s", floor=MIN_POSITIVE)
-    check_ratio(design, ratio)
+def _force_fields(drive, layout: ContactLayout, geometry, inputs, centrifugal=None) -> dict:
+    """The fields of `make_problem` that depend on the clamping force: the loads, the
+    Hertz contacts (Eqs. 48-50, their peak pressure checked) and the parasitic drags'
+    magnitudes at the creep-free speeds (their directions follow the solved speeds in the
+    residual, docs/model.md §12). ``geometry``: ``(tilt, R_x)``; ``inputs``: ``(F_N0,
+    omega_0, T_2)``; ``centrifugal``: the balls' centrifugal force on each contact [N],
+    or None."""
+    design, fluid = drive.design, drive.fluid
+    (tilt, rx), (fn0, w0, t2) = geometry, inputs
+    load = fn0[..., None] * layout.load_factor
+    if centrifugal is not None:
+        load = load - centrifugal
+    ry = transverse_curvature_ratio(layout.groove_ratio) * design.roller_radius
+    ax, ay, p_max, _ = hertz_contact(load, rx, ry, design.material.reduced_modulus)
+    check_pressure(fluid, fn0, p_max)
+    omega_s, omega = body_speeds(layout, tilt, np.zeros(layout.n_contacts), w0)
+    thrust = design.n_rollers * fn0 * np.sin(design.theta0)
+    drags = drag_magnitudes(design, fluid, w0, omega[..., -1], omega_s, thrust, t2)
+    return {
+        "clamp_force": fn0,
+        "load": load,
+        "ax": ax,
+        "ay": ay,
+        "p_max": p_max,
+        "roller_drag": drags.roller,
+        "input_drag": drags.input,
+        "output_drag": drags.output,
+        "disc_drag": drags.between,
+        "drag_kinds": drags.kinds,
+    }
 
 
-def _check_no_drags(design: Design) -> None:
-    """Refuse parasitic losses with the carrier turning (not modelled yet, §13)."""
-    terms = active_terms(design)
-    if not terms:
-        return
-    name, value = (
-        ("design.parasitic", "set")
-        if design.parasitic is not None
-        else ("loss term", terms[0].name)
-    )
-    raise InputError(
-        name,
-        value,
-        "absent with the carrier turning (the shaft drags need the absolute speeds; "
-        "not modelled yet, docs/model.md §13)",
-    )
+def with_clamp_force(problem: EquilibriumProblem, clamp_force) -> EquilibriumProblem:
+    """The points of ``problem`` at the clamping forces ``clamp_force`` [N]: the problem
+    `build_problem` makes of its ratio, torque and speed at those forces (the paper's
+    frame: carrier held, output torque given).
 
-
-def _check_idler_loads(design, layout, clamp_force, carrier_speed) -> None:
-    """Refuse carrier speeds at which the balls' centrifugal force lifts them off the idler."""
-    w_max = max_carrier_speed(design, layout, clamp_force)
-    bad = np.abs(carrier_speed) >= w_max
-    if np.any(bad):
-        i = np.argmax(bad)
-        raise InputError(
-            "carrier_speed",
-            float(carrier_speed.flat[i]),
-            f"|carrier_speed| < {float(w_max.flat[i]):.4g} rad/s at clamp_force "
-            f"{float(clamp_force.flat[i]):g} N: faster, the balls' centrifugal "
-            "force lifts them off the idler",
+    Where the forces have the batch's shape and the problem is in that frame, only the
+    fields that depend on the force are built again (`_force_fields`), the same values in
+    half the time (a clamping law's or the optimal clamp's search builds one such problem
+    per round); otherwise the whole problem is (`build_problem`).
+    """
+    fn0 = np.asarray(clamp_force, dtype=float)
+    t2 = problem.output_torque
+    paper = problem.torque_weights == (0.0, 1.0) and not np.any(problem.carrier_speed)
+    if fn0.shape != problem.shape or not paper:
+        return build_problem(
+            problem.design,
+            problem.fluid,
+            problem.layout.architecture,
+            problem.ratio,
+            t2,
+            fn0,
+            problem.input_speed,
         )
-
-
-def _check_pressure(fluid: Fluid, clamp_force: np.ndarray, p_max: np.ndarray) -> None:
-    """Refuse clamping forces whose peak pressure has no finite Roelands viscosity."""
-    p_lim = roelands_pressure_limit(
-        fluid.viscosity, fluid.pole_viscosity, fluid.pole_pressure, fluid.roelands_index
-    )
-    worst = np.max(p_max, axis=-1) if p_max.size else p_max
-    bad = worst > p_lim
-    if np.any(bad):
-        i = np.argmax(np.where(bad, worst, -np.inf))
-        f, p = float(clamp_force.flat[i]), float(worst.flat[i])
-        raise InputError(
-            "clamp_force",
-            f,
-            f"<= {f * (p_lim / p) ** 3:.4g} N: its peak "
-            f"pressure {p / 1e9:.4g} GPa exceeds the {p_lim / 1e9:.4g} GPa beyond "
-            "which the Roelands viscosity (Eq. 51) overflows",
-        )
-
-
-def _check(
-    name: str, value: np.ndarray, unit: str, strict: bool = True, floor: float = 0.0
-) -> None:
-    ok = np.isfinite(value) & (
-        (value >= floor) if floor else (value > 0) if strict else (value >= 0)
-    )
-    if not ok.all():
-        bad = float(value[~ok].flat[0]) if value.ndim else float(value)
-        allowed = (
-            f">= {floor:g} {unit} and finite"
-            if floor
-            else f"{'>' if strict else '>='} 0 {unit} and finite"
-        )
-        raise InputError(name, bad, allowed)
+    check_positive("output_torque", t2, "N m", strict=False)  # as `build_problem` would
+    check_positive("clamp_force", fn0, "N", floor=MIN_POSITIVE)
+    geometry, inputs = (problem.tilt, problem.rx), (fn0, problem.input_speed, t2)
+    return replace(problem, **_force_fields(problem, problem.layout, geometry, inputs))

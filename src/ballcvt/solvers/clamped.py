@@ -18,7 +18,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..equilibrium.problem import EquilibriumProblem, build_problem
+from ..equilibrium.problem import EquilibriumProblem, with_clamp_force
 from ..model.rheology import roelands_pressure_limit
 
 __all__ = [
@@ -108,16 +108,9 @@ def _wegstein(force, new, memory):
 
 
 def with_clamp(problem: EquilibriumProblem, clamp_force) -> EquilibriumProblem:
-    """The same operating points at other clamping forces ``F_N0`` [N]."""
-    return build_problem(
-        problem.design,
-        problem.fluid,
-        problem.layout.architecture,
-        problem.ratio,
-        problem.output_torque,
-        clamp_force,
-        problem.input_speed,
-    )
+    """The same operating points at other clamping forces ``F_N0`` [N]
+    (`ballcvt.equilibrium.problem.with_clamp_force`)."""
+    return with_clamp_force(problem, clamp_force)
 
 
 def pressure_bound_force(problem: EquilibriumProblem, max_pressure: float) -> np.ndarray:

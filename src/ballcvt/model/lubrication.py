@@ -44,7 +44,7 @@ summits, dropped), so that above it ``f_a = 0`` and the result is exactly the fu
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
@@ -79,6 +79,10 @@ __all__ = [
 
 #: Relative step of the derivative with respect to the film thickness [-].
 _STEP = 1e-6
+#: Rule of that derivative (the film's share of the load by the film thickness, a
+#: Jacobian column only: the converged equilibrium does not depend on it) where the
+#: law's own rule has more nodes.
+FILM_SHARE_RULE = Quadrature("centred", 12, 8, 8)
 #: Kalker's longitudinal creep coefficient ``C_11`` of a circular contact at Poisson's
 #: ratios 0, 0.25, 0.5 (Kalker 1967, as tabulated in Johnson, *Contact Mechanics* (1985)
 #: §8.4: ``F_x = C_11 G a b xi`` for small creep ``xi``) [-].
@@ -330,13 +334,23 @@ def mixed_coefficients(
     dmu, dchi = (np.concatenate([g, np.zeros(g.shape[:-1] + (1,))], axis=-1) for g in rest)
     wet = frac > 0.0
     if np.any(wet):
+        rule, base = quadrature, (mu, chi, boundary)
+        if _nodes(quadrature) > _nodes(FILM_SHARE_RULE):  # the difference on fewer nodes
+            rule = replace(FILM_SHARE_RULE, engine=quadrature.engine)
+            (mu_c, chi_c), _, boundary_c = _mixed(state, fluid, asp, rule, False)
+            base = (mu_c, chi_c, boundary_c)
         up = state.replace(film=state.film * (1 + _STEP), u_ref=state.u_ref * (1 + _STEP))
         # the boundary law depends on the slip alone, the same at ``up`` (where ``u_ref``
         # moves with the film): only the film's share and coefficients are solved again
-        (mu_up, chi_up), _, _ = _mixed(up, fluid, asp, quadrature, False, boundary[:2])
-        dmu[..., 3] = np.where(wet, (mu_up - mu) / np.log1p(_STEP), 0.0)
-        dchi[..., 3] = np.where(wet, (chi_up - chi) / np.log1p(_STEP), 0.0)
+        (mu_up, chi_up), _, _ = _mixed(up, fluid, asp, rule, False, base[2][:2])
+        dmu[..., 3] = np.where(wet, (mu_up - base[0]) / np.log1p(_STEP), 0.0)
+        dchi[..., 3] = np.where(wet, (chi_up - base[1]) / np.log1p(_STEP), 0.0)
     return mu, chi, dmu, dchi
+
+
+def _nodes(q: Quadrature) -> int:
+    """Nodes per contact of the rule ``q`` (of its first fan: pole-centred or centred)."""
+    return q.n_radial * q.n_angular
 
 
 def _full_film(state, fluid, asp, quadrature, derivatives):

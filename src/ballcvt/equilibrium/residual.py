@@ -191,6 +191,7 @@ def evaluate_with_jacobian(
     h = step * np.maximum(np.abs(creep), 1e-4)
     # row 0: the creeps themselves; row j + 1: creep j perturbed by h_j (one pass for all)
     pert = creep[..., None, :] + h[..., None, :] * _offsets(nc)  # (..., 1 + n_c, n_c)
+    _film_unit(problem), _constants(problem)  # on the problem: its sub-batches keep them
     wide = problem.expand()
     wide_at = _contact_inputs(wide, pert)
     sg, u, hf = wide_at.spin, wide_at.u_ref, wide_at.film
@@ -270,12 +271,21 @@ class ContactInputs:
 
 def _contact_inputs(problem: EquilibriumProblem, creep) -> ContactInputs:
     """Speeds, spins, surface speeds and film thicknesses at the creeps (Eqs. 7-14, 67)."""
-    lay, fl = problem.layout, problem.fluid
+    lay = problem.layout
     omega_s, omega = body_speeds(lay, problem.tilt, creep, problem.input_speed, problem.rho)
     sigma = spin(lay, problem.tilt, omega_s, omega, problem.sz)
     u_ref = np.abs(omega) * problem.radius
-    # Eq. 56 at 1 m/s, kept on the problem, times the speed term (`SPEED_EXPONENT`)
-    unit = problem.memo(
+    unit = _film_unit(problem)
+    film = unit * np.abs(u_ref * entrainment_factor(creep)) ** SPEED_EXPONENT
+    return ContactInputs(omega_s, omega, sigma, u_ref, film)
+
+
+def _film_unit(problem: EquilibriumProblem):
+    """Eq. 56 at 1 m/s, kept on the problem and carried to its sub-batches
+    (`EquilibriumProblem.memo`), to be multiplied by the speed term (`SPEED_EXPONENT`)
+    [m]."""
+    fl = problem.fluid
+    return problem.memo(
         "film_unit_speed",
         lambda: central_film_thickness(
             fl.viscosity,
@@ -286,9 +296,13 @@ def _contact_inputs(problem: EquilibriumProblem, creep) -> ContactInputs:
             problem.load,
             problem.ay / problem.ax,
         ),
+        carried=True,
     )
-    film = unit * np.abs(u_ref * entrainment_factor(creep)) ** SPEED_EXPONENT
-    return ContactInputs(omega_s, omega, sigma, u_ref, film)
+
+
+def _constants(problem: EquilibriumProblem) -> dict:
+    """`_balance_constants`, kept on the problem and carried to its sub-batches."""
+    return problem.memo("balances", lambda: _balance_constants(problem), carried=True)
 
 
 def _balance_constants(problem: EquilibriumProblem) -> dict:
@@ -336,7 +350,7 @@ def _balances(problem: EquilibriumProblem, creep, at: ContactInputs, mu, chi) ->
     """Forces, moments, bearing torques and residuals from the contact coefficients."""
     omega_s, omega = at.omega_s, at.omega
     pb, lay, des, fl = problem, problem.layout, problem.design, problem.fluid
-    k = pb.memo("balances", lambda: _balance_constants(pb))
+    k = _constants(pb)
     rs, n = des.roller_radius, des.n_rollers
     force = k["kappa_load"] * mu
     moment = -chi * k["load_radius"]

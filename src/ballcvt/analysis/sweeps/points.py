@@ -107,7 +107,9 @@ def _solve_chunk(points: OperatingRows, idx, torque, force, beyond=False, start=
     if points.optimal:  # the optimiser's force (from the rows' forces if given), then constant
         guess = None if points.clamp_force is None else points.clamp_force[idx]
         pb, x0 = optimal_start(pb, law, points.options, guess, start)
-        predict = True  # from the search's creeps (cold where it found none), as before
+        # from the search's creeps, near the solutions: no predictor stage, which would
+        # only move them to its coarse rule's solutions (as a sweep's `solve_column`)
+        predict = bool(np.isnan(x0).any())
     if x0 is not None:
         x0 = np.where(np.isnan(x0), initial_creep(pb), x0)
     got = solve_admissible(pb, c_lim, points.options, follows, x0, predict)

@@ -7,7 +7,9 @@ without end: at very large forces the spin and the rolling losses grow faster, a
 the Roelands viscosity limit (the bound of ``F_p`` when ``max_pressure`` is ``inf``) the
 equilibrium no longer exists, so the limit may peak below ``F_p`` (an isothermal drive
 whose spin losses grow with the force: harden task 2026:4546 peaks at 68 kN, ``F_p`` 97
-kN). The search is bounded and deterministic: the limiting torques at `GRID` forces in
+kN). Where the limit is still rising at ``F_p`` (larger there than at ``F_p (1 -
+EDGE)``), ``F_p`` is the answer (`_rising_at_top`; since session 25). Elsewhere the search
+is bounded and deterministic: the limiting torques at `GRID` forces in
 geometric progression from ``min_force`` to ``F_p`` and one more at ``F_p (1 - EDGE)``,
 then `ZOOM` rounds of `ZOOM_GRID` forces between the neighbours of the best one (each
 round narrows the bracket fourfold: the force to some 1e-3 of itself, the torque, flat at
@@ -130,7 +132,33 @@ def capacity_force(
 
 
 def _search(flat, top: np.ndarray, floor: float, creep_limit: float, options) -> np.ndarray:
-    """`capacity_force` of the 1-D batch ``flat`` (forces ``(n,)`` [N])."""
+    """`capacity_force` of the 1-D batch ``flat`` (forces ``(n,)`` [N]): ``F_p`` where the
+    limit still rises there (`_rising_at_top`), else the scan and its refinement."""
+    if has_multiple_equilibria(flat.fluid):
+        return _scan(flat, top, floor, creep_limit, options)
+    out = top.copy()
+    rest = np.flatnonzero(~_rising_at_top(flat, top, creep_limit, options))
+    if rest.size:
+        out[rest] = _scan(flat.take(rest), top[rest], floor, creep_limit, options)
+    return out
+
+
+def _rising_at_top(flat, top: np.ndarray, creep_limit: float, options) -> np.ndarray:
+    """Whether each point's limiting torque is larger at ``F_p`` than at ``F_p (1 -
+    EDGE)``: it rises with the force up to its peak and falls beyond (module
+    docstring), so a limit still rising at ``F_p`` is largest there, and the scan below
+    it would find nothing larger (since session 25: two limits instead of ten where the
+    drive is traction-limited up to the pressure bound, the case of the built-in drives).
+    Not used under a law with more than one equilibrium, whose limit is noisy near its
+    peak."""
+    lim = _limits(flat, np.column_stack([top * (1.0 - EDGE), top]), creep_limit, options)
+    return np.isfinite(lim[:, 1]) & (lim[:, 1] > lim[:, 0])
+
+
+def _scan(flat, top: np.ndarray, floor: float, creep_limit: float, options) -> np.ndarray:
+    """The force of the largest limit among `GRID` forces and ``F_p (1 - EDGE)`` and
+    ``F_p``, refined (`_zoom`) where it lies below ``F_p`` (always under a law with more
+    than one equilibrium)."""
     low = np.full(top.shape, float(floor))
     share = np.append(np.linspace(0.0, 1.0, GRID), 1.0)
     forces = np.exp(np.log(low)[:, None] + np.log(top / low)[:, None] * share)

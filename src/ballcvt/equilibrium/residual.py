@@ -27,13 +27,19 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..model.bearings import load_dependent_torque, speed_dependent_torque
+from ..model.bearings import (
+    load_dependent_torque,
+    load_torque_constants,
+    speed_dependent_torque,
+    speed_torque_constants,
+)
 from ..model.film import SPEED_EXPONENT, central_film_thickness
 from ..model.kinematics import body_speeds, creep_term, entrainment_factor, spin
 from ..model.losses import DragMagnitudes, shaft_drags
 from ..model.lubrication import asperities, lubricated_coefficients
 from ..model.traction.contact import ContactState
 from ..model.traction.quadrature import Quadrature
+from . import compiled
 from .problem import EquilibriumProblem
 
 __all__ = [
@@ -133,6 +139,9 @@ def evaluate(
     EquilibriumState
     """
     creep = np.asarray(creep, dtype=float)
+    unit, k = _film_unit(problem), _constants(problem)
+    if compiled.covers(problem, k):
+        return _compiled_rows(problem, creep, None, quadrature, (unit, k))[0]
     at = _contact_inputs(problem, creep)
     mu, chi = lubricated_coefficients(
         ContactState(
@@ -189,9 +198,11 @@ def evaluate_with_jacobian(
     creep = np.asarray(creep, dtype=float)
     nc = creep.shape[-1]
     h = step * np.maximum(np.abs(creep), 1e-4)
+    unit, k = _film_unit(problem), _constants(problem)  # (its sub-batches keep them)
+    if compiled.covers(problem, k):
+        return _compiled_rows(problem, creep, h, quadrature, (unit, k))
     # row 0: the creeps themselves; row j + 1: creep j perturbed by h_j (one pass for all)
     pert = creep[..., None, :] + h[..., None, :] * _offsets(nc)  # (..., 1 + n_c, n_c)
-    _film_unit(problem), _constants(problem)  # on the problem: its sub-batches keep them
     wide = problem.expand()
     wide_at = _contact_inputs(wide, pert)
     sg, u, hf = wide_at.spin, wide_at.u_ref, wide_at.film
@@ -233,6 +244,19 @@ def evaluate_with_jacobian(
     )
     res = wide_state.residual
     jac = (res[..., 1:, :] - res[..., :1, :]) / h[..., :, None]  # (..., j, i)
+    return state, np.swapaxes(jac, -1, -2)
+
+
+def _compiled_rows(problem: EquilibriumProblem, creep, h, quadrature, memos):
+    """`evaluate_with_jacobian` (``h``: the creeps' steps), or `evaluate` (``h`` None: a
+    Jacobian of None) by the compiled kernels (`ballcvt.equilibrium.compiled.evaluate_rows`)."""
+    fields, res = compiled.evaluate_rows(
+        problem, creep, h, quadrature, memos + (_asperities(problem),)
+    )
+    state = EquilibriumState(**fields)
+    if h is None:
+        return state, None
+    jac = (res[:, 1:, :] - res[:, :1, :]) / h[:, :, None]  # (n, j, i)
     return state, np.swapaxes(jac, -1, -2)
 
 
@@ -324,6 +348,11 @@ def _balance_constants(problem: EquilibriumProblem) -> dict:
         "roller_drag": np.sum(pb.roller_drag, axis=-1),
         "shaft_drags": _drag_magnitudes(pb),
         "no_drag": np.zeros(pb.shape),
+        "bearings": (
+            speed_torque_constants(des.roller_bearing_diameter, pb.fluid.kinematic_viscosity, bm),
+            speed_torque_constants(des.idler_bearing_diameter, pb.fluid.kinematic_viscosity, bm),
+            load_torque_constants(des.roller_bearing_diameter, bm),
+        ),
     }
 
 

@@ -11,7 +11,31 @@ import numpy as np
 from ..params.models import BearingModel
 from ..units import rad_s_to_rpm
 
-__all__ = ["speed_dependent_torque", "load_dependent_torque"]
+__all__ = [
+    "speed_dependent_torque",
+    "load_dependent_torque",
+    "speed_torque_constants",
+    "load_torque_constants",
+]
+
+
+def speed_torque_constants(diameter, kinematic_viscosity, model: BearingModel) -> tuple:
+    """The constants of `speed_dependent_torque`: ``(1e-10 f_0 d^3`` [N m] (``d`` in mm),
+    ``nu`` [mm^2/s] times the rpm of 1 rad/s [rpm/(rad/s)], ``c_low``, the exponent
+    ``e)`` (Eq. 15), for ``T_B0 = scale max(c_low, (nu_rpm |speed|)^e)``."""
+    scale = 1e-10 * model.f0 * (diameter * 1e3) ** 3
+    return (
+        scale,
+        rad_s_to_rpm(kinematic_viscosity * 1e6),
+        model.low_speed_factor,
+        model.speed_exponent,
+    )
+
+
+def load_torque_constants(diameter, model: BearingModel) -> tuple:
+    """The constants of `load_dependent_torque`: ``(1e-3 f_1 d^b`` [N m / N^a] (``d`` in
+    mm), ``a)`` (Eq. 16), for ``T_B1 = coef |P|^a``."""
+    return 1e-3 * model.f1 * (diameter * 1e3) ** model.diameter_exponent, model.load_exponent
 
 
 def speed_dependent_torque(speed, diameter, kinematic_viscosity, model: BearingModel):
@@ -41,9 +65,9 @@ def speed_dependent_torque(speed, diameter, kinematic_viscosity, model: BearingM
     """
     # the scalar factors first: two array operations fewer (this runs at every iteration)
     # nu [mm^2/s] times n [rpm] (Eq. 15): the speed's conversion applied to nu, first
-    nu_n = rad_s_to_rpm(kinematic_viscosity * 1e6) * np.abs(np.asarray(speed, dtype=float))
-    scale = 1e-10 * model.f0 * (diameter * 1e3) ** 3
-    return scale * np.maximum(model.low_speed_factor, nu_n**model.speed_exponent)
+    scale, nu_rpm, low, exponent = speed_torque_constants(diameter, kinematic_viscosity, model)
+    nu_n = nu_rpm * np.abs(np.asarray(speed, dtype=float))
+    return scale * np.maximum(low, nu_n**exponent)
 
 
 def load_dependent_torque(load, diameter, model: BearingModel):
@@ -63,5 +87,5 @@ def load_dependent_torque(load, diameter, model: BearingModel):
     ndarray
         Friction torque magnitude [N m].
     """
-    p = np.abs(np.asarray(load, dtype=float))
-    return (1e-3 * model.f1 * (diameter * 1e3) ** model.diameter_exponent) * p**model.load_exponent
+    coef, exponent = load_torque_constants(diameter, model)
+    return coef * np.abs(np.asarray(load, dtype=float)) ** exponent

@@ -57,28 +57,18 @@ def evaluate_rows(problem, creep, h, quadrature, memos) -> tuple[dict, np.ndarra
     the creeps alone); ``memos``: the problem's film at unit speed, its balance constants
     and its asperities. The traction law is evaluated at the creeps in Python, between
     the two kernels."""
-    (unit, k, asp), lay, des = memos, problem.layout, problem.design
-    own = np.ascontiguousarray  # (a broadcast view is read-only: one type for the kernels)
-    geometry = (own(problem.rho), own(problem.sz), lay.radius, lay.z_j, problem.radius)
+    (unit, k, asp) = memos
+    geometry, speed, unit, constants = problem.memo("compiled", lambda: _inputs(problem, unit, k))
     n_rows = 1 if h is None else 1 + creep.shape[-1]
+    own = np.ascontiguousarray
     steps = own(np.zeros(creep.shape) if h is None else h)
-    rows = contact_rows(own(creep), steps, own(problem.input_speed), geometry, own(unit),
-                        SPEED_EXPONENT, n_rows)  # fmt: skip
+    rows = contact_rows(own(creep), steps, speed, geometry, unit, SPEED_EXPONENT, n_rows)
     c, sg, u, hf, om, ws = rows
     at = ContactState(c[:, 0], sg[:, 0], problem.ax, problem.ay, problem.p_max, problem.load,
                       problem.radius, u[:, 0], hf[:, 0])  # fmt: skip
     law = lubricated_coefficients(at, problem.fluid, asp, quadrature, derivatives=h is not None)
     if h is None:  # row 0 alone takes the law's values as they are
         law = law + (np.zeros(c.shape[:1] + c.shape[2:] + (3,)),) * 2
-    per_contact = [own(k[name]) for name in ("kappa_load", "load_radius", "rs_rho", "rs_sz")]
-    per_point = ("roller_drag", "roller_scale")
-    constants = (
-        tuple(per_contact) + geometry[1::-1] + (own(k["idler_load_torque"]),),
-        tuple(own(k[name]) for name in per_point)
-        + (own(problem.torque_scale), own(problem.output_torque)),
-        (problem.radius, lay.z_j, lay.is_idler),
-        (float(des.roller_radius), int(des.n_rollers)),
-    )
     law = tuple(own(v, dtype=float) for v in law)
     res, force, moment, body, axle, t_bls, t_bl, mu, chi = balance_rows(
         law, (c, sg, u, hf), (om, ws), constants, k["bearings"]
@@ -90,6 +80,24 @@ def evaluate_rows(problem, creep, h, quadrature, memos) -> tuple[dict, np.ndarra
               "roller_bearing_torque": t_bls, "idler_bearing_torque": t_bl,
               "residual": res[:, 0], "input_drag": zero, "output_drag": zero.copy()}  # fmt: skip
     return fields, res
+
+
+def _inputs(problem, unit, k) -> tuple:
+    """The kernels' creep-independent inputs of ``problem`` (contiguous arrays, kept on
+    the problem): ``geometry``, ``omega_0``, the film at unit speed and the balances'
+    constants (`contact_rows`, `balance_rows`)."""
+    lay, des, own = problem.layout, problem.design, np.ascontiguousarray
+    geometry = (own(problem.rho), own(problem.sz), lay.radius, lay.z_j, problem.radius)
+    per_contact = [own(k[name]) for name in ("kappa_load", "load_radius", "rs_rho", "rs_sz")]
+    per_point = ("roller_drag", "roller_scale")
+    constants = (
+        tuple(per_contact) + geometry[1::-1] + (own(k["idler_load_torque"]),),
+        tuple(own(k[name]) for name in per_point)
+        + (own(problem.torque_scale), own(problem.output_torque)),
+        (problem.radius, lay.z_j, lay.is_idler),
+        (float(des.roller_radius), int(des.n_rollers)),
+    )
+    return geometry, own(problem.input_speed), own(unit), constants
 
 
 if AVAILABLE:

@@ -78,6 +78,8 @@ class SecantCorrection:
         Jacobians to step with, ``J_a + E`` ``(k, m, m)``: the fresh one where the point is
         not ``near``, its last one otherwise.
         """
+        if active.size == self.near.size:  # every point (``active`` is sorted, unique)
+            active = slice(None)  # views, not copies
         last_res = self.last_res[active]
         # (NaN norms, before a point's first evaluation, compare False)
         linear = (np.abs(res).max(axis=1) < NEAR_NORM) & (np.abs(last_res).max(axis=1) < NEAR_NORM)
@@ -89,7 +91,7 @@ class SecantCorrection:
         else:
             use = linear
         if use.any():
-            k = active[use]
+            k = np.arange(self.near.size)[active][use]
             s_u = s[use]
             jac_s = np.einsum("ijk,ik->ij", self.last_jac[k] + self.correction[k], s_u)
             miss = y[use] - jac_s
@@ -100,5 +102,8 @@ class SecantCorrection:
         if far.any():
             if jac is None:
                 raise ValueError("a point far from its solution needs a fresh Jacobian")
-            self.last_jac[active[far]] = jac[far]
-        return np.ascontiguousarray(self.last_jac[active] + self.correction[active])
+            if far.all():
+                self.last_jac[active] = jac
+            else:
+                self.last_jac[np.arange(self.near.size)[active][far]] = jac[far]
+        return self.last_jac[active] + self.correction[active]  # (a new contiguous array)

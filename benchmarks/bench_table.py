@@ -98,10 +98,14 @@ def cpu_median(fn, short=1.0, repeats=3):
 
 def sweep_rows(quick, clamps=("constant", "cam")):
     """30 x 30 sweeps (Table I, 2000 rpm; quick: 10 x 10): every traction law x constant /
-    cam / optimal clamping (the optimal clamp's target, issue 26: >= 1,000 points/s)."""
+    cam / optimal clamping. Targets (issue 26): the baseline (isothermal law, constant
+    clamp) >= 2,000 points/s; every other law and clamp no worse than 2x the baseline on
+    the same grid (item 1; until session 25 the table asked >= 2,000 points/s of the
+    non-thermal ones and >= 1,000 of the thermal ones); the optimal clamp >= 1,000
+    points/s (item 2)."""
     from ballcvt import Variator
 
-    rows = []
+    rows, base = [], None
     for law in ("isothermal", "viscoelastic", "thermal"):
         v = Variator(traction_law=law)
         for clamp in clamps:
@@ -111,10 +115,15 @@ def sweep_rows(quick, clamps=("constant", "cam")):
             v.sweep(ratio=[1.0], output_torque=[10.0, 20.0], **kw, **OP, progress=False)
             c, w, _ = cpu_median(lambda g=grid, kw=kw: v.sweep(**g, **kw, **OP, progress=False))
             ms = c / n / n * 1e3
-            rate = 1000 if law == "thermal" or clamp == "optimal" else 2000
+            first, base = base is None, ms if base is None else base  # isothermal, constant
+            if clamp == "optimal":  # issue 26, item 2: points per second
+                target, met = ">= 1,000 points/s", 1e3 / ms >= 1000
+            elif first:  # the baseline: the paper's path, >= 2,000 points/s
+                target, met = ">= 2,000 points/s", 1e3 / ms >= 2000
+            else:  # issue 26, item 1: no worse than 2x the baseline on the same grid
+                target, met = "<= 2 x baseline", ms <= 2.0 * base
             rows.append(Row(f"sweep-{law}-{clamp}", f"sweep {n} x {n}, {law} law, {clamp} clamp",
-                            ms, "ms/point", f">= {rate:,} points/s", 1e3 / ms >= rate,
-                            f"{n * n / c:,.0f} points/s"))
+                            ms, "ms/point", target, met, f"{n * n / c:,.0f} points/s"))
     return rows
 
 

@@ -24,6 +24,7 @@ def _variator(case):
         "viscoelastic": lambda: Variator(traction_law="viscoelastic"),
         "thermal": lambda: Variator(traction_law="thermal"),
         "mixed": lambda: Variator(design.with_lubrication("mixed"), fluid),
+        "hub": lambda: Variator(*load_builtin("hub")),  # shaft drags, mixed lubrication
     }[case]()
 
 
@@ -41,7 +42,7 @@ def _relative(a, b):
     return float(np.max(np.abs(a - b)) / (np.max(np.abs(b)) + 1e-300)) if b.size else 0.0
 
 
-@pytest.mark.parametrize("case", ["table1", "single", "viscoelastic", "thermal", "mixed"])
+@pytest.mark.parametrize("case", ["table1", "single", "viscoelastic", "thermal", "mixed", "hub"])
 def test_the_same_states_and_jacobians_as_numpy(case, monkeypatch):
     v = _variator(case)
     p = _problem(v)
@@ -77,9 +78,6 @@ def test_what_it_leaves_to_numpy():
     assert compiled.covers(flat, rs._constants(flat))
     one = build_problem(v.design, v.fluid, v.architecture, 1.0, 10.0, 1500.0, 209.4)
     assert not compiled.covers(one, rs._constants(one))  # not a 1-D batch
-    hub = Variator(*load_builtin("hub"))  # shaft drags
-    ph = _problem(hub)
-    assert not compiled.covers(ph, rs._constants(ph))
     drive = Drive(v.design, v.fluid, v.architecture)
     turning = make_problem(drive, OperatingInputs(np.full(2, 1.5), 10.0, 1500.0, 209.4),
                            CarrierFrame(carrier_speed=50.0))  # tilted: a gyroscopic moment

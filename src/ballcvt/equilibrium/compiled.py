@@ -8,8 +8,8 @@ one of three hundred (the traction kernels do the rest). These two kernels do th
 arithmetic in loops, in the same order, so that they give the NumPy path's numbers to
 the last bit or nearly (tests compare them); the NumPy path stays the reference, and the
 one for the problems these kernels do not cover (`covers`): a batch of other than one
-dimension, a torque condition other than the output torque's, shaft drags, the balls'
-gyroscopic moment.
+dimension, a torque condition other than the output torque's, the balls' gyroscopic
+moment.
 
 `contact_rows` gives the contact inputs of every row (Eqs. 7-14, 55, 56); the traction
 law is then evaluated at row 0 by the caller, in Python (any registered law); `balance_rows`
@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from ..model.film import SPEED_EXPONENT
+from ..model.losses import STICK_SPEED
 from ..model.lubrication import lubricated_coefficients
 from ..model.traction.contact import ContactState
 
@@ -46,7 +47,6 @@ def covers(problem, constants: dict) -> bool:
         AVAILABLE
         and problem.tilt.ndim == 1
         and problem.torque_weights == (0.0, 1.0)
-        and constants["shaft_drags"] is None
         and not constants["gyro"]
     )
 
@@ -70,15 +70,14 @@ def evaluate_rows(problem, creep, h, quadrature, memos) -> tuple[dict, np.ndarra
     if h is None:  # row 0 alone takes the law's values as they are
         law = law + (np.zeros(c.shape[:1] + c.shape[2:] + (3,)),) * 2
     law = tuple(own(v, dtype=float) for v in law)
-    res, force, moment, body, axle, t_bls, t_bl, mu, chi = balance_rows(
-        law, (c, sg, u, hf), (om, ws), constants, k["bearings"]
-    )
-    zero = np.zeros(problem.shape)
+    res, row0, t_bls, drags = balance_rows(law, (c, sg, u, hf), (om, ws), constants,
+                                           k["bearings"])  # fmt: skip
+    force, moment, body, t_bl, mu, chi, axle = row0
     fields = {"creep": creep + 0.0, "omega_s": ws[:, 0], "omega": om[:, 0], "spin": sg[:, 0],
               "u_ref": u[:, 0], "film": hf[:, 0], "mu": mu, "chi": chi, "force": force,
-              "moment": moment, "body_torque": body, "axle_reactions": axle,
+              "moment": moment, "body_torque": body, "axle_reactions": axle[:, :2],
               "roller_bearing_torque": t_bls, "idler_bearing_torque": t_bl,
-              "residual": res[:, 0], "input_drag": zero, "output_drag": zero.copy()}  # fmt: skip
+              "residual": res[:, 0], "input_drag": drags[:, 0], "output_drag": drags[:, 1]}  # fmt: skip
     return fields, res
 
 
@@ -96,8 +95,19 @@ def _inputs(problem, unit, k) -> tuple:
         + (own(problem.torque_scale), own(problem.output_torque)),
         (problem.radius, lay.z_j, lay.is_idler),
         (float(des.roller_radius), int(des.n_rollers)),
+        _drags(k["shaft_drags"], problem.shape[0]),
     )
     return geometry, own(problem.input_speed), own(unit), constants
+
+
+def _drags(drags, n: int) -> tuple:
+    """The shaft and between-disc drag magnitudes by kind ``(n, n_kinds)`` (none: no
+    kinds) and the stick speed of their direction (`shaft_drags`)."""
+    if drags is None:
+        none = np.zeros((n, 0))
+        return none, none, none, STICK_SPEED
+    own = np.ascontiguousarray
+    return own(drags.input), own(drags.output), own(drags.between), STICK_SPEED
 
 
 if AVAILABLE:
@@ -175,14 +185,15 @@ if AVAILABLE:
         ``law``, ``rows``: as `_linearised`; ``speeds``: ``(omega, omega_s)`` of
         `contact_rows`; ``k``: ``(kappa F_N, F_N r_c, r_S rho, r_S sz, sz, rho,
         idler load torque)`` ``(n, n_c)``, ``(roller drag, F_N0 r_S, n F_N0 r_S, T_2)``
-        ``(n,)``, ``(r_c, z_j, is_idler)`` ``(n_c,)``, ``(r_S, n)``; ``bearings``: the
-        roller's and the idler's `speed_torque_constants` and the roller's
-        `load_torque_constants`. Returns ``res`` ``(n, 1 + n_c, n_c)``, and of row 0
-        ``force, moment, body`` ``(n, n_c)``, ``axle`` ``(n, 2)``, ``t_bls`` ``(n,)``,
-        ``t_bl`` ``(n, n_c)``, ``mu, chi`` ``(n, n_c)``.
+        ``(n,)``, ``(r_c, z_j, is_idler)`` ``(n_c,)``, ``(r_S, n)``, the shaft and
+        between-disc drags (`_drags`); ``bearings``: the roller's and the idler's
+        `speed_torque_constants` and the roller's `load_torque_constants`. Returns ``res``
+        ``(n, rows, n_c)``, and of row 0 ``(force, moment, body, t_bl, mu, chi)`` ``(n,
+        n_c)`` and the axle reactions ``(n, n_c)`` (the first two columns), ``t_bls``
+        ``(n,)`` and the input and output shafts' drags ``(n, 2)``.
         """
         om, ws = speeds
-        contact, point, layout, ball = k
+        contact, point, layout, ball, drags = k
         kappa_load, load_radius, rs_rho, rs_sz, sz, rho, idler_load = contact
         roller_drag, roller_scale, scale, t2 = point
         radius, z_j, is_idler = layout
@@ -190,9 +201,8 @@ if AVAILABLE:
         roller, idler, load = bearings
         n, n_rows, nc = om.shape
         res = np.empty((n, n_rows, nc))
-        force0, moment0, body0 = np.empty((n, nc)), np.empty((n, nc)), np.empty((n, nc))
-        t_bl0, mu_0, chi_0 = np.empty((n, nc)), np.empty((n, nc)), np.empty((n, nc))
-        axle0, t_bls0 = np.empty((n, 2)), np.empty(n)
+        row0 = np.empty((7, n, nc))  # force, moment, body, t_bl, mu, chi, axle
+        t_bls0, drag0 = np.empty(n), np.empty((n, 2))
         force, moment, t_bl = np.empty(nc), np.empty(nc), np.empty(nc)
         for i in range(n):
             for r in range(n_rows):
@@ -205,7 +215,7 @@ if AVAILABLE:
                     m_u += rho[i, m] * moment[m] - rs_sz[i, m] * force[m]
                     f_sum += force[m]
                     if r == 0:
-                        mu_0[i, m], chi_0[i, m] = mu, chi
+                        row0[4, i, m], row0[5, i, m] = mu, chi
                 f_sum = -f_sum
                 a0 = 0.5 * (f_sum + 2.0 * m_u / rs)
                 a1 = 0.5 * (f_sum - 2.0 * m_u / rs)
@@ -214,6 +224,7 @@ if AVAILABLE:
                     load[0] * abs(a0) ** load[1] + load[0] * abs(a1) ** load[1]
                 )
                 res[i, r, 0] = (m_s - _sign(w_s) * (t_bls + roller_drag[i])) / roller_scale[i]
+                t_in, t_out = _shaft_drags(drags, i, om[i, r, 0], om[i, r, nc - 1])
                 for m in range(nc):
                     w = om[i, r, m]
                     t_bl[m] = _speed_torque(w, idler) + idler_load[i, m] if is_idler[m] else 0.0
@@ -221,13 +232,26 @@ if AVAILABLE:
                     if 0 < m < nc - 1:
                         res[i, r, m] = (body - _sign(w) * t_bl[m]) / scale[i]
                     elif m == nc - 1:
-                        res[i, r, m] = (body - (t2[i] + 0.0)) / scale[i]
+                        res[i, r, m] = (body - (t2[i] + t_out)) / scale[i]
                     if r == 0:
-                        body0[i, m] = body
+                        row0[2, i, m] = body
                 if r == 0:
-                    force0[i], moment0[i], t_bl0[i] = force, moment, t_bl
-                    axle0[i, 0], axle0[i, 1], t_bls0[i] = a0, a1, t_bls
-        return res, force0, moment0, body0, axle0, t_bls0, t_bl0, mu_0, chi_0
+                    row0[0, i], row0[1, i], row0[3, i] = force, moment, t_bl
+                    row0[6, i, 0], row0[6, i, 1], t_bls0[i] = a0, a1, t_bls
+                    drag0[i, 0], drag0[i, 1] = t_in, t_out
+        return res, row0, t_bls0, drag0
+
+    @njit(cache=True)
+    def _shaft_drags(drags, i, w0, w2):
+        """The input and output shafts' drags of point ``i`` at the disc speeds ``w0, w2``
+        [rad/s], summed over the kinds (`ballcvt.model.losses.shaft_drags`)."""
+        d_in, d_out, d_between, stick = drags
+        t_in = t_out = 0.0
+        for q in range(d_in.shape[1]):
+            between = d_between[i, q] * math.tanh((w0 - w2) / stick)
+            t_in += d_in[i, q] * math.tanh(w0 / stick) + between
+            t_out += d_out[i, q] * math.tanh(w2 / stick) - between
+        return t_in, t_out
 
     @njit(cache=True)
     def _speed_torque(speed, constants):

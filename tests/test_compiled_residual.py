@@ -85,3 +85,27 @@ def test_what_it_leaves_to_numpy():
     weights = make_problem(drive, OperatingInputs(np.ones(2), 10.0, 1500.0, 209.4),
                            CarrierFrame(torque_weights=(1.0, 1.0), signed_torque=True))
     assert not compiled.covers(weights, rs._constants(weights))
+
+
+def test_no_warning_from_a_problem_of_broadcast_inputs():
+    """A problem's scalar inputs are broadcast views (read-only, warning on write): the
+    kernels get writeable copies, so that numba's typing raises no FutureWarning."""
+    import warnings
+
+    for v in (_variator("table1"), _variator("hub")):
+        p = build_problem(v.design, v.fluid, v.architecture, np.ones(1), 40.0, 2000.0,
+                          209.4).flat()
+        x = solve_batch(p, OPTIONS).state.creep
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            rs.evaluate_with_jacobian(p, x, OPTIONS.quadrature)
+            rs.evaluate(p, x, OPTIONS.quadrature)
+        assert [str(w.message) for w in caught] == []
+        # numba warns once a process, on the first call that types such a view (reading
+        # its flags warns): none of the kernels' inputs is one
+        geometry, speed, unit, constants = p.__dict__["_memo_compiled"]
+        per_point = [speed, unit, *geometry[:2], *constants[0], *constants[1]]
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            assert all(a.flags.writeable for a in per_point)
+        assert [str(w.message) for w in caught] == []

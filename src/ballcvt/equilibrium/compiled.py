@@ -85,7 +85,8 @@ def _inputs(problem, unit, k) -> tuple:
     """The kernels' creep-independent inputs of ``problem`` (contiguous arrays, kept on
     the problem): ``geometry``, ``omega_0``, the film at unit speed and the balances'
     constants (`contact_rows`, `balance_rows`)."""
-    lay, des, own = problem.layout, problem.design, np.ascontiguousarray
+    lay, des = problem.layout, problem.design
+    own = lambda a: np.array(a, dtype=float)  # noqa: E731 (a writeable copy: once a problem)
     geometry = (own(problem.rho), own(problem.sz), lay.radius, lay.z_j, problem.radius)
     per_contact = [own(k[name]) for name in ("kappa_load", "load_radius", "rs_rho", "rs_sz")]
     per_point = ("roller_drag", "roller_scale")
@@ -106,8 +107,8 @@ def _drags(drags, n: int) -> tuple:
     if drags is None:
         none = np.zeros((n, 0))
         return none, none, none, STICK_SPEED
-    own = np.ascontiguousarray
-    return own(drags.input), own(drags.output), own(drags.between), STICK_SPEED
+    return (np.array(drags.input, dtype=float), np.array(drags.output, dtype=float),
+            np.array(drags.between, dtype=float), STICK_SPEED)  # fmt: skip
 
 
 if AVAILABLE:

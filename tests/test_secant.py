@@ -65,3 +65,36 @@ def test_the_analytic_jacobian_is_off_and_newton_still_converges_fast():
         sol = solve_batch(pb, v.options, x * 1.002, predict=False)
     assert sol.converged.all() and len(calls) <= 2
     assert np.allclose(sol.state.creep, x, rtol=1e-9, atol=1e-14)
+
+
+def test_the_compiled_update_is_the_plain_pythons():
+    """`update_points` runs compiled (numba) or as written (without numba): the same
+    corrections and Jacobians, NaN residuals included (session 25)."""
+    from ballcvt.solvers import secant
+
+    if secant.update_compiled is None:  # pragma: no cover - numba is a dependency
+        pytest.skip("numba missing")
+    rng = np.random.default_rng(7)
+    n, m = 6, 4
+    states = []
+    for _ in range(2):
+        sec = SecantCorrection.start(n, m)
+        states.append((sec.correction, sec.last_x, sec.last_res, sec.last_jac, sec.near))
+    jac = rng.normal(size=(n, m, m)) + 3 * np.eye(m)
+    active = np.array([0, 2, 3, 5])
+    outs = []
+    for state, step in zip(states, (secant.update_compiled, secant.update_points)):
+        got = []
+        for scale in (1e-3, 1e-6, 1e-7):  # far, then near: the second update learns
+            x = rng.normal(size=(active.size, m)) * scale
+            res = np.einsum("ijk,ik->ij", jac[active], x)
+            res[1] = np.nan if scale == 1e-7 else res[1]  # a point gone NaN learns nothing
+            got.append(step(active, x, res, 1.01 * jac[active], state, NEAR_NORM))  # 1 % off
+        outs.append(got)
+        rng = np.random.default_rng(7)
+        jac = rng.normal(size=(n, m, m)) + 3 * np.eye(m)
+    for a, b in zip(*outs):
+        assert np.array_equal(a, b)
+    for a, b in zip(*states):
+        assert np.array_equal(a, b, equal_nan=True)
+    assert np.abs(states[0][0][active[0]]).max() > 1e-3  # a correction was learnt

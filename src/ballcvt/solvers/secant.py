@@ -28,11 +28,19 @@ path to the tolerance changes.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-__all__ = ["SecantCorrection", "NEAR_NORM"]
+njit: Any
+try:
+    from numba import njit
+except ImportError:  # pragma: no cover - numba is a declared dependency
+    njit = None
+
+__all__ = ["SecantCorrection", "NEAR_NORM", "update_points"]
 
 #: Largest residual norm [-] of both evaluations of a secant update.
 NEAR_NORM = 1e-4
@@ -76,34 +84,67 @@ class SecantCorrection:
         with residuals ``res`` ``(k, m)`` and analytic Jacobians ``jac`` ``(k, m, m)`` (None
         for a value-only evaluation, which only points ``near`` may have); returns the
         Jacobians to step with, ``J_a + E`` ``(k, m, m)``: the fresh one where the point is
-        not ``near``, its last one otherwise.
+        not ``near``, its last one otherwise (`update_points`).
         """
-        if active.size == self.near.size:  # every point (``active`` is sorted, unique)
-            active = slice(None)  # views, not copies
-        last_res = self.last_res[active]
-        # (NaN norms, before a point's first evaluation, compare False)
-        linear = (np.abs(res).max(axis=1) < NEAR_NORM) & (np.abs(last_res).max(axis=1) < NEAR_NORM)
-        if linear.any():  # (most evaluations are far from the solution: no update)
-            s = x - self.last_x[active]
-            y = res - last_res
-            ss = np.einsum("ij,ij->i", s, s)
-            use = linear & (ss > 0) & np.isfinite(y).all(axis=1) & np.isfinite(ss)
-        else:
-            use = linear
-        if use.any():
-            k = np.arange(self.near.size)[active][use]
-            s_u = s[use]
-            jac_s = np.einsum("ijk,ik->ij", self.last_jac[k] + self.correction[k], s_u)
-            miss = y[use] - jac_s
-            self.correction[k] += miss[:, :, None] * s_u[:, None, :] / ss[use][:, None, None]
-        self.last_x[active] = x
-        self.last_res[active] = res
-        far = ~self.near[active]
-        if far.any():
-            if jac is None:
+        active = np.asarray(active)
+        if jac is None:
+            if not self.near[active].all():
                 raise ValueError("a point far from its solution needs a fresh Jacobian")
-            if far.all():
-                self.last_jac[active] = jac
-            else:
-                self.last_jac[np.arange(self.near.size)[active][far]] = jac[far]
-        return self.last_jac[active] + self.correction[active]  # (a new contiguous array)
+            jac = self.last_jac[active]  # (not read: every point keeps its last)
+        state = (self.correction, self.last_x, self.last_res, self.last_jac, self.near)
+        step = update_compiled if update_compiled is not None else update_points
+        return step(active, x, res, jac, state, NEAR_NORM)
+
+
+def update_points(active, x, res, jac, state, near_norm):
+    """The loop of `SecantCorrection.update` over the points ``active`` (compiled where
+    numba is installed: `update_compiled`); ``state``: the correction's ``(correction,
+    last_x, last_res, last_jac, near)``, updated in place. A point whose residual norms,
+    this evaluation's and its last, are both below ``near_norm`` (NaN: not) updates its
+    correction by Broyden's good update along its move; every point keeps these creeps
+    and residuals, and a point not ``near`` this Jacobian."""
+    correction, last_x, last_res, last_jac, near = state
+    k, m = x.shape
+    out = np.empty((k, m, m))
+    y = np.empty(m)
+    s = np.empty(m)
+    for p in range(k):
+        a = active[p]
+        if _small(res[p], near_norm) and _small(last_res[a], near_norm):
+            ss = 0.0
+            finite = True
+            for i in range(m):
+                s[i] = x[p, i] - last_x[a, i]
+                y[i] = res[p, i] - last_res[a, i]
+                ss += s[i] * s[i]
+                finite = finite and math.isfinite(y[i])
+            if ss > 0.0 and finite and math.isfinite(ss):
+                for i in range(m):
+                    jac_s = 0.0
+                    for j in range(m):
+                        jac_s += (last_jac[a, i, j] + correction[a, i, j]) * s[j]
+                    miss = y[i] - jac_s
+                    for j in range(m):
+                        correction[a, i, j] += miss * s[j] / ss
+        for i in range(m):
+            last_x[a, i] = x[p, i]
+            last_res[a, i] = res[p, i]
+        for i in range(m):
+            for j in range(m):
+                if not near[a]:
+                    last_jac[a, i, j] = jac[p, i, j]
+                out[p, i, j] = last_jac[a, i, j] + correction[a, i, j]
+    return out
+
+
+def _small(values, bound) -> bool:
+    """Whether every one of ``values`` is finite and its largest magnitude below ``bound``."""
+    for v in values:
+        if not abs(v) < bound:  # NaN too
+            return False
+    return True
+
+
+#: `update_points` and `_small` compiled (None without numba).
+_small = njit(cache=True)(_small) if njit is not None else _small
+update_compiled: Any = njit(cache=True)(update_points) if njit is not None else None

@@ -35,7 +35,7 @@ try:
 except ImportError:  # pragma: no cover - numba is a declared dependency
     njit = None
 
-__all__ = ["AVAILABLE", "covers", "evaluate_rows", "contact_rows", "balance_rows"]
+__all__ = ["AVAILABLE", "covers", "evaluate_rows", "contact_rows", "balance_rows", "jacobian_rows"]
 
 AVAILABLE = njit is not None
 
@@ -69,7 +69,6 @@ def evaluate_rows(problem, creep, h, quadrature, memos) -> tuple[dict, np.ndarra
     law = lubricated_coefficients(at, problem.fluid, asp, quadrature, derivatives=h is not None)
     if h is None:  # row 0 alone takes the law's values as they are
         law = law + (np.zeros(c.shape[:1] + c.shape[2:] + (3,)),) * 2
-    law = tuple(own(v, dtype=float) for v in law)
     res, row0, t_bls, drags = balance_rows(law, (c, sg, u, hf), (om, ws), constants,
                                            k["bearings"])  # fmt: skip
     force, moment, body, t_bl, mu, chi, axle = row0
@@ -243,6 +242,18 @@ if AVAILABLE:
         return res, row0, t_bls0, drag0
 
     @njit(cache=True)
+    def jacobian_rows(res, h):
+        """``d res_m / d creep_j`` ``(n, n_c, n_c)`` by forward differences of the rows
+        ``res`` ``(n, 1 + n_c, n_c)`` of `balance_rows`, ``h`` ``(n, n_c)`` the steps."""
+        n, rows, nc = res.shape
+        jac = np.empty((n, nc, nc))
+        for i in range(n):
+            for m in range(nc):
+                for j in range(nc):
+                    jac[i, m, j] = (res[i, j + 1, m] - res[i, 0, m]) / h[i, j]
+        return jac
+
+    @njit(cache=True)
     def _shaft_drags(drags, i, w0, w2):
         """The input and output shafts' drags of point ``i`` at the disc speeds ``w0, w2``
         [rad/s], summed over the kinds (`ballcvt.model.losses.shaft_drags`)."""
@@ -262,4 +273,4 @@ if AVAILABLE:
         return scale * (v if not low > v else low)
 
 else:  # pragma: no cover
-    contact_rows = balance_rows = None  # type: ignore[assignment]
+    contact_rows = balance_rows = jacobian_rows = None  # type: ignore[assignment]

@@ -253,11 +253,9 @@ def _compiled_rows(problem: EquilibriumProblem, creep, h, quadrature, memos):
     fields, res = compiled.evaluate_rows(
         problem, creep, h, quadrature, memos + (_asperities(problem),)
     )
-    state = EquilibriumState(**fields)
-    if h is None:
-        return state, None
-    jac = (res[:, 1:, :] - res[:, :1, :]) / h[:, :, None]  # (n, j, i)
-    return state, np.swapaxes(jac, -1, -2)
+    state = object.__new__(EquilibriumState)  # every field given: no __init__ to run
+    state.__dict__.update(fields)
+    return state, None if h is None else compiled.jacobian_rows(res, h)
 
 
 @lru_cache(maxsize=8)

@@ -354,6 +354,7 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
         if active.size == 0:
             break
         whole = active.size == n  # every point still iterates: no gathers or scatters
+        at = slice(None) if whole else active  # (views of every point: no index arrays)
         sub, xa = (flat, x) if whole else (flat.take(active), x[active])
         jac = None
         if confirm:
@@ -362,15 +363,15 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
             state, jac = evaluate_with_jacobian(sub, xa, options.quadrature)
             if pinned is not None:
                 jac = jac[:, :m][:, :, free]
-        iterations[active] += 1
+        iterations[at] += 1
         final = state if final is None or whole else _scatter(final, state, active)
-        fresh[active] = True
+        fresh[at] = True
         res = np.ascontiguousarray(state.residual[:, :m])
         # near its solution a point steps with its last Jacobian, corrected
         jac = secant.update(active, xa[:, free], res, jac)
-        before = it.best[active]
+        before = it.best[at].copy()  # (`_advance` updates the best norms in place)
         norm = _norm(res)
-        secant.near[active] = (norm <= CONFIRM_NORM) & (norm < before)
+        secant.near[at] = (norm <= CONFIRM_NORM) & (norm < before)
         kept = _advance(it, active, res, jac, free, options.tol)
         confirm = bool(secant.near[kept].all())  # no fresh Jacobian needed
         if patience is not None:

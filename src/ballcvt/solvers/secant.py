@@ -111,19 +111,15 @@ def update_points(active, x, res, jac, state, near_norm):
     for p in range(k):
         a = active[p]
         if _small(res[p], near_norm) and _small(last_res[a], near_norm):
-            ss = 0.0
             finite = True
             for i in range(m):
                 s[i] = x[p, i] - last_x[a, i]
                 y[i] = res[p, i] - last_res[a, i]
-                ss += s[i] * s[i]
                 finite = finite and math.isfinite(y[i])
+            ss = _dot(s, s)
             if ss > 0.0 and finite and math.isfinite(ss):
                 for i in range(m):
-                    jac_s = 0.0
-                    for j in range(m):
-                        jac_s += (last_jac[a, i, j] + correction[a, i, j]) * s[j]
-                    miss = y[i] - jac_s
+                    miss = y[i] - _dot(last_jac[a, i] + correction[a, i], s)
                     for j in range(m):
                         correction[a, i, j] += miss * s[j] / ss
         for i in range(m):
@@ -137,6 +133,19 @@ def update_points(active, x, res, jac, state, near_norm):
     return out
 
 
+def _dot(u, v) -> float:
+    """``u . v`` summed as NumPy's ``einsum`` sums a few terms (two running sums, of the
+    even and of the odd terms; the same bits up to six terms): Newton's path near a fold
+    of the thermal law turns on the last bit (harden task 2125:54)."""
+    even = odd = 0.0
+    for j in range(u.shape[0]):
+        if j % 2 == 0:
+            even += u[j] * v[j]
+        else:
+            odd += u[j] * v[j]
+    return even + odd
+
+
 def _small(values, bound) -> bool:
     """Whether every one of ``values`` is finite and its largest magnitude below ``bound``."""
     for v in values:
@@ -145,6 +154,7 @@ def _small(values, bound) -> bool:
     return True
 
 
-#: `update_points` and `_small` compiled (None without numba).
+#: `update_points`, `_dot` and `_small` compiled (None without numba).
 _small = njit(cache=True)(_small) if njit is not None else _small
+_dot = njit(cache=True)(_dot) if njit is not None else _dot
 update_compiled: Any = njit(cache=True)(update_points) if njit is not None else None

@@ -302,13 +302,15 @@ def drag_magnitudes(
         np.asarray(v, dtype=float)
         for v in (input_speed, output_speed, roller_speed, thrust, output_torque)
     )
-    shape = np.broadcast_shapes(w0.shape, w2.shape, ws.shape, fax.shape, t2.shape)
-    speed_ratio = np.abs(np.divide(w2, w0, out=np.zeros(shape), where=w0 != 0.0))
-    t0 = np.abs(t2) * speed_ratio
+    shape = np.broadcast(w0, w2, ws, fax, t2).shape
     kinds = drag_kinds()
     out = {m: np.zeros(shape + (len(kinds),)) for m in ("roller", "input", "output", "between")}
-    speeds = {"roller": ws, "input": w0, "output": w2, "between": w0 - w2}
-    for term in active_terms(design):
+    terms = active_terms(design)
+    if terms:  # (none: the paper's drive, every magnitude zero)
+        speed_ratio = np.abs(np.divide(w2, w0, out=np.zeros(shape), where=w0 != 0.0))
+        t0 = np.abs(t2) * speed_ratio
+        speeds = {"roller": ws, "input": w0, "output": w2, "between": w0 - w2}
+    for term in terms:
         col = kinds.index(term.kind)
         for member in _MEMBERS[term.acts_on]:
             at = DragInputs(design, fluid, speeds[member], fax, t0)

@@ -71,19 +71,6 @@ NEAR = 5e-3
 #: misses the search rule's optimum by some ``2 COARSE_NEAR^2`` (8e-4), well within the
 #: `NEAR` stencil the full rule's search starts on.
 COARSE_NEAR = 0.02
-#: First guess of the optimum: ``ln F_N0 = a + b l + c l^2 + d l^3 + (e + g l) ln omega_0
-#: + f ln tau``, ``l = ln T_m``, ``T_m`` the larger of the output torque and the input
-#: torque ``tau T_2`` [N m] within `GUESS_TORQUES` (growing as ``200 + 14 T_m`` beyond),
-#: ``omega_0`` [rad/s]: a least-squares fit to the optima of the two built-in drives
-#: (Table I and the hub; 60 to 5000 rpm, ratios 0.5 to 2, output torques 1 to 100 N m:
-#: 1,512 optima, session 25). Its error in ``ln F``: mean 0.062, 90 % of points within
-#: 0.131; before, ``F = 200 + 14 T_m``: 0.139 and 0.305, and 0.31 on the duty cycles
-#: at 180 rpm below 20 N m (0.079 with the fit), whose first pass then searched four or
-#: five rounds. It only says where the search starts: the optimum the search certifies
-#: does not depend on it.
-GUESS_FIT = (5.539464, 0.300518, -0.051069, 0.016399, -0.034848, 0.014168, 0.002794)
-#: The fit's range of ``T_m`` [N m].
-GUESS_TORQUES = (1.0, 200.0)
 #: Half-width in ``ln F_N0`` [-] of the first three forces around the guess.
 WIDTH = 0.1
 #: Newton iterations (per stage) of a solve in the search (the coarse rule a duty cycle
@@ -157,16 +144,11 @@ def _limits(problem: EquilibriumProblem, law: OptimalClamp):
 
 
 def _guess(problem: EquilibriumProblem, lo, hi) -> np.ndarray:
-    """First guess of ``ln F_N0`` [-] (`GUESS_FIT`); kept ``WIDTH`` inside ``(lo, hi)`` so
-    that the first three forces are admissible."""
+    """First guess of ``ln F_N0`` [-]: the optimum of the drives studied grows about
+    linearly with the larger of the input and output torques, ``F ~ 200 + 14 T`` [N];
+    kept ``WIDTH`` inside ``(lo, hi)`` so that the first three forces are admissible."""
     torque = np.abs(problem.output_torque) * np.maximum(1.0, np.abs(problem.ratio))
-    a, b, c, d, e, f, g = GUESS_FIT
-    t_lo, t_hi = GUESS_TORQUES
-    lt = np.log(np.clip(torque, t_lo, t_hi))
-    lw = np.log(problem.input_speed)
-    u = a + lt * (b + lt * (c + lt * d)) + lw * (e + g * lt) + f * np.log(np.abs(problem.ratio))
-    # outside the fitted torques, the growth of ``F ~ 200 + 14 T``
-    u = u + np.log((200.0 + 14.0 * torque) / (200.0 + 14.0 * np.clip(torque, t_lo, t_hi)))
+    u = np.log(200.0 + 14.0 * torque)
     return np.clip(u, lo + WIDTH, hi - WIDTH)
 
 

@@ -103,7 +103,7 @@ def test_no_warning_from_a_problem_of_broadcast_inputs():
         assert [str(w.message) for w in caught] == []
         # numba warns once a process, on the first call that types such a view (reading
         # its flags warns): none of the kernels' inputs is one
-        geometry, speed, unit, constants = p.__dict__["_memo_compiled"]
+        geometry, speed, unit, constants, _ = p.__dict__["_memo_compiled"]
         per_point = [speed, unit, *geometry[:2], *constants[0], *constants[1]]
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")

@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from ..model.bearings import load_torque_constants, speed_torque_constants
 from ..model.film import SPEED_EXPONENT
 from ..model.losses import STICK_SPEED
 from ..model.lubrication import lubricated_coefficients
@@ -57,8 +58,10 @@ def evaluate_rows(problem, creep, h, quadrature, memos) -> tuple[dict, np.ndarra
     the creeps alone); ``memos``: the problem's film at unit speed, its balance constants
     and its asperities. The traction law is evaluated at the creeps in Python, between
     the two kernels."""
-    (unit, k, asp) = memos
-    geometry, speed, unit, constants = problem.memo("compiled", lambda: _inputs(problem, unit, k))
+    film_unit, k, asp = memos
+    geometry, speed, unit, constants, bearings = problem.memo(
+        "compiled", lambda: _inputs(problem, film_unit, k)
+    )
     n_rows = 1 if h is None else 1 + creep.shape[-1]
     own = np.ascontiguousarray
     steps = own(np.zeros(creep.shape) if h is None else h)
@@ -69,12 +72,12 @@ def evaluate_rows(problem, creep, h, quadrature, memos) -> tuple[dict, np.ndarra
     law = lubricated_coefficients(at, problem.fluid, asp, quadrature, derivatives=h is not None)
     if h is None:  # row 0 alone takes the law's values as they are
         law = law + (np.zeros(c.shape[:1] + c.shape[2:] + (3,)),) * 2
-    res, row0, t_bls, drags = balance_rows(law, (c, sg, u, hf), (om, ws), constants,
-                                           k["bearings"])  # fmt: skip
-    force, moment, body, t_bl, mu, chi, axle = row0
+    res, row0, axle, t_bls, drags = balance_rows(law, (c, sg, u, hf), (om, ws), constants,
+                                                 bearings)  # fmt: skip
+    force, moment, body, t_bl, mu, chi = row0
     fields = {"creep": creep + 0.0, "omega_s": ws[:, 0], "omega": om[:, 0], "spin": sg[:, 0],
               "u_ref": u[:, 0], "film": hf[:, 0], "mu": mu, "chi": chi, "force": force,
-              "moment": moment, "body_torque": body, "axle_reactions": axle[:, :2],
+              "moment": moment, "body_torque": body, "axle_reactions": axle,
               "roller_bearing_torque": t_bls, "idler_bearing_torque": t_bl,
               "residual": res[:, 0], "input_drag": drags[:, 0], "output_drag": drags[:, 1]}  # fmt: skip
     return fields, res
@@ -82,9 +85,14 @@ def evaluate_rows(problem, creep, h, quadrature, memos) -> tuple[dict, np.ndarra
 
 def _inputs(problem, unit, k) -> tuple:
     """The kernels' creep-independent inputs of ``problem`` (contiguous arrays, kept on
-    the problem): ``geometry``, ``omega_0``, the film at unit speed and the balances'
-    constants (`contact_rows`, `balance_rows`)."""
-    lay, des = problem.layout, problem.design
+    the problem): ``geometry``, ``omega_0``, the film at unit speed, the balances'
+    constants and the bearings' (`contact_rows`, `balance_rows`)."""
+    lay, des, nu = problem.layout, problem.design, problem.fluid.kinematic_viscosity
+    bearings = (
+        speed_torque_constants(des.roller_bearing_diameter, nu, des.bearings),
+        speed_torque_constants(des.idler_bearing_diameter, nu, des.bearings),
+        load_torque_constants(des.roller_bearing_diameter, des.bearings),
+    )
     own = lambda a: np.array(a, dtype=float)  # noqa: E731 (a writeable copy: once a problem)
     geometry = (own(problem.rho), own(problem.sz), lay.radius, lay.z_j, problem.radius)
     per_contact = [own(k[name]) for name in ("kappa_load", "load_radius", "rs_rho", "rs_sz")]
@@ -97,7 +105,7 @@ def _inputs(problem, unit, k) -> tuple:
         (float(des.roller_radius), int(des.n_rollers)),
         _drags(k["shaft_drags"], problem.shape[0]),
     )
-    return geometry, own(problem.input_speed), own(unit), constants
+    return geometry, own(problem.input_speed), own(unit), constants, bearings
 
 
 def _drags(drags, n: int) -> tuple:
@@ -189,8 +197,8 @@ if AVAILABLE:
         between-disc drags (`_drags`); ``bearings``: the roller's and the idler's
         `speed_torque_constants` and the roller's `load_torque_constants`. Returns ``res``
         ``(n, rows, n_c)``, and of row 0 ``(force, moment, body, t_bl, mu, chi)`` ``(n,
-        n_c)`` and the axle reactions ``(n, n_c)`` (the first two columns), ``t_bls``
-        ``(n,)`` and the input and output shafts' drags ``(n, 2)``.
+        n_c)``, the axle reactions ``(n, 2)``, ``t_bls`` ``(n,)`` and the input and output
+        shafts' drags ``(n, 2)``.
         """
         om, ws = speeds
         contact, point, layout, ball, drags = k
@@ -201,8 +209,8 @@ if AVAILABLE:
         roller, idler, load = bearings
         n, n_rows, nc = om.shape
         res = np.empty((n, n_rows, nc))
-        row0 = np.empty((7, n, nc))  # force, moment, body, t_bl, mu, chi, axle
-        t_bls0, drag0 = np.empty(n), np.empty((n, 2))
+        row0 = np.empty((6, n, nc))  # force, moment, body, t_bl, mu, chi
+        axle0, t_bls0, drag0 = np.empty((n, 2)), np.empty(n), np.empty((n, 2))
         force, moment, t_bl = np.empty(nc), np.empty(nc), np.empty(nc)
         for i in range(n):
             for r in range(n_rows):
@@ -237,9 +245,9 @@ if AVAILABLE:
                         row0[2, i, m] = body
                 if r == 0:
                     row0[0, i], row0[1, i], row0[3, i] = force, moment, t_bl
-                    row0[6, i, 0], row0[6, i, 1], t_bls0[i] = a0, a1, t_bls
+                    axle0[i, 0], axle0[i, 1], t_bls0[i] = a0, a1, t_bls
                     drag0[i, 0], drag0[i, 1] = t_in, t_out
-        return res, row0, t_bls0, drag0
+        return res, row0, axle0, t_bls0, drag0
 
     @njit(cache=True)
     def jacobian_rows(res, h):

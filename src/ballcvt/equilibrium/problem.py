@@ -242,7 +242,7 @@ def _carry(value, ndim: int, batch, per_contact):
     for k, v in value.items():
         if isinstance(v, np.ndarray):
             out[k] = batch(v) if v.ndim == ndim else per_contact(v)
-        elif v is None or isinstance(v, (bool, tuple)):  # the same for every point
+        elif v is None or isinstance(v, bool):  # the same for every point
             out[k] = v
         else:
             return None

@@ -27,12 +27,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..model.bearings import (
-    load_dependent_torque,
-    load_torque_constants,
-    speed_dependent_torque,
-    speed_torque_constants,
-)
+from ..model.bearings import load_dependent_torque, speed_dependent_torque
 from ..model.film import SPEED_EXPONENT, central_film_thickness
 from ..model.kinematics import body_speeds, creep_term, entrainment_factor, spin
 from ..model.losses import DragMagnitudes, shaft_drags
@@ -346,11 +341,6 @@ def _balance_constants(problem: EquilibriumProblem) -> dict:
         "roller_drag": np.sum(pb.roller_drag, axis=-1),
         "shaft_drags": _drag_magnitudes(pb),
         "no_drag": np.zeros(pb.shape),
-        "bearings": (
-            speed_torque_constants(des.roller_bearing_diameter, pb.fluid.kinematic_viscosity, bm),
-            speed_torque_constants(des.idler_bearing_diameter, pb.fluid.kinematic_viscosity, bm),
-            load_torque_constants(des.roller_bearing_diameter, bm),
-        ),
     }
 
 

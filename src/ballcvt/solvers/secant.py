@@ -122,14 +122,11 @@ def update_points(active, x, res, jac, state, near_norm):
                     miss = y[i] - _dot(last_jac[a, i] + correction[a, i], s)
                     for j in range(m):
                         correction[a, i, j] += miss * s[j] / ss
-        for i in range(m):
-            last_x[a, i] = x[p, i]
-            last_res[a, i] = res[p, i]
-        for i in range(m):
-            for j in range(m):
-                if not near[a]:
-                    last_jac[a, i, j] = jac[p, i, j]
-                out[p, i, j] = last_jac[a, i, j] + correction[a, i, j]
+        last_x[a] = x[p]
+        last_res[a] = res[p]
+        if not near[a]:
+            last_jac[a] = jac[p]
+        out[p] = last_jac[a] + correction[a]
     return out
 
 

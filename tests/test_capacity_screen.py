@@ -51,6 +51,30 @@ def test_screen_decides_as_the_full_rule(v, law):
     assert np.any(fast.ok | fast.beyond)  # it decides something
 
 
+@pytest.mark.parametrize("law", ["design", "small"])
+@pytest.mark.parametrize("fluid_law", ["isothermal", "viscoelastic"])
+def test_screen_at_its_tolerance_decides_as_at_the_predictors(law, fluid_law, monkeypatch):
+    """The screen's Newton runs stop at SCREEN_TOL (1e-4), not the predictor's 1e-6: the
+    verdicts are the same, and where both runs converged the largest creeps differ by
+    under 5 % of the creep limit, a tenth of the verdicts' margin (50 %; 2.5 % here, with
+    the small preload near the limit, where the traction curve is flat)."""
+    import ballcvt.solvers.admissible as admissible_module
+
+    w = Variator(traction_law=fluid_law)
+    law = CamClamp.from_design(w.design) if law == "design" else SMALL_PRELOAD
+    pb = _points(w, 0.8, np.concatenate([np.geomspace(1e-2, 30.0, 25), np.linspace(40, 400, 10)]))
+    c_lim = w.design.creep_limit
+    loose = screen_admissible(pb, c_lim, SolverOptions(), law)
+    monkeypatch.setattr(admissible_module, "SCREEN_TOL", 1e-6)
+    tight = screen_admissible(pb, c_lim, SolverOptions(), law)
+    both = loose.converged & tight.converged
+    assert np.count_nonzero(both) >= 20
+    assert np.array_equal(loose.ok[both], tight.ok[both])
+    assert np.array_equal(loose.beyond[both], tight.beyond[both])
+    big = [np.max(np.abs(a.creep[both]), axis=-1) for a in (loose, tight)]
+    assert np.max(np.abs(big[0] - big[1])) < 0.05 * c_lim
+
+
 def test_screen_only_where_the_rules_can_agree(v):
     cam = CamClamp.from_design(v.design)
     assert screens(SolverOptions(), cam, v.fluid)

@@ -71,6 +71,8 @@ class _Contacts:
     def __init__(self, args, fluid: Fluid):
         (self.c, self.s, self.ax, self.ay, self.pm, self.fn, self.rc, self.u, self.h) = args
         self.fluid = fluid
+        #: The contacts as the compiled kernel's rows ``(9, n)`` where stacked already.
+        self.par: np.ndarray | None = None
         values = (
             fluid.temperature_viscosity_coefficient,
             fluid.limiting_shear_temperature_coefficient,
@@ -92,13 +94,20 @@ class _Contacts:
     def from_state(cls, state: ContactState, fluid: Fluid) -> tuple[_Contacts, tuple[int, ...]]:
         """Contacts of ``state`` as flat arrays, and their shape."""
         params, shape = state.stacked()
-        return cls(list(params), fluid), shape
+        con = cls(list(params), fluid)
+        con.par = params  # the compiled kernel's input as it is (`_compiled`)
+        return con, shape
 
     def take(self, i) -> _Contacts:
         out = object.__new__(_Contacts)
         out.__dict__.update(
-            {k: (v[i] if isinstance(v, np.ndarray) else v) for k, v in self.__dict__.items()}
+            {
+                k: (v[i] if isinstance(v, np.ndarray) else v)
+                for k, v in self.__dict__.items()
+                if k != "par"
+            }
         )
+        out.par = None
         return out
 
     def at(self, dt, quadrature: Quadrature):
@@ -177,10 +186,11 @@ def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature):
 
 def _compiled(con: _Contacts, quadrature: Quadrature):
     """`_rise_and_coefficients` by the compiled kernel (the same steps, per contact)."""
-    par = np.ascontiguousarray(
-        np.stack(np.broadcast_arrays(con.c, con.s, con.ax, con.ay, con.pm, con.fn, con.rc,
-                                     con.u, con.h)), dtype=float
-    )  # fmt: skip
+    par = con.par
+    if par is None:
+        par = np.stack(np.broadcast_arrays(con.c, con.s, con.ax, con.ay, con.pm, con.fn,
+                                           con.rc, con.u, con.h))  # fmt: skip
+    par = np.ascontiguousarray(par, dtype=float)
     out = np.empty((par.shape[1], thermal_kernels.N_THERMAL))
     contact = (
         np.ascontiguousarray(con.load_flux * con.u, dtype=float),
@@ -262,6 +272,18 @@ def _with_derivatives(con: _Contacts, values, shape, film: bool):
     term, the spin, ``log u`` at a fixed film and, with ``film``, ``log h`` at a fixed
     ``u / h``; ``values``: ``mu, chi`` and their 4-column partials at a fixed rise."""
     mu, chi, dmu, dchi = values
+    if thermal_kernels.total_derivatives is not None:
+        dmu_total, dchi_total = thermal_kernels.total_derivatives(
+            (mu, chi, dmu, dchi), (con.load_flux * con.u, con.resistance, con.r_flash),
+            (con.c, con.s), film
+        )  # fmt: skip
+        n = dmu_total.shape[1]
+        return (
+            mu.reshape(shape),
+            chi.reshape(shape),
+            dmu_total.reshape(shape + (n,)),
+            dchi_total.reshape(shape + (n,)),
+        )
     q = con.flux(mu, chi)
     k = con.load_flux * con.u
     r = con.resistance

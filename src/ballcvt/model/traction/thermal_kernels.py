@@ -19,6 +19,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
+
 from .kernels import _FAST, AVAILABLE, contact_sums
 
 njit: Any
@@ -27,7 +29,7 @@ try:
 except ImportError:  # pragma: no cover - numba is a declared dependency
     njit = None
 
-__all__ = ["thermal_kernel", "N_THERMAL"]
+__all__ = ["thermal_kernel", "N_THERMAL", "total_derivatives"]
 
 #: Columns of the thermal kernel's output per contact.
 N_THERMAL = 11
@@ -106,5 +108,47 @@ if AVAILABLE:
         """
         _thermal(par, contact, rules[0], rules[1], table, heat, out)
 
+    # no fast-math: the same operations in the same order as the NumPy path's, so the same
+    # bits (a fold of the thermal law turns on the last bit, `ballcvt.solvers.secant`)
+    @njit(cache=True)
+    def _totals(mu, chi, dmu, dchi, k, r, r_flash, c, s, out_mu, out_chi):
+        for i in range(mu.shape[0]):
+            q = k[i] * (c[i] * mu[i] + s[i] * chi[i])
+            dq = (
+                k[i] * (c[i] * dmu[i, 0] + s[i] * dchi[i, 0]) + k[i] * mu[i],
+                k[i] * (c[i] * dmu[i, 1] + s[i] * dchi[i, 1]) + k[i] * chi[i],
+                k[i] * (c[i] * dmu[i, 2] + s[i] * dchi[i, 2]) + q,
+                q,
+            )
+            dr = (0.0, 0.0, -0.5 * r_flash[i], r[i] - 1.5 * r_flash[i])
+            slope = k[i] * (c[i] * dmu[i, 3] + s[i] * dchi[i, 3])
+            den = 1.0 - r[i] * slope
+            for j in range(out_mu.shape[1]):
+                d_dt = (r[i] * dq[j] + q * dr[j]) / den
+                out_mu[i, j] = dmu[i, 3] * d_dt
+                out_chi[i, j] = dchi[i, 3] * d_dt
+                if j < 3:  # Eq. 53 at a fixed rise: no d log h at fixed u / h
+                    out_mu[i, j] += dmu[i, j]
+                    out_chi[i, j] += dchi[i, j]
+
+    def total_derivatives(values, contact, creeps, film):
+        """The total derivatives of ``mu, chi`` (the rise's response included) by the
+        creep term, the spin, ``log u`` at a fixed film and, with ``film``, ``log h`` at a
+        fixed ``u / h``: ``(dmu, dchi)``, ``(n, 3)`` or ``(n, 4)`` (the NumPy path's
+        `ballcvt.model.traction.thermal._with_derivatives`, the same bits).
+
+        ``values``: ``mu, chi`` [-] ``(n,)`` and their partials ``(c, sigma, log u, dT)``
+        at a fixed rise ``(n, 4)``; ``contact``: ``(F_N u / (pi a_x a_y) [W/m^2], R [K
+        m^2/W], R_flash [K m^2/W])``; ``creeps``: the creep term and the spin [-].
+        """
+        mu, chi, dmu, dchi = values
+        n = 4 if film else 3
+        out_mu, out_chi = np.empty((mu.shape[0], n)), np.empty((mu.shape[0], n))
+        k, r, r_flash = (np.ascontiguousarray(a, dtype=float) for a in contact)
+        c, s = (np.ascontiguousarray(a, dtype=float) for a in creeps)
+        _totals(mu, chi, np.ascontiguousarray(dmu), np.ascontiguousarray(dchi), k, r, r_flash,
+                c, s, out_mu, out_chi)  # fmt: skip
+        return out_mu, out_chi
+
 else:  # pragma: no cover
-    thermal_kernel = None  # type: ignore[assignment]
+    thermal_kernel = total_derivatives = None  # type: ignore[assignment]

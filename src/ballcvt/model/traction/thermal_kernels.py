@@ -111,7 +111,11 @@ if AVAILABLE:
     # no fast-math: the same operations in the same order as the NumPy path's, so the same
     # bits (a fold of the thermal law turns on the last bit, `ballcvt.solvers.secant`)
     @njit(cache=True)
-    def _totals(mu, chi, dmu, dchi, k, r, r_flash, c, s, out_mu, out_chi):
+    def _totals(values, contact, creeps, out):
+        mu, chi, dmu, dchi = values
+        k, r, r_flash = contact
+        c, s = creeps
+        out_mu, out_chi = out
         for i in range(mu.shape[0]):
             q = k[i] * (c[i] * mu[i] + s[i] * chi[i])
             dq = (
@@ -146,8 +150,8 @@ if AVAILABLE:
         out_mu, out_chi = np.empty((mu.shape[0], n)), np.empty((mu.shape[0], n))
         k, r, r_flash = (np.ascontiguousarray(a, dtype=float) for a in contact)
         c, s = (np.ascontiguousarray(a, dtype=float) for a in creeps)
-        _totals(mu, chi, np.ascontiguousarray(dmu), np.ascontiguousarray(dchi), k, r, r_flash,
-                c, s, out_mu, out_chi)  # fmt: skip
+        dmu, dchi = np.ascontiguousarray(dmu), np.ascontiguousarray(dchi)
+        _totals((mu, chi, dmu, dchi), (k, r, r_flash), (c, s), (out_mu, out_chi))
         return out_mu, out_chi
 
 else:  # pragma: no cover

@@ -199,7 +199,7 @@ def screen_admissible(
     coarse rule's).
     """
     law = law if follows_torque(law) else None
-    coarse = coarse_options(options)
+    coarse = coarse_options(options)  # to SCREEN_TOL (or the options' own, if looser)
     coarse = replace(coarse, tol=max(coarse.tol, SCREEN_TOL))
     if law is not None:
         pb, sol = solve_clamped(problem, law, lambda p, y: solve_batch(p, coarse, y, False), x0)

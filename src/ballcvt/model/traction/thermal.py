@@ -270,20 +270,29 @@ def thermal_law_film_coefficients(
 def _with_derivatives(con: _Contacts, values, shape, film: bool):
     """``mu, chi`` and their total derivatives (the rise's response included) by the creep
     term, the spin, ``log u`` at a fixed film and, with ``film``, ``log h`` at a fixed
-    ``u / h``; ``values``: ``mu, chi`` and their 4-column partials at a fixed rise."""
-    mu, chi, dmu, dchi = values
+    ``u / h``; ``values``: ``mu, chi`` and their 4-column partials at a fixed rise. In one
+    compiled loop where numba is installed (`thermal_kernels.total_derivatives`, the same
+    bits), else by `_totals`."""
+    mu, chi = values[:2]
     if thermal_kernels.total_derivatives is not None:
         dmu_total, dchi_total = thermal_kernels.total_derivatives(
-            (mu, chi, dmu, dchi), (con.load_flux * con.u, con.resistance, con.r_flash),
-            (con.c, con.s), film
-        )  # fmt: skip
-        n = dmu_total.shape[1]
-        return (
-            mu.reshape(shape),
-            chi.reshape(shape),
-            dmu_total.reshape(shape + (n,)),
-            dchi_total.reshape(shape + (n,)),
+            values, (con.load_flux * con.u, con.resistance, con.r_flash), (con.c, con.s), film
         )
+    else:
+        dmu_total, dchi_total = _totals(con, values, film)
+    n = dmu_total.shape[1]
+    return (
+        mu.reshape(shape),
+        chi.reshape(shape),
+        dmu_total.reshape(shape + (n,)),
+        dchi_total.reshape(shape + (n,)),
+    )
+
+
+def _totals(con: _Contacts, values, film: bool):
+    """The total derivatives ``(dmu, dchi)`` of `_with_derivatives`, by NumPy (the
+    reference of the compiled loop)."""
+    mu, chi, dmu, dchi = values
     q = con.flux(mu, chi)
     k = con.load_flux * con.u
     r = con.resistance
@@ -295,17 +304,11 @@ def _with_derivatives(con: _Contacts, values, shape, film: bool):
         dq = np.column_stack([dq, q])
         dr = np.column_stack([dr, r - 1.5 * con.r_flash])
     d_dt = (r[:, None] * dq + q[:, None] * dr) / (1.0 - r * slopes[:, 3])[:, None]
-    n = d_dt.shape[1]
     dmu_total = dmu[:, 3:] * d_dt
     dchi_total = dchi[:, 3:] * d_dt
     dmu_total[:, :3] += dmu[:, :3]  # Eq. 53 at a fixed rise: no d log h at fixed u / h
     dchi_total[:, :3] += dchi[:, :3]
-    return (
-        mu.reshape(shape),
-        chi.reshape(shape),
-        dmu_total.reshape(shape + (n,)),
-        dchi_total.reshape(shape + (n,)),
-    )
+    return dmu_total, dchi_total
 
 
 def film_temperature_rise(*args, **kwargs):

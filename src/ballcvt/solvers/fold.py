@@ -104,7 +104,10 @@ def climb_to_fold(flat, pinned: Pinned, k: int, pin: float, tol: float, start, s
     tol : float
         Solver tolerance [-].
     start : tuple of ndarray
-        Equilibria on the branch: torques ``(n,)`` [N m] and creeps ``(n, n_c)`` [-].
+        Equilibria on the branch: torques ``(n,)`` [N m] and creeps ``(n, n_c)`` [-];
+        optionally a third entry, the walk's next two points ``((torque, creeps),
+        (torque, creeps))`` (`ballcvt.solvers.branch_path.Walk`: its last rising point and
+        the step past it), which seed the bracket where the held creep grows through them.
     share : float
         `Climb.below` is the highest point under ``share`` times the largest torque [-].
 
@@ -112,15 +115,17 @@ def climb_to_fold(flat, pinned: Pinned, k: int, pin: float, tol: float, start, s
     -------
     Climb
     """
-    t0, x0 = start
+    t0, x0 = start[0], start[1]
     br = _Bracket.start(t0, x0[:, k], x0, FIRST_CREEP_STEP * pin)
     history = [(x0[:, k].copy(), t0.copy(), x0.copy(), np.ones(flat.size, dtype=bool))]
+    if len(start) > 2:
+        history += br.seed(k, start[2])
     least = FOLD_CREEP_RTOL * pin
     done = np.zeros(flat.size, dtype=bool)
     for _ in range(MAX_FOLD_STEPS):
         bracketed = np.isfinite(br.c_c)
         br.at_pin |= ~bracketed & (np.abs(br.b_c) >= pin * (1.0 - 1e-12))
-        trial = np.where(bracketed, _refine(br.ends(), br.torques()), br.b_c + br.step)
+        trial = np.where(bracketed, br.refine(), br.b_c + br.step)
         trial = np.clip(trial, -pin, pin)
         narrow = (np.abs(trial - br.b_c) < least) | (np.abs(br.c_c - br.a_c) < least)
         done |= br.at_pin | (bracketed & narrow)
@@ -154,6 +159,8 @@ class _Bracket:
     step: np.ndarray
     direction: np.ndarray
     at_pin: np.ndarray
+    #: The moves of the last two refinements (`refine`), the last first.
+    moves: tuple = (np.inf, np.inf)
 
     @classmethod
     def start(cls, t0, c0, x0, step) -> _Bracket:
@@ -162,6 +169,34 @@ class _Bracket:
         nan = np.full(n, np.nan)
         return cls(c0.copy(), t0.copy(), c0.copy(), t0.copy(), x0.copy(), nan, nan.copy(),
                    direction * step, direction, np.zeros(n, dtype=bool))  # fmt: skip
+
+    def seed(self, k, points) -> list:
+        """The walk's last rising point ``points[0]`` as the best and its next step
+        ``points[1]`` past it (torque -inf: beyond the creep bound), where the held creep
+        of contact ``k`` grows from the start through both (the step then the distance
+        from the start); returns the history entries of the points taken."""
+        (t_b, x_b), (t_c, x_c) = points
+        c_b, c_c = x_b[:, k], x_c[:, k]
+        rise = np.isfinite(t_b) & (t_b > self.b_t) & ((c_b - self.b_c) * self.direction > 0)
+        past = rise & ~(t_c >= t_b) & ((c_c - c_b) * self.direction > 0)  # NaN t_c: none
+        self.a_c[rise], self.a_t[rise] = self.b_c[rise], self.b_t[rise]
+        self.step[rise] = c_b[rise] - self.b_c[rise]
+        self.b_c[rise], self.b_t[rise], self.b_x[rise] = c_b[rise], t_b[rise], x_b[rise]
+        self.c_c[past], self.c_t[past] = c_c[past], t_c[past]
+        valid = past & np.isfinite(t_c)
+        return [(np.where(rise, c_b, np.nan), np.where(rise, t_b, -np.inf), x_b, rise),
+                (np.where(valid, c_c, np.nan), np.where(valid, t_c, -np.inf), x_c, valid)]  # fmt: skip
+
+    def refine(self) -> np.ndarray:
+        """`_refine`, with Brent's safeguard (1973, ch. 5): where a parabolic step is not
+        under half the one before last (a vertex creeping towards the fold from one side,
+        the far end of the bracket never replaced), a golden-section step instead."""
+        trial = _refine(self.ends(), self.torques())
+        move = np.abs(trial - self.b_c)
+        slow = np.isfinite(self.c_t) & np.isfinite(self.a_t) & (move >= 0.5 * self.moves[1])
+        trial = np.where(slow, _golden(*self.ends()), trial)
+        self.moves = (np.abs(trial - self.b_c), self.moves[0])
+        return trial
 
     def ends(self):
         return self.a_c, self.b_c, self.c_c
@@ -207,11 +242,16 @@ def _refine(c, t) -> np.ndarray:
         q = (b - a) * (tb - tc) - (b - cc) * (tb - ta)
         vertex = b - 0.5 * p / q
     lo, hi = np.minimum(a, cc), np.maximum(a, cc)
-    golden = np.where(np.abs(cc - b) >= np.abs(b - a), b + GOLDEN * (cc - b), b + GOLDEN * (a - b))
     usable = np.isfinite(vertex) & (vertex > lo) & (vertex < hi) & (a != b)
-    out = np.where(usable, vertex, golden)
+    out = np.where(usable, vertex, _golden(a, b, cc))
     failed = ~np.isfinite(tc)
     return np.where(failed, 0.5 * (b + cc), np.where(np.isfinite(ta), out, 0.5 * (a + b)))
+
+
+def _golden(a, b, c) -> np.ndarray:
+    """A golden-section step from the best point ``b`` into the larger side of the
+    bracket ``(a, c)``."""
+    return np.where(np.abs(c - b) >= np.abs(b - a), b + GOLDEN * (c - b), b + GOLDEN * (a - b))
 
 
 def _below(history, limit, best_c, direction):

@@ -38,6 +38,7 @@ __all__ = [
     "MAX_FOLD_STEPS",
     "MAX_CREEP_STEP",
     "REACH_RTOL",
+    "VERTEX_RTOL",
     "SECANT_STEPS",
     "secant_in_creep",
     "pinned_step",
@@ -57,6 +58,10 @@ MAX_FOLD_STEPS = 80
 MAX_CREEP_STEP = 0.05
 #: Relative torque error [-] at which the secant method hands over to Newton at the torque.
 REACH_RTOL = 1e-7
+#: Relative torque error [-] at which the secant below a fold (``vertex``) hands over to
+#: Newton at the torque: 5 % of `ballcvt.solvers.peak.FOLD_MARGIN`, so Newton starts
+#: within about 2.5 % of the distance in creep from that equilibrium to the fold.
+VERTEX_RTOL = 1e-5
 #: Most secant steps in the held creep.
 SECANT_STEPS = 12
 
@@ -178,15 +183,29 @@ def bracket_in_creep(flat, pinned: Pinned, k, tol, torque, x):
     return (lo_x[:, k], lo_t, lo_x, fell), (hi_x[:, k], hi_t, hi_x)
 
 
-def secant_in_creep(flat, pinned: Pinned, k, tol, lo, hi):
+def secant_in_creep(flat, pinned: Pinned, k, tol, lo, hi, vertex: bool = False):
     """The creeps at each point's target torque by the Illinois method in the held creep
-    of contact ``k`` within the bracket ``(lo, hi)`` (`bracket_in_creep`); NaN rows where
-    there is no bracket or a step failed."""
+    of contact ``k`` within the bracket ``(lo, hi)`` (`bracket_in_creep`), to a relative
+    torque error `REACH_RTOL`; NaN rows where there is no bracket or a step failed.
+
+    ``vertex``: ``hi`` is the largest torque of the branch (a fold), where the torque is
+    a parabola in the creep: the method then runs on ``sqrt(T_hi - T)``, linear in the
+    creep there (the secant of the torque itself, flat at ``hi``, crept towards it one
+    side at a time), to `VERTEX_RTOL`.
+    """
     goal, sign = _goal(flat)
     (c_lo, t_lo, x_lo, _), (c_hi, t_hi, x_hi) = lo, hi
-    ends = [[c_lo.copy(), t_lo - goal, x_lo.copy()], [c_hi.copy(), t_hi - goal, x_hi.copy()]]
+    rtol = VERTEX_RTOL if vertex else REACH_RTOL
+
+    def measure(t, top, target):
+        if not vertex:
+            return t - target
+        return np.sqrt(np.maximum(top - target, 0.0)) - np.sqrt(np.maximum(top - t, 0.0))
+
+    ends = [[c_lo.copy(), measure(t_lo, t_hi, goal), x_lo.copy()],
+            [c_hi.copy(), measure(t_hi, t_hi, goal), x_hi.copy()]]  # fmt: skip
     out = np.full_like(x_lo, np.nan)
-    close = np.abs(ends[1][1]) <= REACH_RTOL * goal
+    close = np.abs(t_hi - goal) <= rtol * goal
     out[close] = x_hi[close]
     last = np.full(flat.size, -1)  # the side replaced last (Illinois)
     active = np.flatnonzero(np.isfinite(t_hi) & ~close)
@@ -197,7 +216,8 @@ def secant_in_creep(flat, pinned: Pinned, k, tol, lo, hi):
         a, b = fa[active], fb[active]
         c = ca[active] - a * (cb[active] - ca[active]) / (b - a)
         got, xs = pinned_step(pinned, flat.take(active), k, xa[active], c, tol)
-        err = sign[active] * got - goal[active]
+        got = sign[active] * got
+        err = measure(got, t_hi[active], goal[active])
         bad = ~np.isfinite(err)
         side = (err >= 0).astype(int)
         for s in (0, 1):
@@ -206,7 +226,7 @@ def secant_in_creep(flat, pinned: Pinned, k, tol, lo, hi):
             ends[1 - s][1][i] *= np.where(last[i] == s, 0.5, 1.0)
             ends[s][0][i], ends[s][1][i], ends[s][2][i] = c[j], err[j], xs[j]
             last[i] = s
-        done = ~bad & (np.abs(err) <= REACH_RTOL * goal[active])
+        done = ~bad & (np.abs(got - goal[active]) <= rtol * goal[active])
         out[active[done]] = xs[done]
         active = active[~bad & ~done]
     return out

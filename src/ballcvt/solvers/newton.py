@@ -246,14 +246,15 @@ def branch_solver(options: SolverOptions, predict: bool = True):
     return solve
 
 
-def branch_pinned(options: SolverOptions):
-    """`solve_pinned` with ``options`` bound and the tolerance: the ``pinned`` argument of
-    `continue_in_torque` (`ballcvt.solvers.held_creep.Pinned`, tol)."""
-    return (lambda pb, k, x0: solve_pinned(pb, k, x0, options)), options.tol
+def branch_pinned(options: SolverOptions, patience: int | None = None):
+    """`solve_pinned` with ``options`` (and ``patience``, as in `_newton`) bound and the
+    tolerance: the ``pinned`` argument of `continue_in_torque`
+    (`ballcvt.solvers.held_creep.Pinned`, tol)."""
+    return (lambda pb, k, x0: solve_pinned(pb, k, x0, options, patience)), options.tol
 
 
 @quiet_trials
-def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
+def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None, patience=None):
     """Solve with one contact's creep held, for the output torque that goes with it.
 
     The output torque enters only the output disc's balance, and linearly (the last
@@ -273,6 +274,9 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
         Starting creeps ``(n, n_c)``; column ``contact`` holds the prescribed creep [-].
     options : SolverOptions, optional
         As in `solve_batch` (no fallback: a point that fails is flagged).
+    patience : int, optional
+        A point stops (unconverged) after that many Newton iterations without a lower
+        residual (`_newton`); None: after ``options.max_iterations``.
 
     Returns
     -------
@@ -286,7 +290,7 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None):
     nc = flat.layout.n_contacts
     x = np.array(x0, dtype=float).reshape(flat.size, nc)  # (0, n_c) too: no rows, no crash
     iterations = np.zeros(flat.size, dtype=int)
-    _, state = _staged_newton(flat, x, iterations, options, pinned=contact)
+    _, state = _staged_newton(flat, x, iterations, options, pinned=contact, patience=patience)
     norm = _norm(state.residual[:, :-1])
     return balancing_output_torque(flat, state), BatchSolution(
         state=state, converged=norm <= options.tol, residual_norm=norm, iterations=iterations

@@ -5,13 +5,15 @@ that starts at zero torque folds back, and a second equilibrium can exist at the
 torque with every creep within the limit. The limiting torque is then the largest torque
 the drive reaches on the branch from zero torque with every ``|C| <= C_lim``: the fold,
 or the torque where a creep reaches ``C_lim`` if that comes first (docs/model.md §8,
-§14). The branch is followed from zero torque by the torque continuation by which every
-solve under such a law is made (`ballcvt.solvers.continuation`) to within `PEAK_RTOL`
-of where it stops; next to the fold Newton converges slowly in the torque (its Jacobian
-turns singular there). So the fold is then located in the creep: from where the
-continuation stopped, a disc contact's creep is held (`ballcvt.solvers.newton.
-solve_pinned`, regular through the fold) and the largest torque of the branch found by a
-one-dimensional maximisation in it (`ballcvt.solvers.fold.climb_to_fold`). A limit at a
+§14). The branch is walked from zero torque in a moving held creep to next to its fold
+(`ballcvt.solvers.branch_path.follow_branch`); where the walk's solves fail, and under a
+planetary mode's torque condition, it is followed instead by the torque continuation by
+which every solve under such a law is made (`ballcvt.solvers.continuation`) to within
+`PEAK_RTOL` of where it stops. Next to the fold Newton converges slowly in the torque (its
+Jacobian turns singular there), so the fold is then located in the creep: from there, a
+disc contact's creep is held (`ballcvt.solvers.newton.solve_pinned`, regular through the
+fold) and the largest torque of the branch found by a one-dimensional maximisation in it
+(`ballcvt.solvers.fold.climb_to_fold`). A limit at a
 fold is reported `FOLD_MARGIN` below it (a solve exactly at a fold does not converge),
 once a solve converges there: Newton from the held creep's secant to that torque, else
 the solve's own continuation from zero torque. Used by `ballcvt.solvers.limit.
@@ -24,10 +26,11 @@ from dataclasses import replace
 
 import numpy as np
 
+from .branch_path import follow_branch
 from .continuation import continue_in_torque, solve_twice
 from .fold import Climb, climb_to_fold
 from .held_creep import FOLD_CREEP_RTOL, secant_in_creep
-from .newton import branch_pinned, branch_solver
+from .newton import PATIENCE, branch_pinned, branch_solver
 from .options import at_residual_floor
 
 __all__ = ["peak_limits", "PEAK_RTOL", "FOLD_MARGIN", "FOLD_CREEP_RTOL"]
@@ -44,10 +47,11 @@ FOLD_MARGIN = 2e-4
 
 def peak_limits(flat, creep_limit, options, x_zero=None):
     """Limiting torques of the 1-D batch ``flat`` under a law with more than one
-    equilibrium (docs/model.md §8, §14): each point is followed from zero torque up
-    (`continue_in_torque` to an open target) while its equilibrium converges with every
-    ``|C| <= creep_limit``, to within `PEAK_RTOL` of where it stops, then its fold is
-    located in a disc contact's held creep (`ballcvt.solvers.fold.climb_to_fold`).
+    equilibrium (docs/model.md §8, §14): each point is followed from zero torque up while
+    its equilibrium converges with every ``|C| <= creep_limit``, by the walk along its
+    branch (or to within `PEAK_RTOL` of where the torque continuation stops;
+    `_rise_to_fold`), then its fold is located in a disc contact's held creep
+    (`ballcvt.solvers.fold.climb_to_fold`).
 
     Returns the torques ``(n,)`` [N m] and the creeps there ``(n, n_c)``; NaN where even
     zero torque is inadmissible. ``x_zero`` (starting creeps of the other limit methods)
@@ -60,14 +64,14 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
         return np.max(np.abs(x), axis=-1) <= pin
 
     solve = branch_solver(options)
-    x, _, torque = continue_in_torque(
-        flat, solve, np.full(flat.size, np.inf), PEAK_RTOL, admissible
-    )
+    pinned = branch_pinned(options)
+    walk = (solve, branch_pinned(options, PATIENCE))
+    torque, x, seed = _rise_to_fold(flat, walk, options.quadrature, pin, admissible)
     keep = np.flatnonzero(np.isfinite(torque))
     if keep.size:
         sub = flat.take(keep)
-        pinned = branch_pinned(options)
-        climb, k = _climb(sub, pinned, pin, (torque[keep], x[keep]))
+        seed = tuple((t[keep], xx[keep]) for t, xx in seed[:2]) + (seed[2][keep],)
+        climb, k = _climb(sub, pinned, pin, (torque[keep], x[keep], seed))
         top = np.where(climb.at_pin, climb.torque, climb.torque * (1.0 - FOLD_MARGIN))
         idx = np.flatnonzero(top > torque[keep])
         if idx.size:  # a solve must converge there
@@ -79,15 +83,56 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
     return np.where(keep, torque, np.nan), np.where(keep[:, None], x, np.nan)
 
 
+def _rise_to_fold(flat, solvers, quadrature, pin, admissible):
+    """Equilibria on each point's branch from zero torque below its fold or its creep
+    limit, from which the climb in a held creep starts, and the two points that seed its
+    bracket: the walk along the branch (`ballcvt.solvers.branch_path.follow_branch`), the
+    climb starting from the point before its last rising one (the fold lies beyond it),
+    seeded with that point and the step past it; the torque continuation
+    (`continue_in_torque` to an open target, to within `PEAK_RTOL` of where it stops) for
+    the points whose walk failed and under a planetary mode's torque condition (no seed).
+    Returns the torques ``(n,)`` [N m] (NaN where zero torque is inadmissible), creeps
+    ``(n, n_c)`` and seeds ``((torque, creeps), (torque, creeps))`` (NaN: none)."""
+    solve, (pinned, tol) = solvers
+    n, nc = flat.size, flat.layout.n_contacts
+    rest = np.arange(n)
+    torque, x = np.full(n, np.nan), np.full((n, nc), np.nan)
+    none = (np.full(n, np.nan), np.full((n, nc), np.nan))
+    seed = (none, none, none[1])
+    if flat.torque_weights == (0.0, 1.0):
+        ok, x0, _ = solve(replace(flat, output_torque=np.zeros(n)), None, True)
+        x0 = np.array(x0, dtype=float)
+        ok = np.asarray(ok, dtype=bool) & admissible(x0)
+        walk = follow_branch(flat, pinned, quadrature, pin, tol, (np.where(ok, 0.0, np.nan), x0))
+        on = walk.stopped
+        torque, x = (
+            np.where(on, walk.before[0], np.nan),
+            np.where(on[:, None], walk.before[1], np.nan),
+        )
+        seed = ((np.where(on, walk.torque, np.nan), walk.creep), walk.after, walk.direction)
+        rest = np.flatnonzero(ok & ~on)
+    if rest.size:
+        xr, _, tr = continue_in_torque(
+            flat.take(rest), solve, np.full(rest.size, np.inf), PEAK_RTOL, admissible
+        )
+        torque[rest], x[rest] = tr, xr
+    return torque, x, seed
+
+
 def _climb(flat, pinned, pin, start):
     """The largest torque of each point's branch (`climb_to_fold`) beyond ``start``
-    ``(torque, x)``: in the held creep of the disc contact with the larger creep first,
-    then in the other's where that climb ended short of a clean fold (a failed step, or
-    another creep at the bound). Returns the better `Climb` per point and its contact."""
+    ``(torque, x, seed)`` (the seed of `_rise_to_fold`): in the held creep of the disc
+    contact that moved more along the walk's last step (at the start, the one with the
+    larger creep, without a walk) first, then in the other's where that climb ended short
+    of a clean fold (a failed step, or another creep at the bound). Returns the better
+    `Climb` per point and its contact."""
     pinned_solve, tol = pinned
     nc = flat.layout.n_contacts
-    t0, x0 = start
-    first = np.where(np.abs(x0[:, 0]) >= np.abs(x0[:, -1]), 0, nc - 1)
+    t0, x0, (seed_b, seed_c, way) = start
+    seed = (seed_b, seed_c)
+    # along the walk's last chord where there is one, else at the start
+    way = np.where(np.all(np.isfinite(way), axis=-1, keepdims=True), way, x0)
+    first = np.where(np.abs(way[:, 0]) >= np.abs(way[:, -1]), 0, nc - 1)
     best, contact = Climb.empty(flat.size, nc), first.copy()
     for attempt in range(2):
         for k in (0, nc - 1):
@@ -96,7 +141,8 @@ def _climb(flat, pinned, pin, start):
             if idx.size == 0:
                 continue
             got = climb_to_fold(flat.take(idx), pinned_solve, k, pin, tol,
-                                (t0[idx], x0[idx]), 1.0 - FOLD_MARGIN)  # fmt: skip
+                                (t0[idx], x0[idx], tuple((t[idx], xx[idx]) for t, xx in seed)),
+                                1.0 - FOLD_MARGIN)  # fmt: skip
             better = ~np.isfinite(best.torque[idx]) | (got.torque > best.torque[idx])
             best.put(idx[better], got.take(better))
             contact[idx[better]] = k
@@ -120,7 +166,7 @@ def _reach_top(flat, solvers, climb, k, top):
         c_lo, t_lo, x_lo = (v[idx] for v in climb.below)
         hi = (climb.creep[idx, kk], climb.torque[idx], climb.creep[idx])
         lo = (c_lo, t_lo, x_lo, np.zeros(idx.size, dtype=bool))
-        start[idx] = secant_in_creep(at.take(idx), pinned, kk, tol, lo, hi)
+        start[idx] = secant_in_creep(at.take(idx), pinned, kk, tol, lo, hi, vertex=True)
     good = np.zeros(flat.size, dtype=bool)
     xr = np.array(start)
     ready = np.flatnonzero(np.all(np.isfinite(start), axis=-1))

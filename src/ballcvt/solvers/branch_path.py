@@ -1,0 +1,190 @@
+"""Following the branch from zero torque to next to its fold, in a moving held creep.
+
+With a contact's creep held, the drive's balances other than the output disc's fix the
+other creeps (`ballcvt.solvers.newton.solve_pinned`): they define a curve in the space of
+the creeps, on which the output torque is a function. The branch of equilibria from zero
+torque is that curve, and where the traction can fall with the creep (the thermal law,
+docs/model.md §14) the torque along it rises to a largest value, the fold, and falls past
+it. `follow_branch` walks the curve from zero torque towards the fold by a
+predictor-corrector continuation with local parametrisation (Rheinboldt 1986, *Numerical
+analysis of parametrized nonlinear equations*, ch. 4; Allgower and Georg 1990,
+*Numerical continuation methods*, §10.2): each step predicts along the secant of the
+last two points (the curve's tangent at the first step, the null vector of the balances'
+Jacobian), holds the creep that moves most along it at its predicted value, and corrects
+with one held-creep Newton solve. The held creep is chosen afresh at every step, so the
+walk goes on where a disc creep stops growing along the curve (harden task 2028:592),
+and the step doubles while the solves converge, so a few steps reach the fold where a
+torque continuation took a dozen (most of them failed Newton runs next to the fold).
+
+The walk stops at the first step whose torque does not rise (the fold lies beyond the
+point before it) or that takes a creep past the limit; its result, the last two points on
+the rising side, starts the climb in a disc's held creep that locates the fold
+(`ballcvt.solvers.fold.climb_to_fold`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..equilibrium.residual import evaluate_with_jacobian
+from .held_creep import PINNED_SLACK, Pinned
+
+__all__ = ["follow_branch", "Walk", "FIRST_ARC_STEP", "LARGEST_ARC_STEP", "LEAST_ARC_STEP"]
+
+#: First step along the curve, as a share of the creep limit [-].
+FIRST_ARC_STEP = 0.05
+#: Largest step along the curve, as a share of the creep limit [-].
+LARGEST_ARC_STEP = 0.4
+#: Step, as a share of the creep limit, below which a walk whose solves fail gives up
+#: (the torque continuation then follows that point) [-].
+LEAST_ARC_STEP = 1e-3
+#: Largest distance of a corrected point from its prediction, as a share of the step [-]
+#: (Allgower and Georg 1990, §6.1: the corrector's contraction bounds the step).
+CORRECTOR_SHARE = 0.5
+#: Largest angle between a step's chord and its predictor [rad] (20 degrees).
+BEND = np.pi / 4
+#: Most steps of a walk.
+MAX_ARC_STEPS = 40
+
+
+@dataclass
+class Walk:
+    """The result of `follow_branch` for a 1-D batch ``(n,)``.
+
+    Attributes
+    ----------
+    torque : ndarray
+        The torque at the last point on the rising side [N m] (NaN where zero torque
+        failed or was inadmissible).
+    creep : ndarray
+        The creeps there ``(n, n_c)`` [-].
+    before : tuple of ndarray
+        ``(torque (n,), creeps (n, n_c))`` of the point before it (zero torque's at the
+        first step).
+    after : tuple of ndarray
+        ``(torque (n,), creeps (n, n_c))`` of the step that stopped the walk: a torque
+        not above ``torque``, or -inf where it took a creep past the limit (NaN where the
+        walk did not stop).
+    direction : ndarray
+        The unit chord of its last step ``(n, n_c)`` (the first tangent before any): the
+        creep that moves most along it parametrises the branch best next to the fold.
+    stopped : ndarray of bool
+        Whether the walk stopped next to the fold or the creep limit (its last step fell
+        in torque or took a creep past the limit); False where its solves failed (the
+        caller follows those points otherwise).
+    """
+
+    torque: np.ndarray
+    creep: np.ndarray
+    before: tuple
+    after: tuple
+    direction: np.ndarray
+    stopped: np.ndarray
+
+
+def follow_branch(flat, pinned: Pinned, quadrature, pin: float, tol: float, start) -> Walk:
+    """Walk each point's branch from the equilibria ``start`` up to its fold or its creep
+    limit (module docstring).
+
+    Parameters
+    ----------
+    flat : EquilibriumProblem
+        Operating points, 1-D batch ``(n,)``, under the torque condition on ``T_2``.
+    pinned : callable
+        `ballcvt.solvers.held_creep.Pinned`.
+    quadrature : Quadrature
+        The rule of the first tangent's Jacobian.
+    pin : float
+        Creep bound [-] (the creep limit, a hair below).
+    tol : float
+        Solver tolerance [-].
+    start : tuple of ndarray
+        Equilibria on the branch: torques ``(n,)`` [N m] (NaN where none) and creeps
+        ``(n, n_c)`` [-].
+
+    Returns
+    -------
+    Walk
+    """
+    t0, x0 = (np.array(v, dtype=float) for v in start)
+    n = flat.size
+    nan = np.full_like(x0, np.nan)
+    direction = np.zeros_like(x0)
+    walk = Walk(t0.copy(), x0.copy(), (t0.copy(), x0.copy()), (np.full(n, np.nan), nan),
+                direction, np.zeros(n, dtype=bool))  # fmt: skip
+    ok = np.flatnonzero(np.isfinite(t0))
+    if ok.size:
+        direction[ok] = _tangent(flat.take(ok), x0[ok], quadrature)
+    step = np.full(n, FIRST_ARC_STEP * pin)
+    active = ok[np.all(np.isfinite(direction[ok]), axis=-1)]
+    for _ in range(MAX_ARC_STEPS):
+        active = active[step[active] >= LEAST_ARC_STEP * pin]
+        if active.size == 0:
+            break
+        got, xs = _steps(flat, pinned, (walk.creep, direction, step), active, tol)
+        got = np.where(
+            _close(xs, walk.creep[active], direction[active], step[active]), got, np.nan
+        )
+        rose = np.isfinite(got) & (got > walk.torque[active])
+        inside = np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9)
+        stop = np.isfinite(got) & ~(rose & inside)
+        walk.stopped[active[stop]] = True
+        walk.after[0][active[stop]] = np.where(inside, got, -np.inf)[stop]
+        walk.after[1][active[stop]] = xs[stop]
+        go = rose & inside
+        i = active[go]
+        new = xs[go]
+        chord = new - walk.creep[i]
+        direction[i] = chord / np.linalg.norm(chord, axis=-1, keepdims=True)
+        walk.before[0][i], walk.before[1][i] = walk.torque[i], walk.creep[i]
+        walk.torque[i], walk.creep[i] = got[go], new
+        step[i] = np.minimum(2.0 * step[i], LARGEST_ARC_STEP * pin)
+        step[active[~np.isfinite(got)]] *= 0.5
+        active = active[~walk.stopped[active]]
+    return walk
+
+
+def _close(xs, x, direction, step) -> np.ndarray:
+    """Whether the corrected points ``xs`` lie near their predictions: within
+    `CORRECTOR_SHARE` of the step from them, and in a direction from ``x`` within
+    `BEND` of the predictor's. A longer corrector can land on another branch of the held
+    creep's equations (a creep past its largest value on this branch): such a step is
+    halved, like a failed one."""
+    chord = xs - x
+    length = np.linalg.norm(chord, axis=-1)
+    off = np.linalg.norm(xs - (x + step[:, None] * direction), axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cos = np.einsum("ij,ij->i", chord, direction) / length
+    return (off <= CORRECTOR_SHARE * step) & (cos >= np.cos(BEND))
+
+
+def _steps(flat, pinned: Pinned, path, active, tol):
+    """One predictor-corrector step of the points ``active``: the creep that moves most
+    along the predictor ``direction`` held at its predicted value, the rest solved.
+    Returns the torques (NaN where the solve failed) and creeps of the corrected points."""
+    x, direction, step = path
+    guess = x[active] + step[active, None] * direction[active]
+    held = np.argmax(np.abs(direction[active]), axis=-1)
+    got = np.full(active.size, np.nan)
+    xs = np.full_like(guess, np.nan)
+    for k in np.unique(held):
+        j = np.flatnonzero(held == k)
+        torque, sol = pinned(flat.take(active[j]), int(k), guess[j])
+        good = (sol.residual_norm <= PINNED_SLACK * tol) & np.isfinite(torque)
+        got[j] = np.where(good, torque, np.nan)
+        xs[j] = sol.state.creep
+    return got, xs
+
+
+def _tangent(flat, x, quadrature) -> np.ndarray:
+    """The unit tangent ``(m, n_c)`` of each point's curve at the creeps ``x``, oriented
+    the way the output torque rises: the null vector of the Jacobian of the balances
+    other than the output disc's (NaN where the torque does not move along it)."""
+    _, jac = evaluate_with_jacobian(flat, x, quadrature)
+    _, _, vt = np.linalg.svd(jac[:, :-1, :])
+    t = vt[:, -1, :]
+    rise = np.einsum("ij,ij->i", jac[:, -1, :], t)  # d res_T2 / ds: T_2 rises with it
+    sign = np.where(rise > 0.0, 1.0, np.where(rise < 0.0, -1.0, np.nan))
+    return t * sign[:, None]

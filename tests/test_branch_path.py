@@ -29,8 +29,9 @@ def _walk(pb):
     pin = THERMAL.design.creep_limit * (1.0 - 1e-7)
     ok, x0, _ = branch_solver(OPTIONS)(pb, None, True)
     t0 = np.where(ok, 0.0, np.nan)
-    pinned, tol = branch_pinned(OPTIONS, PATIENCE)
-    return follow_branch(pb, pinned, OPTIONS.quadrature, pin, tol, (t0, np.asarray(x0))), pin
+    walk = follow_branch(pb, branch_pinned(OPTIONS, PATIENCE), OPTIONS.quadrature, (pin, pin),
+                         (t0, np.asarray(x0)))  # fmt: skip
+    return walk, pin
 
 
 def test_the_walk_stops_just_past_the_fold_on_the_rising_branch():
@@ -61,8 +62,8 @@ def test_limits_from_the_walk_are_those_from_the_torque_continuation(monkeypatch
 
     def nowhere(flat, *args):
         got = follow_branch(flat, *args)
-        return Walk(got.torque, got.creep, got.before, got.after, got.direction,
-                    np.zeros(flat.size, dtype=bool))  # fmt: skip
+        none = np.zeros(flat.size, dtype=bool)
+        return Walk(got.torque, got.creep, got.before, got.after, got.direction, none, none)
 
     monkeypatch.setattr(peak, "follow_branch", nowhere)
     followed, _ = peak_limits(pb, THERMAL.design.creep_limit, OPTIONS)

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..equilibrium.residual import evaluate_with_jacobian
+from ..model.traction.quadrature import Quadrature
 from .held_creep import PINNED_SLACK, Pinned
 
 __all__ = ["follow_branch", "Walk", "FIRST_ARC_STEP", "LARGEST_ARC_STEP", "LEAST_ARC_STEP"]
@@ -71,9 +72,12 @@ class Walk:
         The unit chord of its last step ``(n, n_c)`` (the first tangent before any): the
         creep that moves most along it parametrises the branch best next to the fold.
     stopped : ndarray of bool
-        Whether the walk stopped next to the fold or the creep limit (its last step fell
-        in torque or took a creep past the limit); False where its solves failed (the
-        caller follows those points otherwise).
+        Whether the walk stopped next to the fold or the creep bound (its last step fell
+        in torque or took a creep past the bound), or past its target; False where its
+        solves failed (the caller follows those points otherwise).
+    passed : ndarray of bool
+        Whether it stopped at a step whose torque reached the target (``after``, the
+        target between ``torque`` and it).
     """
 
     torque: np.ndarray
@@ -82,45 +86,55 @@ class Walk:
     after: tuple
     direction: np.ndarray
     stopped: np.ndarray
+    passed: np.ndarray
+
+    @classmethod
+    def start(cls, t0, x0, direction) -> Walk:
+        """A walk at its start ``(t0, x0)``, its predictor ``direction`` (filled in place)."""
+        n, nan = t0.size, np.full_like(x0, np.nan)
+        false = np.zeros(n, dtype=bool)
+        return cls(t0.copy(), x0.copy(), (t0.copy(), x0.copy()), (np.full(n, np.nan), nan),
+                   direction, false, false.copy())  # fmt: skip
 
 
-def follow_branch(flat, pinned: Pinned, quadrature, pin: float, tol: float, start) -> Walk:
-    """Walk each point's branch from the equilibria ``start`` up to its fold or its creep
-    limit (module docstring).
+def follow_branch(flat, pinned, quadrature, bounds, start, target=None) -> Walk:
+    """Walk each point's branch from the equilibria ``start`` up to its fold, its creep
+    bound or its target torque (module docstring).
 
     Parameters
     ----------
     flat : EquilibriumProblem
         Operating points, 1-D batch ``(n,)``, under the torque condition on ``T_2``.
-    pinned : callable
-        `ballcvt.solvers.held_creep.Pinned`.
-    quadrature : Quadrature
-        The rule of the first tangent's Jacobian.
-    pin : float
-        Creep bound [-] (the creep limit, a hair below).
-    tol : float
-        Solver tolerance [-].
+    pinned : tuple
+        `ballcvt.solvers.held_creep.Pinned` and the solver tolerance [-].
+    quadrature : Quadrature or None
+        The rule of the first tangent's Jacobian (None: the default rule).
+    bounds : tuple of float
+        The creep scale of the steps (the creep limit) and the bound no creep may pass
+        (the creep limit a hair below, or ``inf``) [-].
     start : tuple of ndarray
         Equilibria on the branch: torques ``(n,)`` [N m] (NaN where none) and creeps
         ``(n, n_c)`` [-].
+    target : ndarray, optional
+        Torques ``(n,)`` [N m] at which a walk stops (`Walk.passed`); None: none.
 
     Returns
     -------
     Walk
     """
+    (pinned, tol), (scale, bound) = pinned, bounds
     t0, x0 = (np.array(v, dtype=float) for v in start)
     n = flat.size
-    nan = np.full_like(x0, np.nan)
+    goal = np.full(n, np.inf) if target is None else np.asarray(target, dtype=float)
     direction = np.zeros_like(x0)
-    walk = Walk(t0.copy(), x0.copy(), (t0.copy(), x0.copy()), (np.full(n, np.nan), nan),
-                direction, np.zeros(n, dtype=bool))  # fmt: skip
+    walk = Walk.start(t0, x0, direction)
     ok = np.flatnonzero(np.isfinite(t0))
     if ok.size:
         direction[ok] = _tangent(flat.take(ok), x0[ok], quadrature)
-    step = np.full(n, FIRST_ARC_STEP * pin)
+    step = np.full(n, FIRST_ARC_STEP * scale)
     active = ok[np.all(np.isfinite(direction[ok]), axis=-1)]
     for _ in range(MAX_ARC_STEPS):
-        active = active[step[active] >= LEAST_ARC_STEP * pin]
+        active = active[step[active] >= LEAST_ARC_STEP * scale]
         if active.size == 0:
             break
         got, xs = _steps(flat, pinned, (walk.creep, direction, step), active, tol)
@@ -128,19 +142,19 @@ def follow_branch(flat, pinned: Pinned, quadrature, pin: float, tol: float, star
             _close(xs, walk.creep[active], direction[active], step[active]), got, np.nan
         )
         rose = np.isfinite(got) & (got > walk.torque[active])
-        inside = np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9)
-        stop = np.isfinite(got) & ~(rose & inside)
+        inside = np.max(np.abs(xs), axis=-1) <= bound * (1.0 + 1e-9)
+        walk.passed[active] = rose & inside & (got >= goal[active])
+        stop = np.isfinite(got) & ~(rose & inside & ~walk.passed[active])
         walk.stopped[active[stop]] = True
         walk.after[0][active[stop]] = np.where(inside, got, -np.inf)[stop]
         walk.after[1][active[stop]] = xs[stop]
-        go = rose & inside
+        go = rose & inside & ~walk.passed[active]
         i = active[go]
-        new = xs[go]
-        chord = new - walk.creep[i]
+        chord = xs[go] - walk.creep[i]
         direction[i] = chord / np.linalg.norm(chord, axis=-1, keepdims=True)
         walk.before[0][i], walk.before[1][i] = walk.torque[i], walk.creep[i]
-        walk.torque[i], walk.creep[i] = got[go], new
-        step[i] = np.minimum(2.0 * step[i], LARGEST_ARC_STEP * pin)
+        walk.torque[i], walk.creep[i] = got[go], xs[go]
+        step[i] = np.minimum(2.0 * step[i], LARGEST_ARC_STEP * scale)
         step[active[~np.isfinite(got)]] *= 0.5
         active = active[~walk.stopped[active]]
     return walk
@@ -182,7 +196,7 @@ def _tangent(flat, x, quadrature) -> np.ndarray:
     """The unit tangent ``(m, n_c)`` of each point's curve at the creeps ``x``, oriented
     the way the output torque rises: the null vector of the Jacobian of the balances
     other than the output disc's (NaN where the torque does not move along it)."""
-    _, jac = evaluate_with_jacobian(flat, x, quadrature)
+    _, jac = evaluate_with_jacobian(flat, x, Quadrature() if quadrature is None else quadrature)
     _, _, vt = np.linalg.svd(jac[:, :-1, :])
     t = vt[:, -1, :]
     rise = np.einsum("ij,ij->i", jac[:, -1, :], t)  # d res_T2 / ds: T_2 rises with it

@@ -11,12 +11,16 @@ first resumed once from where its Newton run stopped: next to the fold Newton co
 slowly), never past a torque that failed other than the target, which is tried again from closer (batched over the
 points). A point whose step or bracket narrows below `MIN_STEP` is past the fold of its
 branch: no equilibrium of the drive carries its torque, and it is reported unconverged,
-unless, given `solve_pinned`, the branch is then followed on in a disc contact's held
-creep to the torque (`ballcvt.solvers.held_creep.reach_torque`): a step can fail well
-below the fold where the residual meets the solver's noise floor (harden task 2028:592:
-between 55 % and 99.5 % of the fold at forces 1e-6 apart), and the held creep is regular
-up to and through the fold. Used by `ballcvt.solvers.newton.solve_batch` for a law with
-``multiple_equilibria``.
+unless, given `solve_pinned`, the branch is then followed on in a held creep to the
+torque: a step can fail well below the fold where the residual meets the solver's noise
+floor (harden task 2028:592: between 55 % and 99.5 % of the fold at forces 1e-6 apart),
+and the held creep is regular up to and through the fold. Under the torque condition on
+``T_2`` (session 27) a point then stops at its first failed step, and the walk along the
+branch takes over (`ballcvt.solvers.walk_reach.walk_to_torque`: it reaches the torque,
+or finds it past the fold, where the halved steps each failed after a Newton run to its
+patience); the march in a disc contact's held creep
+(`ballcvt.solvers.held_creep.reach_torque`) takes the points it leaves. Used by
+`ballcvt.solvers.newton.solve_batch` for a law with ``multiple_equilibria``.
 """
 
 from __future__ import annotations
@@ -28,6 +32,7 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from .held_creep import Pinned, reach_torque
+from .walk_reach import walk_to_torque, walks
 
 __all__ = [
     "continue_in_torque",
@@ -82,7 +87,8 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
     pinned : callable, optional
         `ballcvt.solvers.held_creep.Pinned` with the solver's options and tolerance
         ``(pinned, tol)``: a point that stops short of a finite target is followed on in a
-        held creep (`reach_torque`); None: it stops there.
+        held creep (`walk_to_torque`, then `reach_torque`; under the torque condition on
+        ``T_2`` from its first failed step); None: it stops there.
 
     Returns
     -------
@@ -125,6 +131,8 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
         failed[rej] = trial[~good]
         width = np.where(np.isnan(failed[active]), step[active], failed[active] - torque[active])
         going = (np.abs(width) >= least[active]) & (step[active] >= least[active])
+        if pinned is not None and walks(flat):  # the walk along the branch takes over
+            going &= np.isnan(failed[active]) | np.isinf(target[active])
         active = active[(torque[active] != target[active]) & going]
     if pinned is not None:
         _reach(flat, solve, pinned, (target, torque, x), admissible)
@@ -145,7 +153,13 @@ def _reach(flat, solve: Solve, pinned, reached, admissible) -> None:
         good, xt, _ = solve_twice(solve, pb, x0)
         return good, xt
 
-    good, xr = reach_torque(sub, pin_solve, at_torque, tol, torque[short], x[short])
+    decided, good, xr = walk_to_torque(sub, pinned, at_torque, (torque[short], x[short]))
+    rest = np.flatnonzero(~decided)
+    if rest.size:
+        sub_t, sub_x = torque[short[rest]], x[short[rest]]
+        good[rest], xr[rest] = reach_torque(
+            sub.take(rest), pin_solve, at_torque, tol, sub_t, sub_x
+        )
     if admissible is not None:
         good &= admissible(xr)
     torque[short[good]], x[short[good]] = target[short[good]], xr[good]

@@ -37,6 +37,9 @@ __all__ = ["climb_to_fold", "Climb", "FIRST_CREEP_STEP", "GOLDEN"]
 FIRST_CREEP_STEP = 0.02
 #: Share of the larger side of the bracket taken by a golden-section step [-].
 GOLDEN = 0.381966
+#: Width of a bracket, in `FOLD_CREEP_RTOL` creep limits, above which a parabolic step
+#: that lands on the best point gives way to a golden-section one (`_Bracket.refine`) [-].
+WIDE = 100.0
 
 
 @dataclass
@@ -124,8 +127,10 @@ def climb_to_fold(flat, pinned: Pinned, k: int, pin: float, tol: float, start, s
     done = np.zeros(flat.size, dtype=bool)
     for _ in range(MAX_FOLD_STEPS):
         bracketed = np.isfinite(br.c_c)
-        br.at_pin |= ~bracketed & (np.abs(br.b_c) >= pin * (1.0 - 1e-12))
-        trial = np.where(bracketed, br.refine(), br.b_c + br.step)
+        # the best point at the bound: a seeded bracket's far end may lie beyond it
+        seeded_past = bracketed & (np.abs(br.c_c) > pin)
+        br.at_pin |= (~bracketed | seeded_past) & (np.abs(br.b_c) >= pin * (1.0 - 1e-12))
+        trial = np.where(bracketed, br.refine(least), br.b_c + br.step)
         trial = np.clip(trial, -pin, pin)
         narrow = (np.abs(trial - br.b_c) < least) | (np.abs(br.c_c - br.a_c) < least)
         done |= br.at_pin | (bracketed & narrow)
@@ -187,13 +192,18 @@ class _Bracket:
         return [(np.where(rise, c_b, np.nan), np.where(rise, t_b, -np.inf), x_b, rise),
                 (np.where(valid, c_c, np.nan), np.where(valid, t_c, -np.inf), x_c, valid)]  # fmt: skip
 
-    def refine(self) -> np.ndarray:
-        """`_refine`, with Brent's safeguard (1973, ch. 5): where a parabolic step is not
+    def refine(self, least) -> np.ndarray:
+        """`_refine`, with Brent's safeguards (1973, ch. 5): where a parabolic step is not
         under half the one before last (a vertex creeping towards the fold from one side,
-        the far end of the bracket never replaced), a golden-section step instead."""
+        the far end of the bracket never replaced), or is under ``least`` while the
+        bracket is wider than `WIDE` times that (a parabola through distant points whose
+        vertex falls on the best one: the walk's seed past a fold it stepped over), a
+        golden-section step instead."""
         trial = _refine(self.ends(), self.torques())
         move = np.abs(trial - self.b_c)
-        slow = np.isfinite(self.c_t) & np.isfinite(self.a_t) & (move >= 0.5 * self.moves[1])
+        both = np.isfinite(self.c_t) & np.isfinite(self.a_t)
+        wide = np.abs(self.c_c - self.a_c) > WIDE * least
+        slow = both & ((move >= 0.5 * self.moves[1]) | ((move < least) & wide))
         trial = np.where(slow, _golden(*self.ends()), trial)
         self.moves = (np.abs(trial - self.b_c), self.moves[0])
         return trial

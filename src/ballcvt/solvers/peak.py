@@ -103,7 +103,8 @@ def _rise_to_fold(flat, solvers, quadrature, pin, admissible):
         ok, x0, _ = solve(replace(flat, output_torque=np.zeros(n)), None, True)
         x0 = np.array(x0, dtype=float)
         ok = np.asarray(ok, dtype=bool) & admissible(x0)
-        walk = follow_branch(flat, pinned, quadrature, pin, tol, (np.where(ok, 0.0, np.nan), x0))
+        start = (np.where(ok, 0.0, np.nan), x0)
+        walk = follow_branch(flat, (pinned, tol), quadrature, (pin, pin), start)
         on = walk.stopped
         torque, x = (
             np.where(on, walk.before[0], np.nan),

@@ -1,0 +1,65 @@
+"""The equilibrium at a torque reached by the walk along the branch
+(`ballcvt.solvers.walk_reach`), and the fold found past a step that jumped over it, on
+Table I's drive under the thermal law."""
+
+import math
+
+import numpy as np
+import pytest
+
+from ballcvt import Variator
+from ballcvt.equilibrium.problem import build_problem
+from ballcvt.solvers.continuation import solve_twice
+from ballcvt.solvers.limit import limit_torque_batch
+from ballcvt.solvers.newton import branch_pinned, branch_solver, solve_batch
+from ballcvt.solvers.optimal_capacity import force_range_top
+from ballcvt.solvers.options import SolverOptions, at_residual_floor
+from ballcvt.solvers.walk_reach import walk_to_torque
+
+THERMAL = Variator(traction_law="thermal")
+OPTIONS = at_residual_floor(SolverOptions(), THERMAL.fluid)
+W = 2000.0 * math.pi / 30
+
+
+def _at(ratio, torque, force=2000.0):
+    n = len(torque)
+    return build_problem(THERMAL.design, THERMAL.fluid, THERMAL.architecture,
+                         np.full(n, ratio), np.asarray(torque, dtype=float), force, W).flat()  # fmt: skip
+
+
+def test_the_walk_reaches_torques_below_the_fold_and_refuses_those_past_it():
+    """Ratio 1.0 at 2 kN (fold 114.78 N m), from zero torque: 60 and 114.5 N m reached,
+    with the creeps of a solve (to 1e-8; the equilibrium on the branch at a torque is
+    unique); 130 N m found past the fold (decided, not converged)."""
+    pb = _at(1.0, [60.0, 114.5, 130.0])
+    solve = branch_solver(OPTIONS)
+    ok, x0, _ = solve(_at(1.0, [0.0, 0.0, 0.0]), None, True)
+    assert np.all(ok)
+
+    def at_torque(p, x):
+        good, xt, _ = solve_twice(solve, p, x)
+        return good, xt
+
+    start = (np.zeros(3), np.asarray(x0))
+    decided, good, x = walk_to_torque(pb, branch_pinned(OPTIONS), at_torque, start)
+    assert decided.tolist() == [True, True, True]
+    assert good.tolist() == [True, True, False]
+    ref = solve_batch(pb.take([0, 1]), OPTIONS)
+    assert ref.converged.all()
+    np.testing.assert_allclose(x[:2], ref.state.creep, rtol=0, atol=1e-8)
+
+
+def test_a_limit_at_the_pressure_bound_is_the_fold_past_a_step_over_it():
+    """Ratio 0.833 at the force of the pressure limit `F_p`: the walk's step from 441 N m
+    landed past the fold (562.2 N m) at 551.4 N m, still above the step before, and a
+    parabola through the seed put its vertex on that point: the climb stopped there,
+    and the limit read 551.3 N m against 561.8 at 0.999 `F_p`. A parabolic step onto the
+    best point in a wide bracket is now a golden-section step: the limit rises with the
+    force up to `F_p` (the optimal clamp's capacity there)."""
+    ratio = np.linspace(0.5, 2.0, 10)[2]
+    one = _at(ratio, [0.0])
+    fp = float(force_range_top(one, THERMAL.design.max_pressure, 100.0)[0])
+    limits = [float(limit_torque_batch(_at(ratio, [0.0], fp * s), THERMAL.design.creep_limit,
+                                       OPTIONS)[0]) for s in (0.995, 0.999, 1.0)]  # fmt: skip
+    assert limits[0] < limits[1] < limits[2]
+    assert limits[2] == pytest.approx(562.23, abs=0.05)

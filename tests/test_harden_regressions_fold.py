@@ -104,3 +104,26 @@ def test_continuation_reaches_next_to_the_fold():
     assert reached[0] == 239.95
     lim = float(peak_limits(flat, v.design.creep_limit, v.options)[0][0])
     assert lim == pytest.approx(240.014, rel=1e-3) and lim < 240.014
+
+
+# 2703:530 of a thermal-only campaign (thermal, single, constant force; session 27)
+V2703_530 = (
+    "single",
+    "thermal",
+    '{"aspect_ratio": 0.6613528407246477, "roller_radius": 0.02217227184285136, "theta0_deg": 52.206289351906484, "theta2_deg": 55.48195519281438, "alpha_deg": 3.0227832102966534, "n_rollers": 4, "roller_bearing_diameter": 0.011074602348366418, "idler_bearing_diameter": 0.016373733686909617, "disc_groove_ratio": 1.5241878105896136, "idler_groove_ratio": 1.7825417014710938, "single_idler_groove_ratio": 8.04448015924384, "tilt_safety_factor": 0.7839061404496156, "creep_limit": 0.11780711756984942, "min_roller_gap": 0.0004694674188048248, "cam": {"disc": "output", "preload": 66.20180759519765, "ramp_angle_deg": 16.444781355480316, "mean_radius": 0.01969922601694752, "friction": 0.0324027269230169}}',
+)
+
+
+def test_a_solve_at_a_limit_at_the_creep_limit_meets_it_next_to_a_fold():
+    """The limit where the input contact's creep reaches the limit, next to a fold (the
+    torque 3.5 N m per unit creep there): the torque is reported `PIN_TORQUE_MARGIN`
+    below the held creep's, and a solve there keeps every creep within the limit (at
+    18.74512537 N m, that torque itself, the solve met a creep 2e-8 above it)."""
+    v = _drive(*V2703_530)
+    kw = {"clamp_force": 1677.218709255241, "input_speed_rpm": 132.52626360721024}
+    ratio = 1.56115061277818
+    limit = v.limit_torque(ratio, **kw)
+    assert limit == pytest.approx(18.7451, rel=1e-5)
+    r = v.solve(ratio, limit, **kw)  # refused (TractionLimitError) with a creep beyond it
+    assert r.converged
+    assert max(abs(c.creep) for c in r.contacts.values()) <= v.design.creep_limit

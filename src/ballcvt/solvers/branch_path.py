@@ -32,7 +32,14 @@ from ..equilibrium.residual import evaluate_with_jacobian
 from ..model.traction.quadrature import Quadrature
 from .held_creep import PINNED_SLACK, Pinned
 
-__all__ = ["follow_branch", "Walk", "FIRST_ARC_STEP", "LARGEST_ARC_STEP", "LEAST_ARC_STEP"]
+__all__ = [
+    "follow_branch",
+    "walks",
+    "Walk",
+    "FIRST_ARC_STEP",
+    "LARGEST_ARC_STEP",
+    "LEAST_ARC_STEP",
+]
 
 #: First step along the curve, as a share of the creep limit [-].
 FIRST_ARC_STEP = 0.05
@@ -95,6 +102,12 @@ class Walk:
         false = np.zeros(n, dtype=bool)
         return cls(t0.copy(), x0.copy(), (t0.copy(), x0.copy()), (np.full(n, np.nan), nan),
                    direction, false, false.copy())  # fmt: skip
+
+
+def walks(flat) -> bool:
+    """Whether the walk applies to ``flat``: its torque condition is on ``T_2``, the
+    torque a held-creep solve gives (not a planetary mode's ``a T_0 + b T_2``)."""
+    return tuple(flat.torque_weights) == (0.0, 1.0)
 
 
 def follow_branch(flat, pinned, quadrature, bounds, start, target=None) -> Walk:

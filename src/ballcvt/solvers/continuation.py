@@ -31,8 +31,9 @@ from dataclasses import replace
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
+from .branch_path import walks
 from .held_creep import Pinned, reach_torque
-from .walk_reach import walk_to_torque, walks
+from .walk_reach import walk_to_torque
 
 __all__ = [
     "continue_in_torque",

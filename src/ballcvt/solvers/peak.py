@@ -26,7 +26,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .branch_path import follow_branch
+from .branch_path import follow_branch, walks
 from .continuation import continue_in_torque, solve_twice
 from .fold import Climb, climb_to_fold
 from .held_creep import FOLD_CREEP_RTOL, secant_in_creep
@@ -105,7 +105,7 @@ def _rise_to_fold(flat, solvers, quadrature, pin, admissible):
     torque, x = np.full(n, np.nan), np.full((n, nc), np.nan)
     none = (np.full(n, np.nan), np.full((n, nc), np.nan))
     seed = (none, none, none[1])
-    if flat.torque_weights == (0.0, 1.0):
+    if walks(flat):
         ok, x0, _ = solve(replace(flat, output_torque=np.zeros(n)), None, True)
         x0 = np.array(x0, dtype=float)
         ok = np.asarray(ok, dtype=bool) & admissible(x0)

@@ -26,23 +26,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from .branch_path import follow_branch
+from .branch_path import follow_branch, walks
 from .fold import climb_to_fold
 from .held_creep import secant_in_creep
 
-__all__ = ["walk_to_torque", "walks", "PAST_RTOL"]
+__all__ = ["walk_to_torque", "PAST_RTOL"]
 
 #: Relative margin by which a torque must exceed the largest one the climb met to count
 #: as past the fold [-]: the climb stops within `ballcvt.solvers.held_creep.
 #: FOLD_CREEP_RTOL` of the creep limit of the fold's creep, some 1e-6 of its torque below
 #: it; a torque within the margin goes to `reach_torque`.
 PAST_RTOL = 1e-5
-
-
-def walks(flat) -> bool:
-    """Whether `walk_to_torque` applies to ``flat``: its torque condition is on ``T_2``,
-    the torque a held-creep solve gives (not a planetary mode's ``a T_0 + b T_2``)."""
-    return tuple(flat.torque_weights) == (0.0, 1.0)
 
 
 def walk_to_torque(flat, pinned, at_torque, start):

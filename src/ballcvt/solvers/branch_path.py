@@ -30,7 +30,7 @@ import numpy as np
 
 from ..equilibrium.residual import evaluate_with_jacobian
 from ..model.traction.quadrature import Quadrature
-from .held_creep import PINNED_SLACK, Pinned
+from .held_creep import Pinned, pinned_step
 
 __all__ = [
     "follow_branch",
@@ -51,7 +51,7 @@ LEAST_ARC_STEP = 1e-3
 #: Largest distance of a corrected point from its prediction, as a share of the step [-]
 #: (Allgower and Georg 1990, §6.1: the corrector's contraction bounds the step).
 CORRECTOR_SHARE = 0.5
-#: Largest angle between a step's chord and its predictor [rad] (20 degrees).
+#: Largest angle between a step's chord and its predictor [rad] (45 degrees).
 BEND = np.pi / 4
 #: Most steps of a walk.
 MAX_ARC_STEPS = 40
@@ -154,14 +154,14 @@ def follow_branch(flat, pinned, quadrature, bounds, start, target=None) -> Walk:
         got = np.where(
             _close(xs, walk.creep[active], direction[active], step[active]), got, np.nan
         )
-        rose = np.isfinite(got) & (got > walk.torque[active])
         inside = np.max(np.abs(xs), axis=-1) <= bound * (1.0 + 1e-9)
-        walk.passed[active] = rose & inside & (got >= goal[active])
-        stop = np.isfinite(got) & ~(rose & inside & ~walk.passed[active])
+        up = np.isfinite(got) & (got > walk.torque[active]) & inside  # a step on the way
+        walk.passed[active] = up & (got >= goal[active])
+        go = up & ~walk.passed[active]
+        stop = np.isfinite(got) & ~go
         walk.stopped[active[stop]] = True
         walk.after[0][active[stop]] = np.where(inside, got, -np.inf)[stop]
         walk.after[1][active[stop]] = xs[stop]
-        go = rose & inside & ~walk.passed[active]
         i = active[go]
         chord = xs[go] - walk.creep[i]
         direction[i] = chord / np.linalg.norm(chord, axis=-1, keepdims=True)
@@ -198,10 +198,8 @@ def _steps(flat, pinned: Pinned, path, active, tol):
     xs = np.full_like(guess, np.nan)
     for k in np.unique(held):
         j = np.flatnonzero(held == k)
-        torque, sol = pinned(flat.take(active[j]), int(k), guess[j])
-        good = (sol.residual_norm <= PINNED_SLACK * tol) & np.isfinite(torque)
-        got[j] = np.where(good, torque, np.nan)
-        xs[j] = sol.state.creep
+        got[j], xs[j] = pinned_step(pinned, flat.take(active[j]), int(k), guess[j],
+                                    guess[j, k], tol)  # fmt: skip
     return got, xs
 
 

@@ -28,7 +28,7 @@ import numpy as np
 
 from .branch_path import follow_branch, walks
 from .continuation import continue_in_torque, solve_twice
-from .fold import Climb, climb_to_fold
+from .fold import Climb, climb_to_fold, disc_to_climb
 from .held_creep import FOLD_CREEP_RTOL, secant_in_creep
 from .newton import PATIENCE, branch_pinned, branch_solver
 from .options import at_residual_floor
@@ -138,8 +138,7 @@ def _climb(flat, pinned, pin, start):
     t0, x0, (seed_b, seed_c, way) = start
     seed = (seed_b, seed_c)
     # along the walk's last chord where there is one, else at the start
-    way = np.where(np.all(np.isfinite(way), axis=-1, keepdims=True), way, x0)
-    first = np.where(np.abs(way[:, 0]) >= np.abs(way[:, -1]), 0, nc - 1)
+    first = disc_to_climb(np.where(np.all(np.isfinite(way), axis=-1, keepdims=True), way, x0))
     best, contact = Climb.empty(flat.size, nc), first.copy()
     for attempt in range(2):
         for k in (0, nc - 1):
@@ -159,8 +158,9 @@ def _climb(flat, pinned, pin, start):
 def _reach_top(flat, solvers, climb, k, top):
     """The equilibria at the torques ``top`` just below each climb's fold (or at its
     creep bound): the held creep's secant between the climb's highest point below ``top``
-    and its largest torque (`ballcvt.solvers.held_creep`), then Newton at the torque from
-    there (`solve_twice`), else the solve's own continuation from zero torque.
+    and its largest torque (`ballcvt.solvers.held_creep`, on the square root of the
+    torque's fall below the fold), then Newton at the torque from there (`solve_twice`),
+    else the solve's own continuation from zero torque.
     Returns ``(converged (n,), creeps (n, n_c))``."""
     solve, branch = solvers  # the continuation's solver, and (`Pinned`, tol)
     pinned, tol = branch

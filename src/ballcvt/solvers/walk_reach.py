@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from .branch_path import follow_branch, walks
-from .fold import climb_to_fold
+from .fold import climb_to_fold, disc_to_climb
 from .held_creep import secant_in_creep
 
 __all__ = ["walk_to_torque", "PAST_RTOL"]
@@ -118,8 +118,7 @@ def _past_fold(flat, pinned, walk, fell, scale) -> np.ndarray:
     below the target by more than `PAST_RTOL`."""
     pin_solve, tol = pinned
     nc = flat.layout.n_contacts
-    way = walk.direction[fell]
-    first = np.where(np.abs(way[:, 0]) >= np.abs(way[:, -1]), 0, nc - 1)
+    first = disc_to_climb(walk.direction[fell])
     goal = np.broadcast_to(np.asarray(flat.output_torque, dtype=float), (flat.size,))
     past = np.zeros(flat.size, dtype=bool)
     for k in (0, nc - 1):

@@ -7,6 +7,7 @@ import pytest
 from ballcvt import Variator, load_builtin
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.solvers import optimal_capacity
+from ballcvt.solvers.limit import LimitSearch
 from ballcvt.solvers.optimal_capacity import capacity_force, force_range_top
 
 
@@ -36,7 +37,9 @@ def _stand_in(peak_share):
     def limits(flat, forces, c_lim, options):
         asked.append(forces.shape)
         peak = peak_share * limits.top[: forces.shape[0], None]
-        return -((np.log(forces / peak)) ** 2)
+        torque = (-((np.log(forces / peak)) ** 2)).ravel()
+        nan = np.full((torque.size, 2), np.nan)
+        return LimitSearch(torque, nan, nan)
 
     return limits, asked
 
@@ -47,7 +50,7 @@ def test_a_limit_rising_at_the_bound_takes_two_limits(monkeypatch):
     top = force_range_top(pb, d.max_pressure, 100.0)
     limits, asked = _stand_in(2.0)  # still rising at the bound: the bound
     limits.top = top
-    monkeypatch.setattr(optimal_capacity, "_limits", limits)
+    monkeypatch.setattr(optimal_capacity, "_searches", limits)
     got = capacity_force(pb, d.max_pressure, d.creep_limit, 100.0, v.options)
     assert np.array_equal(got, top)
     assert asked == [(pb.size, 2)]
@@ -59,7 +62,7 @@ def test_a_limit_falling_at_the_bound_is_scanned_and_refined(monkeypatch):
     top = force_range_top(pb, d.max_pressure, 100.0)
     limits, asked = _stand_in(0.3)
     limits.top = top
-    monkeypatch.setattr(optimal_capacity, "_limits", limits)
+    monkeypatch.setattr(optimal_capacity, "_searches", limits)
     got = capacity_force(pb, d.max_pressure, d.creep_limit, 100.0, v.options)
     assert got == pytest.approx(0.3 * top, rel=1e-2)
     assert asked[0] == (pb.size, 2) and asked[1] == (pb.size, optimal_capacity.GRID + 1)

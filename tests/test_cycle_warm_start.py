@@ -8,7 +8,7 @@ from ballcvt.analysis.cycle_files import cycle_from_arrays
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.model.clamping import OptimalClamp
 from ballcvt.solvers.options import coarse_options
-from ballcvt.solvers.optimal_batch import optimal_forces
+from ballcvt.solvers.optimal_batch import STEP, optimal_forces
 
 W = 2000 * np.pi / 30
 CYCLE = cycle_from_arrays(time=np.arange(6.0), output_speed=[15.0, 20.0, 25.0, 30.0, 35.0, 40.0],
@@ -47,8 +47,10 @@ def test_the_second_pass_starts_from_the_first_pass_creeps(monkeypatch, clamp):
                                                            **{**k, "start": None}))
     cold = cycles.run_cycle(v, CYCLE, target_input_speed=speed, progress=False, **clamp)
     np.testing.assert_allclose(warm.steps["eta"], cold.steps["eta"], rtol=0, atol=1e-8)
+    # the optimal force to the search's resolution in ln F_N0 (its solves stop at
+    # SCORE_TOL, so the vertex moves with the start by up to some 5e-5)
     np.testing.assert_allclose(warm.steps["clamp_force"], cold.steps["clamp_force"],
-                               rtol=1e-6)
+                               rtol=STEP)
 
 
 def test_optimal_forces_from_guessed_creeps_point_by_point():

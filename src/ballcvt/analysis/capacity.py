@@ -9,7 +9,7 @@ from ..equilibrium.problem import build_problem
 from ..solvers.capacity import Capacity
 from ..solvers.constraints import with_constraints
 from ..solvers.limit import limit_search, saturated_traction
-from ..solvers.optimal_capacity import capacity_basis
+from ..solvers.optimal_capacity import capacity_search
 from ..solvers.options import SolverOptions
 
 __all__ = ["traction_ceiling", "torque_capacity", "Capacity"]
@@ -58,8 +58,9 @@ def torque_capacity(
     zero = build_problem(
         design, drive.fluid, drive.architecture, float(ratio), 0.0, start, float(input_speed)
     )
-    problem, follows, c_lim = capacity_basis(zero, law, c_lim, options)
-    search = limit_search(problem, c_lim, options, law=follows)
+    problem, follows, c_lim, search = capacity_search(zero, law, c_lim, options)
+    if search is None:  # (the optimal law's search for its force may have made it)
+        search = limit_search(problem, c_lim, options, law=follows)
     cap = Capacity.from_array(search.spans())
     return with_constraints(problem, cap, c_lim, options, follows)
 

@@ -31,11 +31,12 @@ from ..equilibrium.problem import EquilibriumProblem
 from ..errors import InputError
 from ..model.traction.base import has_multiple_equilibria
 from .clamped import pressure_bound_force, with_clamp
-from .limit import limit_torque_batch
+from .limit import LimitSearch, limit_search
 from .options import SolverOptions
 
 __all__ = [
     "capacity_basis",
+    "capacity_search",
     "capacity_force",
     "force_range_top",
     "EDGE",
@@ -85,13 +86,19 @@ def force_range_top(problem: EquilibriumProblem, p_lim: float, min_force: float)
     return np.array(top, dtype=float)
 
 
+def _searches(flat: EquilibriumProblem, forces: np.ndarray, c_lim: float, options) -> LimitSearch:
+    """The limit search of each point at each of its ``forces`` ``(n, k)`` [N]: one batch
+    of ``n k`` rows in C order (`ballcvt.solvers.limit.limit_search`)."""
+    n, k = forces.shape
+    rows = np.repeat(np.arange(n), k)
+    return limit_search(with_clamp(flat.take(rows), forces.ravel()), c_lim, options)
+
+
 def _limits(flat: EquilibriumProblem, forces: np.ndarray, c_lim: float, options) -> np.ndarray:
     """Limiting torques ``(n, k)`` [N m] of each point at each of its ``forces``, ``-inf``
     where there is none."""
-    n, k = forces.shape
-    rows = np.repeat(np.arange(n), k)
-    got = limit_torque_batch(with_clamp(flat.take(rows), forces.ravel()), c_lim, options)
-    return np.where(np.isfinite(got), got, -np.inf).reshape(n, k)
+    got = _searches(flat, forces, c_lim, options).torque
+    return np.where(np.isfinite(got), got, -np.inf).reshape(forces.shape)
 
 
 def capacity_force(
@@ -117,42 +124,57 @@ def capacity_force(
     ndarray
         Forces [N], the batch shape of ``problem``; ``F_p`` where no force has a limit.
     """
+    return _capacity(problem, p_lim, creep_limit, floor, options)[0]
+
+
+def _capacity(problem, p_lim, creep_limit, floor, options):
+    """`capacity_force`, and the limit search of the flattened points at those forces
+    when every one is ``F_p`` with its limit still rising there (`_rising_at_top`'s
+    own), else None."""
     flat = problem.flat()
     top = force_range_top(problem, p_lim, floor).reshape(-1)
     if not has_multiple_equilibria(problem.fluid):
-        out = _search(flat, top, floor, creep_limit, options)
+        out, at_top = _search(flat, top, floor, creep_limit, options)
     else:  # point by point: the same force from every path, whatever the batch
+        one = [flat.take(np.array([i])) for i in range(flat.size)]
         out = np.array(
             [
-                _search(flat.take(np.array([i])), top[i : i + 1], floor, creep_limit, options)[0]
-                for i in range(flat.size)
+                _search(p, top[i : i + 1], floor, creep_limit, options)[0][0]
+                for i, p in enumerate(one)
             ]
-        ).reshape(-1)
-    return out.reshape(problem.shape)
+        )
+        at_top = None
+    return out.reshape(problem.shape), at_top
 
 
-def _search(flat, top: np.ndarray, floor: float, creep_limit: float, options) -> np.ndarray:
+def _search(flat, top: np.ndarray, floor: float, creep_limit: float, options):
     """`capacity_force` of the 1-D batch ``flat`` (forces ``(n,)`` [N]): ``F_p`` where the
-    limit still rises there (`_rising_at_top`), else the scan and its refinement."""
+    limit still rises there (`_rising_at_top`), else the scan and its refinement; and
+    the limit search at ``F_p`` where every point's limit rises there (else None)."""
     if has_multiple_equilibria(flat.fluid):
-        return _scan(flat, top, floor, creep_limit, options)
+        return _scan(flat, top, floor, creep_limit, options), None
     out = top.copy()
-    rest = np.flatnonzero(~_rising_at_top(flat, top, creep_limit, options))
+    rising, at_top = _rising_at_top(flat, top, creep_limit, options)
+    rest = np.flatnonzero(~rising)
     if rest.size:
         out[rest] = _scan(flat.take(rest), top[rest], floor, creep_limit, options)
-    return out
+        at_top = None
+    return out, at_top
 
 
-def _rising_at_top(flat, top: np.ndarray, creep_limit: float, options) -> np.ndarray:
+def _rising_at_top(flat, top: np.ndarray, creep_limit: float, options):
     """Whether each point's limiting torque is larger at ``F_p`` than at ``F_p (1 -
     EDGE)``: it rises with the force up to its peak and falls beyond (module
     docstring), so a limit still rising at ``F_p`` is largest there, and the scan below
     it would find nothing larger (since session 25: two limits instead of ten where the
     drive is traction-limited up to the pressure bound, the case of the built-in drives).
     Not used under a law with more than one equilibrium, whose limit is noisy near its
-    peak."""
-    lim = _limits(flat, np.column_stack([top * (1.0 - EDGE), top]), creep_limit, options)
-    return np.isfinite(lim[:, 1]) & (lim[:, 1] > lim[:, 0])
+    peak. Also returns the limit search at ``F_p`` (`LimitSearch`, one batch with the
+    other force's), which a capacity at ``F_p`` reuses (`capacity_search`)."""
+    n = flat.size
+    got = _searches(flat, np.column_stack([top * (1.0 - EDGE), top]), creep_limit, options)
+    lim = np.where(np.isfinite(got.torque), got.torque, -np.inf).reshape(n, 2)
+    return np.isfinite(lim[:, 1]) & (lim[:, 1] > lim[:, 0]), got.take(np.arange(1, 2 * n, 2))
 
 
 def _scan(flat, top: np.ndarray, floor: float, creep_limit: float, options) -> np.ndarray:
@@ -207,9 +229,20 @@ def capacity_basis(problem: EquilibriumProblem, law, creep_limit: float, options
     (`capacity_force`), with the law's own ``creep_limit`` if it has one (docs/model.md
     §11). Any other law is returned unchanged.
     """
+    return capacity_search(problem, law, creep_limit, options)[:3]
+
+
+def capacity_search(
+    problem: EquilibriumProblem, law, creep_limit: float, options=SolverOptions()
+) -> tuple:
+    """`capacity_basis`, and the limit search of its ``problem`` (flattened,
+    `ballcvt.solvers.limit.LimitSearch`) where the search for the force already made it:
+    under ``optimal``, where every point's limit still rises at ``F_p`` (the limits at
+    ``F_p`` decided that); None otherwise (then search it, `limit_search`). Returns
+    ``(problem, law, creep_limit, search or None)``."""
     if law is None or not law.optimises:
-        return problem, law, creep_limit
+        return problem, law, creep_limit, None
     p_lim = problem.design.max_pressure if law.max_pressure is None else law.max_pressure
     c_lim = creep_limit if law.creep_limit is None else law.creep_limit
-    force = capacity_force(problem, p_lim, c_lim, law.min_force, options)
-    return with_clamp(problem, force), None, c_lim
+    force, search = _capacity(problem, p_lim, c_lim, law.min_force, options)
+    return with_clamp(problem, force), None, c_lim, search

@@ -20,10 +20,10 @@ from ...params.drive import Drive
 from ...performance.efficiency import efficiency, loss_breakdown, power_losses
 from ...performance.validity import validity
 from ...solvers.clamped import solve_clamped, with_clamp
-from ...solvers.limit import LimitSearch, limit_search
+from ...solvers.limit import LimitSearch, bisection_steps, limit_search
 from ...solvers.newton import initial_creep, solve_batch
 from ...solvers.optimal_batch import optimal_forces
-from ...solvers.optimal_capacity import capacity_basis
+from ...solvers.optimal_capacity import capacity_search
 from ...solvers.options import SolverOptions
 from ...status import Status
 from .variables import CONTACT_VARIABLES, LOSS_KINDS, POINT_VARIABLES
@@ -316,13 +316,17 @@ def limit_search_curves(curves: OperatingRows, callback=None, limit=None):
     """
     start = np.ones(curves.size) if curves.law is not None else curves.clamp_force
     base = curves.problem(slice(None), 0.0, start)
-    base, follows, creep_limit = capacity_basis(
+    base, follows, creep_limit, search = capacity_search(
         base, curves.law, curves.creep_limit, curves.options
     )
     if isinstance(limit, LimitSearch):
         return base, limit
     if limit is not None:
         return base, None
+    if search is not None:  # the optimal law's search for its force made it
+        for _ in range(bisection_steps() if callback is not None else 0):
+            callback()
+        return base, search
     search = limit_search(base, creep_limit, curves.options, callback=callback, law=follows)
     return base, search
 

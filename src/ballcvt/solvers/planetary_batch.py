@@ -22,7 +22,7 @@ from ..status import Status
 from .limit import traction_ceiling_torque
 from .newton import initial_creep, solve_batch
 from .options import SolverOptions
-from .planetary import ModePoint, carrier_frame_problem, ratio_tolerance
+from .planetary import ModePoint, carrier_frame_problem, ratio_settles, ratio_tolerance
 
 __all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch"]
 
@@ -105,6 +105,7 @@ def solve_mode_batch(
     kinds = np.full((len(LOSS_KINDS), n), np.nan)
     settled = np.zeros(n, dtype=bool)
     ratio_tol = ratio_tolerance(options, drive.fluid)
+    last = np.full(n, np.inf)  # each point's last change of the ratio
     for _ in range(max_passes):
         sp = mode.speeds(w, tau, check=False)
         rel = sp["disc0"] - sp["carrier"]
@@ -128,7 +129,9 @@ def solve_mode_batch(
         st = sol.state
         x[todo] = st.creep
         new = st.omega[:, -1] / st.omega[:, 0]
-        done = ~sol.converged | (np.abs(new - tau[todo]) <= ratio_tol * np.abs(tau[todo]))
+        change = np.abs(new - tau[todo])
+        done = ~sol.converged | ratio_settles(change, last[todo], tau[todo], ratio_tol)
+        last[todo] = change
         settled[todo[done]] = True
         fin = done & sol.converged
         j = todo[fin]

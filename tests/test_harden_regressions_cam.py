@@ -48,3 +48,30 @@ def test_cam_limit_is_the_largest_solvable_torque(drive):
     drive.solve(RATIO, lim, clamp_law="cam", input_speed_rpm=RPM)
     with pytest.raises(TractionLimitError):
         drive.solve(RATIO, lim * 1.001, clamp_law="cam", input_speed_rpm=RPM)
+
+
+# Harden task 2701:139 (session 28): an input-disc cam on a hub drive at 40 % efficiency.
+# The fixed point's first force is the law's at the lossless input torque ``T_2 tau``,
+# short of its own by the losses; above 1.88 N m it did not carry the torque, the creeps
+# ran off, and the capacity scan called those torques beyond the creep limit (the limit
+# 1.882 N m, set by "creep" at a largest creep of 0.0365 against 0.121). A first pass that
+# fails is solved again from the pressure limit's force (`ballcvt.solvers.clamped._from_ceiling`).
+FIELDS_2701 = '{"aspect_ratio": 2.8328181145275217, "roller_radius": 0.013378524575783556, "theta0_deg": 37.16090462662911, "theta2_deg": 38.447646488402555, "alpha_deg": 14.74679309132041, "n_rollers": 6, "roller_bearing_diameter": 0.0021017435109195516, "idler_bearing_diameter": 0.011423525490417221, "disc_groove_ratio": 2.1445171594831898, "idler_groove_ratio": 4.2611773244540085, "single_idler_groove_ratio": 5.843768649639814, "tilt_safety_factor": 0.7707906490924148, "creep_limit": 0.12143246911372675, "min_roller_gap": 0.00043613472094949256, "cam": {"disc": "input", "preload": 601.7389213868083, "ramp_angle_deg": 17.671190055975238, "mean_radius": 0.0405101889762365, "friction": 0.029192065080532986}}'
+RATIO_2701, RPM_2701 = 2.213370504285433, 2386.3774327979577
+
+
+def test_a_cam_first_force_short_of_the_torque_does_not_end_the_capacity():
+    d, f = load_builtin("hub")
+    d = d.replace(name="random", **json.loads(FIELDS_2701))
+    v = Variator(d, f, "single", traction_law="viscoelastic")
+    from ballcvt.api import with_oil_temperature
+
+    v = with_oil_temperature(v, "fixed")
+    kw = {"clamp_law": "cam", "input_speed_rpm": RPM_2701}
+    limit = v.limit_torque(RATIO_2701, **kw)
+    assert limit > 7.0  # 1.882 N m before
+    at = v.solve(RATIO_2701, limit * (1 - 1e-3), **kw)
+    largest = max(abs(c.creep) for c in at.contacts.values())
+    assert largest == pytest.approx(d.creep_limit, rel=2e-2)  # the limit is the creep's
+    with pytest.raises(TractionLimitError):
+        v.solve(RATIO_2701, limit * 1.001, **kw)

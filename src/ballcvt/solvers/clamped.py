@@ -130,6 +130,59 @@ def pressure_bound_force(problem: EquilibriumProblem, max_pressure: float) -> np
     return problem.clamp_force * (p_lim / np.max(problem.p_max, axis=-1)) ** 3
 
 
+def _from_ceiling(problem, first, solve, x0, max_pressure):
+    """The first pass of the fixed point of a law that senses the input torque, with the
+    points it failed solved again at the force of ``max_pressure`` or the design's
+    ``max_pressure``, the lower (`pressure_bound_force`), from ``x0``.
+
+    The first force is the law's at the lossless input torque ``T_2 tau``, below its fixed
+    point by the losses; where that force does not carry the torque the creeps run off,
+    though the law's own force would carry it (harden task 2701:139: a hub cam at 40 %
+    efficiency, whose capacity scan called every torque above 1.88 N m beyond the creep
+    limit where loads to 7.05 N m settle within it). At the ceiling a torque within the
+    capacity has an equilibrium, from which the fixed point descends to the law's force (a
+    contraction); a torque that fails there too is beyond it."""
+    pb, sol = first
+    failed = ~np.asarray(sol.converged, dtype=bool)
+    if not failed.any():
+        return pb, sol
+    # (the design's pressure limit also bounds the restart of a solve that has none: the
+    # Roelands range's force is a poor start, and the fixed point rises from there if the
+    # law asks for more)
+    top = min(max_pressure, pb.design.max_pressure)
+    ceiling = np.broadcast_to(pressure_bound_force(pb, top), failed.shape)
+    if failed.ndim == 0:  # the point solver
+        return (up := with_clamp(problem, ceiling)), solve(up, x0)
+    idx = np.flatnonzero(failed & np.isfinite(ceiling))
+    if idx.size == 0:
+        return pb, sol
+    up = with_clamp(problem.take(idx), ceiling[idx])
+    again = solve(up, None if x0 is None else np.asarray(x0)[idx])
+    better = np.asarray(again.converged, dtype=bool)
+    if not better.any():
+        return pb, sol
+    keep = idx[better]
+    force = np.array(pb.clamp_force, dtype=float)
+    force[keep] = ceiling[keep]
+    return with_clamp(problem, force), _put(sol, keep, again, better)
+
+
+def _put(sol, index, part, rows):
+    """``sol`` (a batch solution) with its points ``index`` replaced by ``part``'s
+    points ``rows``."""
+    state = {}
+    for name, value in vars(sol.state).items():
+        value = np.array(value, copy=True)
+        value[index] = np.asarray(getattr(part.state, name))[rows]
+        state[name] = value
+    fields = {"state": type(sol.state)(**state)}
+    for name in ("converged", "residual_norm", "iterations"):
+        value = np.array(getattr(sol, name), copy=True)
+        value[index] = np.asarray(getattr(part, name))[rows]
+        fields[name] = value
+    return replace(sol, **fields)
+
+
 def solve_clamped(
     problem: EquilibriumProblem, law, solve, x0=None, max_pressure=np.inf, again=None
 ):
@@ -174,6 +227,7 @@ def solve_clamped(
     settled = np.zeros(np.shape(sol.converged), dtype=bool)
     last = np.full(np.shape(sol.converged), np.inf)
     memory: dict = {}
+    pb, sol = _from_ceiling(problem, (pb, sol), solve, x0, max_pressure)
     for _ in range(MAX_CLAMP_ITERATIONS):
         new = law.clamp_force(pb.design, sol.state.input_torque, t2)
         # a point whose clamping equation holds, or whose fixed point has reached the

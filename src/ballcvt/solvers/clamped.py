@@ -152,7 +152,8 @@ def _from_ceiling(problem, first, solve, x0, max_pressure):
     top = min(max_pressure, pb.design.max_pressure)
     ceiling = np.broadcast_to(pressure_bound_force(pb, top), failed.shape)
     if failed.ndim == 0:  # the point solver
-        return (up := with_clamp(problem, ceiling)), solve(up, x0)
+        again = solve(up := with_clamp(problem, ceiling), x0)
+        return (up, again) if again.converged else (pb, sol)
     idx = np.flatnonzero(failed & np.isfinite(ceiling))
     if idx.size == 0:
         return pb, sol

@@ -156,3 +156,21 @@ def test_a_limit_at_the_creep_limit_next_to_a_fold_just_past_it():
     kw = {"clamp_force": 769.6321876468879, "input_speed_rpm": 3753.412212451262}
     limit = v.limit_torque(2.0388210123713475, **kw)
     assert limit == pytest.approx(9.1625, rel=1e-4)
+
+
+# 2803:367 (session 28, thermal-only campaign; hub-derived, single idler, constant force):
+# the solve at the top of the climb, a limit where the output creep reaches `C_lim`, met
+# the held creep 1.4e-16 above `pin` (PEAK_PIN_MARGIN below `C_lim`), the check against
+# `pin` refused it, and the limit fell to the walk's point before its last: 78.5 N m
+# where the branch rises steadily to 171.6 N m at the creep limit.
+F2803_367 = '{"aspect_ratio": 3.4019383229860796, "roller_radius": 0.020324773037363193, "theta0_deg": 34.77024779799424, "theta2_deg": 58.366678134896375, "alpha_deg": 17.088546580301127, "n_rollers": 9, "roller_bearing_diameter": 0.007114782716275515, "idler_bearing_diameter": 0.004131257083795595, "disc_groove_ratio": 3.4568553768155397, "idler_groove_ratio": 1.6066286566216688, "single_idler_groove_ratio": 29.727514477178975, "tilt_safety_factor": 0.8363114410224847, "creep_limit": 0.13598555458122363, "min_roller_gap": 0.0013704813189912774, "cam": {"disc": "output", "preload": 49.912514121028885, "ramp_angle_deg": 4.248769638249453, "mean_radius": 0.04595817339878044, "friction": 0.038622462309074436}}'
+
+
+def test_a_limit_at_the_creep_limit_is_not_refused_for_round_off_above_the_held_creep():
+    v = _drive("single", "thermal", F2803_367, base="hub")
+    ratio, force, rpm = 0.2731443480816715, 4619.270782585251, 1637.5638960774936
+    limit = v.limit_torque(ratio, clamp_force=force, input_speed_rpm=rpm)
+    assert limit > 170.0  # 78.5 N m before
+    at = v.solve(ratio, limit, clamp_force=force, input_speed_rpm=rpm)  # set by the creep
+    largest = max(abs(c.creep) for c in at.contacts.values())
+    assert largest == pytest.approx(v.design.creep_limit, rel=1e-5)  # held 1e-6 below

@@ -103,10 +103,6 @@ class _Alarm(BaseException):
     """Raised by the per-task timer (a BaseException: no ``except Exception`` swallows it)."""
 
 
-def _on_alarm(signum, frame):
-    raise _Alarm
-
-
 def run_task(seed: int, index: int, deadline: float, timeout: float, case=None) -> dict:
     """Task ``index``: its case's points, each classified (run in a worker process).
 
@@ -128,10 +124,19 @@ def run_task(seed: int, index: int, deadline: float, timeout: float, case=None) 
     stop = min(time.time() + timeout, deadline)
     t0, c0 = time.perf_counter(), time.process_time()
     task = entries.Task(case, rng, out["points"], {"seed": seed, "task": index})
-    signal.signal(signal.SIGALRM, _on_alarm)
+    fired: dict = {}
+
+    def on_alarm(signum, frame):
+        fired["at"] = len(out["points"])  # the points recorded from here on are the timer's
+        raise _Alarm
+
+    signal.signal(signal.SIGALRM, on_alarm)
     try:  # the timer starts inside: a short one must not fire before the handler's scope
         signal.setitimer(signal.ITIMER_REAL, max(0.01, stop - time.time()))
         entries.run_case(task)
+        if "at" in fired:  # it fired inside a compiled call (`harden_entries.interrupt`)
+            del out["points"][fired["at"] :]  # and was caught as that call's SystemError
+            raise _Alarm
     except _Alarm:
         if time.time() >= deadline - 0.05:  # the budget ran out: drop the partial point
             out["cut"] = True

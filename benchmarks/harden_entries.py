@@ -93,6 +93,23 @@ def _flag_key(exc: BaseException) -> str:
     return f"{type(exc).__name__}: " + re.sub(r"[-+]?\d[\d.]*(e[-+]?\d+)?", "#", text)[:90]
 
 
+def interrupt(exc: BaseException, depth: int = 8):
+    """The exception behind ``exc`` that is not an ``Exception`` (the campaign's per-task
+    timer, `harden._Alarm`, or a keyboard interrupt), else None. A signal handler that
+    raises while a compiled (numba) function runs surfaces as ``SystemError: ...
+    returned a result with an exception set``, caused by the handler's exception: task
+    0:324 of the CI run recorded the budget's end that way as three bugs
+    (``exception (study evaluation)``) in a loaded test run (session 28)."""
+    seen: BaseException | None = exc
+    for _ in range(depth):
+        if seen is None:
+            return None
+        if not isinstance(seen, Exception):
+            return seen
+        seen = seen.__cause__ or seen.__context__
+    return None
+
+
 @dataclass
 class Task:
     """One task: its case, random numbers, the points recorded, and the inputs so far."""
@@ -120,7 +137,12 @@ class Task:
         self.points.append(p)
 
     def exception(self, exc: BaseException, inputs: dict) -> None:
-        """Record a point that raised: a flag (one clean line) or a bug."""
+        """Record a point that raised: a flag (one clean line) or a bug. An exception
+        caused by the campaign's own timer is the timer's: it is raised again
+        (`interrupt`)."""
+        stop = interrupt(exc)
+        if stop is not None:
+            raise stop
         text = str(exc).strip()
         if isinstance(exc, FLAGS):
             if "\n" in text or "internal error" in text.lower():

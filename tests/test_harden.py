@@ -98,3 +98,57 @@ def test_cam_refusal_below_its_interval_is_a_flag_not_silent():
     outcomes = [p["outcome"] for p in got["points"]]
     assert "silent" not in outcomes and "bug" not in outcomes, got["points"]
     assert "flagged" in outcomes
+
+
+def test_the_timer_inside_a_compiled_call_is_the_timer_not_a_bug():
+    """A signal handler that raises while a compiled (numba) function runs surfaces as
+    ``SystemError: ... returned a result with an exception set``, caused by the handler's
+    exception: the campaign's per-task timer firing there at its budget's end was
+    recorded as bugs (task 0:324 of a loaded CI-like run, session 28). The timer's
+    exception is raised again instead."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import numpy as np
+    import harden
+    import harden_entries
+
+    task = harden_entries.Task({"entry": "study evaluation"}, np.random.default_rng(0), [],
+                               {"seed": 0, "task": 0})
+    try:
+        raise harden._Alarm
+    except harden._Alarm as alarm:
+        try:
+            raise SystemError("CPUDispatcher(f) returned a result with an exception set") from alarm
+        except SystemError as caught:
+            wrapped = caught
+    assert harden_entries.interrupt(wrapped) is wrapped.__cause__
+    try:
+        task.exception(wrapped, {})
+    except harden._Alarm:
+        pass
+    else:
+        raise AssertionError("the timer's exception was recorded, not raised")
+    assert task.points == []
+    task.exception(ValueError("an ordinary failure"), {})  # still a bug
+    assert [p["outcome"] for p in task.points] == ["bug"]
+
+
+def test_points_recorded_after_the_timer_fired_are_dropped(monkeypatch):
+    """Wherever the timer's exception is caught as another (a compiled call's
+    SystemError, caught by an entry's ``except``), the points recorded from the moment
+    it fired are dropped, and the task ends as the timer says: cut at the budget's end."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import harden
+
+    def run_case(task):
+        task.record("ok", None, "", {})
+        try:
+            time.sleep(5.0)
+        except BaseException as exc:  # a call that turns the timer's exception into its own
+            task.record("bug", "exception", f"SystemError: {type(exc).__name__}", {})
+
+    monkeypatch.setattr(harden.entries, "run_case", run_case)
+    monkeypatch.setattr(harden.entries, "supported", lambda case: True)
+    case = {"law": "isothermal", "clamp": "constant", "arch": "double",
+            "mode": "carrier_held", "entry": "solve"}
+    got = harden.run_task(0, 0, time.time() + 0.3, 600.0, case)
+    assert got["cut"] and [p["outcome"] for p in got["points"]] == ["ok"]

@@ -108,6 +108,15 @@ class EquilibriumState:
         """The points ``index`` (integer or boolean array) of a 1-D batch."""
         return EquilibriumState(**{name: np.asarray(v)[index] for name, v in vars(self).items()})
 
+    def put(self, index, other: EquilibriumState) -> EquilibriumState:
+        """A copy with the points ``index`` of a 1-D batch replaced by ``other``'s."""
+        fields = {}
+        for name, value in vars(self).items():
+            value = np.array(value, copy=True)
+            value[index] = getattr(other, name)
+            fields[name] = value
+        return EquilibriumState(**fields)
+
     @property
     def input_torque(self) -> np.ndarray:
         """Input shaft torque ``T_0 = -T_body,0`` plus the input shaft's parasitic drag

@@ -171,12 +171,7 @@ def _from_ceiling(problem, first, solve, x0, max_pressure):
 def _put(sol, index, part, rows):
     """``sol`` (a batch solution) with its points ``index`` replaced by ``part``'s
     points ``rows``."""
-    state = {}
-    for name, value in vars(sol.state).items():
-        value = np.array(value, copy=True)
-        value[index] = np.asarray(getattr(part.state, name))[rows]
-        state[name] = value
-    fields = {"state": type(sol.state)(**state)}
+    fields = {"state": sol.state.put(index, part.state.take(rows))}
     for name in ("converged", "residual_norm", "iterations"):
         value = np.array(getattr(sol, name), copy=True)
         value[index] = np.asarray(getattr(part, name))[rows]

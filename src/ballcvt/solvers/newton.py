@@ -397,12 +397,7 @@ def _scatter(full: EquilibriumState, part: EquilibriumState, index) -> Equilibri
         index, np.arange(full.creep.shape[0])
     ):
         return part
-    fields = {}
-    for name, value in vars(full).items():
-        value = np.array(value, copy=True)
-        value[index] = getattr(part, name)
-        fields[name] = value
-    return EquilibriumState(**fields)
+    return full.put(index, part)
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,7 @@ import json
 import numpy as np
 import pytest
 
-from ballcvt import Variator, load_builtin
+from ballcvt import TractionLimitError, Variator, load_builtin
 from ballcvt.api import with_oil_temperature
 from ballcvt.solvers.continuation import REACH_STEP, continue_in_torque
 from ballcvt.solvers.newton import branch_pinned, branch_solver
@@ -174,3 +174,26 @@ def test_a_limit_at_the_creep_limit_is_not_refused_for_round_off_above_the_held_
     at = v.solve(ratio, limit, clamp_force=force, input_speed_rpm=rpm)  # set by the creep
     largest = max(abs(c.creep) for c in at.contacts.values())
     assert largest == pytest.approx(v.design.creep_limit, rel=1e-5)  # held 1e-6 below
+
+
+# 2803:167 (session 28, thermal-only campaign; Table I-derived, double idler; found under
+# the optimal clamp, whose capacity is the constant force's limit at its best force): the
+# branch from zero torque turns more than once. Held in the input creep it rises to a fold
+# at 11.5838 N m (C_in 0.048, C_out 0.0711; a map of held-creep solves every 5e-4, session
+# 29) and falls; further on it rises again to a second fold, 11.664 N m at C_out 0.0945. A
+# walk's step passed the first fold and landed past the second, the climb in the output
+# creep found the second, no solve reached it, and the limit fell back to the walk's point
+# before its last, 10.64 N m, while a solve converged at 11.55 N m.
+F2803_167 = '{"aspect_ratio": 0.9774952222129578, "roller_radius": 0.011621753391804112, "theta0_deg": 64.59402730591124, "theta2_deg": 43.940803839380564, "alpha_deg": 4.9296158197513, "n_rollers": 3, "roller_bearing_diameter": 0.0031799880884678194, "idler_bearing_diameter": 0.0014408294465737945, "disc_groove_ratio": 2.2476550171953917, "idler_groove_ratio": 1.9158505974108995, "single_idler_groove_ratio": Infinity, "tilt_safety_factor": 0.5810833239460864, "creep_limit": 0.12188113316294404, "min_roller_gap": 0.0008633202553063408, "cam": {"disc": "input", "preload": 398.73429068590326, "ramp_angle_deg": 15.476448540634262, "mean_radius": 0.029211594583267306, "friction": 0.03296176852975246}}'
+
+
+def test_a_limit_is_the_first_fold_where_the_branch_turns_more_than_once():
+    v = with_oil_temperature(_drive("double", "thermal", F2803_167), "fixed")
+    kw = {"clamp_force": 1605.481187021577, "input_speed_rpm": 5916.3412150143695}
+    ratio = 0.7472033245932123
+    limit = v.limit_torque(ratio, **kw)
+    # the first fold, less the reporting margin (FOLD_MARGIN 2e-4) and the map's spacing
+    assert limit == pytest.approx(11.5838, rel=3e-4)
+    v.solve(ratio, limit, **kw)  # converges
+    with pytest.raises(TractionLimitError):
+        v.solve(ratio, limit * 1.001, **kw)

@@ -89,8 +89,32 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
             # to the walk's point before its last, 78.5 N m for 171.6)
             good &= np.max(np.abs(xr), axis=-1) <= creep_limit
             torque[keep[idx[good]]], x[keep[idx[good]]] = top[idx[good]], xr[good]
+            _below_later_fold(sub, solve, (idx[~good], top[idx[~good]]), admissible,
+                              (keep, torque, x))  # fmt: skip
     keep = np.isfinite(torque)
     return np.where(keep, torque, np.nan), np.where(keep[:, None], x, np.nan)
+
+
+def _below_later_fold(flat, solve, tops, admissible, found) -> None:
+    """The limits of the points ``idx`` of ``flat`` whose climb's top ``top`` (``tops`` =
+    ``(idx, top)``) no solve reached: the torque continuation from zero torque towards
+    it in steps down to `FOLD_MARGIN` of it, which stops at the branch's first fold.
+
+    A walk's step can pass a fold and land past a later one, higher, where the branch
+    turns more than once, and the climb then finds that later fold: the branch from zero
+    torque does not reach it (harden task 2803:167: a fold at 11.58 N m in the input
+    creep, the climb's at 11.66 N m in the output creep, and the limit fell back to the
+    walk's point before its last, 10.64 N m). The continuation's highest torque replaces
+    the limit where it is larger. ``found`` = ``(keep, torque, x)``: the indices of
+    ``flat``'s points in the batch and the batch's limits and creeps (updated in place).
+    """
+    idx, top = tops
+    keep, torque, x = found
+    if idx.size == 0:
+        return
+    xc, _, tc = continue_in_torque(flat.take(idx), solve, top, FOLD_MARGIN, admissible)
+    better = np.isfinite(tc) & (tc > torque[keep[idx]])
+    torque[keep[idx[better]]], x[keep[idx[better]]] = tc[better], xc[better]
 
 
 def _rise_to_fold(flat, solvers, quadrature, pin, admissible):

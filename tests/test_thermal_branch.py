@@ -139,3 +139,19 @@ def _newton_alone(flat, options, x0):
     from ballcvt.solvers.newton import _solve_flat
 
     return _solve_flat(flat, np.array(x0, dtype=float), options, False, True)
+
+
+def test_a_solve_next_to_the_cam_limit_stays_below_the_fold():
+    """Table I's thermal cam sweep at ratio 1.83 (2000 rpm): its capacity is the fold of the
+    branch. Before session 29 the continuation's step onto a torque within 1e-4 of the
+    fold could land on the equilibrium past it (at 0.9999 of the limit an input creep of
+    0.04674, above the limit's 0.04652; the efficiency 0.91232, below the limit's), and
+    the sweep reported that equilibrium's efficiency at the limit. Along the branch the
+    creep grows and the efficiency falls with the torque up to the fold
+    (`ballcvt.solvers.held_creep.turned_back` tells the two equilibria apart)."""
+    ratio, kw = 1.8333333333333333, {"clamp_law": "cam", "input_speed_rpm": 2000.0}
+    limit = THERMAL.limit_torque(ratio, **kw)
+    got = [THERMAL.solve(ratio, limit * f, **kw) for f in (0.999, 0.9999, 0.99999, 1.0)]
+    creep = [r.contacts["input"].creep for r in got]
+    eta = [r.eta for r in got]
+    assert np.all(np.diff(creep) > 0) and np.all(np.diff(eta) < 0)

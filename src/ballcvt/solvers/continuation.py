@@ -65,7 +65,8 @@ Solve = Callable[[EquilibriumProblem, np.ndarray | None, bool], tuple]
 
 
 def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_step=MIN_STEP,
-                       admissible=None, pinned: tuple[Pinned, float] | None = None):  # fmt: skip
+                       admissible=None, pinned: tuple[Pinned, float] | None = None,
+                       turned=None):  # fmt: skip
     """Follow each point of the 1-D batch ``flat`` from zero torque up to its target.
 
     Parameters
@@ -90,6 +91,11 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
         ``(pinned, tol)``: a point that stops short of a finite target is followed on in a
         held creep (`walk_to_torque`, then `reach_torque`; under the torque condition on
         ``T_2`` from its first failed step); None: it stops there.
+    turned : callable, optional
+        ``turned(problem, x) -> bool (m,)``: whether the equilibria ``x`` of a step onto
+        the points' targets lie past a fold (`ballcvt.solvers.held_creep.turned_back`);
+        such a step counts as failed. Only the step onto the target is tested (one
+        held-creep solve per point).
 
     Returns
     -------
@@ -124,6 +130,10 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
                                      x[active])  # fmt: skip
         if admissible is not None:
             good = good & admissible(xt)
+        onto = np.flatnonzero(good & (trial == goal))
+        if turned is not None and onto.size:  # the step onto the target jumped a fold?
+            sub = replace(flat.take(active[onto]), output_torque=trial[onto])
+            good[onto] &= ~turned(sub, xt[onto])
         iterations[active] += its
         acc, rej = active[good], active[~good]
         torque[acc], x[acc] = trial[good], xt[good]

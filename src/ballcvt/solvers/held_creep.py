@@ -33,6 +33,8 @@ from ..equilibrium.problem import EquilibriumProblem
 
 __all__ = [
     "reach_torque",
+    "turned_back",
+    "TURN_STEP",
     "FOLD_CREEP_RTOL",
     "PINNED_SLACK",
     "MAX_FOLD_STEPS",
@@ -80,6 +82,35 @@ def pinned_step(pinned: Pinned, flat, k, x, creep, tol):
     got, sol = pinned(flat, k, x0)
     ok = (sol.residual_norm <= PINNED_SLACK * tol) & np.isfinite(got)
     return np.where(ok, got, np.nan), sol.state.creep
+
+
+#: Relative step [-] down in the larger disc creep by which `turned_back` tells which way
+#: the torque moves along the branch at an equilibrium. Next to a reported fold limit
+#: (`ballcvt.solvers.peak.FOLD_MARGIN` below the fold) the torque then moves by ~3e-6 of
+#: itself, thirty times the held-creep solves' noise (`PINNED_SLACK` x the law's 1e-9).
+TURN_STEP = 1e-4
+
+
+def turned_back(flat, pinned: Pinned, tol, x) -> np.ndarray:
+    """Whether the equilibria ``x`` ``(n, n_c)`` at each point's own torque lie past a
+    fold of its branch, where the torque falls as the creep grows.
+
+    The larger disc creep is held `TURN_STEP` of itself lower: on the branch below its
+    fold the torque falls with it, past the fold it rises. A step of the torque
+    continuation that jumps the fold to the equilibrium past it (harden task 2704:75: to
+    an input creep of 0.0671 where the branch's own is 0.0658; Table I's thermal cam
+    sweep at ratio 1.83: its efficiency at the limit 0.91249 for the branch's 0.91274)
+    is so told apart. False where the held solve fails.
+    """
+    goal, sign = _goal(flat)
+    past = np.zeros(flat.size, dtype=bool)
+    held = np.where(np.abs(x[:, 0]) >= np.abs(x[:, -1]), 0, flat.layout.n_contacts - 1)
+    for k in np.unique(held):
+        j = np.flatnonzero(held == k)
+        got, _ = pinned_step(pinned, flat.take(j), int(k), x[j], x[j, k] * (1 - TURN_STEP),
+                             tol)  # fmt: skip
+        past[j] = sign[j] * got > goal[j]
+    return past
 
 
 def reach_torque(flat, pinned: Pinned, solve: Solve, tol, torque, x):

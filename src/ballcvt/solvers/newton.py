@@ -30,7 +30,9 @@ from ..equilibrium.residual import (
     evaluate_with_jacobian,
 )
 from ..model.traction.base import has_multiple_equilibria
+from .branch_path import walks
 from .continuation import REACH_STEP, continue_in_torque
+from .held_creep import turned_back
 from .newton_step import COMPILED, MAX_STEP, advance_compiled, advance_python, cap
 from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
 from .robust import solve_robust
@@ -163,6 +165,7 @@ def _follow(flat, options, predict, x, below) -> BatchSolution:
             branch_solver(options, predict),
             min_step=REACH_STEP,
             pinned=branch_pinned(options),
+            turned=branch_turned(flat, options),
         )
         x[todo], iterations[todo] = xt, iterations[todo] + its
     return _flat_solution(evaluate(flat, x, options.quadrature), iterations + 1, options.tol)
@@ -244,6 +247,15 @@ def branch_solver(options: SolverOptions, predict: bool = True):
         return sol.converged, sol.state.creep, sol.iterations
 
     return solve
+
+
+def branch_turned(flat, options: SolverOptions):
+    """The ``turned`` test of `continue_in_torque` (`turned_back`, held creeps solved with
+    ``options``) under the torque condition on ``T_2`` (`walks`); None under another."""
+    if not walks(flat):
+        return None
+    pinned, tol = branch_pinned(options)
+    return lambda pb, x: turned_back(pb, pinned, tol, x)
 
 
 def branch_pinned(options: SolverOptions, patience: int | None = None):

@@ -30,7 +30,7 @@ from .branch_path import follow_branch, walks
 from .continuation import continue_in_torque, solve_twice
 from .fold import Climb, climb_to_fold, disc_to_climb
 from .held_creep import FOLD_CREEP_RTOL, secant_in_creep
-from .newton import PATIENCE, branch_pinned, branch_solver
+from .newton import PATIENCE, branch_pinned, branch_solver, branch_turned
 from .options import at_residual_floor
 
 __all__ = ["peak_limits", "PEAK_RTOL", "FOLD_MARGIN", "PEAK_PIN_MARGIN", "FOLD_CREEP_RTOL"]
@@ -81,21 +81,21 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
         top = np.where(climb.at_pin, climb.torque, climb.torque * (1.0 - FOLD_MARGIN))
         idx = np.flatnonzero(top > torque[keep])
         if idx.size:  # a solve must converge there
-            good, xr = _reach_top(sub.take(idx), (solve, pinned), climb.take(idx), k[idx],
-                                  top[idx])  # fmt: skip
+            good, xr = _reach_top(sub.take(idx), (solve, pinned, branch_turned(flat, options)),
+                                  climb.take(idx), k[idx], top[idx])  # fmt: skip
             # within the creep limit itself: the top was held at `pin`, PEAK_PIN_MARGIN
             # below it, and a solve at its torque meets that creep to round-off, on
             # either side (harden task 2803:367: 1.4e-16 above `pin`, and the limit fell
             # to the walk's point before its last, 78.5 N m for 171.6)
             good &= np.max(np.abs(xr), axis=-1) <= creep_limit
             torque[keep[idx[good]]], x[keep[idx[good]]] = top[idx[good]], xr[good]
-            _below_later_fold(sub, solve, (idx[~good], top[idx[~good]]), admissible,
-                              (keep, torque, x))  # fmt: skip
+            _below_later_fold(sub, (solve, branch_turned(flat, options)),
+                              (idx[~good], top[idx[~good]]), admissible, (keep, torque, x))  # fmt: skip
     keep = np.isfinite(torque)
     return np.where(keep, torque, np.nan), np.where(keep[:, None], x, np.nan)
 
 
-def _below_later_fold(flat, solve, tops, admissible, found) -> None:
+def _below_later_fold(flat, solvers, tops, admissible, found) -> None:
     """The limits of the points ``idx`` of ``flat`` whose climb's top ``top`` (``tops`` =
     ``(idx, top)``) no solve reached: the torque continuation from zero torque towards
     it in steps down to `FOLD_MARGIN` of it, which stops at the branch's first fold.
@@ -106,13 +106,16 @@ def _below_later_fold(flat, solve, tops, admissible, found) -> None:
     creep, the climb's at 11.66 N m in the output creep, and the limit fell back to the
     walk's point before its last, 10.64 N m). The continuation's highest torque replaces
     the limit where it is larger. ``found`` = ``(keep, torque, x)``: the indices of
-    ``flat``'s points in the batch and the batch's limits and creeps (updated in place).
+    ``flat``'s points in the batch and the batch's limits and creeps (updated in place);
+    ``solvers``: the continuation's solver and its ``turned`` test.
     """
+    solve, turned = solvers
     idx, top = tops
     keep, torque, x = found
     if idx.size == 0:
         return
-    xc, _, tc = continue_in_torque(flat.take(idx), solve, top, FOLD_MARGIN, admissible)
+    xc, _, tc = continue_in_torque(flat.take(idx), solve, top, FOLD_MARGIN, admissible,
+                                   turned=turned)  # fmt: skip
     better = np.isfinite(tc) & (tc > torque[keep[idx]])
     torque[keep[idx[better]]], x[keep[idx[better]]] = tc[better], xc[better]
 
@@ -190,7 +193,7 @@ def _reach_top(flat, solvers, climb, k, top):
     torque's fall below the fold), then Newton at the torque from there (`solve_twice`),
     else the solve's own continuation from zero torque.
     Returns ``(converged (n,), creeps (n, n_c))``."""
-    solve, branch = solvers  # the continuation's solver, and (`Pinned`, tol)
+    solve, branch, turned = solvers  # the continuation's solver, (`Pinned`, tol), its test
     pinned, tol = branch
     at = replace(flat, output_torque=top)
     start = np.where(climb.at_pin[:, None], climb.creep, np.nan)
@@ -210,6 +213,7 @@ def _reach_top(flat, solvers, climb, k, top):
         good[ready], xr[ready] = ok, xs
     far = np.flatnonzero(~good)
     if far.size:
-        xf, _, reached = continue_in_torque(at.take(far), solve, top[far], pinned=branch)
+        xf, _, reached = continue_in_torque(at.take(far), solve, top[far], pinned=branch,
+                                            turned=turned)  # fmt: skip
         good[far], xr[far] = reached == top[far], xf
     return good, xr

@@ -152,3 +152,27 @@ def test_points_recorded_after_the_timer_fired_are_dropped(monkeypatch):
             "mode": "carrier_held", "entry": "solve"}
     got = harden.run_task(0, 0, time.time() + 0.3, 600.0, case)
     assert got["cut"] and [p["outcome"] for p in got["points"]] == ["ok"]
+
+
+def test_the_branch_check_below_a_thermal_limit():
+    """The limit entry's check `_branch_below` (session 29): a solve 1e-4 below the limit
+    whose disc creep exceeds the limit's lies past the fold. Table I's thermal cam limit at
+    ratio 1.83 passes; the same limit paired with a result of less creep (the solve at
+    0.99 of it, standing in for the equilibrium there) is reported."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import numpy as np
+    import harden_entries
+    import harden_paths
+
+    v = ballcvt.Variator(traction_law="thermal")
+    kw = {"clamp_law": "cam"}
+    cond = {"ratio": 1.8333333333333333, "rpm": 2000.0, "kw": kw}
+    case = {"law": "thermal", "clamp": "cam", "arch": "double", "mode": "carrier_held",
+            "entry": "limit"}
+    task = harden_entries.Task(case, np.random.default_rng(0), [], {"seed": 0, "task": 0})
+    lim = v.limit_torque(cond["ratio"], **kw, input_speed_rpm=2000.0)
+    at = v.solve(cond["ratio"], lim, **kw, input_speed_rpm=2000.0)
+    assert harden_paths._branch_below(task, v, cond, (lim, at)) == []
+    less = v.solve(cond["ratio"], 0.99 * lim, **kw, input_speed_rpm=2000.0)
+    got = harden_paths._branch_below(task, v, cond, (lim, less))
+    assert [c for c, _ in got] == ["branch below the limit"]

@@ -71,6 +71,7 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
 
     solve = branch_solver(options)
     pinned = branch_pinned(options)
+    turned = branch_turned(flat, options)  # a step onto a torque that jumped a fold
     walk = (solve, branch_pinned(options, PATIENCE))
     torque, x, seed = _rise_to_fold(flat, walk, options.quadrature, pin, admissible)
     keep = np.flatnonzero(np.isfinite(torque))
@@ -81,16 +82,16 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
         top = np.where(climb.at_pin, climb.torque, climb.torque * (1.0 - FOLD_MARGIN))
         idx = np.flatnonzero(top > torque[keep])
         if idx.size:  # a solve must converge there
-            good, xr = _reach_top(sub.take(idx), (solve, pinned, branch_turned(flat, options)),
-                                  climb.take(idx), k[idx], top[idx])  # fmt: skip
+            good, xr = _reach_top(sub.take(idx), (solve, pinned, turned), climb.take(idx),
+                                  k[idx], top[idx])  # fmt: skip
             # within the creep limit itself: the top was held at `pin`, PEAK_PIN_MARGIN
             # below it, and a solve at its torque meets that creep to round-off, on
             # either side (harden task 2803:367: 1.4e-16 above `pin`, and the limit fell
             # to the walk's point before its last, 78.5 N m for 171.6)
             good &= np.max(np.abs(xr), axis=-1) <= creep_limit
             torque[keep[idx[good]]], x[keep[idx[good]]] = top[idx[good]], xr[good]
-            _below_later_fold(sub, (solve, branch_turned(flat, options)),
-                              (idx[~good], top[idx[~good]]), admissible, (keep, torque, x))  # fmt: skip
+            _below_later_fold(sub, (solve, turned), (idx[~good], top[idx[~good]]), admissible,
+                              (keep, torque, x))  # fmt: skip
     keep = np.isfinite(torque)
     return np.where(keep, torque, np.nan), np.where(keep[:, None], x, np.nan)
 

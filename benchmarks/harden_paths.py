@@ -145,11 +145,14 @@ def _branch_below(task, v, cond, at) -> list:
     if not (has_multiple_equilibria(v.fluid) and lim > 0) or task.case["clamp"] == "optimal":
         return []
     kind, below = reference(task, v, cond, lim * (1 - BRANCH_STEP))
-    if kind != "ok" or _disc_creep(below) <= _disc_creep(got) * (1 + 1e-9):
+    if kind != "ok":
+        return []
+    creep_below, creep_at = _disc_creep(below), _disc_creep(got)
+    if creep_below <= creep_at * (1 + 1e-9):
         return []
     return [("branch below the limit", f"solve at {1 - BRANCH_STEP:g} x the limit "
-             f"{lim:.6g} N m has a disc creep {_disc_creep(below):.6g}, beyond the limit's "
-             f"{_disc_creep(got):.6g}: past the fold")]  # fmt: skip
+             f"{lim:.6g} N m has a disc creep {creep_below:.6g}, beyond the limit's "
+             f"{creep_at:.6g}: past the fold")]  # fmt: skip
 
 
 def run_limit(task, v, cond):

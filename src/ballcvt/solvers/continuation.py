@@ -130,8 +130,8 @@ def continue_in_torque(flat: EquilibriumProblem, solve: Solve, target=None, min_
                                      x[active])  # fmt: skip
         if admissible is not None:
             good = good & admissible(xt)
-        onto = np.flatnonzero(good & (trial == goal))
-        if turned is not None and onto.size:  # the step onto the target jumped a fold?
+        onto = np.flatnonzero(good & (trial == goal)) if turned is not None else ()
+        if len(onto):  # the step onto the target jumped a fold?
             sub = replace(flat.take(active[onto]), output_torque=trial[onto])
             good[onto] &= ~turned(sub, xt[onto])
         iterations[active] += its

@@ -31,7 +31,7 @@ import numpy as np
 
 from .held_creep import FOLD_CREEP_RTOL, MAX_FOLD_STEPS, Pinned, pinned_step
 
-__all__ = ["climb_to_fold", "disc_to_climb", "Climb", "FIRST_CREEP_STEP", "GOLDEN"]
+__all__ = ["climb_to_fold", "Climb", "FIRST_CREEP_STEP", "GOLDEN"]
 
 #: First step of the held creep, as a share of the creep limit [-].
 FIRST_CREEP_STEP = 0.02
@@ -88,13 +88,6 @@ class Climb:
         self.at_pin[index], self.clean[index] = other.at_pin, other.clean
         for mine, theirs in zip(self.below, other.below, strict=True):
             mine[index] = theirs
-
-
-def disc_to_climb(way) -> np.ndarray:
-    """The disc contact, ``0`` or ``n_c - 1``, whose creep moves more along ``way``
-    ``(n, n_c)`` (a walk's last chord, or the creeps themselves), per point: its held
-    creep parametrises the branch best there."""
-    return np.where(np.abs(way[:, 0]) >= np.abs(way[:, -1]), 0, way.shape[-1] - 1)
 
 
 def climb_to_fold(flat, pinned: Pinned, k: int, pin: float, tol: float, start, share: float):

@@ -34,6 +34,7 @@ from ..equilibrium.problem import EquilibriumProblem
 __all__ = [
     "reach_torque",
     "turned_back",
+    "disc_to_climb",
     "TURN_STEP",
     "FOLD_CREEP_RTOL",
     "PINNED_SLACK",
@@ -84,6 +85,13 @@ def pinned_step(pinned: Pinned, flat, k, x, creep, tol):
     return np.where(ok, got, np.nan), sol.state.creep
 
 
+def disc_to_climb(way) -> np.ndarray:
+    """The disc contact, ``0`` or ``n_c - 1``, whose creep moves more along ``way``
+    ``(n, n_c)`` (a walk's last chord, or the creeps themselves), per point: its held
+    creep parametrises the branch best there."""
+    return np.where(np.abs(way[:, 0]) >= np.abs(way[:, -1]), 0, way.shape[-1] - 1)
+
+
 #: Relative step [-] down in the larger disc creep by which `turned_back` tells which way
 #: the torque moves along the branch at an equilibrium. Next to a reported fold limit
 #: (`ballcvt.solvers.peak.FOLD_MARGIN` below the fold) the torque then moves by ~3e-6 of
@@ -104,7 +112,7 @@ def turned_back(flat, pinned: Pinned, tol, x) -> np.ndarray:
     """
     goal, sign = _goal(flat)
     past = np.zeros(flat.size, dtype=bool)
-    held = np.where(np.abs(x[:, 0]) >= np.abs(x[:, -1]), 0, flat.layout.n_contacts - 1)
+    held = disc_to_climb(x)
     for k in np.unique(held):
         j = np.flatnonzero(held == k)
         got, _ = pinned_step(pinned, flat.take(j), int(k), x[j], x[j, k] * (1 - TURN_STEP),

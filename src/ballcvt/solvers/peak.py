@@ -28,8 +28,8 @@ import numpy as np
 
 from .branch_path import follow_branch, walks
 from .continuation import continue_in_torque, solve_twice
-from .fold import Climb, climb_to_fold, disc_to_climb
-from .held_creep import FOLD_CREEP_RTOL, secant_in_creep
+from .fold import Climb, climb_to_fold
+from .held_creep import FOLD_CREEP_RTOL, disc_to_climb, secant_in_creep
 from .newton import PATIENCE, branch_pinned, branch_solver, branch_turned
 from .options import at_residual_floor
 

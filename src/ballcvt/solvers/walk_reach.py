@@ -27,8 +27,8 @@ from __future__ import annotations
 import numpy as np
 
 from .branch_path import follow_branch, walks
-from .fold import climb_to_fold, disc_to_climb
-from .held_creep import secant_in_creep
+from .fold import climb_to_fold
+from .held_creep import disc_to_climb, secant_in_creep
 
 __all__ = ["walk_to_torque", "PAST_RTOL"]
 

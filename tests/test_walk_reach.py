@@ -63,3 +63,29 @@ def test_a_limit_at_the_pressure_bound_is_the_fold_past_a_step_over_it():
                                        OPTIONS)[0]) for s in (0.995, 0.999, 1.0)]  # fmt: skip
     assert limits[0] < limits[1] < limits[2]
     assert limits[2] == pytest.approx(562.23, abs=0.05)
+
+
+
+def test_a_fold_beyond_the_creep_limit_is_located_by_the_climb(monkeypatch):
+    """Ratio 2 at 9396 N (the cam's force at 287 N m in Table I's thermal cam scan): the
+    fold lies at 161.79 N m, an input creep of 0.081, within the creep limit (0.1). The
+    torque continuation towards 287 N m stops at its first failed step and the walk from
+    there jumps the fold to a creep of 0.1006, still above the step before. The climb
+    seeded there, bounded at the creep limit, ended at its bound undecided, and the march
+    in a held creep (`reach_torque`) went on to the fold; bounded at `CLIMB_BOUND` limits
+    it brackets the fold, and 287 N m is found past it without the march."""
+    import ballcvt.solvers.continuation as continuation
+
+    force = 9395.82198308934
+    fold = float(limit_torque_batch(_at(2.0, [0.0], force), THERMAL.design.creep_limit, OPTIONS)[0])
+    assert fold == pytest.approx(161.79, abs=0.01)
+    marches = []
+    reach = continuation.reach_torque
+    monkeypatch.setattr(continuation, "reach_torque",
+                        lambda p, *a: (marches.append(p.size), reach(p, *a))[1])  # fmt: skip
+    pb = _at(2.0, [287.252129997354], force)
+    _, _, torque = continuation.continue_in_torque(
+        pb, branch_solver(OPTIONS), pinned=branch_pinned(OPTIONS)
+    )
+    assert torque[0] < fold  # not reached: past the fold
+    assert marches == []

@@ -44,3 +44,46 @@ def test_optimal_capacity_without_pressure_limit_is_the_best_force():
         v.solve(1.0, 1.001 * lim, clamp_law="optimal", input_speed_rpm=2000)
     curve = v.limit_curve([1.0], clamp_law="optimal", input_speed_rpm=2000, progress=False)
     assert float(curve.torque[0]) == pytest.approx(lim, rel=1e-6)
+
+
+class _Stand:
+    """A stand-in `LimitSearch` of limiting torques only."""
+
+    def __init__(self, torque):
+        self.torque = torque
+
+    def take(self, index):
+        return _Stand(self.torque[index])
+
+
+@pytest.mark.parametrize("peak, kept", [(0.05, True), (-5e-4, False)])
+def test_thermal_capacity_keeps_f_p_where_its_limit_still_rises(monkeypatch, peak, kept):
+    """Under the thermal law (more than one equilibrium) the optimal law's capacity force
+    is ``F_p`` from the limits at ``F_p (1 - EDGE)`` and ``F_p`` alone where the limit
+    rises there by more than `RISE` (a stand-in limit peaking at ``ln(F / F_p) = 0.05``);
+    a limit peaking just below ``F_p`` (at -5e-4, flat across the last ``EDGE``) is
+    scanned and refined to its peak, below ``F_p``."""
+    import numpy as np
+
+    from ballcvt.equilibrium.problem import build_problem
+    from ballcvt.solvers import optimal_capacity as oc
+
+    d, f = load_builtin("table1")
+    v = Variator(d, f, traction_law="thermal")
+    pb = build_problem(v.design, v.fluid, v.architecture, np.array([1.0]), 0.0,
+                       np.ones(1), np.array([200.0]))  # fmt: skip
+    p_lim, c_lim = v.design.max_pressure, v.design.creep_limit
+    top = float(oc.force_range_top(pb, p_lim, 100.0)[0])
+    calls = []
+
+    def searches(flat, forces, c, o):
+        calls.append(forces.shape[1])
+        return _Stand((100.0 * (1.0 - (np.log(forces / top) - peak) ** 2)).ravel())
+
+    monkeypatch.setattr(oc, "_searches", searches)
+    force = float(oc.capacity_force(pb, p_lim, c_lim, 100.0, v.options)[0])
+    if kept:
+        assert force == top and calls == [2]
+    else:
+        assert force < top and np.log(force / top) == pytest.approx(peak, abs=1e-4)
+        assert calls[0] == 2 and len(calls) == 2 + oc.ZOOM

@@ -16,11 +16,16 @@ round narrows the bracket fourfold: the force to some 1e-3 of itself, the torque
 its maximum, to about 1e-7). Where the best is ``F_p`` (the limit still rising there) it is
 kept exactly, except under a traction law with more than one equilibrium (the thermal
 law): there the limit, the fold of the branch from zero torque, can peak and fall again
-below ``F_p`` (past the peak of the traction curves), and is noisy near it (a continuation
-step failing at the solver's tolerance ends the branch early), so the best force is always
-refined, ``F_p`` staying a candidate, and each point is searched on its own: the batched
-Newton's path depends on the batch (its predictor stage, its shared Jacobian skip), and
-the force must not (a table and `limit_torque` gave 30.8 and 233 N m on task 2026:124).
+below ``F_p`` (past the peak of the traction curves), and was noisy near it (a
+continuation step failing at the solver's tolerance ended the branch early), so the best
+force is refined, ``F_p`` staying a candidate, and each point is searched on its own: the
+force must not depend on the batch (a table and `limit_torque` gave 30.8 and 233 N m on
+task 2026:124). Under the torque condition on ``T_2`` the fold is the walk's along the
+branch and the climb's in a held creep, smooth in the force (to 1e-8 whatever the batch,
+`ballcvt.model.traction.base.THERMAL_RESIDUAL_FLOOR`), and a limit still rising at
+``F_p`` by more than `RISE` of itself keeps ``F_p`` there too (since session 30: Table
+I's thermal optimal sweep scanned and refined ``F_p`` in 63 more limit searches per curve
+and kept it every time).
 """
 
 from __future__ import annotations
@@ -30,6 +35,7 @@ import numpy as np
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import InputError
 from ..model.traction.base import has_multiple_equilibria
+from .branch_path import walks
 from .clamped import pressure_bound_force, with_clamp
 from .limit import LimitSearch, limit_search
 from .options import SolverOptions
@@ -43,6 +49,7 @@ __all__ = [
     "GRID",
     "ZOOM",
     "ZOOM_GRID",
+    "RISE",
 ]
 
 #: Forces of the first scan, from ``min_force`` to ``F_p`` (one more at ``F_p (1 - EDGE)``).
@@ -54,6 +61,11 @@ EDGE = 1e-3
 ZOOM = 6
 #: Forces of each refinement round (between the best force's neighbours).
 ZOOM_GRID = 9
+#: Relative rise of the limit [-] from ``F_p (1 - EDGE)`` to ``F_p`` above which a law with
+#: more than one equilibrium keeps ``F_p`` (module docstring): a hundred times the fold's
+#: noise across batches (1e-8), under a hundredth of the rise where the limit still climbs
+#: with the force (6e-4 to 8e-4 on Table I's thermal drive at 2000 rpm).
+RISE = 1e-6
 
 
 def force_range_top(problem: EquilibriumProblem, p_lim: float, min_force: float) -> np.ndarray:
@@ -151,10 +163,11 @@ def _search(flat, top: np.ndarray, floor: float, creep_limit: float, options):
     """`capacity_force` of the 1-D batch ``flat`` (forces ``(n,)`` [N]): ``F_p`` where the
     limit still rises there (`_rising_at_top`), else the scan and its refinement; and
     the limit search at ``F_p`` where every point's limit rises there (else None)."""
-    if has_multiple_equilibria(flat.fluid):
+    multiple = has_multiple_equilibria(flat.fluid)
+    if multiple and not walks(flat):
         return _scan(flat, top, floor, creep_limit, options), None
     out = top.copy()
-    rising, at_top = _rising_at_top(flat, top, creep_limit, options)
+    rising, at_top = _rising_at_top(flat, top, creep_limit, options, RISE if multiple else 0.0)
     rest = np.flatnonzero(~rising)
     if rest.size:
         out[rest] = _scan(flat.take(rest), top[rest], floor, creep_limit, options)
@@ -162,19 +175,21 @@ def _search(flat, top: np.ndarray, floor: float, creep_limit: float, options):
     return out, at_top
 
 
-def _rising_at_top(flat, top: np.ndarray, creep_limit: float, options):
+def _rising_at_top(flat, top: np.ndarray, creep_limit: float, options, rise: float = 0.0):
     """Whether each point's limiting torque is larger at ``F_p`` than at ``F_p (1 -
-    EDGE)``: it rises with the force up to its peak and falls beyond (module
-    docstring), so a limit still rising at ``F_p`` is largest there, and the scan below
-    it would find nothing larger (since session 25: two limits instead of ten where the
-    drive is traction-limited up to the pressure bound, the case of the built-in drives).
-    Not used under a law with more than one equilibrium, whose limit is noisy near its
-    peak. Also returns the limit search at ``F_p`` (`LimitSearch`, one batch with the
-    other force's), which a capacity at ``F_p`` reuses (`capacity_search`)."""
+    EDGE)`` (by more than ``rise`` of itself [-]): it rises with the force up to its peak
+    and falls beyond (module docstring), so a limit still rising at ``F_p`` is largest
+    there, and the scan below it would find nothing larger (since session 25: two limits
+    instead of ten where the drive is traction-limited up to the pressure bound, the case
+    of the built-in drives). Not used under a law with more than one equilibrium where
+    the fold is not the walk's (a planetary mode's torque condition), whose limit is noisy
+    near its peak. Also returns the limit search at ``F_p`` (`LimitSearch`, one batch with
+    the other force's), which a capacity at ``F_p`` reuses (`capacity_search`)."""
     n = flat.size
     got = _searches(flat, np.column_stack([top * (1.0 - EDGE), top]), creep_limit, options)
     lim = np.where(np.isfinite(got.torque), got.torque, -np.inf).reshape(n, 2)
-    return np.isfinite(lim[:, 1]) & (lim[:, 1] > lim[:, 0]), got.take(np.arange(1, 2 * n, 2))
+    rising = np.isfinite(lim[:, 1]) & (lim[:, 1] > lim[:, 0] * (1.0 + rise))
+    return rising, got.take(np.arange(1, 2 * n, 2))
 
 
 def _scan(flat, top: np.ndarray, floor: float, creep_limit: float, options) -> np.ndarray:

@@ -328,7 +328,7 @@ def test_compiled_path_equals_numpy_path_on_random_designs(case):
 
 
 def test_newton_update_compiled_equals_python_and_handles_singular_steps():
-    """The compiled Newton update (`_advance`) against its plain-Python form on random
+    """The compiled Newton update (`newton_step.advance`) against its plain-Python form on random
     points (steps, caps, back-offs), and a singular Jacobian takes the capped
     least-squares step instead of failing."""
     from ballcvt.solvers import newton as B
@@ -358,8 +358,8 @@ def test_newton_update_compiled_equals_python_and_handles_singular_steps():
         np.testing.assert_allclose(u, w, rtol=1e-12, atol=1e-15)
     assert s1[3] and not s1[np.arange(n) != 3].any()
     x = np.array([[0.01, 0.0, 0.0, 0.01]])
-    it = B._Iterates(x, np.full(1, np.inf), x.copy(), np.zeros((1, nc)), np.ones(1, bool))
-    active = B._advance(it, np.arange(1), np.ones((1, nc)) * 1e-3, np.ones((1, nc, nc)),
+    it = S.Iterates(x, np.full(1, np.inf), x.copy(), np.zeros((1, nc)), np.ones(1, bool))
+    active = S.advance(it, np.arange(1), np.ones((1, nc)) * 1e-3, np.ones((1, nc, nc)),
                         free, 1e-11)
     assert active.tolist() == [0] and np.all(np.isfinite(x)) and not np.allclose(x[0, 0], 0.01)
 

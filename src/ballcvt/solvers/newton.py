@@ -5,7 +5,7 @@ All points of a batch iterate together, first with a coarse quadrature (the pred
 iteration evaluates the traction integrals once, with their analytic derivatives
 (`evaluate_with_jacobian`; near the solution without them, the step then taken with the
 last Jacobian corrected by Broyden's secant update, `ballcvt.solvers.secant`), and
-updates every point in one compiled loop (`_advance`: the small ``n_c x n_c`` Newton
+updates every point in one compiled loop (`ballcvt.solvers.newton_step.advance`: the small ``n_c x n_c`` Newton
 systems by Gaussian elimination, the caps, the back-offs). Steps are capped so that no
 creep leaves its physical range, and a point whose residual grew is sent back along half
 its previous step (a deferred backtracking line search that costs nothing while Newton
@@ -33,7 +33,7 @@ from ..model.traction.base import has_multiple_equilibria
 from .branch_path import walks
 from .continuation import REACH_STEP, continue_in_torque
 from .held_creep import turned_back
-from .newton_step import COMPILED, MAX_STEP, advance_compiled, advance_python, cap
+from .newton_step import MAX_STEP, Iterates, advance
 from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
 from .robust import solve_robust
 from .secant import SecantCorrection
@@ -354,7 +354,7 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
     free = np.arange(nc) if pinned is None else np.delete(np.arange(nc), pinned)
     active = np.arange(n)
     final = None
-    it = _Iterates(
+    it = Iterates(
         x=x,
         best=np.full(n, np.inf),
         prev_x=x.copy(),
@@ -385,10 +385,10 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
         res = np.ascontiguousarray(state.residual[:, :m])
         # near its solution a point steps with its last Jacobian, corrected
         jac = secant.update(active, xa[:, free], res, jac)
-        before = it.best[at].copy()  # (`_advance` updates the best norms in place)
+        before = it.best[at].copy()  # (`advance` updates the best norms in place)
         norm = _norm(res)
         secant.near[at] = (norm <= CONFIRM_NORM) & (norm < before)
-        kept = _advance(it, active, res, jac, free, options.tol)
+        kept = advance(it, active, res, jac, free, options.tol)
         confirm = bool(secant.near[kept].all())  # no fresh Jacobian needed
         if patience is not None:
             stall[active] = np.where(it.best[active] < before, 0, stall[active] + 1)
@@ -410,65 +410,6 @@ def _scatter(full: EquilibriumState, part: EquilibriumState, index) -> Equilibri
     ):
         return part
     return full.put(index, part)
-
-
-@dataclass(frozen=True)
-class _Iterates:
-    """The Newton iterates of a batch, updated in place by `_advance`.
-
-    Attributes
-    ----------
-    x : ndarray
-        Creeps ``(n, n_c)`` [-].
-    best : ndarray
-        Residual norm at each point's last accepted creeps ``(n,)`` [-].
-    prev_x, prev_dx : ndarray
-        Creeps before the last step ``(n, n_c)`` and that step on the free creeps.
-    fresh : ndarray of bool
-        Whether each point's last evaluation was at its current creeps ``(n,)``.
-    """
-
-    x: np.ndarray
-    best: np.ndarray
-    prev_x: np.ndarray
-    prev_dx: np.ndarray
-    fresh: np.ndarray
-
-
-def _advance(it: _Iterates, active, res, jac, free, tol):
-    """One Newton update of the points ``active`` after their evaluation (``res``,
-    ``jac``: their residuals and the Jacobians to step with on the free creeps,
-    `SecantCorrection`); updates ``it`` in place.
-
-    A point whose residual norm meets ``tol`` is done. Otherwise a point whose norm did
-    not fall below its best goes back along half its previous step (and stops if that
-    step is below 1e-14), and the others take the Newton step, capped in size and kept
-    inside `CREEP_BOUNDS` (`ballcvt.solvers.newton_step.cap`; least squares where the
-    matrix is singular).
-
-    Returns the points still iterating.
-    """
-    lo, hi = CREEP_BOUNDS
-    keep = np.zeros(active.size, dtype=np.bool_)
-    singular = np.zeros(active.size, dtype=np.bool_)
-    step = advance_compiled if COMPILED else advance_python
-    x, prev_x, prev_dx, fresh = it.x, it.prev_x, it.prev_dx, it.fresh
-    step(
-        active, res, jac, x, free, it.best, prev_x, prev_dx, fresh, tol,
-        MAX_STEP, lo, hi, keep, singular,
-    )  # fmt: skip
-    for k in np.flatnonzero(singular):  # rare: a least-squares step, capped
-        i = active[k]
-        dx = cap(_lstsq(jac[k], res[k])[None, :], x[i, free][None, :])[0]
-        prev_x[i] = x[i]
-        prev_dx[i] = dx
-        x[i, free] += dx
-        fresh[i] = False
-    return active[keep]
-
-
-def _lstsq(jac, res):
-    return np.linalg.lstsq(jac, -res, rcond=None)[0]
 
 
 def _norm(res):

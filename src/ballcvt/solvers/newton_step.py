@@ -1,4 +1,4 @@
-"""The compiled update of the batched Newton solver (`ballcvt.solvers.newton._advance`):
+"""The update of the batched Newton solver (`advance`, compiled where numba is installed):
 per point, the ``n_c x n_c`` Newton system by Gaussian elimination with partial pivoting,
 the caps of the step and the back-off of a step whose residual grew. A plain-Python form
 runs where numba is missing."""
@@ -6,6 +6,7 @@ runs where numba is missing."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -18,7 +19,15 @@ try:
 except ImportError:  # pragma: no cover - numba is a declared dependency
     njit = None
 
-__all__ = ["COMPILED", "MAX_STEP", "advance_compiled", "advance_python", "cap"]
+__all__ = [
+    "COMPILED",
+    "MAX_STEP",
+    "Iterates",
+    "advance",
+    "advance_compiled",
+    "advance_python",
+    "cap",
+]
 
 #: Largest change of any creep in one Newton step [-].
 MAX_STEP = 0.05
@@ -56,12 +65,12 @@ _gauss = njit(cache=True)(_gauss_python) if njit is not None else _gauss_python
 
 
 # many parameters: compiled by numba, which takes arrays and scalars (an object would not
-# compile); `_advance` is the typed entry point.
+# compile); `advance` is the typed entry point.
 def advance_python(
     active, res, jac, x, free, best, prev_x, prev_dx, fresh, tol, max_step, lo, hi, keep,
     singular,
 ):  # fmt: skip
-    """`_advance`'s loop: Gaussian elimination with partial pivoting for the steps, then
+    """`advance`'s loop: Gaussian elimination with partial pivoting for the steps, then
     the caps of `cap`; writes ``keep`` and ``singular`` per point. Compiled by numba
     (`advance_compiled`); this plain-Python form runs only without numba."""
     m = free.size
@@ -137,3 +146,61 @@ def cap(dx, x):
 
 COMPILED = njit is not None
 advance_compiled: Any = njit(cache=True)(advance_python) if COMPILED else None
+
+
+@dataclass(frozen=True)
+class Iterates:
+    """The Newton iterates of a batch, updated in place by `advance`.
+
+    Attributes
+    ----------
+    x : ndarray
+        Creeps ``(n, n_c)`` [-].
+    best : ndarray
+        Residual norm at each point's last accepted creeps ``(n,)`` [-].
+    prev_x, prev_dx : ndarray
+        Creeps before the last step ``(n, n_c)`` and that step on the free creeps.
+    fresh : ndarray of bool
+        Whether each point's last evaluation was at its current creeps ``(n,)``.
+    """
+
+    x: np.ndarray
+    best: np.ndarray
+    prev_x: np.ndarray
+    prev_dx: np.ndarray
+    fresh: np.ndarray
+
+
+def advance(it: Iterates, active, res, jac, free, tol):
+    """One Newton update of the points ``active`` after their evaluation (``res``,
+    ``jac``: their residuals and the Jacobians to step with on the free creeps,
+    `ballcvt.solvers.secant.SecantCorrection`); updates ``it`` in place.
+
+    A point whose residual norm meets ``tol`` is done. Otherwise a point whose norm did
+    not fall below its best goes back along half its previous step (and stops if that
+    step is below 1e-14), and the others take the Newton step, capped in size and kept
+    inside `CREEP_BOUNDS` (`cap`; least squares where the matrix is singular).
+
+    Returns the points still iterating.
+    """
+    lo, hi = CREEP_BOUNDS
+    keep = np.zeros(active.size, dtype=np.bool_)
+    singular = np.zeros(active.size, dtype=np.bool_)
+    step = advance_compiled if COMPILED else advance_python
+    x, prev_x, prev_dx, fresh = it.x, it.prev_x, it.prev_dx, it.fresh
+    step(
+        active, res, jac, x, free, it.best, prev_x, prev_dx, fresh, tol,
+        MAX_STEP, lo, hi, keep, singular,
+    )  # fmt: skip
+    for k in np.flatnonzero(singular):  # rare: a least-squares step, capped
+        i = active[k]
+        dx = cap(_lstsq(jac[k], res[k])[None, :], x[i, free][None, :])[0]
+        prev_x[i] = x[i]
+        prev_dx[i] = dx
+        x[i, free] += dx
+        fresh[i] = False
+    return active[keep]
+
+
+def _lstsq(jac, res):
+    return np.linalg.lstsq(jac, -res, rcond=None)[0]

@@ -155,3 +155,36 @@ def test_a_solve_next_to_the_cam_limit_stays_below_the_fold():
     creep = [r.contacts["input"].creep for r in got]
     eta = [r.eta for r in got]
     assert np.all(np.diff(creep) > 0) and np.all(np.diff(eta) < 0)
+
+
+def test_a_solve_from_nearby_creeps_keeps_the_branch():
+    """`solve_near` (the optimal clamp's stencils): from the creeps of the branch at a
+    force 2 % away, Newton's solution is kept (the branch's, to 1e-8); from the creeps
+    of the equilibrium past the fold at the same torque (Table I, ratio 1, 2 kN, fold at
+    114.78 N m: the input creep held at 0.05, past the fold's, gives 108.0 N m there),
+    Newton converges at once to that equilibrium, which the fold test refuses, and the
+    point is followed from zero torque to the branch's."""
+    from ballcvt.solvers.newton import solve_near
+
+    options = at_residual_floor(SolverOptions(), THERMAL.fluid)
+
+    def at(torque, force):
+        return build_problem(THERMAL.design, THERMAL.fluid, THERMAL.architecture,
+                             np.array([1.0]), np.array([torque]), force,
+                             np.array([2000.0 * RPM])).flat()  # fmt: skip
+
+    near = solve_batch(at(100.0, 2040.0), options)
+    ref = solve_batch(at(100.0, 2000.0), options)
+    got = solve_near(at(100.0, 2000.0), options, near.state.creep)
+    assert near.converged.all() and ref.converged.all() and got.converged.all()
+    np.testing.assert_allclose(got.state.creep, ref.state.creep, rtol=0, atol=1e-8)
+
+    x_up = np.array(ref.state.creep)
+    x_up[:, 0] = 0.05
+    t_up, up = solve_pinned(at(0.0, 2000.0), 0, x_up, options)
+    assert up.converged.all() and 100.0 < t_up[0] < 114.78
+    below = solve_batch(at(float(t_up[0]), 2000.0), options)
+    got = solve_near(at(float(t_up[0]), 2000.0), options, up.state.creep)
+    assert below.converged.all() and got.converged.all()
+    assert below.state.creep[0, 0] < 0.045  # the branch's, below the fold
+    np.testing.assert_allclose(got.state.creep, below.state.creep, rtol=0, atol=1e-8)

@@ -40,7 +40,7 @@ from .secant import SecantCorrection
 from .trials import quiet_trials
 
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "branch_solver"]
-__all__ += ["on_branch", "CREEP_BOUNDS", "MAX_STEP", "PATIENCE"]
+__all__ += ["on_branch", "solve_near", "CREEP_BOUNDS", "MAX_STEP", "PATIENCE"]
 
 #: Consecutive Newton iterations without a lower residual after which a step of the
 #: torque continuation gives up (`branch_solver`); the continuation then tries that
@@ -135,7 +135,7 @@ def solve_batch(
         else np.broadcast_to(np.asarray(x0, dtype=float), shape + (nc,)).reshape(-1, nc).copy()
     )
     if has_multiple_equilibria(problem.fluid):
-        sol = _follow(flat, options, predict, x, below)
+        sol = _follow(flat, options, predict, x, None if below is None else _below(below))
     else:
         sol = _solve_flat(flat, x, options, fallback, predict)
     return BatchSolution(
@@ -146,17 +146,58 @@ def solve_batch(
     )
 
 
-def _follow(flat, options, predict, x, below) -> BatchSolution:
+def solve_near(problem: EquilibriumProblem, options: SolverOptions, x0) -> BatchSolution:
+    """Solve a 1-D batch from the creeps ``x0`` ``(n, n_c)`` of nearby equilibria (the
+    optimal clamp's stencils: the same torque at forces a few per cent apart), without
+    the predictor stage or the point solver.
+
+    Under a law with more than one equilibrium (under the torque condition on ``T_2``),
+    Newton from ``x0`` comes first, and a point keeps its solution where it converged and
+    does not lie past a fold of its branch (`ballcvt.solvers.held_creep.turned_back`, the
+    test of the torque continuation's step onto its target); every other point is
+    followed from zero torque, as `solve_batch` follows them all (since session 30: the
+    thermal optimal sweep's stencils were each followed from zero torque). Otherwise
+    `solve_batch` from ``x0``.
+    """
+    options = at_residual_floor(SolverOptions() if options is None else options, problem.fluid)
+    flat = problem.flat()
+    x = np.array(x0, dtype=float).reshape(flat.size, flat.layout.n_contacts)
+    if not (has_multiple_equilibria(flat.fluid) and walks(flat)):
+        return solve_batch(flat, options, x, fallback=False, predict=False)
+    turned = branch_turned(flat, options)
+
+    def accept(direct: BatchSolution) -> np.ndarray:
+        keep = np.array(direct.converged, dtype=bool)
+        on = np.flatnonzero(keep)
+        if on.size and turned is not None:
+            keep[on] &= ~turned(flat.take(on), direct.state.creep[on])
+        return keep
+
+    return _follow(flat, options, False, x, accept)
+
+
+def _below(below):
+    """The ``accept`` test of `_follow` given ``below`` (`solve_batch`): converged, and
+    `on_branch` under those creeps."""
+
+    def accept(direct: BatchSolution) -> np.ndarray:
+        bound = np.broadcast_to(np.asarray(below, dtype=float), direct.state.creep.shape)
+        return direct.converged & on_branch(direct.state.creep, bound)
+
+    return accept
+
+
+def _follow(flat, options, predict, x, accept) -> BatchSolution:
     """`solve_batch` of the 1-D batch ``flat`` under a law with more than one
-    equilibrium: Newton from ``x`` where ``below`` is given, kept where `on_branch`; every
-    other point followed from zero torque (`continue_in_torque`)."""
+    equilibrium: Newton from ``x`` where ``accept`` is given (``BatchSolution -> bool
+    (n,)``: `_below`'s `on_branch`, or `solve_near`'s fold test), kept where it holds;
+    every other point followed from zero torque (`continue_in_torque`)."""
     iterations = np.zeros(flat.size, dtype=int)
     todo = np.arange(flat.size)
-    if below is not None:
-        bound = np.broadcast_to(np.asarray(below, dtype=float), x.shape)
+    if accept is not None:
         direct = _solve_flat(flat, x, options, False, predict, PATIENCE)
         iterations += direct.iterations
-        keep = direct.converged & on_branch(direct.state.creep, bound)
+        keep = accept(direct)
         x = np.where(keep[:, None], _polished(flat, direct, keep, options), x)
         todo = np.flatnonzero(~keep)
     if todo.size:

@@ -53,7 +53,7 @@ from ..errors import TractionLimitError
 from ..model.clamping import OptimalClamp
 from ..performance.efficiency import efficiency
 from .clamped import pressure_bound_force, with_clamp
-from .newton import initial_creep, solve_batch
+from .newton import initial_creep, solve_batch, solve_near
 from .optimal_search import ClampCase, search_optimum
 from .options import SolverOptions, coarse_options
 from .refusal import CREEP_RTOL
@@ -129,14 +129,21 @@ class _Scorer:
     def __call__(self, index, u, x0=None):
         """``(score, creeps)`` of points ``index`` at ``F_N0 = exp(u)``: the score is the
         overall efficiency where the point converges within the creep limit, ``-inf``
-        elsewhere (as in `search_optimum`)."""
+        elsewhere (as in `search_optimum`). From the starting creeps ``x0`` (a last
+        stencil's, a coarse search's, a duty cycle's first pass's), `solve_near`: under a
+        law with more than one equilibrium Newton's answer is kept unless it lies past a
+        fold, where each solve was followed from zero torque before session 30 (a third
+        of the thermal optimal sweep's traction evaluations)."""
         pb = with_clamp(self.problem.take(index), np.exp(u))
         options = replace(
             self.options,
             max_iterations=min(self.options.max_iterations, ITERATIONS),
             tol=max(self.options.tol, SCORE_TOL),
         )
-        sol = solve_batch(pb, options, x0, fallback=False, predict=x0 is None)
+        if x0 is None:
+            sol = solve_batch(pb, options, None, fallback=False)
+        else:  # near their solutions (under the thermal law: kept unless past a fold)
+            sol = solve_near(pb, options, x0)
         creep = np.max(np.abs(sol.state.creep), axis=-1)
         ok = sol.converged & (creep <= self.c_lim * (1.0 + CREEP_RTOL))
         eta = efficiency(pb, sol.state).overall

@@ -5,8 +5,8 @@ All points of a batch iterate together, first with a coarse quadrature (the pred
 iteration evaluates the traction integrals once, with their analytic derivatives
 (`evaluate_with_jacobian`; near the solution without them, the step then taken with the
 last Jacobian corrected by Broyden's secant update, `ballcvt.solvers.secant`), and
-updates every point in one compiled loop (`ballcvt.solvers.newton_step.advance`: the small ``n_c x n_c`` Newton
-systems by Gaussian elimination, the caps, the back-offs). Steps are capped so that no
+updates every point in one compiled loop (`ballcvt.solvers.newton_step.advance`: the
+small ``n_c x n_c`` Newton systems by Gaussian elimination, the caps, the back-offs). Steps are capped so that no
 creep leaves its physical range, and a point whose residual grew is sent back along half
 its previous step (a deferred backtracking line search that costs nothing while Newton
 converges). Points
@@ -155,9 +155,9 @@ def solve_near(problem: EquilibriumProblem, options: SolverOptions, x0) -> Batch
     Newton from ``x0`` comes first, and a point keeps its solution where it converged and
     does not lie past a fold of its branch (`ballcvt.solvers.held_creep.turned_back`, the
     test of the torque continuation's step onto its target); every other point is
-    followed from zero torque, as `solve_batch` follows them all (since session 30: the
-    thermal optimal sweep's stencils were each followed from zero torque). Otherwise
-    `solve_batch` from ``x0``.
+    followed from zero torque, as `solve_batch` follows them all (before session 30 the
+    thermal optimal sweep's stencils were each so followed). Otherwise `solve_batch` from
+    ``x0``.
     """
     options = at_residual_floor(SolverOptions() if options is None else options, problem.fluid)
     flat = problem.flat()

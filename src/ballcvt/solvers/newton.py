@@ -6,10 +6,10 @@ iteration evaluates the traction integrals once, with their analytic derivatives
 (`evaluate_with_jacobian`; near the solution without them, the step then taken with the
 last Jacobian corrected by Broyden's secant update, `ballcvt.solvers.secant`), and
 updates every point in one compiled loop (`ballcvt.solvers.newton_step.advance`: the
-small ``n_c x n_c`` Newton systems by Gaussian elimination, the caps, the back-offs). Steps are capped so that no
-creep leaves its physical range, and a point whose residual grew is sent back along half
-its previous step (a deferred backtracking line search that costs nothing while Newton
-converges). Points
+small ``n_c x n_c`` Newton systems by Gaussian elimination, the caps, the back-offs).
+Steps are capped so that no creep leaves its physical range, and a point whose residual
+grew is sent back along half its previous step (a deferred backtracking line search that
+costs nothing while Newton converges). Points
 still unconverged after ``max_iterations`` go, one by one, to the robust point solver
 (hybrid method, then bracketing). A point is reported converged only if its residual,
 evaluated afresh on the final creeps, meets the tolerance; the others are flagged in
@@ -159,17 +159,17 @@ def solve_near(problem: EquilibriumProblem, options: SolverOptions, x0) -> Batch
     thermal optimal sweep's stencils were each so followed). Otherwise `solve_batch` from
     ``x0``.
     """
-    options = at_residual_floor(SolverOptions() if options is None else options, problem.fluid)
+    options = at_residual_floor(options, problem.fluid)
     flat = problem.flat()
     x = np.array(x0, dtype=float).reshape(flat.size, flat.layout.n_contacts)
-    if not (has_multiple_equilibria(flat.fluid) and walks(flat)):
+    turned = branch_turned(flat, options)  # None without the torque condition on T_2
+    if not has_multiple_equilibria(flat.fluid) or turned is None:
         return solve_batch(flat, options, x, fallback=False, predict=False)
-    turned = branch_turned(flat, options)
 
     def accept(direct: BatchSolution) -> np.ndarray:
         keep = np.array(direct.converged, dtype=bool)
         on = np.flatnonzero(keep)
-        if on.size and turned is not None:
+        if on.size:
             keep[on] &= ~turned(flat.take(on), direct.state.creep[on])
         return keep
 

@@ -37,6 +37,20 @@ def test_limit_is_where_the_solve_stops_to_1e_3(v, mode, ratio):
     assert err.value.limit_torque == pytest.approx(lim, rel=1e-12)
 
 
+def test_overload_names_the_range_in_the_loads_direction(v):
+    """A negative load's capacity is its own (``limit_load_batch`` searches the load's
+    direction): the message names the range on the negative side, not ``0 <= T <= L``
+    (session 31: it said ``allowed 0 <= output_torque <= 157.2 N m`` of -170 N m)."""
+    at = {"clamp_force": F, "input_speed_rpm": 600, "mode": CARRIER_DRIVES}
+    for sign in (-1.0, 1.0):
+        with pytest.raises(TractionLimitError) as err:
+            v.solve(1.3, sign * 170.0, **at)
+        cap = err.value.limit_torque
+        want = (f"allowed output_torque {-cap:.4g} to 0 N m" if sign < 0
+                else f"allowed 0 <= output_torque <= {cap:.4g} N m")
+        assert str(err.value).endswith(want)
+
+
 @pytest.mark.parametrize("load", [200.0, 400.0])
 def test_overload_is_one_line_naming_the_contact(v, load):
     with pytest.raises(TractionLimitError) as err:

@@ -134,7 +134,11 @@ def _refuse_overload(variator, mode: OperatingMode, point: ModePoint, got) -> No
     else:
         contact, creep = _largest_creep(v, got)
         why = f"the {contact} contact's creep {creep:.3g} exceeds creep_limit"
-    raise TractionLimitError(load, limit, f"{where}; {why}, creep_limit {v.design.creep_limit:g})")
+    # each direction of the load has its own capacity (`limit_load_batch`): name the range
+    allowed = f"{-limit:.4g} to 0 N m" if load < 0 else ""
+    raise TractionLimitError(
+        load, limit, f"{where}; {why}, creep_limit {v.design.creep_limit:g})", allowed
+    )
 
 
 def limit_in_mode(variator, mode: OperatingMode, ratio, clamp: dict, driver_speed, creep_limit):

@@ -13,7 +13,7 @@ import math
 
 import pytest
 
-from ballcvt import InputError, TractionLimitError, Variator, load_builtin
+from ballcvt import ConvergenceError, InputError, TractionLimitError, Variator, load_builtin
 from ballcvt.api import SolveSettings
 from ballcvt.solvers.options import SolverOptions
 from ballcvt.solvers.planetary import RATIO_TOL, ratio_tolerance
@@ -102,3 +102,36 @@ def test_a_thermal_mode_capacity_is_the_creep_limit_not_a_load_left_unsettled():
     )  # the capacity's bisection stops within 1e-3 of the load
     with pytest.raises(TractionLimitError):
         v.solve(ratio, cap * 1.003, clamp_force=force, input_speed_rpm=rpm, settings=how)
+
+
+# Harden task 3005:1429 (all cases, session 30): a hub-derived drive in a planetary mode,
+# isothermal law. The solve fails at an isolated load inside the capacity (436.12 N m
+# braking; 435.9, 436.0, 436.3 and on to 490 N m converge within the creep limit): the
+# capacity's bisection took the failure for its edge, 435.8 N m, and `solve` carried 1.001
+# times that. The bisection now solves `PROBE` above an end at a failed solve, and goes on
+# from there where that converges.
+FIELDS_3005 = json.loads("""{"aspect_ratio": 4.472784894836154, "roller_radius": 0.013153345549584309, "theta0_deg": 48.06010417825969, "theta2_deg": 27.454772109101743, "alpha_deg": 6.4923886187331155, "n_rollers": 4, "roller_bearing_diameter": 0.006773569352632547, "idler_bearing_diameter": 0.001428580981404343, "disc_groove_ratio": 2.043649516371508, "idler_groove_ratio": 4.7501581583032015, "single_idler_groove_ratio": Infinity, "tilt_safety_factor": 0.774879382429987, "creep_limit": 0.16019621220249397, "min_roller_gap": 0.0009589094395741228, "cam": {"disc": "input", "preload": 12.4391788217669, "ramp_angle_deg": 12.9156605949494, "mean_radius": 0.03409693958032574, "friction": 0.046495636203614785}, "parasitic": null}""")
+MODE_3005 = "disc2_held_carrier_drives"
+
+
+def test_a_failed_solve_inside_a_mode_capacity_is_not_its_edge():
+    from ballcvt.api import with_oil_temperature
+
+    d, f = load_builtin("hub")
+    v = Variator(d.replace(name="random", **FIELDS_3005), f, "single", traction_law="isothermal")
+    v = with_oil_temperature(v, "fixed")
+    ratio, rpm, force = 0.7456329325658441, 148.35477677635794, 16902.003425739975
+    how = SolveSettings(mode=MODE_3005)
+    kw = {"clamp_force": force, "input_speed_rpm": rpm}
+    cap = v.limit_torque(ratio, **kw, mode=MODE_3005)
+    assert cap > 480.0  # 435.8 N m before
+    # the braking load is negative here (the driven disc turns backwards)
+    at = v.solve(ratio, -cap * (1 - 2e-3), **kw, settings=how)
+    assert max(abs(c.creep) for c in at.relative.contacts.values()) <= v.design.creep_limit
+    with pytest.raises(TractionLimitError):
+        v.solve(ratio, -cap * 1.002, **kw, settings=how)
+    try:  # the failure itself: solved, or said so; never refused as beyond the capacity
+        r = v.solve(ratio, -436.12, **kw, settings=how)
+        assert max(abs(c.creep) for c in r.relative.contacts.values()) <= v.design.creep_limit
+    except ConvergenceError:
+        pass

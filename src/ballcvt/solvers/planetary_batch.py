@@ -16,6 +16,7 @@ from ..equilibrium.residual import balancing_output_torque
 from ..model.architectures import contact_layout
 from ..model.inertia import max_carrier_speed
 from ..model.modes import MEMBERS, OperatingMode, member_torques, resolve_mode
+from ..model.traction.base import has_multiple_equilibria
 from ..params.drive import Drive
 from ..performance.efficiency import LOSS_KINDS, loss_breakdown, power_losses
 from ..status import Status
@@ -24,7 +25,12 @@ from .newton import initial_creep, solve_batch
 from .options import SolverOptions
 from .planetary import ModePoint, carrier_frame_problem, ratio_settles, ratio_tolerance
 
-__all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch"]
+__all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch", "PROBE", "PROBES"]
+
+#: Relative step above the bisection's end at a failed solve at which `limit_load_batch`
+#: solves again [-] (twice its default ``rtol``), and how many times it goes on from there.
+PROBE = 2e-3
+PROBES = 2
 
 
 @dataclass(frozen=True)
@@ -179,6 +185,11 @@ def limit_load_batch(
     Elsewhere the load brakes the driven member: its sign is that of the driven speed at
     zero load (positive at geared neutral). Bracketed by doubling from the carrier-frame
     traction ceiling, then bisected to ``rtol`` on all ratios at once (`solve_mode_batch`).
+    Where the bisection ends at a load whose solve failed (not one beyond the creep
+    limit), the load `PROBE` above it is solved: where that one is admissible, the failure
+    was the solver's, not the capacity's edge, and the bisection goes on above it (up to
+    `PROBES` times; not under a law with more than one equilibrium, where a failed solve
+    is the continuation's verdict: the load lies past the fold of the branch from zero).
 
     Returns
     -------
@@ -196,35 +207,65 @@ def limit_load_batch(
             )
         )
     )
-    n = ratio.size
     at = replace(point, ratio=ratio, driver_speed=w)
-
-    def admissible(load):
-        return (
-            solve_mode_batch(drive, mode, replace(at, load_torque=load), options).status
-            == Status.CONVERGED
-        )
-
     zero = solve_mode_batch(drive, mode, replace(at, load_torque=0.0), options)
     chosen = np.isfinite(given) & (given != 0.0)
     direction = np.where(
         chosen, np.sign(np.where(chosen, given, 1.0)), zero.braking_direction(mode)
     )
     ok0 = zero.status == Status.CONVERGED
+
+    def status(size, rows=slice(None)):  # of the loads ``size`` [N m] of the points ``rows``
+        here = _rows(at, direction[rows] * size, np.arange(ratio.size)[rows])
+        return solve_mode_batch(drive, mode, here, options).status
+
     hi = traction_ceiling_torque(
         make_problem(drive, OperatingInputs(ratio, 0.0, point.clamp_force, 1.0))
     )
-    lo = np.zeros(n)
+    lo = np.zeros(ratio.size)
     for _ in range(12):  # double until beyond the capacity
-        up = admissible(direction * hi) & ok0
+        up = (status(hi) == Status.CONVERGED) & ok0
         if not up.any():
             break
-        lo = np.where(up, hi, lo)
-        hi = np.where(up, 2.0 * hi, hi)
+        lo, hi = np.where(up, hi, lo), np.where(up, 2.0 * hi, hi)
+    top = hi.copy()
+    probes = PROBES if not has_multiple_equilibria(drive.fluid) else 0
+    for attempt in range(probes + 1):
+        lo, hi, failed = _bisect(status, (lo, hi), ok0, rtol, max_steps)
+        again = np.flatnonzero(failed & ok0 & (hi * (1.0 + PROBE) < top))
+        if attempt == probes or again.size == 0:
+            break
+        above = hi[again] * (1.0 + PROBE)
+        good = status(above, again) == Status.CONVERGED
+        lo[again[good]], hi[again[good]] = above[good], top[again[good]]
+        if not good.any():
+            break
+    return np.where(ok0, lo, np.nan)
+
+
+def _bisect(status, bracket, ok0, rtol, max_steps):
+    """Bisect each point's bracket ``(lo, hi)`` [N m] on ``status(load) == CONVERGED`` to
+    ``rtol`` (the points not ``ok0`` left as they are); returns ``lo``, ``hi`` and whether
+    each ``hi`` was last set by a failed solve (``NOT_CONVERGED``)."""
+    lo, hi = (np.array(b, dtype=float) for b in bracket)
+    failed = np.zeros(lo.size, dtype=bool)
     for _ in range(max_steps):
         if np.all(~ok0 | (hi - lo <= rtol * hi)):
             break
         mid = 0.5 * (lo + hi)
-        up = admissible(direction * mid)
+        got = status(mid)
+        up = got == Status.CONVERGED
         lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
-    return np.where(ok0, lo, np.nan)
+        failed = np.where(up, failed, got == Status.NOT_CONVERGED)
+    return lo, hi, failed
+
+
+def _rows(point: ModePoint, load: np.ndarray, rows: np.ndarray) -> ModePoint:
+    """The points ``rows`` of a batch ``point`` (ratio and driver speed ``(n,)``) at the
+    loads ``load`` [N m] (of those points)."""
+    return replace(
+        point,
+        ratio=point.ratio[rows],
+        load_torque=load,
+        driver_speed=point.driver_speed[rows],
+    )

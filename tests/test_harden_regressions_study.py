@@ -76,3 +76,55 @@ def test_problem_at_the_roelands_bound_is_built():
     for force in np.geomspace(1e3, 1e10, 60):
         pb = build_problem(design, fluid, "single", RATIO, 1000.0, force, 20.0)
         with_clamp(pb, pressure_bound_force(pb, np.inf))  # no InputError
+
+
+# 3005:3406 (all cases, session 30; isothermal, single, optimal clamp, carrier held): a
+# 53-roller drive at 0.92 MN m, 4.3 rpm. The optimum lies on the creep bound; the study's
+# force left a creep 1.8e-9 of itself over the limit, which `solve` carries (within
+# `CREEP_RTOL`, as every refusal) and the study's admissibility test (`solve_admissible`,
+# no margin before session 31) refused: status 1 where solve converged.
+FIELDS_3406 = json.loads(
+    '{"aspect_ratio": 63.16967595723492, "roller_radius": 0.2717469464948747, '
+    '"theta0_deg": 52.29435237318947, "theta2_deg": 85.12690504108912, '
+    '"alpha_deg": 67.93228132206043, "n_rollers": 53, '
+    '"roller_bearing_diameter": 0.07582134436599156, '
+    '"idler_bearing_diameter": 0.04413288307264726, "disc_groove_ratio": 1.0125345804319403, '
+    '"idler_groove_ratio": 3.9027189480838955, "single_idler_groove_ratio": 10.202446611280685, '
+    '"tilt_safety_factor": 0.8048334954825113, "creep_limit": 0.06884179964555406, '
+    '"min_roller_gap": 0.003667356246331326, "cam": {"disc": "output", '
+    '"preload": 20240.733001216428, "ramp_angle_deg": 16.397992024932755, '
+    '"mean_radius": 0.30313265599957484, "friction": 0.024696421384477158}}'
+)
+RATIO_3406, RPM_3406, TORQUE_3406 = 0.10408978365716394, 4.321927821873086, 921215.6153196994
+
+
+def test_an_optimal_force_on_the_creep_bound_is_admissible_to_the_study_as_to_solve():
+    fixed = {k: v for k, v in FIELDS_3406.items() if k != "n_rollers"}
+    spec = StudySpec.model_validate(
+        {
+            "study": {
+                "name": "harden",
+                "drive": "table1",
+                "samples": 1,
+                "architecture": "single",
+                "traction_law": "isothermal",
+                "capacity_ratios": [RATIO_3406],
+                "oil_temperature": "fixed",
+            },
+            "parameters": {"n_rollers": {"values": [53]}},
+            "fixed": fixed,
+            "operating": {
+                "ratio": [RATIO_3406],
+                "output_torque": [TORQUE_3406],
+                "input_speed_rpm": [RPM_3406],
+                "clamp_law": "optimal",
+            },
+            "objectives": {"eta_mean": "max", "capacity": "max"},
+        }
+    )
+    out = evaluate_chunk(make_context(spec), np.arange(1), np.array([[53.0]]))
+    assert list(out["point_status"][0]) == [0]
+    d, f = load_builtin("table1")
+    v = Variator(d.replace(name="random", **FIELDS_3406), f, "single")
+    res = v.solve(RATIO_3406, TORQUE_3406, clamp_law="optimal", input_speed_rpm=RPM_3406)
+    assert abs(out["eta"][0, 0] - res.eta) <= 1e-6

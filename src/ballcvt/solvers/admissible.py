@@ -18,7 +18,22 @@ from .clamped import at_ceiling, pressure_bound_force, solve_clamped
 from .newton import initial_creep, solve_batch
 from .options import SolverOptions, at_residual_floor, coarse_options
 
-__all__ = ["Admissibility", "solve_admissible", "screen_admissible", "screens", "follows_torque"]
+__all__ = [
+    "Admissibility",
+    "solve_admissible",
+    "screen_admissible",
+    "screens",
+    "follows_torque",
+    "CREEP_RTOL",
+]
+
+#: Relative margin on ``creep_limit`` of a solved point [-]: the limit search pins a creep
+#: at the limit to the solver's tolerance, so a point at the limit solves to within it.
+#: Every admissibility test of a solved creep takes it (`solve_admissible`, `solve`'s
+#: refusal, the optimal clamp's searches): before session 31 `solve_admissible` took
+#: none, and a study refused an optimal force 1.8e-9 over the creep limit that `solve`
+#: carried (harden task 3005:3406).
+CREEP_RTOL = 1e-8
 
 #: Relative margin [-] by which the largest creep of a point solved on the predictor's
 #: coarse rule must clear the creep limit, below or above it, for `screen_admissible` to
@@ -132,7 +147,8 @@ def solve_admissible(
     # a point whose creeps converged but whose clamping equation did not (a force that runs
     # away) gets nothing from the point solver, which only ever replaces failed creeps
     balanced = sol.residual_norm <= at_residual_floor(options, pb.fluid).tol
-    unsure = np.flatnonzero(~conv & ~(big > creep_limit) & ~balanced)
+    within = creep_limit * (1.0 + CREEP_RTOL)
+    unsure = np.flatnonzero(~conv & ~(big > within) & ~balanced)
     # under a law with more than one equilibrium every point was followed from zero torque
     # with the point solver there (`solve_batch` ignores ``x0`` and ``fallback``): the
     # same run again gives the same answer (it cost a quarter of a thermal cam sweep)
@@ -140,8 +156,8 @@ def solve_admissible(
         _, again = solve(pb.take(unsure), _restart(problem, x0, sol, unsure), True)
         conv[unsure], creep[unsure] = again.converged, again.state.creep
     big = np.max(np.abs(creep), axis=-1)
-    ok = conv & (big <= creep_limit)
-    beyond = conv | (big > creep_limit)
+    ok = conv & (big <= within)
+    beyond = conv | (big > within)
     if law is not None:
         bound = pressure_bound_force(pb, pb.design.max_pressure)
         ok &= ~_over_pressure(pb, bound)

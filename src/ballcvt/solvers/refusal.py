@@ -7,16 +7,13 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..registry import ARCHITECTURES
+from .admissible import CREEP_RTOL
 from .capacity import Capacity
 from .clamped import pressure_bound_force
 from .limit import limit_search
 from .options import SolverOptions
 
 __all__ = ["beyond_capacity", "point_capacity", "CREEP_RTOL"]
-
-#: Relative margin on ``creep_limit`` of a solved point: the limit search pins a creep at
-#: the limit to the solver's tolerance, so a point at the limit solves to within it.
-CREEP_RTOL = 1e-8
 
 
 def beyond_capacity(problem: EquilibriumProblem, solution, follows: bool) -> str:

@@ -15,7 +15,8 @@ That file is produced once by running this script against a worktree of 202cf3f:
 
 Options: ``--quick`` (small grids, about 5 minutes on a loaded 2-core machine), ``--json``
 (the rows as JSON), ``--markdown`` (the README table), ``--write-readme`` (put that table
-into README.md between ``<!-- bench-table-start -->`` and ``<!-- bench-table-end -->``),
+into README.md between ``<!-- bench-table-start -->`` and ``<!-- bench-table-end -->``, or
+the full run's between ``<!-- bench-table-full-start -->`` and its end),
 ``--big`` (also run a 1000 x 1000 ``ballcvt map`` in a child process for its peak memory:
 several minutes).
 
@@ -49,6 +50,12 @@ PREVIOUS = HERE / "results" / "previous.json"
 PREVIOUS_COMMIT = "202cf3f"
 BASELINE = "sweep-isothermal-constant"
 MARKERS = ("<!-- bench-table-start -->", "<!-- bench-table-end -->")
+#: Where each mode's table goes in README.md: the quick run's (with the previous release's
+#: figures) and the full run's (issue 26's own grids: 30 x 30 sweeps, 10,000-step cycles).
+README_MARKERS = {
+    "quick": MARKERS,
+    "full": ("<!-- bench-table-full-start -->", "<!-- bench-table-full-end -->"),
+}
 OP = {"input_speed_rpm": 2000.0}
 CLAMPS = {"constant": {"clamp_force": 2000.0}, "cam": {"clamp_law": "cam"},
           "optimal": {"clamp_law": "optimal"}}
@@ -128,7 +135,7 @@ def sweep_rows(quick, clamps=("constant", "cam")):
 
 
 def optimal_rows(quick):
-    """The sweeps of `sweep_rows` under the optimal clamp (8 x 8; quick: 4 x 4)."""
+    """The sweeps of `sweep_rows` under the optimal clamp (30 x 30; quick: 10 x 10)."""
     return sweep_rows(quick, ("optimal",))
 
 
@@ -371,11 +378,12 @@ def table(rows, previous=None, header=None):
     return "\n".join(lines)
 
 
-def write_readme(text, path=ROOT / "README.md"):
-    """Replace the README's table between `MARKERS` with ``text``."""
+def write_readme(text, path=ROOT / "README.md", markers=MARKERS):
+    """Replace the README's table between ``markers`` (`MARKERS`: the quick run's; the
+    full run's are ``README_MARKERS["full"]``) with ``text``."""
     readme = path.read_text()
-    a, b = (readme.index(m) for m in MARKERS)
-    path.write_text(readme[: a + len(MARKERS[0])] + "\n" + text + "\n" + readme[b:])
+    a, b = (readme.index(m) for m in markers)
+    path.write_text(readme[: a + len(markers[0])] + "\n" + text + "\n" + readme[b:])
 
 
 def main(argv=None):
@@ -422,7 +430,7 @@ def main(argv=None):
     if args.markdown or not quiet:
         print(text)
     if args.write_readme:
-        write_readme(text)
+        write_readme(text, markers=README_MARKERS[mode])
 
 
 if __name__ == "__main__":

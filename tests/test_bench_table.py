@@ -61,8 +61,19 @@ def test_markdown_from_saved_rows(tmp_path, capsys):
 
 
 def test_readme_table_is_the_scripts():
-    """The README's performance table sits between the script's markers."""
+    """The README's performance tables (quick and full runs) sit between the script's
+    markers."""
     b = _bench()
     text = (ROOT / "README.md").read_text()
-    a, z = (text.index(m) for m in b.MARKERS)
-    assert "| path | measured | x baseline" in text[a:z]
+    for mode, markers in b.README_MARKERS.items():
+        a, z = (text.index(m) for m in markers)
+        assert f"{mode} run" in text[a:z] and "| path | measured | x baseline" in text[a:z]
+
+
+def test_write_readme_puts_each_mode_in_its_place(tmp_path):
+    b = _bench()
+    quick, full = b.README_MARKERS["quick"], b.README_MARKERS["full"]
+    readme = tmp_path / "README.md"
+    readme.write_text(f"{quick[0]}\nq\n{quick[1]}\n{full[0]}\nf\n{full[1]}\n")
+    b.write_readme("| full |", readme, full)
+    assert readme.read_text() == f"{quick[0]}\nq\n{quick[1]}\n{full[0]}\n| full |\n{full[1]}\n"

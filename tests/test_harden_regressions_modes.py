@@ -86,11 +86,7 @@ MODE_2706 = "disc2_held_carrier_drives"
 
 
 def test_a_thermal_mode_capacity_is_the_creep_limit_not_a_load_left_unsettled():
-    from ballcvt.api import with_oil_temperature
-
-    d, f = load_builtin("table1")
-    v = Variator(d.replace(name="random", **FIELDS_2706), f, "double", traction_law="thermal")
-    v = with_oil_temperature(v, "fixed")
+    v = _random_drive("table1", FIELDS_2706, "double", "thermal")
     ratio, rpm, force = 6.779958463213908, 125.92165853736904, 3344.1993398173413
     kw = {"driver_speed_rpm": rpm, "clamp_force": force}
     cap = float(v.planetary_capacity(MODE_2706, [ratio], **kw)[0])
@@ -115,11 +111,7 @@ MODE_3005 = "disc2_held_carrier_drives"
 
 
 def test_a_failed_solve_inside_a_mode_capacity_is_not_its_edge():
-    from ballcvt.api import with_oil_temperature
-
-    d, f = load_builtin("hub")
-    v = Variator(d.replace(name="random", **FIELDS_3005), f, "single", traction_law="isothermal")
-    v = with_oil_temperature(v, "fixed")
+    v = _random_drive("hub", FIELDS_3005, "single", "isothermal")
     ratio, rpm, force = 0.7456329325658441, 148.35477677635794, 16902.003425739975
     how = SolveSettings(mode=MODE_3005)
     kw = {"clamp_force": force, "input_speed_rpm": rpm}
@@ -135,3 +127,12 @@ def test_a_failed_solve_inside_a_mode_capacity_is_not_its_edge():
         assert max(abs(c.creep) for c in r.relative.contacts.values()) <= v.design.creep_limit
     except ConvergenceError:
         pass
+
+
+def _random_drive(base, fields, architecture, law):
+    """A campaign's drive: the built-in ``base`` with ``fields``, its oil fixed."""
+    from ballcvt.api import with_oil_temperature
+
+    d, f = load_builtin(base)
+    v = Variator(d.replace(name="random", **fields), f, architecture, traction_law=law)
+    return with_oil_temperature(v, "fixed")

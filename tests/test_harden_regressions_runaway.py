@@ -80,3 +80,16 @@ def test_a_contraction_keeps_the_secant_step():
         force = _wegstein(force, 0.5 * force + 100.0, memory)
     assert memory["gain"][0] == 1.0
     assert force[0] == pytest.approx(200.0, rel=1e-12)
+
+
+def test_a_step_past_zero_force_is_the_plain_step():
+    # harden task 3103:847 (a study of a visco-elastic input cam): a curved g measured at
+    # 1,411 N and 1,192 N (slope 0.18) sent Wegstein's step from 1,192 N with g = 137 N to
+    # -93 N, and the study's whole design failed on the negative force
+    force, memory = np.array([1411.0]), {}
+    _wegstein(force, np.array([176.3]), memory)
+    step = _wegstein(np.array([1192.1]), np.array([137.1]), memory)
+    assert memory["slope"][0] == pytest.approx(0.1790, abs=1e-3)
+    assert step[0] == 137.1  # the plain step: the law's own force
+    memory = {"force": np.array([1.0]), "new": np.array([-5.0])}
+    assert _wegstein(np.array([2.0]), np.array([-1.0]), memory)[0] == 1.0  # half the force

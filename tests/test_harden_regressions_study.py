@@ -128,3 +128,58 @@ def test_an_optimal_force_on_the_creep_bound_is_admissible_to_the_study_as_to_so
     v = Variator(d.replace(name="random", **FIELDS_3406), f, "single")
     res = v.solve(RATIO_3406, TORQUE_3406, clamp_law="optimal", input_speed_rpm=RPM_3406)
     assert abs(out["eta"][0, 0] - res.eta) <= 1e-6
+
+
+# 3103:847 (all cases, session 31; visco-elastic, single, cam on the input disc): the cam's
+# fixed point stepped to a negative force (Wegstein's step on a curved law,
+# `ballcvt.solvers.clamped._wegstein`) and the study's whole design failed, status 2,
+# where `Variator` solves its points.
+FIELDS_847 = json.loads(
+    '{"aspect_ratio": 2.9739349192170543, "roller_radius": 0.037249859551069006, '
+    '"theta0_deg": 58.398743655110216, "theta2_deg": 39.134764191959164, '
+    '"alpha_deg": 23.024781701146637, "idler_bearing_diameter": 0.007432530876024789, '
+    '"roller_bearing_diameter": 0.012418098396548352, "disc_groove_ratio": 1.9475264934078376, '
+    '"idler_groove_ratio": 3.434936992746253, "single_idler_groove_ratio": 18.280249940123557, '
+    '"tilt_safety_factor": 0.8372754737299692, "creep_limit": 0.15713645605017537, '
+    '"min_roller_gap": 0.0007281126323060228, "cam": {"disc": "input", '
+    '"preload": 102.96004708864673, "ramp_angle_deg": 9.292149764336662, '
+    '"mean_radius": 0.04935885153609169, "friction": 0.036494925682594465}}'
+)
+TORQUES_847 = [18.26248202335848, 4.378654027206467, 22.67778639703789, 13.463341952431263,
+               19.787196595813622, 12.095524733311011, 4.346410136149618, 4.089703335787668,
+               20.321504021372125, 11.594162838040017, 2.6868104934299724, 21.769721848192674,
+               6.483003191320989, 34.457412321463295, 49.77181779766921]  # fmt: skip
+
+
+def test_a_cam_step_past_zero_force_does_not_fail_the_design():
+    ratio, rpm = 1.8593108225960322, 288.29739878910965
+    spec = StudySpec.model_validate(
+        {
+            "study": {
+                "name": "harden",
+                "drive": "table1",
+                "samples": 1,
+                "architecture": "single",
+                "traction_law": "viscoelastic",
+                "capacity_ratios": [ratio],
+                "oil_temperature": "fixed",
+            },
+            "parameters": {"n_rollers": {"values": [11]}},
+            "fixed": FIELDS_847,
+            "operating": {
+                "ratio": [ratio],
+                "output_torque": TORQUES_847,
+                "input_speed_rpm": [rpm],
+                "clamp_law": "cam",
+            },
+            "objectives": {"eta_mean": "max", "capacity": "max"},
+        }
+    )
+    out = evaluate_chunk(make_context(spec), np.arange(1), np.array([[11.0]]))
+    assert "clamp_force" not in out["reason"][0]
+    d, f = load_builtin("table1")
+    v = Variator(d.replace(name="random", n_rollers=11, **FIELDS_847), f, "single",
+                 traction_law="viscoelastic")  # fmt: skip
+    for j in np.flatnonzero(out["point_status"][0] == 0)[:3]:
+        res = v.solve(ratio, TORQUES_847[j], clamp_law="cam", input_speed_rpm=rpm)
+        assert abs(out["eta"][0, j] - res.eta) <= 1e-9

@@ -100,28 +100,9 @@ RATIO_3406, RPM_3406, TORQUE_3406 = 0.10408978365716394, 4.321927821873086, 9212
 
 def test_an_optimal_force_on_the_creep_bound_is_admissible_to_the_study_as_to_solve():
     fixed = {k: v for k, v in FIELDS_3406.items() if k != "n_rollers"}
-    spec = StudySpec.model_validate(
-        {
-            "study": {
-                "name": "harden",
-                "drive": "table1",
-                "samples": 1,
-                "architecture": "single",
-                "traction_law": "isothermal",
-                "capacity_ratios": [RATIO_3406],
-                "oil_temperature": "fixed",
-            },
-            "parameters": {"n_rollers": {"values": [53]}},
-            "fixed": fixed,
-            "operating": {
-                "ratio": [RATIO_3406],
-                "output_torque": [TORQUE_3406],
-                "input_speed_rpm": [RPM_3406],
-                "clamp_law": "optimal",
-            },
-            "objectives": {"eta_mean": "max", "capacity": "max"},
-        }
-    )
+    operating = {"output_torque": [TORQUE_3406], "input_speed_rpm": [RPM_3406],
+                 "clamp_law": "optimal"}  # fmt: skip
+    spec = _one_design("isothermal", RATIO_3406, fixed, 53, operating, oil_temperature="fixed")
     out = evaluate_chunk(make_context(spec), np.arange(1), np.array([[53.0]]))
     assert list(out["point_status"][0]) == [0]
     d, f = load_builtin("table1")
@@ -153,28 +134,8 @@ TORQUES_847 = [18.26248202335848, 4.378654027206467, 22.67778639703789, 13.46334
 
 def test_a_cam_step_past_zero_force_does_not_fail_the_design():
     ratio, rpm = 1.8593108225960322, 288.29739878910965
-    spec = StudySpec.model_validate(
-        {
-            "study": {
-                "name": "harden",
-                "drive": "table1",
-                "samples": 1,
-                "architecture": "single",
-                "traction_law": "viscoelastic",
-                "capacity_ratios": [ratio],
-                "oil_temperature": "fixed",
-            },
-            "parameters": {"n_rollers": {"values": [11]}},
-            "fixed": FIELDS_847,
-            "operating": {
-                "ratio": [ratio],
-                "output_torque": TORQUES_847,
-                "input_speed_rpm": [rpm],
-                "clamp_law": "cam",
-            },
-            "objectives": {"eta_mean": "max", "capacity": "max"},
-        }
-    )
+    operating = {"output_torque": TORQUES_847, "input_speed_rpm": [rpm], "clamp_law": "cam"}
+    spec = _one_design("viscoelastic", ratio, FIELDS_847, 11, operating, oil_temperature="fixed")
     out = evaluate_chunk(make_context(spec), np.arange(1), np.array([[11.0]]))
     assert "clamp_force" not in out["reason"][0]
     d, f = load_builtin("table1")
@@ -183,3 +144,18 @@ def test_a_cam_step_past_zero_force_does_not_fail_the_design():
     for j in np.flatnonzero(out["point_status"][0] == 0)[:3]:
         res = v.solve(ratio, TORQUES_847[j], clamp_law="cam", input_speed_rpm=rpm)
         assert abs(out["eta"][0, j] - res.eta) <= 1e-9
+
+
+def _one_design(law, ratio, fixed, n_rollers, operating, **study):
+    """A harden study of one design (``n_rollers`` its one parameter) at one ratio."""
+    return StudySpec.model_validate(
+        {
+            "study": {"name": "harden", "drive": "table1", "samples": 1,
+                      "architecture": "single", "traction_law": law,
+                      "capacity_ratios": [ratio], **study},
+            "parameters": {"n_rollers": {"values": [n_rollers]}},
+            "fixed": fixed,
+            "operating": {"ratio": [ratio], **operating},
+            "objectives": {"eta_mean": "max", "capacity": "max"},
+        }
+    )  # fmt: skip

@@ -215,8 +215,12 @@ def limit_load_batch(
     )
     ok0 = zero.status == Status.CONVERGED
 
-    def status(size, rows=slice(None)):  # of the loads ``size`` [N m] of the points ``rows``
-        here = _rows(at, direction[rows] * size, np.arange(ratio.size)[rows])
+    def status(size, rows=None):  # of the loads ``size`` [N m] of the points ``rows`` (all)
+        here = (
+            replace(at, load_torque=direction * size)
+            if rows is None
+            else _rows(at, direction[rows] * size, rows)
+        )
         return solve_mode_batch(drive, mode, here, options).status
 
     hi = traction_ceiling_torque(

@@ -85,9 +85,10 @@ def test_refusals_unchanged():
 
 def test_a_guess_near_the_optimum_gives_it_in_one_round_with_its_creeps():
     """Started from a force near the optimum (what a duty cycle's first pass hands its
-    second), the search certifies it on its smallest stencil: one batched solve of three
-    forces, the same efficiency within the certification's bound (1e-7, the module's
-    docstring); its creeps start the solve that follows."""
+    second), the search certifies its lattice stencil in one round (session 32): one
+    batched solve of three forces per point, then one of the fourth force of each point's
+    cubic; the same force as from the cold start (both end on the same lattice stencil);
+    its creeps start the solve that follows."""
     import ballcvt.solvers.optimal_batch as ob
 
     v = Variator()
@@ -103,8 +104,11 @@ def test_a_guess_near_the_optimum_gives_it_in_one_round_with_its_creeps():
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(ob._Scorer, "__call__", counted)
         warm = optimal_forces(pb, OptimalClamp(), v.options, guess=cold.force * (1 + 1e-3))
-    assert warm.fast.all() and calls == [9]
-    assert np.max(np.abs(_eta(v, pb, warm.force) - _eta(v, pb, cold.force))) <= 1e-7
+    assert warm.fast.all() and calls == [9, 3]
+    # the same lattice stencil: the forces to the cubic's sensitivity to the solves'
+    # tolerance (SCORE_TOL), the efficiencies to far less
+    np.testing.assert_allclose(warm.force, cold.force, rtol=1e-5)
+    assert np.max(np.abs(_eta(v, pb, warm.force) - _eta(v, pb, cold.force))) <= 1e-10
     at = with_clamp(pb, warm.force)
     sol = solve_batch(at, v.options, warm.creep, predict=False)
     cold_start = solve_batch(at, v.options)
@@ -112,7 +116,7 @@ def test_a_guess_near_the_optimum_gives_it_in_one_round_with_its_creeps():
     assert np.allclose(sol.state.creep, cold_start.state.creep, rtol=1e-8, atol=1e-12)
     # a guess far off still finds the optimum (the stencil walks to it)
     far = optimal_forces(pb, OptimalClamp(), v.options, guess=cold.force * 1.3)
-    assert np.max(np.abs(_eta(v, pb, far.force) - _eta(v, pb, cold.force))) <= 1e-7
+    np.testing.assert_allclose(far.force, cold.force, rtol=1e-5)
 
 
 def test_a_cycle_hands_its_first_pass_forces_to_the_second():

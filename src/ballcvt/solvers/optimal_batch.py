@@ -24,17 +24,25 @@ of half-width at most `NEAR` is concave with its vertex within the stencil: the 
 then misses the optimum by some ``2 NEAR^2`` at most, the efficiency by under 1e-7
 (`STEP` bounds the smallest stencil).
 
+The answer on the options' own rule comes from a climb on a fixed lattice of forces
+(`ballcvt.solvers.optimal_lattice`, since session 32): from its start to the stencil of
+the lattice ``ln F_N0 = 0.02 k`` whose centre is better than both neighbours, the answer
+the maximum of the cubic through it and one more lattice force. Where the efficiency has a
+saw tooth in the force (a hard-spinning contact's quadrature), a parabola search certifies
+the tooth it starts on; the lattice's stencils are the same whichever start led there, so a
+duty cycle's second pass, a sweep and `solve` give one optimum per point. The parabola
+search above runs only where the climb does not certify (an optimum within a lattice step
+of the creep bound), from the best lattice force found.
+
 Given a force near each point's optimum (``guess``: a duty cycle's first pass hands its
-forces to its second), the search starts there on its smallest stencil (half-width
-`NEAR`) and certifies a point in one round when the guess is within that of the optimum;
-the creeps found at the optimum (``OptimalForces.creep``) start the solve that follows.
-A sweep searches all its points in one batch. Without a guess (and with a predictor rule
-in the options) the search first runs on the options' ``search_rule`` to the predictor's
+forces to its second), the climb starts there (one round mostly, and the cubic's force); the creeps
+found at the optimum (``OptimalForces.creep``) start the solve that follows. A sweep
+searches all its points in one batch. Without a guess (and with a predictor rule in the
+options) the search first runs on the options' ``search_rule`` to the predictor's
 tolerance, certified on stencils of half-width `COARSE_NEAR` (`_coarse_search`: two
 rounds mostly, ``h = 0.1`` then ``0.02``, each a third of a full-rule round's cost), and
-its vertex and creeps there start the search on the full rule as a guess does (one round
-mostly; since session 24: before, the first round alone was coarse and two or three
-followed on the full rule).
+its vertex and creeps there start the climb on the full rule as a guess does; without a
+guess or predictor, the climb starts from `_guess`.
 
 At zero torque the answer is ``min_force`` when it holds the no-load drag within the
 creep limit (the old search's first grid point). Every point not certified (an optimum
@@ -52,6 +60,7 @@ from ..equilibrium.problem import EquilibriumProblem
 from ..errors import TractionLimitError
 from ..model.clamping import OptimalClamp
 from .clamped import pressure_bound_force
+from .optimal_lattice import lattice_search
 from .optimal_search import ClampCase, search_optimum
 from .optimal_stencil import _centred, _first_round, _interpolated, _parabola, _Scorer
 from .options import SolverOptions, coarse_options
@@ -270,7 +279,7 @@ def optimal_forces(
             x_start = None if creep_guess is None else creep_guess[pos]
             if start is None and options.predictor is not None:  # a coarse search first
                 start, x_start = _coarse_search(score, pos, bounds)
-            u, done, creep[pos] = _search(score, pos, bounds, start, x_start)
+            u, done, creep[pos] = _final(score, pos, bounds, start, x_start)
             fast[pos] = done
             force[pos] = np.exp(u)
     force = np.where(fast, force, np.nan)
@@ -279,6 +288,26 @@ def optimal_forces(
     for j in np.flatnonzero(~fast) if fallback else ():
         force[j], refused[j] = _fallback(problem, int(j), law, options)
     return OptimalForces(force, fast, refused, creep)
+
+
+def _final(score: _Scorer, index, bounds, start=None, x_start=None):
+    """``(u, certified, creeps)`` of the points ``index``: the lattice climb
+    (`lattice_search`) from ``start`` (`_guess` where None or NaN), and from the best
+    lattice force of each point it does not certify (an optimum within a lattice step of
+    the creep bound), the stencil search (`_search`)."""
+    lo, hi = bounds
+    first = _guess(score.problem.take(index), lo, hi)
+    if start is not None:
+        known = np.isfinite(start)
+        first = np.where(known, start, first)
+        if x_start is not None:  # creeps at the starts only where they are known
+            x_start = np.where(known[:, None], x_start, np.nan)
+    u, done, x = lattice_search(score, index, bounds, first, x_start)
+    rest = np.flatnonzero(~done)
+    if rest.size:
+        got = _search(score, index[rest], (lo[rest], hi[rest]), u[rest], x[rest])
+        u[rest], done[rest], x[rest] = got
+    return u, done, x
 
 
 def _coarse_search(score: _Scorer, index, bounds):

@@ -87,8 +87,10 @@ def test_a_guess_near_the_optimum_gives_it_in_one_round_with_its_creeps():
     """Started from a force near the optimum (what a duty cycle's first pass hands its
     second), the search certifies its lattice stencil in one round (session 32): one
     batched solve of three forces per point, then one of the fourth force of each point's
-    cubic; the same force as from the cold start (both end on the same lattice stencil);
-    its creeps start the solve that follows."""
+    cubic, or, in a batch of at most `PREFETCH` points, one solve of the five lattice
+    forces around each guess; the same force as from the cold start (both end on the same
+    lattice stencil); its creeps start the solve that follows."""
+    import ballcvt.solvers.optimal_lattice as ol
     import ballcvt.solvers.optimal_batch as ob
 
     v = Variator()
@@ -104,7 +106,12 @@ def test_a_guess_near_the_optimum_gives_it_in_one_round_with_its_creeps():
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(ob._Scorer, "__call__", counted)
         warm = optimal_forces(pb, OptimalClamp(), v.options, guess=cold.force * (1 + 1e-3))
-    assert warm.fast.all() and calls == [9, 3]
+        assert warm.fast.all() and calls == [15]
+        calls.clear()
+        mp.setattr(ol, "PREFETCH", 0)
+        again = optimal_forces(pb, OptimalClamp(), v.options, guess=cold.force * (1 + 1e-3))
+        assert again.fast.all() and calls == [9, 3]
+        np.testing.assert_allclose(again.force, warm.force, rtol=1e-5)
     # the same lattice stencil: the forces to the cubic's sensitivity to the solves'
     # tolerance (SCORE_TOL), the efficiencies to far less
     np.testing.assert_allclose(warm.force, cold.force, rtol=1e-5)
@@ -165,8 +172,11 @@ def test_the_first_round_runs_on_the_coarse_rule_in_a_batch_of_any_size(monkeypa
     alone = np.array([optimal_forces(pb.take([j]), OptimalClamp(), v.options).force[0]
                       for j in range(pb.size)])
     assert rules.count(v.options.search_rule) >= 2 * pb.size  # a coarse search each
-    np.testing.assert_allclose(got.force, alone, rtol=1e-9)
+    # the same lattice stencil and cubic (alone, its five forces solved in one call, from
+    # other creeps: the values to SCORE_TOL, the cubic's maximum to ~1e-7)
+    np.testing.assert_allclose(got.force, alone, rtol=1e-5)
     eta = _eta(v, pb, got.force)
+    assert np.max(np.abs(eta - _eta(v, pb, alone))) <= 1e-10
     ref = np.array([o.eta for o in _old(v, pb)])
     assert np.max(np.abs(eta - ref)) <= 1e-6
 

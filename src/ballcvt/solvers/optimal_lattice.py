@@ -53,7 +53,13 @@ JUMP = 16
 #: Rounds (one batched solve each) of the climb before a point is searched on from its best
 #: lattice force.
 ROUNDS = 24
+#: Largest batch [points] whose first round solves the five lattice forces around each start
+#: (the stencil and the next force on either side, one of which the cubic uses) instead of
+#: the stencil's three: one batched solve instead of two or three where a call's fixed
+#: cost outweighs its forces' (`Variator.solve`: 3 calls -> 1).
+PREFETCH = 8
 _OFFSETS = np.array([-1.0, 0.0, 1.0])
+_WINDOW = np.arange(-2.0, 3.0)  # the window's lattice steps from its centre
 
 
 def lattice_search(score: _Scorer, index, bounds, start, x_start=None):
@@ -76,51 +82,49 @@ def lattice_search(score: _Scorer, index, bounds, start, x_start=None):
     Returns
     -------
     u : ndarray
-        Per point: the vertex [-] where certified, else the best lattice ``ln F_N0`` seen
-        (NaN where no lattice force was admissible or the lattice has no stencil within
-        the bounds).
+        Per point: the cubic's maximum [-] where certified, else the best lattice
+        ``ln F_N0`` seen (NaN where no lattice force was admissible or the lattice has no
+        stencil within the bounds).
     certified : ndarray of bool
     creep : ndarray
         Creeps ``(k, n_c)`` [-] at ``exp(u)`` (interpolated from the last stencil).
     """
     lo, hi = bounds
-    spacing = LATTICE
-    k_lo, k_hi = np.ceil(lo / spacing) + 1, np.floor(hi / spacing) - 1
-    k = np.clip(np.rint(start / spacing), k_lo, np.maximum(k_hi, k_lo))
-    u = (k[:, None] + _OFFSETS) * spacing
-    e, xs = _first_round(score, index, u, _centred(score, index, x_start, start, u))
-    e, xs = e.reshape(-1, 3), xs.reshape(index.size, 3, -1)
+    k_lo, k_hi = np.ceil(lo / LATTICE) + 1, np.floor(hi / LATTICE) - 1
+    k = np.clip(np.rint(start / LATTICE), k_lo, np.maximum(k_hi, k_lo))
+    win = _Window(score, index, k, (k_lo - 1, k_hi + 1))
+    win.first(x_start, start, prefetch=index.size <= PREFETCH)
     done = np.zeros(index.size, dtype=bool)
     climbs = np.zeros(index.size)  # stencils in a row with no admissible force
     floor = k_lo.copy()  # the lowest centre whose stencil may lie above the creep bound
     live = np.flatnonzero(k_lo <= k_hi)
     for _ in range(ROUNDS):
-        step, top = _move(u[live], e[live], climbs[live], spacing)
+        u, e = win.stencil(live)
+        step, top = _move(u, e, climbs[live])
         done[live[top]] = True
-        finite = np.isfinite(e[live])
-        climbs[live] = np.where(finite.any(axis=1), 0.0, climbs[live] + 1)
+        none = ~np.isfinite(e).any(axis=1)
+        climbs[live] = np.where(none, climbs[live] + 1, 0.0)
         # a stencil with no admissible force lies below the creep bound: no stencil
         # reaching down to it again (a jump back from above overshooting the bound)
-        none = ~finite.any(axis=1)
-        floor[live] = np.where(none, np.maximum(floor[live], k[live] + 3), floor[live])
-        new = np.clip(k[live] + step, np.minimum(floor[live], k_hi[live]), k_hi[live])
-        go = ~top & (new != k[live])
-        live, new = live[go], new[go]
+        floor[live] = np.where(none, np.maximum(floor[live], win.k[live] + 3), floor[live])
+        new = np.clip(win.k[live] + step, np.minimum(floor[live], k_hi[live]), k_hi[live])
+        go = ~top & (new != win.k[live])
+        live = live[go]
         if not live.size:
             break
-        _shift(score, index, (u, e, xs), live, (k[live], new), spacing)
-        k[live] = new
+        win.move(live, new[go])
+    u, e = win.stencil(slice(None))
+    xs = win.x[:, 1:4]
     vertex = _parabola(u, e)[0]
     ok = np.flatnonzero(done)
-    ends = (k_lo[ok] - 1, k_hi[ok] + 1)  # the lattice steps within the bounds
-    vertex[ok] = _cubic(score, index[ok], (u[ok], e[ok], xs[ok]), k[ok], ends)
+    vertex[ok] = win.cubic(ok, vertex[ok])
     best = np.take_along_axis(u, np.argmax(e, axis=1)[:, None], axis=1)[:, 0]
     best = np.where(np.isfinite(e).any(axis=1), best, np.nan)
     out = np.where(done, vertex, best)
     return out, done, _interpolated(xs, u, e, out[:, None])
 
 
-def _move(u, e, climbs, spacing):
+def _move(u, e, climbs):
     """``(step [lattice steps], top)`` of each stencil ``(u, e)``: ``top`` where its centre
     is the best of its three forces, all admissible; else a step toward the better end, a
     jump toward the concave parabola's vertex, or up by ``3 * 2**climbs`` where no force
@@ -129,7 +133,7 @@ def _move(u, e, climbs, spacing):
     finite = np.isfinite(e)
     top = finite.all(axis=1) & (e[:, 1] > e[:, 0]) & (e[:, 1] >= e[:, 2])
     vertex, concave = _parabola(u, e)
-    steps = (vertex - u[:, 1]) / spacing
+    steps = (vertex - u[:, 1]) / LATTICE
     best = np.argmax(e, axis=1)
     toward = np.where(best == 2, 1.0, np.where(best == 0, -1.0, 0.0))
     far = concave & (np.abs(steps) > 1.5) & (np.sign(steps) == toward)
@@ -138,71 +142,115 @@ def _move(u, e, climbs, spacing):
     return step, top
 
 
-def _shift(score: _Scorer, index, stencils, live, centres, spacing) -> None:
-    """Move the stencils ``live`` from their centres ``k`` to ``new`` in place
-    (``centres`` = ``(k, new)`` in lattice steps; ``stencils`` =
-    ``(u, e, xs)``): the forces the old stencil shares keep their efficiencies and creeps,
-    the new ones are solved together (from creeps interpolated on the old stencil, or, after
-    a jump or beside an inadmissible force, scaled from its best force's as ``1/F_N0``,
-    `_start`)."""
-    u, e, xs = stencils
-    k, new = centres
-    shift = new - k
-    slots = np.arange(3)[None, :] + shift[:, None].astype(int)  # old slot of each new one
-    kept = (slots >= 0) & (slots <= 2)
-    old = np.clip(slots, 0, 2)
-    u_new = (new[:, None] + _OFFSETS) * spacing  # from the integers: the same bits each time
-    x0 = _interpolated(xs[live], u[live], e[live], u_new).reshape(live.size, 3, -1)
-    # after a jump, or from a stencil with an inadmissible force (its creeps those of a
-    # solve that failed): the best old force's creeps scaled to the new forces, or the
-    # cold start where no old force was admissible
-    far = (np.abs(shift) > 1) | ~np.isfinite(e[live]).all(axis=1)
-    if far.any():
-        rows = live[far]
-        best = np.argmax(e[rows], axis=1)
-        du = u_new[far] - u[rows, best][:, None]
-        scaled = _start(xs[rows, best], du).reshape(-1, 3, x0.shape[-1])
-        cold = initial_creep(score.problem)[index[rows]][:, None, :]
-        none = ~np.isfinite(e[rows]).any(axis=1)
-        x0[far] = np.where(none[:, None, None], cold, scaled)
-    e_new = np.take_along_axis(e[live], old, axis=1)
-    x_new = np.take_along_axis(xs[live], old[:, :, None], axis=1)
-    rows, cols = np.nonzero(~kept)
-    got, creep = score(index[live[rows]], u_new[rows, cols], x0[rows, cols])
-    e_new[rows, cols], x_new[rows, cols] = got, creep
-    u[live], e[live], xs[live] = u_new, e_new, x_new
-
-
 #: Inverse Vandermonde matrices of the cubics through the lattice offsets ``(-1, 0, 1, 2)``
 #: and ``(-2, -1, 0, 1)`` [steps]: their coefficients ``(c0, c1, c2, c3)`` from the values.
 _UP = np.linalg.inv(np.vander([-1.0, 0.0, 1.0, 2.0], 4, increasing=True))
 _DOWN = np.linalg.inv(np.vander([-2.0, -1.0, 0.0, 1.0], 4, increasing=True))
 
 
-def _cubic(score: _Scorer, index, stencils, k, ends):
-    """The maxima [-] (``ln F_N0``) of the cubics through the certified stencils
-    ``(u, e, xs)`` (centres ``k``) and the lattice force two steps from the centre on the
-    parabola's vertex's side, all those forces solved together; the parabola's vertex
-    where that force lies outside the bounds (``ends``: the first and last lattice steps
-    within them) or is not admissible, or the cubic has no maximum within the stencil. Against a
-    smooth optimum the parabola's vertex on the 2 % lattice missed Table I's by up to
-    1.8e-6 in efficiency (ratio 1.8, 40 N m), the cubic's by 3e-7."""
-    u, e, xs = stencils
-    vertex = _parabola(u, e)[0]
-    up = vertex > u[:, 1]
-    k4 = k + np.where(up, 2.0, -2.0)
-    ok = (k4 >= ends[0]) & (k4 <= ends[1])
-    u4 = k4 * LATTICE
-    x0 = _interpolated(xs, u, e, u4[:, None])  # the stencil's parabola, two steps out
-    e4 = np.full(k.size, -np.inf)
-    if ok.any():
-        e4[ok] = score(index[ok], u4[ok], x0[ok])[0]
-    values = np.where(up[:, None], np.column_stack([e, e4]), np.column_stack([e4, e]))
-    c = np.einsum("nij,nj->ni", np.where(up[:, None, None], _UP, _DOWN), values)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        # the root of c1 + 2 c2 t + 3 c3 t^2 = 0 with a negative second derivative,
-        # (-c2 - sqrt(D)) / (3 c3), written without cancellation (any c3, also 0)
-        t = c[:, 1] / (np.sqrt(c[:, 2] ** 2 - 3.0 * c[:, 3] * c[:, 1]) - c[:, 2])
-        curv = 2.0 * c[:, 2] + 6.0 * c[:, 3] * t
-    good = np.isfinite(e4) & np.isfinite(t) & (np.abs(t) <= 1.0) & (curv < 0)
-    return np.where(good, u[:, 1] + t * LATTICE, vertex)
+class _Window:
+    """The lattice forces ``k - 2 .. k + 2`` around each point's centre ``k``: their
+    efficiencies ``e`` (NaN: not solved yet; ``-inf``: no admissible equilibrium) and
+    creeps ``x``; the stencil is the middle three, the cubic's fourth force one of the
+    ends. A force is solved once, when first needed, and kept while the window covers it;
+    its value does not depend on when (from creeps near its solution, to `SCORE_TOL`)."""
+
+    def __init__(self, score: _Scorer, index, k, ends):
+        self.score, self.index, self.k, self.ends = score, index, k.copy(), ends
+        self.e = np.full((index.size, 5), np.nan)
+        self.x = np.full((index.size, 5, score.problem.layout.is_idler.size), np.nan)
+
+    def u(self, rows):
+        """Lattice ``ln F_N0`` [-] of the windows ``rows``, from the integers."""
+        return (self.k[rows, None] + _WINDOW) * LATTICE
+
+    def stencil(self, rows):
+        """``(u, e)`` of the stencils ``rows``."""
+        return self.u(rows)[:, 1:4], self.e[rows, 1:4]
+
+    def first(self, x_start, start, prefetch):
+        """Solve the first stencils (the whole windows where ``prefetch``) from the creeps
+        ``x_start`` at ``start`` (`_centred`), or as `_first_round` does."""
+        rows = np.arange(self.k.size)
+        u = self.u(rows)
+        x0 = _centred(self.score, self.index, x_start, start, u[:, 1:4])
+        if not prefetch:
+            e, x = _first_round(self.score, self.index, u[:, 1:4], x0)
+            self.e[:, 1:4], self.x[:, 1:4] = e.reshape(-1, 3), x.reshape(rows.size, 3, -1)
+            return
+        x0 = None if x0 is None else _start(x0, u - u[:, 2:3])
+        e, x = self.score(np.repeat(self.index, 5), u.reshape(-1), x0)
+        self.e[:], self.x[:] = e.reshape(-1, 5), x.reshape(rows.size, 5, -1)
+        self.e[(u < self.ends[0][:, None] * LATTICE) | (u > self.ends[1][:, None] * LATTICE)] = (
+            np.nan
+        )
+
+    def move(self, rows, new):
+        """Centre the windows ``rows`` on ``new``: the forces they still cover are kept,
+        the new stencil's others solved together."""
+        shift = (new - self.k[rows]).astype(int)
+        old = np.arange(5)[None, :] + shift[:, None]
+        kept = (old >= 0) & (old <= 4)
+        at = np.clip(old, 0, 4)
+        u_old, e_old, x_old = self.u(rows)[:, 1:4], self.e[rows, 1:4], self.x[rows, 1:4]
+        self.e[rows] = np.where(kept, np.take_along_axis(self.e[rows], at, axis=1), np.nan)
+        self.x[rows] = np.take_along_axis(self.x[rows], at[:, :, None], axis=1)
+        self.k[rows] = new
+        need = np.zeros((rows.size, 5), dtype=bool)
+        need[:, 1:4] = np.isnan(self.e[rows, 1:4])
+        self._solve(rows, need, (u_old, e_old, x_old), shift)
+
+    def cubic(self, rows, vertex):
+        """The maxima [-] of the cubics through the certified stencils ``rows`` and the
+        lattice force two steps from the centre on the side of the parabola's vertex
+        ``vertex``; the vertex where that force lies outside the bounds or is not
+        admissible, or the cubic has no maximum within the stencil. Against a smooth
+        optimum the parabola's vertex on the 2 % lattice missed Table I's by up to 1.8e-6
+        in efficiency (ratio 1.8, 40 N m), the cubic's by 3e-7."""
+        u = self.u(rows)
+        up = vertex > u[:, 2]
+        slot = np.where(up, 4, 0)
+        k4 = self.k[rows] + slot - 2
+        inside = (k4 >= self.ends[0][rows]) & (k4 <= self.ends[1][rows])
+        need = np.zeros((rows.size, 5), dtype=bool)
+        need[np.arange(rows.size), slot] = inside & np.isnan(self.e[rows, slot])
+        stencil = (u[:, 1:4], self.e[rows, 1:4], self.x[rows, 1:4])
+        self._solve(rows, need, stencil, np.zeros(rows.size, dtype=int))
+        e = self.e[rows]
+        e4 = np.where(inside, e[np.arange(rows.size), slot], np.nan)
+        values = np.where(up[:, None], np.column_stack([e[:, 1:4], e4]),
+                          np.column_stack([e4, e[:, 1:4]]))  # fmt: skip
+        c = np.einsum("nij,nj->ni", np.where(up[:, None, None], _UP, _DOWN), values)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            # the root of c1 + 2 c2 t + 3 c3 t^2 = 0 with a negative second derivative,
+            # (-c2 - sqrt(D)) / (3 c3), written without cancellation (any c3, also 0)
+            t = c[:, 1] / (np.sqrt(c[:, 2] ** 2 - 3.0 * c[:, 3] * c[:, 1]) - c[:, 2])
+            curv = 2.0 * c[:, 2] + 6.0 * c[:, 3] * t
+        good = np.isfinite(e4) & np.isfinite(t) & (np.abs(t) <= 1.0) & (curv < 0)
+        return np.where(good, u[:, 2] + t * LATTICE, vertex)
+
+    def _solve(self, rows, need, stencil, shift) -> None:
+        """Solve the forces ``need`` ``(rows, 5)`` of the windows ``rows`` together, from
+        creeps interpolated on the old ``stencil`` ``(u, e, x)`` (its parabola through
+        ``F_N0`` times the creeps) or, after a jump (``|shift| > 1``) or beside an
+        inadmissible force, its best force's creeps scaled as ``1/F_N0`` (`_start`), or
+        the cold start where it has no admissible force."""
+        r, c = np.nonzero(need)
+        if not r.size:
+            return
+        u_old, e_old, x_old = stencil
+        u = self.u(rows)
+        x0 = _interpolated(x_old, u_old, e_old, u).reshape(rows.size, 5, -1)
+        far = (np.abs(shift) > 1) | ~np.isfinite(e_old).all(axis=1)
+        if far.any():
+            best = np.argmax(e_old[far], axis=1)
+            at = np.arange(best.size)
+            du = u[far] - u_old[far][at, best][:, None]
+            scaled = _start(x_old[far][at, best], du).reshape(-1, 5, x0.shape[-1])
+            cold = initial_creep(self.score.problem)[self.index[rows[far]]][:, None, :]
+            none = ~np.isfinite(e_old[far]).any(axis=1)
+            x0[far] = np.where(none[:, None, None], cold, scaled)
+        got, creep = self.score(self.index[rows[r]], u[r, c], x0[r, c])
+        e, x = self.e[rows], self.x[rows]
+        e[r, c], x[r, c] = got, creep
+        self.e[rows], self.x[rows] = e, x

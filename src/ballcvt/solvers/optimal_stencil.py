@@ -86,7 +86,7 @@ def _start(x, du):
 
 
 def _interpolated(xs, us, es, u):
-    """Starting creeps ``(k * 3, n_c)`` at the forces ``exp(u)`` ``(k, 3)`` from the last
+    """Starting creeps ``(k * m, n_c)`` at the forces ``exp(u)`` ``(k, m)`` from the last
     stencil's solutions (creeps ``xs`` ``(k, 3, n_c)`` at ``us`` ``(k, 3)``, scores ``es``):
     the parabola in ``ln F_N0`` through ``F_N0`` times the creeps (nearly constant, as in
     `_start`) where all three were admissible, else `_start` from the centre. The next

@@ -38,11 +38,11 @@ Given a force near each point's optimum (``guess``: a duty cycle's first pass ha
 forces to its second), the climb starts there (one round mostly, and the cubic's force); the creeps
 found at the optimum (``OptimalForces.creep``) start the solve that follows. A sweep
 searches all its points in one batch. Without a guess (and with a predictor rule in the
-options) the search first runs on the options' ``search_rule`` to the predictor's
-tolerance, certified on stencils of half-width `COARSE_NEAR` (`_coarse_search`: two
-rounds mostly, ``h = 0.1`` then ``0.02``, each a third of a full-rule round's cost), and
-its vertex and creeps there start the climb on the full rule as a guess does; without a
-guess or predictor, the climb starts from `_guess`.
+options) one round on the options' ``search_rule`` to the predictor's tolerance, on the
+forces ``exp(+-WIDTH)`` times the guess ``F = 200 + 14 T`` (`_wide_start`, since session
+32; from session 24 a whole stencil search there, two rounds mostly), gives the vertex and
+creeps the climb on the full rule starts from as from a guess; without a guess or
+predictor, that round runs on the options' own rule.
 
 At zero torque the answer is ``min_force`` when it holds the no-load drag within the
 creep limit (the old search's first grid point). Every point not certified (an optimum
@@ -73,11 +73,6 @@ STEP = 1e-4
 #: Largest distance in ``ln F_N0`` [-] of the best force's nearest neighbour at
 #: certification (the parabola is then local).
 NEAR = 5e-3
-#: Largest half-width in ``ln F_N0`` [-] of the certified stencils of the search on the
-#: search rule that starts a search without a guess (`_coarse_search`): its vertex then
-#: misses the search rule's optimum by some ``2 COARSE_NEAR^2`` (8e-4), well within the
-#: `NEAR` stencil the full rule's search starts on.
-COARSE_NEAR = 0.02
 #: Half-width in ``ln F_N0`` [-] of the first three forces around the guess.
 WIDTH = 0.1
 #: Rounds (one batched solve each) before a point is handed to `search_optimum`.
@@ -277,8 +272,9 @@ def optimal_forces(
             bounds = (np.full(pos.size, lo), hi[pos])
             start = None if guess is None else _log_guess(guess, n)[pos]
             x_start = None if creep_guess is None else creep_guess[pos]
-            if start is None and options.predictor is not None:  # a coarse search first
-                start, x_start = _coarse_search(score, pos, bounds)
+            if start is None and options.predictor is not None:  # a coarse round first
+                first = _guess(score.problem.take(pos), *bounds)
+                start, x_start = _wide_start(_coarse(score), pos, first)
             u, done, creep[pos] = _final(score, pos, bounds, start, x_start)
             fast[pos] = done
             force[pos] = np.exp(u)
@@ -328,14 +324,6 @@ def _wide_start(score: _Scorer, index, centre):
     start = np.where(near, vertex, np.where(some, best, centre + 2 * WIDTH))
     creep = _interpolated(x, u, e, start[:, None])
     return start, np.where(some[:, None], creep, np.nan)
-
-
-def _coarse_search(score: _Scorer, index, bounds):
-    """``(ln F_N0, creeps)`` of the points ``index`` from a search on the search rule
-    certified on stencils of half-width `COARSE_NEAR` (NaN forces where it certified
-    none): the start of the search on the full rule (module docstring)."""
-    u, done, x = _search(_coarse(score), index, bounds, near=COARSE_NEAR)
-    return np.where(done, u, np.nan), x
 
 
 def _log_guess(guess, n) -> np.ndarray:

@@ -185,3 +185,15 @@ def test_task_3102_3101_the_cold_start_climbs_to_the_same_stencil():
     for guess in (1200.0, 1250.0, 1300.0):
         got = optimal_forces(pb, OptimalClamp(), v.options, guess=guess)
         np.testing.assert_allclose(got.force, cold.force, rtol=1e-5)
+
+
+def test_far_above_a_convex_tail_the_steps_double():
+    """Harden task 3205:1743 (a 25-ball single-idler drive, visco-elastic): from a start
+    5.7 times the optimum the efficiency is convex in ``ln F_N0`` (no vertex to jump to),
+    and one step a round ran out of rounds 60 steps from the optimum; steps the same way
+    now double, so the climb certifies the stencil it reaches from the optimum itself."""
+    score = _Synthetic(lambda u: 0.9 / (1.0 + 4.0 * (u - U0) ** 2))
+    ref = _climb(score, [U0])
+    for offset in (1.74, -1.2, 0.9):
+        got = _climb(score, [U0 + offset])
+        assert got[1][0] and got[0][0] == ref[0][0]

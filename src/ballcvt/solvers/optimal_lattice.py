@@ -96,11 +96,20 @@ def lattice_search(score: _Scorer, index, bounds, start, x_start=None):
     win.first(x_start, start, prefetch=index.size <= PREFETCH)
     done = np.zeros(index.size, dtype=bool)
     climbs = np.zeros(index.size)  # stencils in a row with no admissible force
+    runs = np.zeros(index.size)  # steps in a row the same way (signed)
     floor = k_lo.copy()  # the lowest centre whose stencil may lie above the creep bound
     live = np.flatnonzero(k_lo <= k_hi)
     for _ in range(ROUNDS):
         u, e = win.stencil(live)
         step, top = _move(u, e, climbs[live])
+        # a step the same way as the last doubles (at most JUMP): far above the optimum the
+        # efficiency is convex in ln F_N0 and gives no vertex to jump to
+        runs[live] = np.where(
+            np.abs(step) == 1, np.where(step * runs[live] > 0, runs[live], 0) + step, 0
+        )
+        step = np.where(
+            np.abs(step) == 1, step * np.minimum(2.0 ** (np.abs(runs[live]) - 1), JUMP), step
+        )
         done[live[top]] = True
         none = ~np.isfinite(e).any(axis=1)
         climbs[live] = np.where(none, climbs[live] + 1, 0.0)

@@ -127,9 +127,9 @@ def _guess(problem: EquilibriumProblem, lo, hi) -> np.ndarray:
     return np.clip(u, lo + WIDTH, hi - WIDTH)
 
 
-def _next(u, e, bounds, near=NEAR):
+def _next(u, e, bounds):
     """The next stencil of each point, ``(centre, half-width)`` in ``ln F_N0``, and whether
-    it is certified (module docstring; on stencils of half-width at most ``near``);
+    it is certified (module docstring; on stencils of half-width at most `NEAR`);
     ``bounds`` = ``(lo, hi)``; NaN centre: the point leaves for `search_optimum`."""
     lo, hi = bounds
     best = np.argmax(e, axis=1)
@@ -138,7 +138,7 @@ def _next(u, e, bounds, near=NEAR):
     h = 0.5 * (c - a)
     step = np.abs(vertex - b)
     newton = concave & (step <= 2 * h)
-    done = newton & (step <= h) & (h <= near * (1 + 1e-9))
+    done = newton & (step <= h) & (h <= NEAR * (1 + 1e-9))
     # Newton: the vertex, the next stencil as wide as the vertex's error (some 2 h^2:
     # quadratic convergence) where it lies within the stencil, else as the step taken,
     # at most half the last
@@ -168,13 +168,13 @@ def _coarse(score: _Scorer) -> _Scorer:
     return replace(score, options=coarse_options(score.options, search=True))
 
 
-def _search(score: _Scorer, index, bounds, start=None, x_start=None, near=NEAR):
+def _search(score: _Scorer, index, bounds, start=None, x_start=None):
     """The stencil search of the points ``index`` (positive torque) -> ``(u, certified,
     creeps)`` per point: ``u`` the vertex of the last stencil's parabola, the creeps there
     (`_interpolated`). ``start``: a first ``ln F_N0`` [-] per point (NaN: `_guess`),
     searched from a half-width of `NEAR` (certified in one round when it is within it of
     the optimum); ``x_start``: creeps at those forces, which start the first round
-    (`_centred`); ``near``: the certified stencils' largest half-width."""
+    (`_centred`)."""
     lo, hi = bounds
     centre = _guess(score.problem.take(index), lo, hi)
     width = np.full(index.size, WIDTH)
@@ -201,7 +201,7 @@ def _search(score: _Scorer, index, bounds, start=None, x_start=None, near=NEAR):
         if xs is None:
             xs = np.empty((index.size, 3, creep.shape[-1]))
         xs[live] = creep.reshape(live.size, 3, -1)
-        nxt, w, certified = _next(u[live], e[live], (lo[live], hi[live]), near)
+        nxt, w, certified = _next(u[live], e[live], (lo[live], hi[live]))
         done[live[certified]] = True
         climbs[live] = np.where(np.isfinite(e[live]).any(axis=1), 0, climbs[live] + 1)
         go = ~certified & np.isfinite(nxt) & (climbs[live] <= CLIMBS)
@@ -236,7 +236,7 @@ def optimal_forces(
         search (`search_optimum`); otherwise their force is NaN (``fast`` False).
     guess : array_like, optional
         A force near each point's optimum [N] (NaN where none), e.g. the optimum of a pass
-        on the solver's coarse rule: the search then starts there on its smallest stencil.
+        on the solver's coarse rule: the lattice's climb then starts there.
     creep : array_like, optional
         Creeps ``(n, n_c)`` [-] at the guessed forces (e.g. that pass's; NaN rows: none):
         the first stencils start from them (or from the cold start) without the
@@ -272,9 +272,6 @@ def optimal_forces(
             bounds = (np.full(pos.size, lo), hi[pos])
             start = None if guess is None else _log_guess(guess, n)[pos]
             x_start = None if creep_guess is None else creep_guess[pos]
-            if start is None and options.predictor is not None:  # a coarse round first
-                first = _guess(score.problem.take(pos), *bounds)
-                start, x_start = _wide_start(_coarse(score), pos, first)
             u, done, creep[pos] = _final(score, pos, bounds, start, x_start)
             fast[pos] = done
             force[pos] = np.exp(u)
@@ -288,13 +285,15 @@ def optimal_forces(
 
 def _final(score: _Scorer, index, bounds, start=None, x_start=None):
     """``(u, certified, creeps)`` of the points ``index``: the lattice climb
-    (`lattice_search`) from ``start`` (`_guess` where None or NaN), and from the best
-    lattice force of each point it does not certify (an optimum within a lattice step of
-    the creep bound), the stencil search (`_search`)."""
+    (`lattice_search`) from ``start`` (None: from one round on a wide stencil about
+    `_guess`, on the search rule where the options have a predictor, `_wide_start`; NaN:
+    from `_guess`), and from the best lattice force of each point it does not certify (an
+    optimum within a lattice step of the creep bound), the stencil search (`_search`)."""
     lo, hi = bounds
     first = _guess(score.problem.take(index), lo, hi)
     if start is None:  # nothing but the guess: one round on a wide stencil about it first
-        start, x_start = _wide_start(score, index, first)
+        wide = _coarse(score) if score.options.predictor is not None else score
+        start, x_start = _wide_start(wide, index, first)
     known = np.isfinite(start)
     first = np.where(known, start, first)
     if x_start is not None:  # creeps at the starts only where they are known

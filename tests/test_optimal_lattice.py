@@ -197,3 +197,40 @@ def test_far_above_a_convex_tail_the_steps_double():
     for offset in (1.74, -1.2, 0.9):
         got = _climb(score, [U0 + offset])
         assert got[1][0] and got[0][0] == ref[0][0]
+
+
+def test_a_sharp_peak_is_certified_not_jumped_across():
+    """Where the efficiency peaks sharply, the parabolas through the stencils on either
+    side are concave with vertices beyond each other's centres: the climb jumped back and
+    forth for every round and left the point uncertified (three steps of the hub's duty
+    cycle, session 33). A neighbour better than the centre now bounds the climb on its
+    side, so every start certifies the one stencil around the peak."""
+    score = _Synthetic(lambda u: 0.9 - 0.05 * np.sqrt(0.01**2 + (u - U0) ** 2))
+    u, done, _ = _climb(score, U0 + np.linspace(-0.5, 0.5, 41))
+    assert done.all()
+    assert np.ptp(u) == 0.0 and abs(u[0] - U0) <= LATTICE / 2
+
+
+@dataclass(frozen=True)
+class _WithCreeps(_Synthetic):
+    """`_Synthetic` whose creeps times ``F_N0`` are a cubic in ``ln F_N0``."""
+
+    def __call__(self, index, u, x0=None):
+        e, _ = super().__call__(index, u, x0)
+        return e, _creeps(np.asarray(u, dtype=float))
+
+
+def _creeps(u):
+    s = u - U0
+    scaled = 0.03 + 0.01 * s - 0.02 * s**2 + 0.005 * s**3
+    return (scaled * np.exp(-u))[:, None] * np.array([1.0, -0.1, 0.1, -1.0])
+
+
+def test_the_creeps_at_the_answer_come_from_the_cubic():
+    """The creeps returned at a certified answer (the final solve's start) are the cubic
+    through the four lattice forces' ``F_N0`` times their creeps: exact when that product
+    is a cubic in ``ln F_N0`` (the stencil's parabola missed it by some ``h^3``)."""
+    score = _WithCreeps(lambda u: 0.9 - 0.25 * (u - U0) ** 2 + 0.3 * (u - U0) ** 3)
+    u, done, creep = _climb(score, U0 + np.array([-0.2, 0.013, 0.3]))
+    assert done.all()
+    np.testing.assert_allclose(creep, _creeps(u), rtol=1e-12, atol=0)

@@ -98,6 +98,7 @@ def lattice_search(score: _Scorer, index, bounds, start, x_start=None):
     climbs = np.zeros(index.size)  # stencils in a row with no admissible force
     runs = np.zeros(index.size)  # steps in a row the same way (signed)
     floor = k_lo.copy()  # the lowest centre whose stencil may lie above the creep bound
+    ceiling = k_hi.copy()  # and the highest, below a stencil whose lower end was its best
     live = np.flatnonzero(k_lo <= k_hi)
     for _ in range(ROUNDS):
         u, e = win.stencil(live)
@@ -116,7 +117,14 @@ def lattice_search(score: _Scorer, index, bounds, start, x_start=None):
         # a stencil with no admissible force lies below the creep bound: no stencil
         # reaching down to it again (a jump back from above overshooting the bound)
         floor[live] = np.where(none, np.maximum(floor[live], win.k[live] + 3), floor[live])
-        new = np.clip(win.k[live] + step, np.minimum(floor[live], k_hi[live]), k_hi[live])
+        # a neighbour better than the centre: a local maximum on its side (never jump back
+        # past it: two concave parabolas whose vertices overshoot each other's centres sent
+        # a hub cycle's points back and forth for every round, session 33)
+        up, down = (step > 0) & (e[:, 2] > e[:, 1]), (step < 0) & (e[:, 0] > e[:, 1])
+        floor[live] = np.where(up, np.maximum(floor[live], win.k[live] + 1), floor[live])
+        ceiling[live] = np.where(down, np.minimum(ceiling[live], win.k[live] - 1), ceiling[live])
+        upper = np.minimum(ceiling[live], k_hi[live])
+        new = np.clip(win.k[live] + step, np.minimum(floor[live], upper), upper)
         go = ~top & (new != win.k[live])
         live = live[go]
         if not live.size:
@@ -126,11 +134,13 @@ def lattice_search(score: _Scorer, index, bounds, start, x_start=None):
     xs = win.x[:, 1:4]
     vertex = _parabola(u, e)[0]
     ok = np.flatnonzero(done)
-    vertex[ok] = win.cubic(ok, vertex[ok])
+    vertex[ok], x_ok = win.cubic(ok, vertex[ok])
     best = np.take_along_axis(u, np.argmax(e, axis=1)[:, None], axis=1)[:, 0]
     best = np.where(np.isfinite(e).any(axis=1), best, np.nan)
     out = np.where(done, vertex, best)
-    return out, done, _interpolated(xs, u, e, out[:, None])
+    creep = _interpolated(xs, u, e, out[:, None])
+    creep[ok] = np.where(np.isnan(x_ok), creep[ok], x_ok)
+    return out, done, creep
 
 
 def _move(u, e, climbs):
@@ -225,18 +235,32 @@ class _Window:
         need[np.arange(rows.size), slot] = inside & np.isnan(self.e[rows, slot])
         stencil = (u[:, 1:4], self.e[rows, 1:4], self.x[rows, 1:4])
         self._solve(rows, need, stencil, np.zeros(rows.size, dtype=int))
-        e = self.e[rows]
-        e4 = np.where(inside, e[np.arange(rows.size), slot], np.nan)
-        values = np.where(up[:, None], np.column_stack([e[:, 1:4], e4]),
-                          np.column_stack([e4, e[:, 1:4]]))  # fmt: skip
-        c = np.einsum("nij,nj->ni", np.where(up[:, None, None], _UP, _DOWN), values)
+        e = np.where(inside[:, None] | (np.arange(5) != slot[:, None]), self.e[rows], np.nan)
+        four = np.where(up[:, None], np.arange(1, 5), np.arange(4))  # the cubic's slots
+        values = np.take_along_axis(e, four, axis=1)
+        inverse = np.where(up[:, None, None], _UP, _DOWN)
+        c = np.einsum("nij,nj->ni", inverse, values)
         with np.errstate(invalid="ignore", divide="ignore"):
             # the root of c1 + 2 c2 t + 3 c3 t^2 = 0 with a negative second derivative,
             # (-c2 - sqrt(D)) / (3 c3), written without cancellation (any c3, also 0)
             t = c[:, 1] / (np.sqrt(c[:, 2] ** 2 - 3.0 * c[:, 3] * c[:, 1]) - c[:, 2])
             curv = 2.0 * c[:, 2] + 6.0 * c[:, 3] * t
-        good = np.isfinite(e4) & np.isfinite(t) & (np.abs(t) <= 1.0) & (curv < 0)
-        return np.where(good, u[:, 2] + t * LATTICE, vertex)
+        good = np.isfinite(values).all(axis=1) & np.isfinite(t) & (np.abs(t) <= 1.0)
+        good &= curv < 0
+        t = np.where(good, t, np.nan)
+        return np.where(good, u[:, 2] + t * LATTICE, vertex), self._creep(rows, four, inverse, t)
+
+    def _creep(self, rows, four, inverse, t):
+        """Creeps ``(rows, n_c)`` at the cubics' maxima ``u_k + t LATTICE`` (NaN rows where
+        ``t`` is): the cubic through the four forces' ``F_N0`` times their creeps (nearly
+        constant, as in `_start`), whose error (~ h^4) the final solve's Newton removes in
+        one step where the stencil's parabola (~ h^3) took two (issue 26)."""
+        u = np.take_along_axis(self.u(rows), four, axis=1)
+        x = np.take_along_axis(self.x[rows], four[:, :, None], axis=1) * np.exp(u)[:, :, None]
+        c = np.einsum("nij,njc->nic", inverse, x)
+        powers = t[:, None] ** np.arange(4.0)
+        at = self.u(rows)[:, 2] + t * LATTICE  # t: lattice steps from the centre
+        return np.einsum("ni,nic->nc", powers, c) * np.exp(-at)[:, None]
 
     def _solve(self, rows, need, stencil, shift) -> None:
         """Solve the forces ``need`` ``(rows, 5)`` of the windows ``rows`` together, from

@@ -15,7 +15,7 @@ import numpy as np
 from ..equilibrium.problem import EquilibriumProblem
 from ..model.traction.base import has_multiple_equilibria, traction_rises_with_creep
 from .clamped import at_ceiling, pressure_bound_force, solve_clamped
-from .newton import initial_creep, solve_batch
+from .newton import initial_creep, solve_batch, solve_from
 from .options import SolverOptions, at_residual_floor, coarse_options
 
 __all__ = [
@@ -118,7 +118,10 @@ def solve_admissible(
         Starting creeps ``(n, n_c)``.
     predict : bool
         Whether the Newton runs start with the predictor stage (`ballcvt.solvers.newton.
-        solve_batch`); False when ``x0`` is already close to the solutions.
+        solve_batch`); False when ``x0`` is already close to the solutions (under a law
+        with more than one equilibrium the points then start from ``x0``,
+        `ballcvt.solvers.newton.solve_from`, where otherwise each is followed from zero
+        torque).
 
     Returns
     -------
@@ -131,7 +134,7 @@ def solve_admissible(
             return solve_clamped(
                 pb,
                 law,
-                lambda p, y: solve_batch(p, options, y, fallback, predict),
+                lambda p, y: solve_from(p, options, y, fallback, predict),
                 x,
                 pb.design.max_pressure,
                 lambda p, y: solve_batch(p, options, y, fallback, False),
@@ -139,7 +142,7 @@ def solve_admissible(
     else:
 
         def solve(pb, x, fallback):
-            return pb, solve_batch(pb, options, x, fallback, predict)
+            return pb, solve_from(pb, options, x, fallback, predict)
 
     pb, sol = solve(problem, x0, False)
     big = np.max(np.abs(sol.state.creep), axis=-1)

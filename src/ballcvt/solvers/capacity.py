@@ -18,6 +18,7 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import NoEquilibriumError
+from ..model.traction.base import has_multiple_equilibria
 from .clamped import at_ceiling, pressure_bound_force, solve_clamped
 from .point import SolverOptions, solve_point
 
@@ -29,6 +30,9 @@ SCAN_POINTS = 48
 MAX_STEPS = 60
 #: Smallest nonzero scan torque, as a share of the bound [-].
 SCAN_POINTS_FLOOR = 1e-4
+#: Under a law with more than one equilibrium, the scan torques followed from zero torque:
+#: every ``STRIDE``-th of a row; the others start from the one ``STRIDE`` below (`_march`).
+STRIDE = 4
 
 
 @dataclass(frozen=True)
@@ -164,6 +168,8 @@ def _scan(points: EquilibriumProblem, admissible, screen, grid):
     full rule would take the same (its creeps `ballcvt.solvers.admissible.SCREEN_MARGIN`
     clear of the creep limit) or inside a run of its own decisions.
     """
+    if points.size and has_multiple_equilibria(points.fluid):
+        return _march(points, admissible, grid.shape)
     if screen is None or points.size == 0:
         got = admissible(points, None)
         return got.ok, got.converged, got.creep
@@ -178,6 +184,34 @@ def _scan(points: EquilibriumProblem, admissible, screen, grid):
         _solve_scan_points(points, admissible, idx, (ok, conv, creep))
         done[idx] = True
         todo |= _next_to_change(ok, grid.shape)
+    return ok, conv, creep
+
+
+def _march(points: EquilibriumProblem, admissible, shape):
+    """`_scan` under a law with more than one equilibrium (the thermal law): every
+    `STRIDE`-th torque of each row followed from zero torque, as `solve_admissible` follows
+    a point without a start; every other torque from the creeps of the one `STRIDE` below
+    it where those converged (near it: Newton, kept where it lands on the branch from zero
+    torque, not past a fold; `ballcvt.solvers.newton.solve_near`), from zero torque
+    elsewhere. Two batches where every point was followed from zero torque: Table I's
+    thermal cam sweep solved a third fewer traction contacts (session 33)."""
+    cols = shape[1]
+    ok = np.zeros(points.size, dtype=bool)
+    conv, creep = ok.copy(), np.full((points.size, points.layout.n_contacts), np.nan)
+    col = np.arange(points.size) % cols
+    anchor = np.flatnonzero(col % STRIDE == 0)
+    got = admissible(points.take(anchor), None)
+    ok[anchor], conv[anchor], creep[anchor] = got.ok, got.converged, got.creep
+    rest = np.flatnonzero(col % STRIDE != 0)
+    below = rest - col[rest] % STRIDE
+    warm = conv[below]
+    for near in (True, False):
+        at = rest[warm == near]
+        if at.size:
+            got = admissible(
+                points.take(at), creep[below[warm == near]] if near else None, not near
+            )
+            ok[at], conv[at], creep[at] = got.ok, got.converged, got.creep
     return ok, conv, creep
 
 

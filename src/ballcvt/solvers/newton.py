@@ -40,7 +40,7 @@ from .secant import SecantCorrection
 from .trials import quiet_trials
 
 __all__ = ["BatchSolution", "solve_batch", "solve_pinned", "initial_creep", "branch_solver"]
-__all__ += ["on_branch", "solve_near", "CREEP_BOUNDS", "MAX_STEP", "PATIENCE"]
+__all__ += ["on_branch", "solve_near", "solve_from", "CREEP_BOUNDS", "MAX_STEP", "PATIENCE"]
 
 #: Consecutive Newton iterations without a lower residual after which a step of the
 #: torque continuation gives up (`branch_solver`); the continuation then tries that
@@ -174,6 +174,21 @@ def solve_near(problem: EquilibriumProblem, options: SolverOptions, x0) -> Batch
         return keep
 
     return _follow(flat, options, False, x, accept)
+
+
+def solve_from(
+    problem: EquilibriumProblem, options: SolverOptions, x0=None, fallback=True, predict=True
+) -> BatchSolution:
+    """`solve_batch`, except from starts ``x0`` near the solutions (``predict`` False) under
+    a law with more than one equilibrium: `solve_near` there (Newton from them, kept where it
+    lands on the branch from zero torque, not past a fold; only the other points followed
+    from zero torque, as `solve_batch` follows every point). A capacity scan's torques from
+    the one below, a bisection's trials from their admissible end and a sweep's points from
+    its scan's creeps so cost a Newton run where each was followed from zero torque (Table
+    I's thermal cam sweep, session 33)."""
+    if x0 is not None and not predict and has_multiple_equilibria(problem.fluid):
+        return solve_near(problem, options, x0)
+    return solve_batch(problem, options, x0, fallback, predict)
 
 
 def _below(below):

@@ -21,7 +21,7 @@ from ...performance.efficiency import efficiency, loss_breakdown, power_losses
 from ...performance.validity import validity
 from ...solvers.clamped import solve_clamped, with_clamp
 from ...solvers.limit import LimitSearch, bisection_steps, limit_search
-from ...solvers.newton import initial_creep, solve_batch
+from ...solvers.newton import initial_creep, solve_batch, solve_from
 from ...solvers.optimal_batch import optimal_forces
 from ...solvers.optimal_capacity import capacity_search
 from ...solvers.options import SolverOptions
@@ -200,12 +200,14 @@ def _solve_from_limits(state, curves: OperatingRows, torque, search: LimitSearch
     near = search.start_between(i, torque[k])  # a capacity scan's creeps, when it ran
     if near is not None:
         x0 = np.where(np.isnan(near), x0, near)
-    # (under a law with more than one equilibrium the solves keep their predictor: at a
-    # constant force each is started between the creeps at zero torque and at its curve's
-    # limit and kept where it lies on the branch below the limit, `on_branch`; under a
-    # torque-following law each is followed from zero torque at its own force)
+    # (under a law with more than one equilibrium, at a constant force the solves keep
+    # their predictor: each is started between the creeps at zero torque and at its
+    # curve's limit and kept where it lies on the branch below the limit, `on_branch`;
+    # under a torque-following law each starts from its scan's creeps and is kept where it
+    # is not past a fold, `solve_from`: before session 33 each was followed from zero
+    # torque at its own force)
     multiple = has_multiple_equilibria(base.fluid)
-    predict = near is None or multiple
+    predict = near is None or (multiple and curves.law is None)
     below = search.creep[i] if multiple and curves.law is None else None
     pb, sol = _solve_points(state, curves, torque, (i, k), x0, predict, below)
     stray = _off_branch(state, (i, k), sol, curves.creep_limit)
@@ -334,12 +336,14 @@ def limit_search_curves(curves: OperatingRows, callback=None, limit=None):
 def solve_column(pb, law, options, x0, predict=True, below=None):
     """Solve the points of one torque under ``law`` -> (problem at the forces used, sol);
     ``predict``: whether the solves start with the predictor stage (False: ``x0`` is
-    already near); ``below``: at a constant force, creeps on each point's branch at a
-    torque at least its own (both as in `ballcvt.solvers.newton.solve_batch`)."""
+    already near; under a law with more than one equilibrium Newton from there is kept on
+    the branch, `ballcvt.solvers.newton.solve_from`); ``below``: at a constant force,
+    creeps on each point's branch at a torque at least its own (both as in
+    `ballcvt.solvers.newton.solve_batch`)."""
     if law is None:
         return pb, solve_batch(pb, options, x0, predict=predict, below=below)
     if not law.optimises:
-        return solve_clamped(pb, law, lambda p, x: solve_batch(p, options, x, predict=predict), x0)
+        return solve_clamped(pb, law, lambda p, x: solve_from(p, options, x, predict=predict), x0)
     pb, start = optimal_start(pb, law, options)
     x = initial_creep(pb) if x0 is None else np.broadcast_to(x0, start.shape)
     unknown = np.isnan(start).any(axis=1)
@@ -370,10 +374,12 @@ def _eta_at(curves: OperatingRows, clamp_force, torque, law=None, x0=None):
     if ok.size:
         pb = curves.problem(ok, torque[ok], clamp_force[ok])
         options = curves.options
-        if x0 is not None and law is None:  # the limit search's own solutions
-            sol = solve_batch(pb, options, x0[ok], predict=False)
-        else:
-            pb, sol = solve_column(pb, law, options, None if x0 is None else x0[ok])
+        start = None if x0 is None else x0[ok]
+        if start is not None and law is None:  # the limit search's own solutions
+            sol = solve_batch(pb, options, start, predict=False)
+        else:  # from them where known (under the thermal law: kept on the branch)
+            known = start is not None and bool(np.isfinite(start).all())
+            pb, sol = solve_column(pb, law, options, start, predict=not known)
         eta[ok] = np.where(sol.converged, efficiency(pb, sol.state).overall, np.nan)
     return eta
 

@@ -211,6 +211,19 @@ def test_a_sharp_peak_is_certified_not_jumped_across():
     assert np.ptp(u) == 0.0 and abs(u[0] - U0) <= LATTICE / 2
 
 
+def test_an_optimum_below_min_force_stays_there():
+    """The bound a better lower neighbour sets never lets the climb below ``min_force``:
+    harden task 3301:919 (an optimum at 66 N under the 100 N floor, started from 211 N)
+    set it one step below the floor, and a duty cycle's steps went on to 70 N (efficiency
+    0.889 where `solve`, at 100 N, had 0.828). The point is left uncertified at the
+    lowest lattice force within the bounds, for the search that follows."""
+    score = _Synthetic(lambda u: 0.9 - 0.25 * (u - np.log(66.0)) ** 2)
+    lo = np.log(100.0)
+    u, done, _ = _climb(score, np.log([211.0, 150.0, 105.0]), lo=lo)
+    assert not done.any()
+    assert np.all(u >= lo) and np.all(u <= lo + 2 * LATTICE)
+
+
 @dataclass(frozen=True)
 class _WithCreeps(_Synthetic):
     """`_Synthetic` whose creeps times ``F_N0`` are a cubic in ``ln F_N0``."""

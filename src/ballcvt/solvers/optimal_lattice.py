@@ -123,7 +123,7 @@ def lattice_search(score: _Scorer, index, bounds, start, x_start=None):
         up, down = (step > 0) & (e[:, 2] > e[:, 1]), (step < 0) & (e[:, 0] > e[:, 1])
         floor[live] = np.where(up, np.maximum(floor[live], win.k[live] + 1), floor[live])
         ceiling[live] = np.where(down, np.minimum(ceiling[live], win.k[live] - 1), ceiling[live])
-        upper = np.minimum(ceiling[live], k_hi[live])
+        upper = np.clip(ceiling[live], k_lo[live], k_hi[live])  # (never below k_lo)
         new = np.clip(win.k[live] + step, np.minimum(floor[live], upper), upper)
         go = ~top & (new != win.k[live])
         live = live[go]

@@ -192,9 +192,10 @@ def _march(points: EquilibriumProblem, admissible, shape):
     `STRIDE`-th torque of each row followed from zero torque, as `solve_admissible` follows
     a point without a start; every other torque from the creeps of the one `STRIDE` below
     it where those converged (near it: Newton, kept where it lands on the branch from zero
-    torque, not past a fold; `ballcvt.solvers.newton.solve_near`), from zero torque
-    elsewhere. Two batches where every point was followed from zero torque: Table I's
-    thermal cam sweep solved a third fewer traction contacts (session 33)."""
+    torque, not past a fold; `ballcvt.solvers.newton.solve_from`), from zero torque
+    elsewhere. Two batches where every point was followed from zero torque: on Table I's
+    30 x 30 thermal cam sweep every scan decision the same, with the trials' and the
+    sweep's own starts 37 % fewer traction evaluations (session 33)."""
     cols = shape[1]
     ok = np.zeros(points.size, dtype=bool)
     conv, creep = ok.copy(), np.full((points.size, points.layout.n_contacts), np.nan)

@@ -11,6 +11,7 @@ import pytest
 
 import ballcvt.solvers.capacity as capacity
 from ballcvt import Variator
+from ballcvt.errors import TractionLimitError
 from ballcvt.equilibrium.problem import build_problem
 from ballcvt.model.clamping import clamp_law
 from ballcvt.solvers.limit import limit_search
@@ -73,3 +74,17 @@ def test_a_thermal_cam_sweep_is_solve_up_to_its_capacity(ratio):
     swept = np.asarray(ds.eta).ravel()
     solved = [THERMAL.solve(ratio, float(t), **CAM).eta for t in torque]
     np.testing.assert_allclose(swept, solved, rtol=0, atol=1e-7)
+
+
+def test_the_capacity_is_the_torque_solve_reaches():
+    """Table I's single-idler drive at 5000 rpm, ratio 1.56, under the cam: the capacity's
+    bisection follows each trial from zero torque, as `solve` does. Started from their
+    admissible end (Newton and the fold test) its trials carried the capacity to 10.785
+    N m, where `solve` found no equilibrium on the branch above 10.783 and raised a
+    ConvergenceError inside the reported capacity (session 33)."""
+    single = Variator(THERMAL.design, THERMAL.fluid, "single", traction_law="thermal")
+    ratio, kw = float(np.linspace(0.6, 1.8, 6)[4]), {"clamp_law": "cam", "input_speed_rpm": 5000.0}
+    limit = single.limit_torque(ratio, **kw)
+    assert single.solve(ratio, limit * (1 - 2e-5), **kw).converged
+    with pytest.raises(TractionLimitError):
+        single.solve(ratio, limit * (1 + 1e-4), **kw)

@@ -183,9 +183,10 @@ def solve_from(
     a law with more than one equilibrium: `solve_near` there (Newton from them, kept where it
     lands on the branch from zero torque, not past a fold; only the other points followed
     from zero torque, as `solve_batch` follows every point). A capacity scan's torques from
-    the one below, a bisection's trials from their admissible end and a sweep's points from
-    its scan's creeps so cost a Newton run where each was followed from zero torque (Table
-    I's thermal cam sweep, session 33)."""
+    the one below and a sweep's points from its scan's creeps so cost a Newton run where
+    each was followed from zero torque (Table I's thermal cam sweep, session 33). Not next
+    to a fold: there Newton and the fold test accept torques the continuation does not
+    reach (`ballcvt.solvers.capacity.interval_search` follows its bisection's trials)."""
     if x0 is not None and not predict and has_multiple_equilibria(problem.fluid):
         return solve_near(problem, options, x0)
     return solve_batch(problem, options, x0, fallback, predict)

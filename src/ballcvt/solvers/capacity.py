@@ -202,23 +202,13 @@ def _march(points: EquilibriumProblem, admissible, shape):
     elsewhere. Two batches where every point was followed from zero torque: on Table I's
     30 x 30 thermal cam sweep every scan decision the same, with the sweep's own starts
     33 % fewer traction evaluations (session 33)."""
-    cols = shape[1]
     ok = np.zeros(points.size, dtype=bool)
     conv, creep = ok.copy(), np.full((points.size, points.layout.n_contacts), np.nan)
-    col = np.arange(points.size) % cols
-    anchor = np.flatnonzero(col % STRIDE == 0)
-    got = admissible(points.take(anchor), None)
-    ok[anchor], conv[anchor], creep[anchor] = got.ok, got.converged, got.creep
-    rest = np.flatnonzero(col % STRIDE != 0)
-    below = rest - col[rest] % STRIDE
-    warm = conv[below]
-    for near in (True, False):
-        at = rest[warm == near]
-        if at.size:
-            got = admissible(
-                points.take(at), creep[below[warm == near]] if near else None, not near
-            )
-            ok[at], conv[at], creep[at] = got.ok, got.converged, got.creep
+    step = np.arange(points.size) % shape[1] % STRIDE  # torques above the anchor
+    _solve_scan_points(points, admissible, np.flatnonzero(step == 0), (ok, conv, creep))
+    rest = np.flatnonzero(step)
+    conv[rest], creep[rest] = conv[rest - step[rest]], creep[rest - step[rest]]
+    _solve_scan_points(points, admissible, rest, (ok, conv, creep))
     return ok, conv, creep
 
 

@@ -248,19 +248,22 @@ class _Window:
         good = np.isfinite(values).all(axis=1) & np.isfinite(t) & (np.abs(t) <= 1.0)
         good &= curv < 0
         t = np.where(good, t, np.nan)
-        return np.where(good, u[:, 2] + t * LATTICE, vertex), self._creep(rows, four, inverse, t)
+        return np.where(good, u[:, 2] + t * LATTICE, vertex), self._creep(
+            rows, u, four, inverse, t
+        )
 
-    def _creep(self, rows, four, inverse, t):
-        """Creeps ``(rows, n_c)`` at the cubics' maxima ``u_k + t LATTICE`` (NaN rows where
-        ``t`` is): the cubic through the four forces' ``F_N0`` times their creeps (nearly
-        constant, as in `_start`): its error ~ h^4, the stencil's parabola's ~ h^3 (the
-        final solve there 3.09 -> 2.81 Newton evaluations per point on Table I's 30 x 30
-        sweeps; the analytic Jacobian's 1 % error sets most of the rest, session 33)."""
-        u = np.take_along_axis(self.u(rows), four, axis=1)
-        x = np.take_along_axis(self.x[rows], four[:, :, None], axis=1) * np.exp(u)[:, :, None]
+    def _creep(self, rows, u, four, inverse, t):
+        """Creeps ``(rows, n_c)`` at the cubics' maxima ``u_k + t LATTICE`` (``u``: the
+        windows' forces; NaN rows where ``t`` is): the cubic through the four forces'
+        ``F_N0`` times their creeps (nearly constant, as in `_start`): its error ~ h^4, the
+        stencil's parabola's ~ h^3 (the final solve there 3.09 -> 2.81 Newton evaluations
+        per point on Table I's 30 x 30 sweeps; the analytic Jacobian's 1 % error sets most
+        of the rest, session 33)."""
+        at4 = np.take_along_axis(u, four, axis=1)
+        x = np.take_along_axis(self.x[rows], four[:, :, None], axis=1) * np.exp(at4)[:, :, None]
         c = np.einsum("nij,njc->nic", inverse, x)
         powers = t[:, None] ** np.arange(4.0)
-        at = self.u(rows)[:, 2] + t * LATTICE  # t: lattice steps from the centre
+        at = u[:, 2] + t * LATTICE  # t: lattice steps from the centre
         return np.einsum("ni,nic->nc", powers, c) * np.exp(-at)[:, None]
 
     def _solve(self, rows, need, stencil, shift) -> None:

@@ -206,9 +206,9 @@ def _solve_from_limits(state, curves: OperatingRows, torque, search: LimitSearch
     # under a torque-following law each starts from its scan's creeps and is kept where it
     # is not past a fold, `solve_from`: before session 33 each was followed from zero
     # torque at its own force)
-    multiple = has_multiple_equilibria(base.fluid)
-    predict = near is None or (multiple and curves.law is None)
-    below = search.creep[i] if multiple and curves.law is None else None
+    on_constant = has_multiple_equilibria(base.fluid) and curves.law is None
+    predict = near is None or on_constant
+    below = search.creep[i] if on_constant else None
     pb, sol = _solve_points(state, curves, torque, (i, k), x0, predict, below)
     stray = _off_branch(state, (i, k), sol, curves.creep_limit)
     if stray.size:  # another equilibrium than the one reached from T_2 = 0

@@ -27,12 +27,12 @@ from ..equilibrium.residual import (
     EquilibriumState,
     balancing_output_torque,
     evaluate,
-    evaluate_with_jacobian,
 )
 from ..model.traction.base import has_multiple_equilibria
 from .branch_path import walks
 from .continuation import REACH_STEP, continue_in_torque
 from .held_creep import turned_back
+from .newton_eval import confirm_norm, evaluate_split
 from .newton_step import MAX_STEP, Iterates, advance
 from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
 from .robust import solve_robust
@@ -69,7 +69,7 @@ class BatchSolution:
         ``max |residual|`` at the final creeps [-].
     iterations : ndarray of int
         Residual evaluations of each point (with the Jacobian, or without it near the
-        solution, `CONFIRM_NORM`); points that needed the point
+        solution, `ballcvt.solvers.newton_eval.confirm_norm`); points that needed the point
         solver add its residual evaluations.
     """
 
@@ -387,15 +387,6 @@ def _predicts(options, n_points: int) -> bool:
     )
 
 
-#: A point whose residual norm is at most this before a Newton step is expected to meet
-#: the tolerance after it, or nearly: when every point still iterating is, the next
-#: evaluation skips the Jacobian, and a point that then misses the tolerance steps with
-#: its last Jacobian and the secant correction (`ballcvt.solvers.secant`: the analytic
-#: Jacobian is off by up to ~1 %, so the convergence near the solution is otherwise
-#: linear).
-CONFIRM_NORM = 1e-6
-
-
 def _newton(flat, x, iterations, options, pinned=None, patience=None):
     """Damped Newton on the points of the 1-D batch ``flat``; updates ``x`` in place.
 
@@ -421,6 +412,7 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
     fresh = it.fresh
     stall = np.zeros(n, dtype=int)  # iterations since each point's norm last fell
     confirm = False  # every active point is expected to converge: no Jacobian needed
+    near_norm = confirm_norm(flat.fluid)
     m = free.size
     secant = SecantCorrection.start(n, m)
     for _ in range(options.max_iterations):
@@ -433,7 +425,7 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
         if confirm:
             state = evaluate(sub, xa, options.quadrature)
         else:
-            state, jac = evaluate_with_jacobian(sub, xa, options.quadrature)
+            state, jac = evaluate_split(sub, xa, options.quadrature, secant.near[at])
             if pinned is not None:
                 jac = jac[:, :m][:, :, free]
         iterations[at] += 1
@@ -444,7 +436,7 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
         jac = secant.update(active, xa[:, free], res, jac)
         before = it.best[at].copy()  # (`advance` updates the best norms in place)
         norm = _norm(res)
-        secant.near[at] = (norm <= CONFIRM_NORM) & (norm < before)
+        secant.near[at] = (norm <= near_norm) & (norm < before)
         kept = advance(it, active, res, jac, free, options.tol)
         confirm = bool(secant.near[kept].all())  # no fresh Jacobian needed
         if patience is not None:

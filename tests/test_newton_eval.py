@@ -1,0 +1,77 @@
+"""What the batched Newton solver evaluates: the residual alone for the points near their
+solutions, apart from the rest of the batch (`ballcvt.solvers.newton_eval`, session 34)."""
+
+import numpy as np
+import pytest
+
+from ballcvt import Variator, load_builtin
+from ballcvt.equilibrium.problem import build_problem
+from ballcvt.solvers import newton_eval
+from ballcvt.solvers.newton import solve_batch
+from ballcvt.solvers.newton_eval import CONFIRM_NORM, confirm_norm
+from ballcvt.solvers.secant import NEAR_NORM
+
+
+def _batch(n=64):
+    v = Variator()
+    ratio = np.linspace(0.6, 1.8, n)
+    pb = build_problem(v.design, v.fluid, v.architecture, ratio, np.full(n, 20.0),
+                       np.full(n, 1500.0), np.full(n, 200.0))  # fmt: skip
+    return v, pb, solve_batch(pb, v.options).state.creep
+
+
+def _counted(mp):
+    rows = {"jacobian": 0, "plain": 0}
+    plain, jac = newton_eval.evaluate, newton_eval.evaluate_with_jacobian
+
+    def with_jac(problem, x, *a, **k):
+        rows["jacobian"] += x.shape[0]
+        return jac(problem, x, *a, **k)
+
+    def alone(problem, x, *a, **k):
+        rows["plain"] += x.shape[0]
+        return plain(problem, x, *a, **k)
+
+    mp.setattr(newton_eval, "evaluate_with_jacobian", with_jac)
+    mp.setattr(newton_eval, "evaluate", alone)
+    return rows
+
+
+def test_points_near_their_solution_skip_the_jacobian_and_keep_their_answers():
+    """Half the batch starts 1e-6 off its solution, half 5 % off: the near half is
+    evaluated without the Jacobian while the rest still needs one, and every point's answer
+    is the one it gets solved with the whole batch evaluated with Jacobians."""
+    v, pb, x = _batch()
+    start = x * np.where(np.arange(x.shape[0]) % 2 == 0, 1 + 1e-6, 1.05)[:, None]
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(newton_eval, "SPLIT_MIN", 10**9)  # never apart
+        whole = _counted(mp)
+        ref = solve_batch(pb, v.options, start, predict=False)
+    with pytest.MonkeyPatch.context() as mp:
+        split = _counted(mp)
+        got = solve_batch(pb, v.options, start, predict=False)
+    assert ref.converged.all() and got.converged.all()
+    np.testing.assert_allclose(got.state.creep, ref.state.creep, rtol=1e-9, atol=1e-13)
+    np.testing.assert_allclose(got.state.creep, x, rtol=1e-9, atol=1e-13)
+    assert split["plain"] >= x.shape[0] // 2  # the near half at least once
+    assert split["jacobian"] < whole["jacobian"]
+
+
+def test_a_batch_with_few_points_near_is_evaluated_whole(monkeypatch):
+    v, pb, x = _batch(8)
+    start = x * np.where(np.arange(8) < 2, 1 + 1e-6, 1.05)[:, None]
+    rows = _counted(monkeypatch)
+    sol = solve_batch(pb, v.options, start, predict=False)
+    assert sol.converged.all()
+    first = rows["jacobian"]
+    assert first >= 8  # the first evaluation: all eight with the Jacobian
+
+
+def test_near_means_the_secant_range_except_under_a_law_with_folds():
+    """Below NEAR_NORM a point steps with its last Jacobian, corrected; under the thermal law
+    (more than one equilibrium, Newton's path near a fold turning on the last bit) only
+    below CONFIRM_NORM, as before session 34."""
+    d, f = load_builtin("table1")
+    assert confirm_norm(f) == NEAR_NORM
+    thermal = f.model_copy(update={"traction_law": "thermal"})
+    assert confirm_norm(thermal) == CONFIRM_NORM < NEAR_NORM

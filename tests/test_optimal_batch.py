@@ -198,3 +198,55 @@ def test_a_first_stencil_below_the_creep_bound_moves_up_past_it():
     eta = _eta(v, pb, first.force)
     ref = np.array([o.eta for o in _old(v, pb)])
     assert np.max(np.abs(eta - ref)) <= 1e-6
+
+
+def test_a_large_batch_without_a_predictor_starts_from_its_seeds(monkeypatch):
+    """A batch of at least SEED_MIN points on a rule without a predictor (a duty cycle's
+    first pass) searches one point in SEED_STRIDE from `_guess` and starts the others'
+    climbs from their nearest seed's optimum (session 34): the lattice's answer does not
+    depend on its start, so the forces are the unseeded search's (to the solves' tolerance:
+    on the search rule to 1e-11, the scores to 1e-9), with fewer evaluations."""
+    from dataclasses import replace
+
+    from ballcvt.solvers import optimal_batch
+    from ballcvt.solvers.optimal_stencil import _Scorer
+
+    v = Variator()
+    rule = replace(v.options, quadrature=v.options.search_rule, predictor=None)
+    rng = np.random.default_rng(34)
+    n = 320
+    assert n >= optimal_batch.SEED_MIN
+    pb = _points(v, rng.uniform(0.6, 1.8, n), rng.uniform(2.0, 50.0, n),
+                 rng.uniform(0.5, 1.5, n) * W)  # fmt: skip
+    calls = []
+    score = _Scorer.__call__
+
+    def counted(self, index, u, x0=None):
+        calls.append(np.size(index))
+        return score(self, index, u, x0)
+
+    monkeypatch.setattr(_Scorer, "__call__", counted)
+    seeded = optimal_forces(pb, OptimalClamp(), rule, fallback=False)
+    forces_seeded = sum(calls)
+    calls.clear()
+    monkeypatch.setattr(optimal_batch, "SEED_MIN", 10**9)
+    plain = optimal_forces(pb, OptimalClamp(), rule, fallback=False)
+    assert seeded.fast.sum() >= n - 2 and np.array_equal(seeded.fast, plain.fast)
+    fast = seeded.fast
+    np.testing.assert_allclose(seeded.force[fast], plain.force[fast], rtol=1e-5)
+    assert forces_seeded < 0.8 * sum(calls)  # the wide round and most lattice moves saved
+
+
+def test_seeds_start_their_neighbours_at_their_own_optima():
+    from ballcvt.solvers.optimal_batch import _nearest
+
+    v = Variator()
+    pb = _points(v, [1.0, 1.0, 1.5, 1.0, 1.5], [10.0, 40.0, 10.0, 11.0, 12.0])
+    seeds, u_seeds = np.array([0, 1, 2]), np.log([500.0, 900.0, 600.0])
+    got = _nearest(pb, seeds, u_seeds, np.array([3, 4]))
+    # each from its nearest seed, moved by `_guess`'s change: point 3 (ratio 1, 11 N m)
+    # from seed 0 (10 N m); point 4 (ratio 1.5, 12 N m) from seed 2 (10 N m; the torque
+    # times the ratio above 1)
+    g = np.log(200 + 14 * np.array([10.0, 11.0, 15.0, 18.0]))
+    assert got == pytest.approx([np.log(500.0) + g[1] - g[0], np.log(600.0) + g[3] - g[2]])
+    assert np.isnan(_nearest(pb, np.array([], int), np.array([]), np.array([3]))).all()

@@ -264,3 +264,27 @@ def test_optimal_clamp_cycle_meets_the_speed_and_equals_single_points(hub, cruis
     r = hub.solve(row["ratio"], 12.0, clamp_law="optimal", input_speed=180 * RPM)
     assert row["eta"] == pytest.approx(r.eta, abs=1e-6)
     assert row["clamp_force"] == pytest.approx(r.clamp_force, rel=1e-3)
+
+
+def test_a_long_optimal_cycle_seeds_its_first_pass_and_still_equals_single_points(hub):
+    """300 distinct steps: the first pass searches every 16th step from the guess and
+    starts the others from their nearest seed's optimum (`optimal_batch._seeded`, session
+    34); every checked step, seed or not, equals `solve` at its ratio with the optimal
+    clamp (the lattice's answer does not depend on where its climb started)."""
+    from ballcvt.solvers import optimal_batch
+
+    n = 300
+    assert n >= optimal_batch.SEED_MIN
+    rng = np.random.default_rng(26)
+    t2 = rng.uniform(2.0, 25.0, n)
+    w2 = rng.uniform(120.0, 260.0, n) * RPM
+    c = cycle_from_arrays(time=np.arange(float(n)), output_speed=w2, output_torque=t2,
+                          name="random")  # fmt: skip
+    res = run_cycle(hub, c, target_input_speed=180 * RPM, clamp_law="optimal", progress=False)
+    assert (res.steps["status"] == 0).all()
+    for j in (0, 1, 7, 16, 150, 299):  # seeds 0, 16; the rest started from one
+        row = res.steps.iloc[j]
+        r = hub.solve(row["ratio"], t2[j], clamp_law="optimal", input_speed=180 * RPM)
+        # measured: within 3.6e-11 and 7.9e-6 over every 7th step (session 34)
+        assert row["eta"] == pytest.approx(r.eta, abs=1e-9), j
+        assert row["clamp_force"] == pytest.approx(r.clamp_force, rel=1e-4), j

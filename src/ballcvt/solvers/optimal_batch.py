@@ -59,7 +59,6 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..errors import TractionLimitError
@@ -345,6 +344,8 @@ def _nearest(problem: EquilibriumProblem, seeds, u_seeds, rest) -> np.ndarray:
     points ``seeds``: the nearest seed's in ``(ln ratio, torque, ln speed)`` (each scaled by
     its spread over the points), moved by `_guess`'s change between the two; NaN without
     seeds."""
+    from scipy.spatial import cKDTree  # (here: not on every import of the package)
+
     if not seeds.size:
         return np.full(rest.size, np.nan)
     torque = np.abs(problem.output_torque) * np.maximum(1.0, np.abs(problem.ratio))

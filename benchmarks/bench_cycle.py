@@ -32,6 +32,17 @@ def commute(steps):
                              name=f"commute x{reps}")
 
 
+def jittered(steps, seed=1):
+    """`commute` with every step's output speed and torque scaled by factors drawn in
+    0.9-1.1: its steps all differ (the repeated commute has 132 distinct ones)."""
+    c = commute(steps)
+    rng = np.random.default_rng(seed)
+    return cycle_from_arrays(time=c.time,
+                             output_speed=c.output_speed * rng.uniform(0.9, 1.1, steps),
+                             output_torque=c.output_torque * rng.uniform(0.9, 1.1, steps),
+                             name=f"{c.name}, jittered")
+
+
 def warm_up(v, **clamp):
     """One two-step cycle (loads the compiled kernels)."""
     run_cycle(v, cycle_from_arrays(time=[0.0, 1.0], output_speed=[20.0, 20.0],

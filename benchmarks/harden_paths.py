@@ -28,6 +28,7 @@ from ballcvt import (
 )
 from ballcvt.errors import NoEquilibriumError
 from ballcvt.model.traction.base import has_multiple_equilibria
+from ballcvt.solvers.optimal_batch import SEED_MIN
 from ballcvt.units import rpm_to_rad_s
 
 KEEP = ("output_torque", "loss", "contact")
@@ -340,10 +341,16 @@ def run_cycle(task, v, cond):
     ratios = np.clip(cond["ratio"] * np.concatenate([[1.0], near]), lo, hi)
     ts = torques(task, v, cond, [*task.rng.uniform(0.05, 0.6, k - 2), 0.9, 1.3])
     w_in = rpm_to_rad_s(cond["rpm"])
+    speeds, loads = w_in * ratios, np.asarray(ts, dtype=float)
+    if task.case["clamp"] == "optimal":  # the first pass's seeds: SEED_MIN steps at least,
+        # the checked ones first, then copies of them within a few per cent (session 34)
+        pick = task.rng.integers(0, k, max(0, SEED_MIN - k))
+        speeds = np.concatenate([speeds, speeds[pick] * task.rng.uniform(0.98, 1.02, pick.size)])
+        loads = np.concatenate([loads, loads[pick] * task.rng.uniform(0.95, 1.05, pick.size)])
     cycle = cycle_from_arrays(
-        time=np.arange(k, dtype=float),
-        output_speed=w_in * ratios,
-        output_torque=ts,
+        time=np.arange(speeds.size, dtype=float),
+        output_speed=speeds,
+        output_torque=loads,
         name="harden",
     )
     got = _grid_call(
@@ -360,14 +367,14 @@ def run_cycle(task, v, cond):
         return
     loss_cols = [c for c in got.steps.columns if c.startswith("loss_")]
     eff = got.summary.get("efficiency")
-    for j, row in enumerate(got.steps.to_dict("records")):
+    for j, row in enumerate(got.steps.to_dict("records")[:k]):
         at = {"ratio": float(row["ratio"]), "rpm": float(row["input_speed_rpm"])}
         t = float(row["output_torque"])
         inputs = task.inputs(
             output_torque=t,
             step=j,
-            cycle_output_speed=list(w_in * ratios),
-            cycle_output_torque=ts,
+            cycle_output_speed=list(speeds),
+            cycle_output_torque=list(loads),
             **at,
         )
         # under the oil's transient a step runs at its own oil temperature, not the balance

@@ -11,7 +11,8 @@ law (`ballcvt.registry.TRACTION_LAWS`) x clamping law (`CLAMP_LAWS`) x architect
 `Variator.planetary_capacity` in a planetary mode, checked against ``limit_torque(mode=)``),
 ``map`` (`Variator.efficiency_map`, or `Variator.planetary_map`), ``table``
 (`Variator.lookup_table`), ``cycle step`` (`Variator.run_cycle` on a short duty cycle, with
-``mode=`` in a planetary mode) and ``study evaluation`` (one design through
+``mode=`` in a planetary mode; under the optimal clamp padded to 256 steps, copies of the
+checked ones, so that its first pass's seeds are exercised) and ``study evaluation`` (one design through
 `ballcvt.analysis.studies.evaluate_chunk`). Only public names are used.
 
 Each task takes the next case (the cases in a seeded order, round after round), draws a

@@ -63,8 +63,8 @@ def test_a_batch_with_few_points_near_is_evaluated_whole(monkeypatch):
     rows = _counted(monkeypatch)
     sol = solve_batch(pb, v.options, start, predict=False)
     assert sol.converged.all()
-    first = rows["jacobian"]
-    assert first >= 8  # the first evaluation: all eight with the Jacobian
+    assert rows["jacobian"] >= 8  # the first evaluation: all eight with the Jacobian
+    assert rows["plain"] == 0  # never two near apart (they step with their last, unread)
 
 
 def test_near_means_the_secant_range_except_under_a_law_with_folds():

@@ -37,7 +37,7 @@ __all__ = ["CONFIRM_NORM", "SPLIT_MIN", "confirm_norm", "evaluate_split"]
 CONFIRM_NORM = 1e-6
 #: Fewest points of a batch near their solutions that are evaluated without the Jacobian
 #: apart from the rest: a second evaluation's fixed cost outweighs fewer.
-SPLIT_MIN = 1
+SPLIT_MIN = 16
 
 
 def confirm_norm(fluid) -> float:

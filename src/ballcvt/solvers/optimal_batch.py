@@ -127,13 +127,16 @@ def _limits(problem: EquilibriumProblem, law: OptimalClamp):
     return c_lim, pressure_bound_force(problem, p_lim)
 
 
-def _guess(problem: EquilibriumProblem, lo, hi) -> np.ndarray:
+def _torque(problem: EquilibriumProblem) -> np.ndarray:
+    """The larger of each point's input and output torques [N m] (ideal ratio)."""
+    return np.abs(problem.output_torque) * np.maximum(1.0, np.abs(problem.ratio))
+
+
+def _guess(problem: EquilibriumProblem, lo=-np.inf, hi=np.inf) -> np.ndarray:
     """First guess of ``ln F_N0`` [-]: the optimum of the drives studied grows about
     linearly with the larger of the input and output torques, ``F ~ 200 + 14 T`` [N];
     kept ``WIDTH`` inside ``(lo, hi)`` so that the first three forces are admissible."""
-    torque = np.abs(problem.output_torque) * np.maximum(1.0, np.abs(problem.ratio))
-    u = np.log(200.0 + 14.0 * torque)
-    return np.clip(u, lo + WIDTH, hi - WIDTH)
+    return np.clip(np.log(200.0 + 14.0 * _torque(problem)), lo + WIDTH, hi - WIDTH)
 
 
 def _next(u, e, bounds):
@@ -348,16 +351,15 @@ def _nearest(problem: EquilibriumProblem, seeds, u_seeds, rest) -> np.ndarray:
 
     if not seeds.size:
         return np.full(rest.size, np.nan)
-    torque = np.abs(problem.output_torque) * np.maximum(1.0, np.abs(problem.ratio))
+    pb = problem.take(np.concatenate([seeds, rest]))  # the seeds first
     feats = np.column_stack(
-        [np.log(np.abs(problem.ratio)), torque, np.log(np.abs(problem.input_speed))]
+        [np.log(np.abs(pb.ratio)), _torque(pb), np.log(np.abs(pb.input_speed))]
     )
-    both = np.concatenate([seeds, rest])
-    spread = np.ptp(feats[both], axis=0)
+    spread = np.ptp(feats, axis=0)
     feats = feats / np.where(spread > 0, spread, 1.0)
-    k = cKDTree(feats[seeds]).query(feats[rest])[1]
-    g = np.log(200.0 + 14.0 * torque)
-    return u_seeds[k] + g[rest] - g[seeds[k]]
+    k = cKDTree(feats[: seeds.size]).query(feats[seeds.size :])[1]
+    g = _guess(pb)  # (unbounded)
+    return u_seeds[k] + g[seeds.size :] - g[k]
 
 
 def _wide_start(score: _Scorer, index, centre):

@@ -114,8 +114,12 @@ def saturation_factor(x):
 def saturation_slope(x, factor=None):
     """Derivative of `saturation_factor`: ``d/dx [(1 - exp(-x)) / x]`` [-].
 
-    Equals ``((1 + x) exp(-x) - 1) / x^2``; a three-term series below ``x = 1e-3`` avoids
-    the cancellation. Used for the analytic creep derivatives of the traction integrals.
+    Equals ``((1 + x) exp(-x) - 1) / x^2 = (exp(-x) - S) / x`` (``S`` the factor),
+    computed in the second form: the first form's ``(1 - S) - x S``, a difference of two
+    terms near 1 for large ``x``, carries a rounding error of ``1e-16 x`` relative (noise
+    in the derivatives at high pressure; docs/model.md §3). A three-term series below
+    ``x = 1e-3`` avoids the cancellation there. Used for the analytic creep derivatives of
+    the traction integrals.
 
     Parameters
     ----------
@@ -133,5 +137,5 @@ def saturation_slope(x, factor=None):
     s = saturation_factor(x) if factor is None else factor
     small = x < 1e-3
     safe = np.where(small, 1.0, x)
-    # (1 + x) e^-x - 1 = (1 + x)(1 - x S) - 1 = -x^2 S + x (1 - S)  (S = saturation factor)
-    return np.where(small, -0.5 + x / 3.0 - x * x / 8.0, ((1.0 - s) - safe * s) / safe)
+    # (1 + x) e^-x - 1 = x e^-x - x S (e^-x = 1 - x S): x (e^-x - S)
+    return np.where(small, -0.5 + x / 3.0 - x * x / 8.0, (np.exp(-safe) - s) / safe)

@@ -268,8 +268,8 @@ if AVAILABLE:
             if deriv:
                 if small:
                     slope = -0.5 + a / 3.0 - a * a / 8.0
-                else:
-                    slope = ((1.0 - sat) - a * sat) * inv_a
+                else:  # (e^-a - S) / a: no cancellation at large a (`saturation_slope`)
+                    slope = (em - sat) * inv_a
                 kk = eh * ek * ek * slope * inv_a  # (g'/|V|) / |V|: eh ek slope / |V|
                 if ve:
                     kk *= corr

@@ -117,6 +117,19 @@ class EquilibriumState:
             fields[name] = value
         return EquilibriumState(**fields)
 
+    @classmethod
+    def joined(cls, size: int, parts) -> EquilibriumState:
+        """A 1-D batch of ``size`` points from ``parts``, pairs ``(index, state)`` that
+        cover every point once."""
+        first = parts[0][1]
+        fields = {}
+        for name, value in vars(first).items():
+            out = np.empty((size,) + np.shape(value)[1:], dtype=np.asarray(value).dtype)
+            for index, part in parts:
+                out[index] = getattr(part, name)
+            fields[name] = out
+        return cls(**fields)
+
     @property
     def input_torque(self) -> np.ndarray:
         """Input shaft torque ``T_0 = -T_body,0`` plus the input shaft's parasitic drag

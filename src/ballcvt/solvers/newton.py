@@ -207,50 +207,75 @@ def _follow(flat, options, predict, x, accept) -> BatchSolution:
     """`solve_batch` of the 1-D batch ``flat`` under a law with more than one
     equilibrium: Newton from ``x`` where ``accept`` is given (``BatchSolution -> bool
     (n,)``: `_below`'s `on_branch`, or `solve_near`'s fold test), kept where it holds;
-    every other point followed from zero torque (`continue_in_torque`)."""
+    every other point followed from zero torque (`continue_in_torque`).
+
+    The direct Newton runs on towards `POLISH_SHARE` of the tolerance (and counts as
+    converged at the tolerance): a solve stops anywhere below its tolerance, and the
+    continuation from zero torque mostly ends well inside (its last step starts close
+    by), so a point it solves and the same point solved directly could differ by tens of
+    times the tolerance in efficiency (1.6e-8 against the thermal law's 1e-9 floor, Table
+    I at ratio 1.2, 30 N m). Until session 35 the direct solve stopped at the tolerance
+    and was then taken two Newton iterations further from a fresh Jacobian, and every
+    point evaluated once more: three evaluations where the run itself needs one more
+    quasi-Newton step (docs/model.md §14)."""
     iterations = np.zeros(flat.size, dtype=int)
     todo = np.arange(flat.size)
+    state = None
     if accept is not None:
-        direct = _solve_flat(flat, x, options, False, predict, PATIENCE)
+        tight = replace(options, tol=options.tol * POLISH_SHARE)
+        direct = _solve_flat(flat, x, tight, False, predict, PATIENCE)
+        direct = replace(direct, converged=direct.residual_norm <= options.tol)
         iterations += direct.iterations
         keep = accept(direct)
-        x = np.where(keep[:, None], _polished(flat, direct, keep, options), x)
-        todo = np.flatnonzero(~keep)
+        state, todo = direct.state, np.flatnonzero(~keep)
     if todo.size:
-        xt, its, _ = continue_in_torque(
-            flat.take(todo),
+        sub = flat.take(todo)
+        xt, its, reached = continue_in_torque(
+            sub,
             branch_solver(options, predict),
             min_step=REACH_STEP,
             pinned=branch_pinned(options),
             turned=branch_turned(flat, options),
         )
-        x[todo], iterations[todo] = xt, iterations[todo] + its
-    return _flat_solution(evaluate(flat, x, options.quadrature), iterations + 1, options.tol)
+        count = np.array(its, dtype=int)
+        ends = _tightened(sub, xt, reached == sub.output_torque, options, count)
+        iterations[todo] += count
+        state = ends if state is None else state.put(todo, ends)
+    if state is None:  # no rows
+        state = evaluate(flat, x, options.quadrature)
+    return _flat_solution(state, iterations, options.tol)
 
 
-#: Newton iterations after a direct solve under a law with more than one equilibrium
-#: converged (`_polished`), and the share of the tolerance they aim at [-].
-POLISH = (2, 1e-2)
-
-
-def _polished(flat, sol: BatchSolution, keep, options) -> np.ndarray:
-    """The creeps of ``sol``, taken `POLISH` Newton iterations on towards a residual a
-    hundredth of the tolerance at the points ``keep``, where that lowers the residual.
-
-    A solve stops as soon as its residual meets the tolerance, anywhere in ``[0, tol]``;
-    the continuation from zero torque mostly ends well inside (its last step starts close
-    by), so a point it solves and the same point solved directly could differ by tens of
-    times the tolerance in efficiency (1.6e-8 against the thermal law's 1e-9 floor, Table
-    I at ratio 1.2, 30 N m). The polish takes both to the residual's noise."""
-    x = np.array(sol.state.creep, dtype=float)
-    idx = np.flatnonzero(keep)
+def _tightened(flat, x, reached, options, iterations) -> EquilibriumState:
+    """The state at the creeps ``x`` of the continuation's points ``flat``, taken on by
+    Newton towards `POLISH_SHARE` of the tolerance where the continuation ``reached`` its
+    torque (as `_follow`'s direct Newton runs: both paths then end near the residual's
+    noise, and a sweep and `solve` agree to ~1e-10 in efficiency where they agreed to
+    2.2e-8; at a limit 2e-4 below the fold the continuation's own end was 7.8e-8 off the
+    solution to 1e-15, Table I at ratio 1.90). A step from an equilibrium converged to the
+    tolerance moves the creeps by some 1e-7 even there, far from the other branch; the
+    tighter solution is kept where it meets the tolerance, else the state at ``x``.
+    ``iterations`` (of the points) gains the evaluations, in place."""
+    n = flat.size
+    idx = np.flatnonzero(reached)
+    parts = []
     if idx.size:
-        its, share = POLISH
-        tight = replace(options, tol=options.tol * share, max_iterations=its)
-        again = _solve_flat(flat.take(idx), x[idx].copy(), tight, False, False)
-        better = again.residual_norm < sol.residual_norm[idx]
-        x[idx[better]] = again.state.creep[better]
-    return x
+        tight = replace(options, tol=options.tol * POLISH_SHARE)
+        again = _solve_flat(flat.take(idx), x[idx].copy(), tight, False, False, PATIENCE)
+        iterations[idx] += again.iterations
+        good = again.residual_norm <= options.tol
+        parts.append((idx[good], again.state.take(good)))
+        rest = np.setdiff1d(np.arange(n), idx[good])
+    else:
+        rest = np.arange(n)
+    if rest.size:
+        parts.append((rest, evaluate(flat.take(rest), x[rest], options.quadrature)))
+        iterations[rest] += 1
+    return EquilibriumState.joined(n, parts)
+
+
+#: The share of the tolerance the direct Newton of `_follow` runs on towards [-].
+POLISH_SHARE = 1e-2
 
 
 def on_branch(creep, below, rtol: float = 1e-6) -> np.ndarray:

@@ -60,8 +60,4 @@ def evaluate_split(problem, x, quadrature, near):
     close = evaluate(problem.take(k), x[k], quadrature)
     jac = np.zeros((near.size,) + jac_far.shape[1:])
     jac[f] = jac_far
-    fields = {}
-    for name, value in vars(far).items():
-        fields[name] = np.empty((near.size,) + value.shape[1:], dtype=value.dtype)
-        fields[name][f], fields[name][k] = value, getattr(close, name)
-    return EquilibriumState(**fields), jac
+    return EquilibriumState.joined(near.size, ((f, far), (k, close))), jac

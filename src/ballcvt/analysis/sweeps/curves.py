@@ -376,7 +376,10 @@ def _eta_at(curves: OperatingRows, clamp_force, torque, law=None, x0=None):
         options = curves.options
         start = None if x0 is None else x0[ok]
         if start is not None and law is None:  # the limit search's own solutions
-            sol = solve_batch(pb, options, start, predict=False)
+            # (under a law with more than one equilibrium, Newton from them is kept where it
+            # stays on the branch below them, `on_branch`: until session 35 each was
+            # followed from zero torque, 7 % of Table I's thermal sweep)
+            sol = solve_batch(pb, options, start, predict=False, below=start)
         else:  # from them where known (under the thermal law: kept on the branch)
             known = start is not None and bool(np.isfinite(start).all())
             pb, sol = solve_column(pb, law, options, start, predict=not known)

@@ -54,6 +54,9 @@ AVAILABLE = njit is not None
 #: Fast-math flags that keep IEEE NaN and infinity semantics (a NaN must propagate).
 _FAST = {"nsz", "arcp", "contract", "afn", "reassoc"}
 N_OUT = 8
+#: The kernels' ``deriv`` levels: the derivatives by ``log u`` alone (the thermal law's
+#: film temperature needs no others), or by the creep term, the spin and ``log u``.
+LOG_U, ALL = 1, 2
 #: Largest ``log E`` a viscosity table holds [-]: ``E = e^300`` s (~2e130) saturates the
 #: film at its limiting shear at any slip (``E`` multiplies the shear rate), so the table
 #: keeps it there (flat) where ``E`` (or ``E^2`` in the Jacobian) would overflow to inf and
@@ -265,7 +268,7 @@ if AVAILABLE:
             tx, ty = g * vx, g * vy
             s0 += w * tx
             s1 += wx * ty - wy * tx
-            if deriv:
+            if deriv:  # ALL, or LOG_U: d/dlog u alone (the others stay 0)
                 if small:
                     slope = -0.5 + a / 3.0 - a * a / 8.0
                 else:  # (e^-a - S) / a: no cancellation at large a (`saturation_slope`)
@@ -273,19 +276,19 @@ if AVAILABLE:
                 kk = eh * ek * ek * slope * inv_a  # (g'/|V|) / |V|: eh ek slope / |V|
                 if ve:
                     kk *= corr
-                # d/dc: dV = (u, 0)
-                dtx = g * u + kk * vx * u * vx
-                dty = kk * vx * u * vy
-                s2 += w * dtx
-                s5 += wx * dty - wy * dtx
-                # d/dsigma: dV = (-u a_y y / r_c, u a_x x / r_c)
-                dvx = -c3 * y
-                dvy = c4 * x
-                dot = vx * dvx + vy * dvy
-                dtx = g * dvx + kk * dot * vx
-                dty = g * dvy + kk * dot * vy
-                s3 += w * dtx
-                s6 += wx * dty - wy * dtx
+                if deriv == ALL:  # d/dc: dV = (u, 0)
+                    dtx = g * u + kk * vx * u * vx
+                    dty = kk * vx * u * vy
+                    s2 += w * dtx
+                    s5 += wx * dty - wy * dtx
+                    # d/dsigma: dV = (-u a_y y / r_c, u a_x x / r_c)
+                    dvx = -c3 * y
+                    dvy = c4 * x
+                    dot = vx * dvx + vy * dvy
+                    dtx = g * dvx + kk * dot * vx
+                    dty = g * dvy + kk * dot * vy
+                    s3 += w * dtx
+                    s6 += wx * dty - wy * dtx
                 # d/dlog u: dV = V
                 lin = g + kk * speed * speed
                 if ve:
@@ -325,8 +328,9 @@ if AVAILABLE:
         |Y_p|) / (blend[1] - blend[0])`` clipped to [0, 1]
         (`ballcvt.model.traction.isothermal`); ``blend[1] <= blend[0]``: the centred rule
         alone. A NaN pole gives NaN sums. ``rule``: ``(r01, wr, pole_rays, centred_rays,
-        blend)``, ``table``: ``(fl, tab)`` (`traction_kernel`). The thermal law's kernel
-        calls it at its own films (`ballcvt.model.traction.thermal_kernels`)."""
+        blend)``, ``table``: ``(fl, tab)`` (`traction_kernel`); ``deriv``: False, `LOG_U`
+        (the derivatives by ``log u`` alone, the others 0) or `ALL`. The thermal law's
+        kernel calls it at its own films (`ballcvt.model.traction.thermal_kernels`)."""
         fl, tab = table
         r01, wr, pole_rays, centred_rays, blend = rule
         sp, cp, dp = pole_rays
@@ -374,7 +378,7 @@ if AVAILABLE:
 
     @njit(cache=True, fastmath=_FAST)
     def _blended_deriv(par, rule, fl, tab, out):
-        _blended(par, rule, fl, tab, True, False, out)
+        _blended(par, rule, fl, tab, ALL, False, out)
 
     @njit(cache=True, fastmath=_FAST)
     def _blended_ve(par, rule, fl, tab, out):
@@ -382,7 +386,7 @@ if AVAILABLE:
 
     @njit(cache=True, fastmath=_FAST)
     def _blended_ve_deriv(par, rule, fl, tab, out):
-        _blended(par, rule, fl, tab, True, True, out)
+        _blended(par, rule, fl, tab, ALL, True, out)
 
     _SPECIALISED = {
         (False, False): _blended_plain,

@@ -137,7 +137,8 @@ class _Contacts:
         return k * (c * mu + s * chi)
 
 
-def _solve_rise(con: _Contacts, quadrature: Quadrature, tol=1e-6, max_iter=60):
+def _solve_rise(con: _Contacts, quadrature: Quadrature, tol=thermal_kernels.RISE_RTOL,
+                max_iter=60):  # fmt: skip
     """``dT = R q(dT)`` per contact: Newton, kept inside the bracket ``[0, R q(0)]``."""
     r = con.resistance
     dt = np.zeros(con.c.shape)
@@ -164,18 +165,19 @@ def _solve_rise(con: _Contacts, quadrature: Quadrature, tol=1e-6, max_iter=60):
     return dt
 
 
-def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature):
+def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature, partials: bool = True):
     """The rise on the requested rule and the coefficients there (4-column partials).
 
     Newton converges on `TEMPERATURE_RULE`; one Newton step on ``quadrature`` then moves
     the rise to that rule's fixed point, and the coefficients with it (to first order:
     the remaining error is the square of a step of a fraction of a kelvin). In one
     compiled call (`ballcvt.model.traction.thermal_kernels`) when both rules use the
-    compiled engine; the NumPy path (`_solve_rise`) otherwise.
+    compiled engine (without ``partials`` there, those by ``c`` and ``sigma`` are 0); the
+    NumPy path (`_solve_rise`) otherwise.
     """
     compiled = quadrature.engine == TEMPERATURE_RULE.engine == "auto"
     if compiled and kernels.AVAILABLE and con.c.size:
-        return _compiled(con, quadrature)
+        return _compiled(con, quadrature, partials)
     dt = _solve_rise(con, TEMPERATURE_RULE)
     mu, chi, dmu, dchi = con.at(dt, quadrature)
     r = con.resistance
@@ -184,8 +186,9 @@ def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature):
     return dt + step, mu + dmu[:, 3] * step, chi + dchi[:, 3] * step, dmu, dchi
 
 
-def _compiled(con: _Contacts, quadrature: Quadrature):
-    """`_rise_and_coefficients` by the compiled kernel (the same steps, per contact)."""
+def _compiled(con: _Contacts, quadrature: Quadrature, partials: bool):
+    """`_rise_and_coefficients` by the compiled kernel (the same steps, per contact;
+    without ``partials`` those by ``c`` and ``sigma`` are 0)."""
     par = con.par
     if par is None:
         par = np.stack(np.broadcast_arrays(con.c, con.s, con.ax, con.ay, con.pm, con.fn,
@@ -198,7 +201,8 @@ def _compiled(con: _Contacts, quadrature: Quadrature):
     )
     rules = (kernel_rule(TEMPERATURE_RULE), kernel_rule(quadrature))
     table = kernel_table(con.fluid, float(par[4].max()))
-    thermal_kernels.thermal_kernel(par, contact, rules, table, (con.beta_l, con.b), out)
+    heat = (con.beta_l, con.b)
+    thermal_kernels.thermal_kernel(par, contact, rules, table, heat, out, partials)
     return out[:, 0], out[:, 1], out[:, 2], out[:, 3:7], out[:, 7:11]
 
 
@@ -216,7 +220,7 @@ def thermal_law_rise(state: ContactState, fluid: Fluid, quadrature: Quadrature =
     """``mu``, ``chi`` [-] and the film temperature rise ``dT`` [K] from one solve of the
     film temperature (parameters as in `thermal_law_coefficients`)."""
     con, shape = _Contacts.from_state(state, fluid)
-    dt, mu, chi, _, _ = _rise_and_coefficients(con, quadrature)
+    dt, mu, chi, _, _ = _rise_and_coefficients(con, quadrature, partials=False)
     return mu.reshape(shape), chi.reshape(shape), dt.reshape(shape)
 
 
@@ -238,7 +242,7 @@ def thermal_law_coefficients(
     hold with heating; Newton's Jacobians only use it).
     """
     con, shape = _Contacts.from_state(state, fluid)
-    _, mu, chi, dmu, dchi = _rise_and_coefficients(con, quadrature)
+    _, mu, chi, dmu, dchi = _rise_and_coefficients(con, quadrature, derivatives)
     if not derivatives:
         return mu.reshape(shape), chi.reshape(shape)
     return _with_derivatives(con, (mu, chi, dmu, dchi), shape, film=False)

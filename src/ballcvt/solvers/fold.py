@@ -144,10 +144,7 @@ def climb_to_fold(flat, pinned: Pinned, k: int, pin: float, tol: float, start, s
         if active.size == 0:
             break
         u = trial[active]
-        got, xs = pinned_step(pinned, flat.take(active), k, br.b_x[active], u, tol)
-        valid = np.isfinite(got) & (np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9))
-        got = np.where(valid, got, -np.inf)
-        history.append(_record(flat.size, active, (u, got, xs, valid), x0))
+        got, xs = _held(br, active, u, (flat, pinned, k, tol, pin), history)
         br.update(active, u, got, xs, bracketed[active])
     clean = np.isfinite(br.c_t) & ~br.at_pin
     below = _below(history, br.b_t * share, br.b_c, br.direction)
@@ -164,16 +161,26 @@ def _falls_at_pin(br, idx, climb, history) -> np.ndarray:
     creep, where `solve` carried 36.24 N m past the limit). ``climb``: ``(flat, pinned, k,
     tol, pin)`` of `climb_to_fold`; updates ``br`` and ``history``, returns the mask over
     ``idx``."""
-    flat, pinned, k, tol, pin = climb
-    u = br.b_c[idx] - br.direction[idx] * TURN_STEP * pin
-    got, xs = pinned_step(pinned, flat.take(idx), k, br.b_x[idx], u, tol)
-    valid = np.isfinite(got) & (np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9))
-    history.append(_record(flat.size, idx, (u, got, xs, valid), history[0][2]))
-    falls = valid & (got > br.b_t[idx])
+    u = br.b_c[idx] - br.direction[idx] * TURN_STEP * climb[-1]
+    got, xs = _held(br, idx, u, climb, history)
+    falls = got > br.b_t[idx]
     i = idx[falls]
     br.c_c[i], br.c_t[i] = br.b_c[i], br.b_t[i]
     br.b_c[i], br.b_t[i], br.b_x[i] = u[falls], got[falls], xs[falls]
     return falls
+
+
+def _held(br, idx, u, climb, history):
+    """The torques (-inf where the solve failed or another creep passed the bound) and
+    creeps of the points ``idx`` at the held creeps ``u``, each from its best point;
+    ``climb``: ``(flat, pinned, k, tol, pin)`` of `climb_to_fold`. Appends the step to
+    ``history``."""
+    flat, pinned, k, tol, pin = climb
+    got, xs = pinned_step(pinned, flat.take(idx), k, br.b_x[idx], u, tol)
+    valid = np.isfinite(got) & (np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9))
+    got = np.where(valid, got, -np.inf)
+    history.append(_record(flat.size, idx, (u, got, xs, valid), history[0][2]))
+    return got, xs
 
 
 @dataclass

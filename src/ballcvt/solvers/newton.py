@@ -214,17 +214,12 @@ def _follow(flat, options, predict, x, accept) -> BatchSolution:
     continuation from zero torque mostly ends well inside (its last step starts close
     by), so a point it solves and the same point solved directly could differ by tens of
     times the tolerance in efficiency (1.6e-8 against the thermal law's 1e-9 floor, Table
-    I at ratio 1.2, 30 N m). Until session 35 the direct solve stopped at the tolerance
-    and was then taken two Newton iterations further from a fresh Jacobian, and every
-    point evaluated once more: three evaluations where the run itself needs one more
-    quasi-Newton step (docs/model.md §14)."""
+    I at ratio 1.2, 30 N m; docs/model.md §14)."""
     iterations = np.zeros(flat.size, dtype=int)
     todo = np.arange(flat.size)
     state = None
     if accept is not None:
-        tight = replace(options, tol=options.tol * POLISH_SHARE)
-        direct = _solve_flat(flat, x, tight, False, predict, PATIENCE)
-        direct = replace(direct, converged=direct.residual_norm <= options.tol)
+        direct = _tight_solve(flat, x, options, predict)
         iterations += direct.iterations
         keep = accept(direct)
         state, todo = direct.state, np.flatnonzero(~keep)
@@ -256,22 +251,27 @@ def _tightened(flat, x, reached, options, iterations) -> EquilibriumState:
     tolerance moves the creeps by some 1e-7 even there, far from the other branch; the
     tighter solution is kept where it meets the tolerance, else the state at ``x``.
     ``iterations`` (of the points) gains the evaluations, in place."""
-    n = flat.size
+    done, parts = np.zeros(flat.size, dtype=bool), []
     idx = np.flatnonzero(reached)
-    parts = []
     if idx.size:
-        tight = replace(options, tol=options.tol * POLISH_SHARE)
-        again = _solve_flat(flat.take(idx), x[idx].copy(), tight, False, False, PATIENCE)
+        again = _tight_solve(flat.take(idx), x[idx].copy(), options, False)
         iterations[idx] += again.iterations
-        good = again.residual_norm <= options.tol
-        parts.append((idx[good], again.state.take(good)))
-        rest = np.setdiff1d(np.arange(n), idx[good])
-    else:
-        rest = np.arange(n)
+        parts.append((idx[again.converged], again.state.take(again.converged)))
+        done[idx[again.converged]] = True
+    rest = np.flatnonzero(~done)
     if rest.size:
         parts.append((rest, evaluate(flat.take(rest), x[rest], options.quadrature)))
         iterations[rest] += 1
-    return EquilibriumState.joined(n, parts)
+    return EquilibriumState.joined(flat.size, parts)
+
+
+def _tight_solve(flat, x, options, predict) -> BatchSolution:
+    """`_solve_flat` from ``x`` without fallback, each point stopping after `PATIENCE`
+    iterations without progress, run on towards `POLISH_SHARE` of ``options.tol`` and
+    counted converged at ``options.tol`` (`_follow`)."""
+    tight = replace(options, tol=options.tol * POLISH_SHARE)
+    sol = _solve_flat(flat, x, tight, False, predict, PATIENCE)
+    return replace(sol, converged=sol.residual_norm <= options.tol)
 
 
 #: The share of the tolerance the direct Newton of `_follow` runs on towards [-].

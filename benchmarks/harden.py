@@ -104,6 +104,20 @@ class _Alarm(BaseException):
     """Raised by the per-task timer (a BaseException: no ``except Exception`` swallows it)."""
 
 
+def _timed_out(task, out: dict, at: int, deadline: float, timeout: float) -> None:
+    """The task's timer fired when ``at`` points were recorded. Drop the points recorded
+    after it: the alarm can surface inside a compiled call as that call's ``SystemError``
+    (`harden_entries.interrupt`), or inside numba's compiler or a library's handler as
+    another exception, caught by the entry's own checks or by `run_task`. Then record
+    the task's end: the budget's cut, or a timeout (a bug) if the task's own limit came
+    first."""
+    del out["points"][at:]
+    if time.time() >= deadline - 0.05:  # the budget ran out: drop the partial point
+        out["cut"] = True
+    else:
+        task.record("bug", "timeout", f"no answer within {timeout:g} s", task.last_inputs or {})
+
+
 def run_task(seed: int, index: int, deadline: float, timeout: float, case=None) -> dict:
     """Task ``index``: its case's points, each classified (run in a worker process).
 
@@ -135,25 +149,20 @@ def run_task(seed: int, index: int, deadline: float, timeout: float, case=None) 
     try:  # the timer starts inside: a short one must not fire before the handler's scope
         signal.setitimer(signal.ITIMER_REAL, max(0.01, stop - time.time()))
         entries.run_case(task)
-        if "at" in fired:  # it fired inside a compiled call (`harden_entries.interrupt`)
-            del out["points"][fired["at"] :]  # and was caught as that call's SystemError
-            raise _Alarm
     except _Alarm:
-        if time.time() >= deadline - 0.05:  # the budget ran out: drop the partial point
-            out["cut"] = True
-        else:
-            task.record(
-                "bug", "timeout", f"no answer within {timeout:g} s", task.last_inputs or {}
-            )
+        pass
     except Exception as exc:  # noqa: BLE001 - the harness itself must never stop
-        task.record(
-            "bug",
-            "harness",
-            f"{type(exc).__name__}: {exc}\n" + traceback.format_exc(limit=-3),
-            task.last_inputs or {},
-        )
+        if "at" not in fired:
+            task.record(
+                "bug",
+                "harness",
+                f"{type(exc).__name__}: {exc}\n" + traceback.format_exc(limit=-3),
+                task.last_inputs or {},
+            )
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
+    if "at" in fired:  # the timer fired: what follows is its, whatever it surfaced as
+        _timed_out(task, out, fired["at"], deadline, timeout)
     out["seconds"] = time.perf_counter() - t0
     out["cpu"] = time.process_time() - c0
     return out

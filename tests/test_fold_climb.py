@@ -31,10 +31,10 @@ class _Points:
 
 
 def _pinned(points, k, x0):
-    """`ballcvt.solvers.held_creep.Pinned` of the stand-ins: the held creep ``x0[:, k]``
-    gives the torque ``curve(c)``, NaN where the curve fails there; the other creep is
-    ``c / 2``."""
-    c = x0[:, k]
+    """`ballcvt.solvers.held_creep.Pinned` of the stand-ins: the held creep of contact
+    ``k`` (one, or one per point) gives the torque ``curve(c)``, NaN where the curve fails
+    there; the other creep is ``c / 2``."""
+    c = x0[np.arange(len(x0)), k]
     torque = np.array([f(ci) for f, ci in zip(points.curves, c, strict=True)])
     creep = np.column_stack([c, 0.5 * c])
     sol = SimpleNamespace(residual_norm=np.zeros(c.size), state=SimpleNamespace(creep=creep))

@@ -193,14 +193,9 @@ def _steps(flat, pinned: Pinned, path, active, tol):
     Returns the torques (NaN where the solve failed) and creeps of the corrected points."""
     x, direction, step = path
     guess = x[active] + step[active, None] * direction[active]
-    held = np.argmax(np.abs(direction[active]), axis=-1)
-    got = np.full(active.size, np.nan)
-    xs = np.full_like(guess, np.nan)
-    for k in np.unique(held):
-        j = np.flatnonzero(held == k)
-        got[j], xs[j] = pinned_step(pinned, flat.take(active[j]), int(k), guess[j],
-                                    guess[j, k], tol)  # fmt: skip
-    return got, xs
+    held = np.argmax(np.abs(direction[active]), axis=-1)  # one batch, whichever it is
+    return pinned_step(pinned, flat.take(active), held, guess,
+                       guess[np.arange(active.size), held], tol)  # fmt: skip
 
 
 def _tangent(flat, x, quadrature) -> np.ndarray:

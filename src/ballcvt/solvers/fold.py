@@ -90,7 +90,7 @@ class Climb:
             mine[index] = theirs
 
 
-def climb_to_fold(flat, pinned: Pinned, k: int, pin: float, tol: float, start, share: float):
+def climb_to_fold(flat, pinned: Pinned, k, pin: float, tol: float, start, share: float):
     """The largest torque on each point's branch beyond the equilibria ``start``, found in
     the held creep of disc contact ``k`` (module docstring).
 
@@ -100,8 +100,9 @@ def climb_to_fold(flat, pinned: Pinned, k: int, pin: float, tol: float, start, s
         Operating points, 1-D batch ``(n,)``.
     pinned : callable
         `ballcvt.solvers.held_creep.Pinned`.
-    k : int
-        The contact whose creep is held.
+    k : int or ndarray of int
+        The contact whose creep is held: one, or one per point ``(n,)`` (one batch of
+        pinned solves a step, whichever contact each point holds).
     pin : float
         Creep bound [-] (the creep limit, a hair below).
     tol : float
@@ -119,8 +120,10 @@ def climb_to_fold(flat, pinned: Pinned, k: int, pin: float, tol: float, start, s
     Climb
     """
     t0, x0 = start[0], start[1]
-    br = _Bracket.start(t0, x0[:, k], x0, FIRST_CREEP_STEP * pin)
-    history = [(x0[:, k].copy(), t0.copy(), x0.copy(), np.ones(flat.size, dtype=bool))]
+    k = np.broadcast_to(np.asarray(k, dtype=np.intp), (flat.size,))
+    held = x0[np.arange(flat.size), k]
+    br = _Bracket.start(t0, held, x0, FIRST_CREEP_STEP * pin)
+    history = [(held.copy(), t0.copy(), x0.copy(), np.ones(flat.size, dtype=bool))]
     if len(start) > 2:
         history += br.seed(k, start[2])
     least = FOLD_CREEP_RTOL * pin
@@ -176,7 +179,7 @@ def _held(br, idx, u, climb, history):
     ``climb``: ``(flat, pinned, k, tol, pin)`` of `climb_to_fold`. Appends the step to
     ``history``."""
     flat, pinned, k, tol, pin = climb
-    got, xs = pinned_step(pinned, flat.take(idx), k, br.b_x[idx], u, tol)
+    got, xs = pinned_step(pinned, flat.take(idx), k[idx], br.b_x[idx], u, tol)
     valid = np.isfinite(got) & (np.max(np.abs(xs), axis=-1) <= pin * (1.0 + 1e-9))
     got = np.where(valid, got, -np.inf)
     history.append(_record(flat.size, idx, (u, got, xs, valid), history[0][2]))
@@ -216,7 +219,8 @@ class _Bracket:
         of contact ``k`` grows from the start through both (the step then the distance
         from the start); returns the history entries of the points taken."""
         (t_b, x_b), (t_c, x_c) = points
-        c_b, c_c = x_b[:, k], x_c[:, k]
+        rows = np.arange(t_b.size)
+        c_b, c_c = x_b[rows, k], x_c[rows, k]
         rise = np.isfinite(t_b) & (t_b > self.b_t) & ((c_b - self.b_c) * self.direction > 0)
         past = rise & ~(t_c >= t_b) & ((c_c - c_b) * self.direction > 0)  # NaN t_c: none
         self.a_c[rise], self.a_t[rise] = self.b_c[rise], self.b_t[rise]

@@ -76,10 +76,10 @@ Solve = Callable[[EquilibriumProblem, np.ndarray], tuple]
 
 
 def pinned_step(pinned: Pinned, flat, k, x, creep, tol):
-    """Held creep ``creep`` of contact ``k`` (the other creeps from ``x``): the torque
-    (NaN where the solve failed) and the creeps."""
+    """Held creep ``creep`` of contact ``k`` (one, or one per point) with the other creeps
+    from ``x``: the torque (NaN where the solve failed) and the creeps."""
     x0 = x.copy()
-    x0[:, k] = creep
+    x0[np.arange(x0.shape[0]), k] = creep
     got, sol = pinned(flat, k, x0)
     ok = (sol.residual_norm <= PINNED_SLACK * tol) & np.isfinite(got)
     return np.where(ok, got, np.nan), sol.state.creep
@@ -111,14 +111,10 @@ def turned_back(flat, pinned: Pinned, tol, x) -> np.ndarray:
     is so told apart. False where the held solve fails.
     """
     goal, sign = _goal(flat)
-    past = np.zeros(flat.size, dtype=bool)
-    held = disc_to_climb(x)
-    for k in np.unique(held):
-        j = np.flatnonzero(held == k)
-        got, _ = pinned_step(pinned, flat.take(j), int(k), x[j], x[j, k] * (1 - TURN_STEP),
-                             tol)  # fmt: skip
-        past[j] = sign[j] * got > goal[j]
-    return past
+    held = disc_to_climb(x)  # one batch, whichever contact each point holds
+    got, _ = pinned_step(pinned, flat, held, x, x[np.arange(flat.size), held] * (1 - TURN_STEP),
+                         tol)  # fmt: skip
+    return sign * got > goal
 
 
 def reach_torque(flat, pinned: Pinned, solve: Solve, tol, torque, x):

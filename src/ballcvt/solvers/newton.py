@@ -33,7 +33,7 @@ from .branch_path import walks
 from .continuation import REACH_STEP, continue_in_torque
 from .held_creep import turned_back
 from .newton_eval import confirm_norm, evaluate_split
-from .newton_step import MAX_STEP, Iterates, advance
+from .newton_step import MAX_STEP, Iterates, advance, free_creeps
 from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
 from .robust import solve_robust
 from .secant import SecantCorrection
@@ -362,8 +362,8 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None, pa
     ----------
     problem : EquilibriumProblem
         Operating points, 1-D batch ``(n,)``, at a torque-independent clamping force.
-    contact : int
-        Index of the contact whose creep is held.
+    contact : int or ndarray of int
+        The contact whose creep is held: one, or one per point ``(n,)``.
     x0 : array_like
         Starting creeps ``(n, n_c)``; column ``contact`` holds the prescribed creep [-].
     options : SolverOptions, optional
@@ -415,30 +415,30 @@ def _predicts(options, n_points: int) -> bool:
 def _newton(flat, x, iterations, options, pinned=None, patience=None):
     """Damped Newton on the points of the 1-D batch ``flat``; updates ``x`` in place.
 
-    ``pinned``: the index of a contact whose creep stays at its value in ``x``; the
-    output balance (the last residual) is then dropped, the output torque being the
-    unknown it defines (`solve_pinned`). ``patience``: a point stops (unconverged) after
-    that many consecutive iterations without a lower residual norm; None: never.
+    ``pinned``: the contact whose creep stays at its value in ``x`` (one, or one per
+    point); the output balance (the last residual) is then dropped, the output torque
+    being the unknown it defines (`solve_pinned`). ``patience``: a point stops
+    (unconverged) after that many iterations without a lower residual norm; None: never.
 
     Returns the state at the final ``x`` of every point: each point's last evaluation,
     or a fresh one for the points whose last move was not evaluated.
     """
     nc, n = x.shape[-1], flat.size
-    free = np.arange(nc) if pinned is None else np.delete(np.arange(nc), pinned)
+    free = free_creeps(nc, n, pinned)
     active = np.arange(n)
     final = None
     it = Iterates(
         x=x,
         best=np.full(n, np.inf),
         prev_x=x.copy(),
-        prev_dx=np.zeros((n, free.size)),
+        prev_dx=np.zeros((n, free.shape[1])),
         fresh=np.zeros(n, dtype=bool),
     )
     fresh = it.fresh
     stall = np.zeros(n, dtype=int)  # iterations since each point's norm last fell
     confirm = False  # every active point is expected to converge: no Jacobian needed
     near_norm = confirm_norm(flat.fluid)
-    m = free.size
+    m = free.shape[1]
     secant = SecantCorrection.start(n, m)
     for _ in range(options.max_iterations):
         if active.size == 0:
@@ -452,13 +452,13 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
         else:
             state, jac = evaluate_split(sub, xa, options.quadrature, secant.near[at])
             if pinned is not None:
-                jac = jac[:, :m][:, :, free]
+                jac = np.take_along_axis(jac[:, :m], free[at][:, None, :], axis=2)
         iterations[at] += 1
         final = state if final is None or whole else _scatter(final, state, active)
         fresh[at] = True
         res = np.ascontiguousarray(state.residual[:, :m])
         # near its solution a point steps with its last Jacobian, corrected
-        jac = secant.update(active, xa[:, free], res, jac)
+        jac = secant.update(active, np.take_along_axis(xa, free[at], axis=1), res, jac)
         before = it.best[at].copy()  # (`advance` updates the best norms in place)
         norm = _norm(res)
         secant.near[at] = (norm <= near_norm) & (norm < before)

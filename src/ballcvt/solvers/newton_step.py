@@ -27,6 +27,7 @@ __all__ = [
     "advance_compiled",
     "advance_python",
     "cap",
+    "free_creeps",
 ]
 
 #: Largest change of any creep in one Newton step [-].
@@ -73,7 +74,7 @@ def advance_python(
     """`advance`'s loop: Gaussian elimination with partial pivoting for the steps, then
     the caps of `cap`; writes ``keep`` and ``singular`` per point. Compiled by numba
     (`advance_compiled`); this plain-Python form runs only without numba."""
-    m = free.size
+    m = free.shape[1]
     a = np.empty((m, m))
     b = np.empty(m)
     dx = np.empty(m)
@@ -90,7 +91,7 @@ def advance_python(
             big = 0.0
             for r in range(m):
                 prev_dx[i, r] *= 0.5
-                x[i, free[r]] = prev_x[i, free[r]] + prev_dx[i, r]
+                x[i, free[i, r]] = prev_x[i, free[i, r]] + prev_dx[i, r]
                 big = max(big, abs(prev_dx[i, r]))
             fresh[i] = False
             keep[k] = big > 1e-14
@@ -114,7 +115,7 @@ def advance_python(
             dx[r] *= scale
         scale = 1.0
         for r in range(m):
-            xr = x[i, free[r]]
+            xr = x[i, free[i, r]]
             room = 0.5 * (hi - xr) if dx[r] > 0 else 0.5 * (xr - lo)
             if abs(dx[r]) > room:
                 scale = min(scale, room / max(abs(dx[r]), 1e-300))
@@ -123,8 +124,19 @@ def advance_python(
         for q in range(x.shape[1]):
             prev_x[i, q] = x[i, q]
         for r in range(m):
-            x[i, free[r]] += prev_dx[i, r]
+            x[i, free[i, r]] += prev_dx[i, r]
         fresh[i] = False
+
+
+def free_creeps(nc: int, n: int, pinned=None) -> np.ndarray:
+    """The free creeps of each of ``n`` points, ``(n, m)`` contact indices in increasing
+    order: all ``nc`` (``pinned`` None), or all but the held one (``pinned``: one contact
+    for every point, or one per point ``(n,)``; `ballcvt.solvers.newton.solve_pinned`)."""
+    every = np.broadcast_to(np.arange(nc), (n, nc))
+    if pinned is None:
+        return np.ascontiguousarray(every)
+    held = np.broadcast_to(np.asarray(pinned, dtype=np.intp), (n,))
+    return np.ascontiguousarray(every[every != held[:, None]].reshape(n, nc - 1))
 
 
 def cap(dx, x):
@@ -174,7 +186,8 @@ class Iterates:
 def advance(it: Iterates, active, res, jac, free, tol):
     """One Newton update of the points ``active`` after their evaluation (``res``,
     ``jac``: their residuals and the Jacobians to step with on the free creeps,
-    `ballcvt.solvers.secant.SecantCorrection`); updates ``it`` in place.
+    `ballcvt.solvers.secant.SecantCorrection`); ``free``: the free creeps of every point
+    of the batch ``(n, m)`` (`free_creeps`); updates ``it`` in place.
 
     A point whose residual norm meets ``tol`` is done. Otherwise a point whose norm did
     not fall below its best goes back along half its previous step (and stops if that
@@ -194,10 +207,10 @@ def advance(it: Iterates, active, res, jac, free, tol):
     )  # fmt: skip
     for k in np.flatnonzero(singular):  # rare: a least-squares step, capped
         i = active[k]
-        dx = cap(_lstsq(jac[k], res[k])[None, :], x[i, free][None, :])[0]
+        dx = cap(_lstsq(jac[k], res[k])[None, :], x[i, free[i]][None, :])[0]
         prev_x[i] = x[i]
         prev_dx[i] = dx
-        x[i, free] += dx
+        x[i, free[i]] += dx
         fresh[i] = False
     return active[keep]
 

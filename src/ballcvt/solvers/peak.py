@@ -172,18 +172,17 @@ def _climb(flat, pinned, pin, start):
     # along the walk's last chord where there is one, else at the start
     first = disc_to_climb(np.where(np.all(np.isfinite(way), axis=-1, keepdims=True), way, x0))
     best, contact = Climb.empty(flat.size, nc), first.copy()
-    for attempt in range(2):
-        for k in (0, nc - 1):
-            on = (first == k) if attempt == 0 else (first != k) & ~best.clean
-            idx = np.flatnonzero(on)
-            if idx.size == 0:
-                continue
-            got = climb_to_fold(flat.take(idx), pinned_solve, k, pin, tol,
-                                (t0[idx], x0[idx], tuple((t[idx], xx[idx]) for t, xx in seed)),
-                                1.0 - FOLD_MARGIN)  # fmt: skip
-            better = ~np.isfinite(best.torque[idx]) | (got.torque > best.torque[idx])
-            best.put(idx[better], got.take(better))
-            contact[idx[better]] = k
+    other = np.where(first == 0, nc - 1, 0)
+    for k, on in ((first, np.ones(flat.size, dtype=bool)), (other, None)):
+        idx = np.flatnonzero(~best.clean if on is None else on)  # both contacts in a batch
+        if idx.size == 0:
+            continue
+        got = climb_to_fold(flat.take(idx), pinned_solve, k[idx], pin, tol,
+                            (t0[idx], x0[idx], tuple((t[idx], xx[idx]) for t, xx in seed)),
+                            1.0 - FOLD_MARGIN)  # fmt: skip
+        better = ~np.isfinite(best.torque[idx]) | (got.torque > best.torque[idx])
+        best.put(idx[better], got.take(better))
+        contact[idx[better]] = k[idx[better]]
     return best, contact
 
 

@@ -45,6 +45,7 @@ __all__ = [
     "SECANT_STEPS",
     "secant_in_creep",
     "pinned_step",
+    "on_branch",
 ]
 
 #: Smallest creep step of a walk, as a share of the creep scale (``C_lim`` for the
@@ -265,3 +266,20 @@ def secant_in_creep(flat, pinned: Pinned, k, tol, lo, hi, vertex: bool = False):
         out[active[done]] = xs[done]
         active = active[~bad & ~done]
     return out
+
+
+def on_branch(creep, below, rtol: float = 1e-4) -> np.ndarray:
+    """Whether equilibria with the creeps ``creep`` ``(n, n_c)`` lie on the branch from
+    zero torque of a law with more than one equilibrium, given the creeps ``below`` of an
+    equilibrium on that branch at a torque at least theirs: both disc creeps within
+    ``below``'s (to ``rtol``). Along the branch the disc creeps grow with the torque, and
+    the equilibrium past the fold has the creep of the contact whose traction peaks beyond
+    its value at the fold (`ballcvt.solvers.fold`), which is beyond that of every torque of
+    the branch below the fold. ``rtol`` lies between the creeps' noise and that gap: at a
+    limit `ballcvt.solvers.peak.FOLD_MARGIN` below a fold (Table I, 2 kN, ratio 1.95)
+    the equilibrium past the fold holds a disc creep 4.6 % larger, and the limit's
+    creeps, converged at the thermal law's residual floor, were 1.9e-6 short of the
+    solution to 5e-15 (at 1e-6 the efficiency at that limit was followed again from zero
+    torque, a tenth of the sweep's traction evaluations; session 36)."""
+    disc = [0, -1]
+    return np.all(np.abs(creep[:, disc]) <= np.abs(below[:, disc]) * (1.0 + rtol), axis=-1)

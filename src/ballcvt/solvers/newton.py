@@ -31,7 +31,7 @@ from ..equilibrium.residual import (
 from ..model.traction.base import has_multiple_equilibria
 from .branch_path import walks
 from .continuation import REACH_STEP, continue_in_torque
-from .held_creep import turned_back
+from .held_creep import on_branch, turned_back
 from .newton_eval import confirm_norm, evaluate_split
 from .newton_step import MAX_STEP, Iterates, advance, free_creeps
 from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
@@ -276,18 +276,6 @@ def _tight_solve(flat, x, options, predict) -> BatchSolution:
 
 #: The share of the tolerance the direct Newton of `_follow` runs on towards [-].
 POLISH_SHARE = 1e-2
-
-
-def on_branch(creep, below, rtol: float = 1e-6) -> np.ndarray:
-    """Whether equilibria with the creeps ``creep`` ``(n, n_c)`` lie on the branch from
-    zero torque of a law with more than one equilibrium, given the creeps ``below`` of an
-    equilibrium on that branch at a torque at least theirs: both disc creeps within
-    ``below``'s (to ``rtol``). Along the branch the disc creeps grow with the torque, and
-    the equilibrium past the fold has the creep of the contact whose traction peaks beyond
-    its value at the fold (`ballcvt.solvers.fold`), which is beyond that of every torque of
-    the branch below the fold."""
-    disc = [0, -1]
-    return np.all(np.abs(creep[:, disc]) <= np.abs(below[:, disc]) * (1.0 + rtol), axis=-1)
 
 
 def _solve_flat(flat, x, options, fallback, predict, patience=None) -> BatchSolution:

@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from drives import fixed_oil_hub
 
 from ballcvt.model.lubrication import BOUNDARY_ANGULAR, boundary_coefficients, boundary_rule
 from ballcvt.model.traction.contact import ContactState
 from ballcvt.model.traction.quadrature import Quadrature
-from drives import fixed_oil_hub
 
 FLUID = fixed_oil_hub()[1]
 MU_B = 0.1

@@ -170,7 +170,11 @@ def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature, partials: boo
 
     Newton converges on `TEMPERATURE_RULE`; one Newton step on ``quadrature`` then moves
     the rise to that rule's fixed point, and the coefficients with it (to first order:
-    the remaining error is the square of a step of a fraction of a kelvin). In one
+    the remaining error is the square of a step of a fraction of a kelvin). The partials
+    at a fixed rise are taken to the stepped rise by their limiting-shear factor
+    ``exp(-beta_L step)`` (since session 36; they were the unstepped rise's, and Newton's
+    Jacobian off by some 3e-3: `tests/test_thermal_partials.py`); their dependence on the
+    rise through the film, ``h exp((beta - beta_L) dT)``, stays the unstepped rise's. In one
     compiled call (`ballcvt.model.traction.thermal_kernels`) when both rules use the
     compiled engine (without ``partials`` there, those by ``c`` and ``sigma`` are 0); the
     NumPy path (`_solve_rise`) otherwise.
@@ -183,7 +187,8 @@ def _rise_and_coefficients(con: _Contacts, quadrature: Quadrature, partials: boo
     r = con.resistance
     step = -(dt - r * con.flux(mu, chi)) / (1.0 - r * con.flux(dmu[:, 3], dchi[:, 3]))
     step = np.maximum(step, -dt)  # the rise stays >= 0
-    return dt + step, mu + dmu[:, 3] * step, chi + dchi[:, 3] * step, dmu, dchi
+    f_t = np.exp(-con.beta_l * step)[:, None]  # the partials' tau_L factor at dT + step
+    return dt + step, mu + dmu[:, 3] * step, chi + dchi[:, 3] * step, dmu * f_t, dchi * f_t
 
 
 def _compiled(con: _Contacts, quadrature: Quadrature, partials: bool):

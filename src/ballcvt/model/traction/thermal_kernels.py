@@ -99,9 +99,10 @@ if AVAILABLE:
             out[i, 0] = dt + step
             out[i, 1] = v[0] + v[5] * step
             out[i, 2] = v[1] + v[9] * step
+            f_t = math.exp(-heat[0] * step)  # the partials' tau_L factor at dT + step
             for j in range(4):
-                out[i, 3 + j] = v[2 + j]
-                out[i, 7 + j] = v[6 + j]
+                out[i, 3 + j] = v[2 + j] * f_t
+                out[i, 7 + j] = v[6 + j] * f_t
 
     # the two specialisations (the partials wanted or not): fixed at compile time
     @njit(cache=True, fastmath=_FAST)

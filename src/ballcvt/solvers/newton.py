@@ -412,7 +412,8 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
     or a fresh one for the points whose last move was not evaluated.
     """
     nc, n = x.shape[-1], flat.size
-    free = free_creeps(nc, n, pinned)
+    free = free_creeps(nc, n, pinned)  # the same for every point unless held per point:
+    same = free[0] if n and (free == free[0]).all() else None  # (then plain indexing)
     active = np.arange(n)
     final = None
     it = Iterates(
@@ -439,14 +440,17 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
             state = evaluate(sub, xa, options.quadrature)
         else:
             state, jac = evaluate_split(sub, xa, options.quadrature, secant.near[at])
-            if pinned is not None:
+            if pinned is not None and same is not None:
+                jac = jac[:, :m][:, :, same]
+            elif pinned is not None:
                 jac = np.take_along_axis(jac[:, :m], free[at][:, None, :], axis=2)
         iterations[at] += 1
         final = state if final is None or whole else _scatter(final, state, active)
         fresh[at] = True
         res = np.ascontiguousarray(state.residual[:, :m])
         # near its solution a point steps with its last Jacobian, corrected
-        jac = secant.update(active, np.take_along_axis(xa, free[at], axis=1), res, jac)
+        xf = xa[:, same] if same is not None else np.take_along_axis(xa, free[at], axis=1)
+        jac = secant.update(active, xf, res, jac)
         before = it.best[at].copy()  # (`advance` updates the best norms in place)
         norm = _norm(res)
         secant.near[at] = (norm <= near_norm) & (norm < before)

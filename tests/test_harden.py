@@ -132,12 +132,25 @@ def test_the_timer_inside_a_compiled_call_is_the_timer_not_a_bug():
     assert [p["outcome"] for p in task.points] == ["bug"]
 
 
+#: A case every stubbed `run_case` below stands for.
+STUB_CASE = {"law": "isothermal", "clamp": "constant", "arch": "double",
+             "mode": "carrier_held", "entry": "solve"}  # fmt: skip
+
+
+def _stubbed(monkeypatch, run_case):
+    """`harden` with its entry points' `run_case` replaced by ``run_case``."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import harden
+
+    monkeypatch.setattr(harden.entries, "run_case", run_case)
+    monkeypatch.setattr(harden.entries, "supported", lambda case: True)
+    return harden
+
+
 def test_points_recorded_after_the_timer_fired_are_dropped(monkeypatch):
     """Wherever the timer's exception is caught as another (a compiled call's
     SystemError, caught by an entry's ``except``), the points recorded from the moment
     it fired are dropped, and the task ends as the timer says: cut at the budget's end."""
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import harden
 
     def run_case(task):
         task.record("ok", None, "", {})
@@ -146,11 +159,8 @@ def test_points_recorded_after_the_timer_fired_are_dropped(monkeypatch):
         except BaseException as exc:  # a call that turns the timer's exception into its own
             task.record("bug", "exception", f"SystemError: {type(exc).__name__}", {})
 
-    monkeypatch.setattr(harden.entries, "run_case", run_case)
-    monkeypatch.setattr(harden.entries, "supported", lambda case: True)
-    case = {"law": "isothermal", "clamp": "constant", "arch": "double",
-            "mode": "carrier_held", "entry": "solve"}
-    got = harden.run_task(0, 0, time.time() + 0.3, 600.0, case)
+    harden = _stubbed(monkeypatch, run_case)
+    got = harden.run_task(0, 0, time.time() + 0.3, 600.0, STUB_CASE)
     assert got["cut"] and [p["outcome"] for p in got["points"]] == ["ok"]
 
 
@@ -158,9 +168,8 @@ def test_the_timer_surfacing_as_another_exception_is_the_timer_not_a_harness_bug
     """The timer's exception can be replaced by another one with no link to it (e.g.
     inside numba's compiler); the fresh-clone suite of session 35 once recorded such a
     point as ``bug: harness`` in `test_campaign_json`. An exception reaching `run_task`
-    after the timer fired is the timer's: the task is cut at the budget's end, no bug."""
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import harden
+    after the timer fired is the timer's: the task is cut at the budget's end, or ends in
+    a timeout at the task's own limit; one raised before it is still a harness bug."""
 
     def run_case(task):
         task.record("ok", None, "", {})
@@ -169,20 +178,17 @@ def test_the_timer_surfacing_as_another_exception_is_the_timer_not_a_harness_bug
         except BaseException:  # noqa: BLE001 - a call that loses the timer's exception
             raise RuntimeError("compilation failed") from None
 
-    monkeypatch.setattr(harden.entries, "run_case", run_case)
-    monkeypatch.setattr(harden.entries, "supported", lambda case: True)
-    case = {"law": "isothermal", "clamp": "constant", "arch": "double",
-            "mode": "carrier_held", "entry": "solve"}
-    got = harden.run_task(0, 0, time.time() + 0.3, 600.0, case)
+    harden = _stubbed(monkeypatch, run_case)
+    got = harden.run_task(0, 0, time.time() + 0.3, 600.0, STUB_CASE)
     assert got["cut"] and [p["outcome"] for p in got["points"]] == ["ok"]
-    got = harden.run_task(0, 0, time.time() + 60.0, 0.3, case)  # the task's own limit
+    got = harden.run_task(0, 0, time.time() + 60.0, 0.3, STUB_CASE)  # the task's own limit
     assert not got["cut"] and [p["check"] for p in got["points"]] == [None, "timeout"]
 
     def broken(task):
         raise RuntimeError("a harness bug")
 
-    monkeypatch.setattr(harden.entries, "run_case", broken)
-    got = harden.run_task(0, 0, time.time() + 60.0, 600.0, case)
+    harden = _stubbed(monkeypatch, broken)
+    got = harden.run_task(0, 0, time.time() + 60.0, 600.0, STUB_CASE)
     assert [p["check"] for p in got["points"]] == ["harness"]
 
 

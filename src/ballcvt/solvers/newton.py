@@ -412,8 +412,8 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
     or a fresh one for the points whose last move was not evaluated.
     """
     nc, n = x.shape[-1], flat.size
-    free = free_creeps(nc, n, pinned)  # the same for every point unless held per point:
-    same = free[0] if n and (free == free[0]).all() else None  # (then plain indexing)
+    free = free_creeps(nc, n, pinned)  # the same for all unless held per point (plain indexing)
+    same = free[0] if n and (np.ndim(pinned) == 0 or (free == free[0]).all()) else None
     active = np.arange(n)
     final = None
     it = Iterates(

@@ -85,6 +85,11 @@ class Walk:
     passed : ndarray of bool
         Whether it stopped at a step whose torque reached the target (``after``, the
         target between ``torque`` and it).
+    path : tuple of ndarray
+        Every point of the walk on the rising side, the start's first: torques ``(n, S)``
+        [N m] in increasing order, ``+inf`` after a point's last, and creeps ``(n, S,
+        n_c)`` [-] (NaN there): warm starts for solves between them
+        (`ballcvt.solvers.limit.LimitSearch.start_between`).
     """
 
     torque: np.ndarray
@@ -94,6 +99,7 @@ class Walk:
     direction: np.ndarray
     stopped: np.ndarray
     passed: np.ndarray
+    path: tuple = ()
 
     @classmethod
     def start(cls, t0, x0, direction) -> Walk:
@@ -146,6 +152,7 @@ def follow_branch(flat, pinned, quadrature, bounds, start, target=None) -> Walk:
         direction[ok] = _tangent(flat.take(ok), x0[ok], quadrature)
     step = np.full(n, FIRST_ARC_STEP * scale)
     active = ok[np.all(np.isfinite(direction[ok]), axis=-1)]
+    points = [(ok, t0[ok], x0[ok])]  # the walk's points on the rising side, step by step
     for _ in range(MAX_ARC_STEPS):
         active = active[step[active] >= LEAST_ARC_STEP * scale]
         if active.size == 0:
@@ -163,6 +170,7 @@ def follow_branch(flat, pinned, quadrature, bounds, start, target=None) -> Walk:
         walk.after[0][active[stop]] = np.where(inside, got, -np.inf)[stop]
         walk.after[1][active[stop]] = xs[stop]
         i = active[go]
+        points.append((i, got[go], xs[go]))
         chord = xs[go] - walk.creep[i]
         direction[i] = chord / np.linalg.norm(chord, axis=-1, keepdims=True)
         walk.before[0][i], walk.before[1][i] = walk.torque[i], walk.creep[i]
@@ -170,7 +178,20 @@ def follow_branch(flat, pinned, quadrature, bounds, start, target=None) -> Walk:
         step[i] = np.minimum(2.0 * step[i], LARGEST_ARC_STEP * scale)
         step[active[~np.isfinite(got)]] *= 0.5
         active = active[~walk.stopped[active]]
+    walk.path = _path(points, x0)
     return walk
+
+
+def _path(points, x0):
+    """`Walk.path` from the walk's points, step by step ``(indices, torques, creeps)``:
+    each point's in increasing torque (along the rising side), ``+inf`` and NaN after."""
+    n, nc = x0.shape
+    torque, creep = np.full((n, len(points)), np.inf), np.full((n, len(points), nc), np.nan)
+    for j, (i, t, x) in enumerate(points):
+        torque[i, j], creep[i, j] = t, x
+    order = np.argsort(torque, axis=1, kind="stable")
+    return (np.take_along_axis(torque, order, axis=1),
+            np.take_along_axis(creep, order[..., None], axis=1))  # fmt: skip
 
 
 def _close(xs, x, direction, step) -> np.ndarray:

@@ -153,9 +153,11 @@ class LimitSearch:
         finite. ``torque`` is the largest ``hi``.
     scan_torque, scan_creep : ndarray, optional
         The torques ``(..., S)`` [N m] of a capacity scan (a torque-following law,
-        `ballcvt.solvers.capacity.interval_search`) and the creeps found there
-        ``(..., S, n_c)`` [-] (NaN where none): warm starts for the points between them
-        (`start_between`). None without a scan.
+        `ballcvt.solvers.capacity.interval_search`), or of the walk up each branch and its
+        limit (a law with more than one equilibrium at a constant force,
+        `ballcvt.solvers.peak.peak_limits`; ``+inf`` after a point's last), and the creeps
+        found there ``(..., S, n_c)`` [-] (NaN where none): warm starts for the points
+        between them (`start_between`). None without a scan.
     """
 
     torque: np.ndarray
@@ -336,7 +338,7 @@ def limit_search(
             scan_t.reshape(shape + scan_t.shape[-1:]),
             scan_x.reshape(shape + scan_x.shape[-2:]),
         )
-    torque, creep = _pinned_limits(flat, creep_limit, options, initial_creep(flat))
+    torque, creep, scan = _pinned_limits(flat, creep_limit, options, initial_creep(flat))
     tick()
     rest = np.flatnonzero(np.isnan(torque))
     if rest.size:
@@ -349,23 +351,30 @@ def limit_search(
         if todo.size:  # once more, from the T_2 = 0 creeps
             torque[todo], creep[todo] = _pinned_limits(
                 flat.take(todo), creep_limit, options, x_zero[todo]
-            )
+            )[:2]
+            if scan is not None:  # (its walk's points are not these limits')
+                scan[0][todo], scan[1][todo] = np.inf, np.nan
         todo = todo[np.isnan(torque[todo])]
         if todo.size:
             torque[todo], creep[todo] = limit_torque_bisection(
                 flat.take(todo), creep_limit, options, rtol, tick, law, x_zero[todo]
             )
     tick(bisection_steps(rtol))
+    walked = () if scan is None else (scan[0].reshape(shape + scan[0].shape[-1:]),
+                                      scan[1].reshape(shape + scan[1].shape[-2:]))  # fmt: skip
     return LimitSearch(
-        torque.reshape(shape), creep.reshape(shape + (nc,)), x_zero.reshape(shape + (nc,))
-    )
+        torque.reshape(shape), creep.reshape(shape + (nc,)), x_zero.reshape(shape + (nc,)),
+        None, *walked,
+    )  # fmt: skip
 
 
 def _pinned_limits(flat, creep_limit, options, x_zero):
     """Torques at which a disc creep reaches ``creep_limit`` with every creep admissible
-    (`limit_search`); NaN where neither disc contact gives one."""
+    (`limit_search`); NaN where neither disc contact gives one. Also the equilibria met on
+    the way up each branch under a law with more than one equilibrium (the walk's,
+    `ballcvt.solvers.peak.peak_limits`), else None."""
     if not traction_rises_with_creep(flat.fluid):
-        return peak_limits(flat, creep_limit, options, x_zero)
+        return peak_limits(flat, creep_limit, options, x_zero, path=True)
     nc = flat.layout.n_contacts
     torque = np.full(flat.size, np.nan)
     creep = np.full((flat.size, nc), np.nan)
@@ -390,7 +399,7 @@ def _pinned_limits(flat, creep_limit, options, x_zero):
                 & (np.max(np.abs(x), axis=-1) <= pin * (1.0 + 1e-9))
             )
             torque[idx[good]], creep[idx[good]] = t[good], x[good]
-    return torque, creep
+    return torque, creep, None
 
 
 def _law_bound(flat: EquilibriumProblem, law) -> np.ndarray:

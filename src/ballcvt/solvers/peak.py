@@ -29,7 +29,7 @@ import numpy as np
 from .branch_path import follow_branch, walks
 from .continuation import continue_in_torque, solve_twice
 from .fold import Climb, climb_to_fold
-from .held_creep import FOLD_CREEP_RTOL, disc_to_climb, secant_in_creep
+from .held_creep import FOLD_CREEP_RTOL, disc_to_climb, on_branch, secant_in_creep
 from .newton import PATIENCE, branch_pinned, branch_solver, branch_turned
 from .options import at_residual_floor
 
@@ -51,7 +51,7 @@ FOLD_MARGIN = 2e-4
 PEAK_PIN_MARGIN = 1e-6
 
 
-def peak_limits(flat, creep_limit, options, x_zero=None):
+def peak_limits(flat, creep_limit, options, x_zero=None, path=False):
     """Limiting torques of the 1-D batch ``flat`` under a law with more than one
     equilibrium (docs/model.md §8, §14): each point is followed from zero torque up while
     its equilibrium converges with every ``|C| <= creep_limit``, by the walk along its
@@ -61,7 +61,8 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
 
     Returns the torques ``(n,)`` [N m] and the creeps there ``(n, n_c)``; NaN where even
     zero torque is inadmissible. ``x_zero`` (starting creeps of the other limit methods)
-    is not used: the continuation starts from the cold start at zero torque.
+    is not used: the continuation starts from the cold start at zero torque. With
+    ``path``, also the equilibria met on the way (`_scan`), or None without a walk.
     """
     options = at_residual_floor(options, flat.fluid)
     pin = creep_limit * (1.0 - PEAK_PIN_MARGIN)
@@ -73,7 +74,7 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
     pinned = branch_pinned(options)
     turned = branch_turned(flat, options)  # a step onto a torque that jumped a fold
     walk = (solve, branch_pinned(options, PATIENCE))
-    torque, x, seed = _rise_to_fold(flat, walk, options.quadrature, pin, admissible)
+    torque, x, seed, walked = _rise_to_fold(flat, walk, options.quadrature, pin, admissible)
     keep = np.flatnonzero(np.isfinite(torque))
     if keep.size:
         sub = flat.take(keep)
@@ -93,7 +94,29 @@ def peak_limits(flat, creep_limit, options, x_zero=None):
             _below_later_fold(sub, (solve, turned), (idx[~good], top[idx[~good]]), admissible,
                               (keep, torque, x))  # fmt: skip
     keep = np.isfinite(torque)
-    return np.where(keep, torque, np.nan), np.where(keep[:, None], x, np.nan)
+    out = np.where(keep, torque, np.nan), np.where(keep[:, None], x, np.nan)
+    return out + (_scan(walked, *out),) if path else out
+
+
+def _scan(walked, torque, x):
+    """The walk's points (`ballcvt.solvers.branch_path.Walk.path`) and the limit, in
+    increasing torque per point (``+inf`` and NaN after the last), or None without a
+    walk: the `ballcvt.solvers.limit.LimitSearch` scan, whose creeps start a sweep's
+    points between them (session 36: Table I's thermal sweep's predictor stage 30 % fewer
+    traction rows than from between the creeps at zero torque and at the limit)."""
+    if walked is None:
+        return None
+    t, creep = walked
+    n, s, nc = creep.shape
+    # a walk's step can land past the fold and still rise (the climb then starts before
+    # it): only the points on the branch below the limit, as `on_branch` tells them
+    below = (t <= torque[:, None]) & on_branch(
+        creep.reshape(-1, nc), np.repeat(x, s, axis=0)).reshape(n, s)  # fmt: skip
+    end = np.where(np.isfinite(torque), torque, np.inf)[:, None]
+    t = np.concatenate([np.where(below, t, np.inf), end], axis=1)
+    creep = np.concatenate([np.where(below[..., None], creep, np.nan), x[:, None]], axis=1)
+    order = np.argsort(t, axis=1, kind="stable")
+    return np.take_along_axis(t, order, axis=1), np.take_along_axis(creep, order[..., None], 1)
 
 
 def _below_later_fold(flat, solvers, tops, admissible, found) -> None:
@@ -130,13 +153,14 @@ def _rise_to_fold(flat, solvers, quadrature, pin, admissible):
     (`continue_in_torque` to an open target, to within `PEAK_RTOL` of where it stops) for
     the points whose walk failed and under a planetary mode's torque condition (no seed).
     Returns the torques ``(n,)`` [N m] (NaN where zero torque is inadmissible), creeps
-    ``(n, n_c)`` and seeds ``((torque, creeps), (torque, creeps))`` (NaN: none)."""
+    ``(n, n_c)``, seeds ``((torque, creeps), (torque, creeps))`` (NaN: none) and the
+    walk's `Walk.path` (None without a walk)."""
     solve, (pinned, tol) = solvers
     n, nc = flat.size, flat.layout.n_contacts
     rest = np.arange(n)
     torque, x = np.full(n, np.nan), np.full((n, nc), np.nan)
     none = (np.full(n, np.nan), np.full((n, nc), np.nan))
-    seed = (none, none, none[1])
+    seed, walked = (none, none, none[1]), None
     if walks(flat):
         ok, x0, _ = solve(replace(flat, output_torque=np.zeros(n)), None, True)
         x0 = np.array(x0, dtype=float)
@@ -149,13 +173,13 @@ def _rise_to_fold(flat, solvers, quadrature, pin, admissible):
             np.where(on[:, None], walk.before[1], np.nan),
         )
         seed = ((np.where(on, walk.torque, np.nan), walk.creep), walk.after, walk.direction)
-        rest = np.flatnonzero(ok & ~on)
+        rest, walked = np.flatnonzero(ok & ~on), walk.path
     if rest.size:
         xr, _, tr = continue_in_torque(
             flat.take(rest), solve, np.full(rest.size, np.inf), PEAK_RTOL, admissible
         )
         torque[rest], x[rest] = tr, xr
-    return torque, x, seed
+    return torque, x, seed, walked
 
 
 def _climb(flat, pinned, pin, start):

@@ -30,7 +30,7 @@ import numpy as np
 
 from ..equilibrium.residual import evaluate_with_jacobian
 from ..model.traction.quadrature import Quadrature
-from .held_creep import Pinned, pinned_step
+from .held_creep import Pinned, held_of, pinned_step
 
 __all__ = [
     "follow_branch",
@@ -189,6 +189,12 @@ def _path(points, x0):
     torque, creep = np.full((n, len(points)), np.inf), np.full((n, len(points), nc), np.nan)
     for j, (i, t, x) in enumerate(points):
         torque[i, j], creep[i, j] = t, x
+    return by_torque(torque, creep)
+
+
+def by_torque(torque, creep):
+    """Each row's points ``torque`` ``(n, S)``, ``creep`` ``(n, S, n_c)`` in increasing
+    torque (``+inf`` last)."""
     order = np.argsort(torque, axis=1, kind="stable")
     return (np.take_along_axis(torque, order, axis=1),
             np.take_along_axis(creep, order[..., None], axis=1))  # fmt: skip
@@ -215,8 +221,7 @@ def _steps(flat, pinned: Pinned, path, active, tol):
     x, direction, step = path
     guess = x[active] + step[active, None] * direction[active]
     held = np.argmax(np.abs(direction[active]), axis=-1)  # one batch, whichever it is
-    return pinned_step(pinned, flat.take(active), held, guess,
-                       guess[np.arange(active.size), held], tol)  # fmt: skip
+    return pinned_step(pinned, flat.take(active), held, guess, held_of(guess, held), tol)
 
 
 def _tangent(flat, x, quadrature) -> np.ndarray:

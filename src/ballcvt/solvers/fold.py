@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .held_creep import FOLD_CREEP_RTOL, MAX_FOLD_STEPS, TURN_STEP, Pinned, pinned_step
+from .held_creep import FOLD_CREEP_RTOL, MAX_FOLD_STEPS, TURN_STEP, Pinned, held_of, pinned_step
 
 __all__ = ["climb_to_fold", "Climb", "FIRST_CREEP_STEP", "GOLDEN"]
 
@@ -121,7 +121,7 @@ def climb_to_fold(flat, pinned: Pinned, k, pin: float, tol: float, start, share:
     """
     t0, x0 = start[0], start[1]
     k = np.broadcast_to(np.asarray(k, dtype=np.intp), (flat.size,))
-    held = x0[np.arange(flat.size), k]
+    held = held_of(x0, k)
     br = _Bracket.start(t0, held, x0, FIRST_CREEP_STEP * pin)
     history = [(held.copy(), t0.copy(), x0.copy(), np.ones(flat.size, dtype=bool))]
     if len(start) > 2:
@@ -219,8 +219,7 @@ class _Bracket:
         of contact ``k`` grows from the start through both (the step then the distance
         from the start); returns the history entries of the points taken."""
         (t_b, x_b), (t_c, x_c) = points
-        rows = np.arange(t_b.size)
-        c_b, c_c = x_b[rows, k], x_c[rows, k]
+        c_b, c_c = held_of(x_b, k), held_of(x_c, k)
         rise = np.isfinite(t_b) & (t_b > self.b_t) & ((c_b - self.b_c) * self.direction > 0)
         past = rise & ~(t_c >= t_b) & ((c_c - c_b) * self.direction > 0)  # NaN t_c: none
         self.a_c[rise], self.a_t[rise] = self.b_c[rise], self.b_t[rise]

@@ -45,6 +45,7 @@ __all__ = [
     "SECANT_STEPS",
     "secant_in_creep",
     "pinned_step",
+    "held_of",
     "on_branch",
 ]
 
@@ -74,6 +75,12 @@ SECANT_STEPS = 12
 Pinned = Callable[[EquilibriumProblem, int, np.ndarray], tuple]
 #: ``solve(problem, x0)`` -> ``(converged, creep)`` at the problems' own torques.
 Solve = Callable[[EquilibriumProblem, np.ndarray], tuple]
+
+
+def held_of(x, k) -> np.ndarray:
+    """The creep ``(n,)`` of contact ``k`` (one, or one per point) of each row of ``x``
+    ``(n, n_c)``."""
+    return x[np.arange(x.shape[0]), k]
 
 
 def pinned_step(pinned: Pinned, flat, k, x, creep, tol):
@@ -113,8 +120,7 @@ def turned_back(flat, pinned: Pinned, tol, x) -> np.ndarray:
     """
     goal, sign = _goal(flat)
     held = disc_to_climb(x)  # one batch, whichever contact each point holds
-    got, _ = pinned_step(pinned, flat, held, x, x[np.arange(flat.size), held] * (1 - TURN_STEP),
-                         tol)  # fmt: skip
+    got, _ = pinned_step(pinned, flat, held, x, held_of(x, held) * (1 - TURN_STEP), tol)
     return sign * got > goal
 
 

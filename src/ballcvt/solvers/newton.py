@@ -33,7 +33,7 @@ from .branch_path import walks
 from .continuation import REACH_STEP, continue_in_torque
 from .held_creep import on_branch, turned_back
 from .newton_eval import confirm_norm, evaluate_split
-from .newton_step import MAX_STEP, Iterates, advance, free_creeps
+from .newton_step import MAX_STEP, Iterates, advance, at_free, free_creeps
 from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
 from .robust import solve_robust
 from .secant import SecantCorrection
@@ -440,17 +440,14 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
             state = evaluate(sub, xa, options.quadrature)
         else:
             state, jac = evaluate_split(sub, xa, options.quadrature, secant.near[at])
-            if pinned is not None and same is not None:
-                jac = jac[:, :m][:, :, same]
-            elif pinned is not None:
-                jac = np.take_along_axis(jac[:, :m], free[at][:, None, :], axis=2)
+            if pinned is not None:
+                jac = at_free(jac[:, :m], free, at, same)
         iterations[at] += 1
         final = state if final is None or whole else _scatter(final, state, active)
         fresh[at] = True
         res = np.ascontiguousarray(state.residual[:, :m])
         # near its solution a point steps with its last Jacobian, corrected
-        xf = xa[:, same] if same is not None else np.take_along_axis(xa, free[at], axis=1)
-        jac = secant.update(active, xf, res, jac)
+        jac = secant.update(active, at_free(xa, free, at, same), res, jac)
         before = it.best[at].copy()  # (`advance` updates the best norms in place)
         norm = _norm(res)
         secant.near[at] = (norm <= near_norm) & (norm < before)

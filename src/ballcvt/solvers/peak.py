@@ -26,7 +26,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .branch_path import follow_branch, walks
+from .branch_path import by_torque, follow_branch, walks
 from .continuation import continue_in_torque, solve_twice
 from .fold import Climb, climb_to_fold
 from .held_creep import FOLD_CREEP_RTOL, disc_to_climb, on_branch, secant_in_creep
@@ -113,10 +113,10 @@ def _scan(walked, torque, x):
     below = (t <= torque[:, None]) & on_branch(
         creep.reshape(-1, nc), np.repeat(x, s, axis=0)).reshape(n, s)  # fmt: skip
     end = np.where(np.isfinite(torque), torque, np.inf)[:, None]
-    t = np.concatenate([np.where(below, t, np.inf), end], axis=1)
-    creep = np.concatenate([np.where(below[..., None], creep, np.nan), x[:, None]], axis=1)
-    order = np.argsort(t, axis=1, kind="stable")
-    return np.take_along_axis(t, order, axis=1), np.take_along_axis(creep, order[..., None], 1)
+    return by_torque(
+        np.concatenate([np.where(below, t, np.inf), end], axis=1),
+        np.concatenate([np.where(below[..., None], creep, np.nan), x[:, None]], 1),
+    )
 
 
 def _below_later_fold(flat, solvers, tops, admissible, found) -> None:

@@ -6,6 +6,7 @@ every array); the per-contact arrays have the contacts on the last axis.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, fields, replace
 from typing import Any
 
@@ -170,7 +171,7 @@ class EquilibriumProblem:
     @property
     def size(self) -> int:
         """Number of operating points in the batch."""
-        return int(np.prod(self.shape, dtype=int))
+        return math.prod(self.tilt.shape)  # (np.prod: some 5 us a call, many a Newton run)
 
     def _map(self, batch, per_contact) -> EquilibriumProblem:
         # a new instance without `replace`'s __init__ (a fifth of a sub-batch's cost in a

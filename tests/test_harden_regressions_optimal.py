@@ -5,6 +5,7 @@ capacity search finds the force of the largest limiting torque."""
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -117,14 +118,18 @@ TASK_124 = (
 )
 
 
-def test_thermal_capacity_force_does_not_depend_on_the_batch(monkeypatch):
-    """2026:124: under the thermal law the limit at a force (a continuation to the fold,
-    stopped by a step failing at the solver's tolerance) depends on the batch it is
-    solved in (the batched Newton's predictor stage and shared Jacobian skip). Here the
-    limits are a stand-in that does so; the force found for each point of a batch must be
-    the one found for it alone, as `limit_torque` does."""
+def test_thermal_capacity_force_does_not_depend_on_the_batch():
+    """2026:124: under the thermal law a lookup table (four points batched) chose other
+    forces than `limit_torque` (one point): the limit at a force, a continuation to the
+    fold stopped by a step failing at the solver's tolerance, depended on the batch. Each
+    point was then searched alone. Since session 37 the points are searched in one batch,
+    the limit at a force being the walk's and the climb's, each point's own, with every
+    point's Newton iterates its own (``split_min`` 1, no predictor stage: the options the
+    search takes): the forces and the limits found for each point of a batch are the same
+    bits as alone (here also Table I's drive at three ratios in one batch)."""
     from ballcvt.equilibrium.problem import build_problem
     from ballcvt.solvers import optimal_capacity
+    from ballcvt.solvers.limit import limit_search
     from ballcvt.units import rpm_to_rad_s
 
     d, f = load_builtin("table1")
@@ -134,12 +139,6 @@ def test_thermal_capacity_force_does_not_depend_on_the_batch(monkeypatch):
     ratios = np.array([ratio, ratio, ratio * 1.001, ratio * 1.001])
     speeds = rpm_to_rad_s(np.array([rpm, rpm * 1.05, rpm, rpm * 1.05]))
     pb = build_problem(v.design, v.fluid, v.architecture, ratios, 0.0, np.ones(4), speeds)
-
-    def limits(flat, forces, c_lim, options):  # peaks at 6 kN alone, elsewhere batched
-        peak = 6000.0 * (1.0 + 0.05 * (flat.size - 1)) * flat.ratio[:, None] / ratio
-        return forces * (2.0 - forces / peak)
-
-    monkeypatch.setattr(optimal_capacity, "_limits", limits)
     p_lim, c_lim = v.design.max_pressure, v.design.creep_limit
     batch = optimal_capacity.capacity_force(pb, p_lim, c_lim, 100.0, v.options)
     alone = [
@@ -148,6 +147,14 @@ def test_thermal_capacity_force_does_not_depend_on_the_batch(monkeypatch):
         for i in range(4)
     ]  # fmt: skip
     assert batch.tolist() == alone
+    t1 = Variator(traction_law="thermal")
+    own = replace(t1.options, split_min=1, predictor_min_points=10**9)
+    rows = build_problem(t1.design, t1.fluid, t1.architecture, np.array([0.6, 1.3, 1.9]), 0.0,
+                         np.array([900.0, 2500.0, 6000.0]), rpm_to_rad_s(2000.0)).flat()  # fmt: skip
+    together = limit_search(rows, t1.design.creep_limit, own).torque
+    apart = [limit_search(rows.take(np.array([i])), t1.design.creep_limit, own).torque[0]
+             for i in range(3)]  # fmt: skip
+    assert np.isfinite(together).all() and together.tolist() == apart
 
 
 # Harden task 0:28: a hub-derived design whose efficiency has a kink in the clamping force

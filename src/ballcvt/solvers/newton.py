@@ -146,7 +146,9 @@ def solve_batch(
     )
 
 
-def solve_near(problem: EquilibriumProblem, options: SolverOptions, x0) -> BatchSolution:
+def solve_near(
+    problem: EquilibriumProblem, options: SolverOptions, x0, follow: bool = True
+) -> BatchSolution:
     """Solve a 1-D batch from the creeps ``x0`` ``(n, n_c)`` of nearby equilibria (the
     optimal clamp's stencils: the same torque at forces a few per cent apart), without
     the predictor stage or the point solver.
@@ -157,7 +159,8 @@ def solve_near(problem: EquilibriumProblem, options: SolverOptions, x0) -> Batch
     test of the torque continuation's step onto its target); every other point is
     followed from zero torque, as `solve_batch` follows them all (before session 30 the
     thermal optimal sweep's stencils were each so followed). Otherwise `solve_batch` from
-    ``x0``.
+    ``x0``. Without ``follow`` the other points are left unconverged instead (a guess's
+    scores, `ballcvt.solvers.optimal_stencil`).
     """
     options = at_residual_floor(options, problem.fluid)
     flat = problem.flat()
@@ -173,7 +176,7 @@ def solve_near(problem: EquilibriumProblem, options: SolverOptions, x0) -> Batch
             keep[on] &= ~turned(flat.take(on), direct.state.creep[on])
         return keep
 
-    return _follow(flat, options, False, x, accept)
+    return _follow(flat, options, False, x, accept, follow)
 
 
 def solve_from(
@@ -203,11 +206,12 @@ def _below(below):
     return accept
 
 
-def _follow(flat, options, predict, x, accept) -> BatchSolution:
+def _follow(flat, options, predict, x, accept, follow=True) -> BatchSolution:
     """`solve_batch` of the 1-D batch ``flat`` under a law with more than one
     equilibrium: Newton from ``x`` where ``accept`` is given (``BatchSolution -> bool
     (n,)``: `_below`'s `on_branch`, or `solve_near`'s fold test), kept where it holds;
-    every other point followed from zero torque (`continue_in_torque`).
+    every other point followed from zero torque (`continue_in_torque`), or, without
+    ``follow``, left unconverged.
 
     The direct Newton runs on towards `POLISH_SHARE` of the tolerance (and counts as
     converged at the tolerance): a solve stops anywhere below its tolerance, and the
@@ -223,6 +227,8 @@ def _follow(flat, options, predict, x, accept) -> BatchSolution:
         iterations += direct.iterations
         keep = accept(direct)
         state, todo = direct.state, np.flatnonzero(~keep)
+        if not follow:
+            return replace(direct, converged=keep)
     if todo.size:
         sub = flat.take(todo)
         xt, its, reached = continue_in_torque(
@@ -439,7 +445,8 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
         if confirm:
             state = evaluate(sub, xa, options.quadrature)
         else:
-            state, jac = evaluate_split(sub, xa, options.quadrature, secant.near[at])
+            state, jac = evaluate_split(sub, xa, options.quadrature, secant.near[at],
+                                        options.split_min)  # fmt: skip
             if pinned is not None:
                 jac = at_free(jac[:, :m], free, at, same)
         iterations[at] += 1

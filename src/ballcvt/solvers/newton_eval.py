@@ -28,6 +28,7 @@ import numpy as np
 
 from ..equilibrium.residual import EquilibriumState, evaluate, evaluate_with_jacobian
 from ..model.traction.base import has_multiple_equilibria
+from .options import SPLIT_MIN
 from .secant import NEAR_NORM
 
 __all__ = ["CONFIRM_NORM", "SPLIT_MIN", "confirm_norm", "evaluate_split"]
@@ -35,9 +36,6 @@ __all__ = ["CONFIRM_NORM", "SPLIT_MIN", "confirm_norm", "evaluate_split"]
 #: Residual norm [-] below which a point steps with its last Jacobian (corrected) under a
 #: law with more than one equilibrium (module docstring).
 CONFIRM_NORM = 1e-6
-#: Fewest points of a batch near their solutions that are evaluated without the Jacobian
-#: apart from the rest: a second evaluation's fixed cost outweighs fewer.
-SPLIT_MIN = 16
 
 
 def confirm_norm(fluid) -> float:
@@ -47,14 +45,20 @@ def confirm_norm(fluid) -> float:
     return CONFIRM_NORM if has_multiple_equilibria(fluid) else NEAR_NORM
 
 
-def evaluate_split(problem, x, quadrature, near):
+def evaluate_split(problem, x, quadrature, near, split_min: int = SPLIT_MIN):
     """`evaluate_with_jacobian` of the points of the 1-D batch ``problem`` at creeps ``x``
     that are not ``near``, `evaluate` of the others (module docstring): the state of every
     point and the Jacobians, zero on the rows of the points near (not read: they step with
-    their last). All together where fewer than `SPLIT_MIN` points are near, or all are."""
+    their last). All together where fewer than ``split_min`` points are near; with
+    ``split_min`` 1 a point is evaluated one way or the other whatever its batch, and its
+    iterates are its own to the bit (the kernels with and without the derivatives round
+    ``chi`` apart in its last bit: some 1e-14 in a thermal limit alone and in a batch)."""
     k = np.flatnonzero(near)
-    if k.size < SPLIT_MIN or k.size == near.size:
+    if k.size < split_min:
         return evaluate_with_jacobian(problem, x, quadrature)
+    if k.size == near.size:
+        state = evaluate(problem, x, quadrature)
+        return state, np.zeros(x.shape[:1] + (x.shape[1], x.shape[1]))
     f = np.flatnonzero(~near)
     far, jac_far = evaluate_with_jacobian(problem.take(f), x[f], quadrature)
     close = evaluate(problem.take(k), x[k], quadrature)

@@ -18,9 +18,13 @@ kept exactly, except under a traction law with more than one equilibrium (the th
 law): there the limit, the fold of the branch from zero torque, can peak and fall again
 below ``F_p`` (past the peak of the traction curves), and was noisy near it (a
 continuation step failing at the solver's tolerance ended the branch early), so the best
-force is refined, ``F_p`` staying a candidate, and each point is searched on its own: the
-force must not depend on the batch (a table and `limit_torque` gave 30.8 and 233 N m on
-task 2026:124). Under the torque condition on ``T_2`` the fold is the walk's along the
+force is refined, ``F_p`` staying a candidate, and the force must not depend on the batch
+(a table and `limit_torque` gave 30.8 and 233 N m on task 2026:124). The points are
+searched in one batch with every point's Newton iterates its own to the bit
+(``SolverOptions.split_min`` 1, no predictor stage: the kernels with and without the
+derivatives round apart in the last bit, and which one evaluated a point near its solution
+depended on its batch); each was searched alone before session 37, a fifth of Table I's
+thermal optimal sweep. Under the torque condition on ``T_2`` the fold is the walk's along the
 branch and the climb's in a held creep, smooth in the force (to 1e-8 whatever the batch,
 `ballcvt.model.traction.base.THERMAL_RESIDUAL_FLOOR`), and a limit still rising at
 ``F_p`` by more than `RISE` of itself keeps ``F_p`` there too (since session 30: Table
@@ -29,6 +33,9 @@ and kept it every time).
 """
 
 from __future__ import annotations
+
+import sys
+from dataclasses import replace
 
 import numpy as np
 
@@ -145,17 +152,9 @@ def _capacity(problem, p_lim, creep_limit, floor, options):
     own), else None."""
     flat = problem.flat()
     top = force_range_top(problem, p_lim, floor).reshape(-1)
-    if not has_multiple_equilibria(problem.fluid):
-        out, at_top = _search(flat, top, floor, creep_limit, options)
-    else:  # point by point: the same force from every path, whatever the batch
-        one = [flat.take(np.array([i])) for i in range(flat.size)]
-        out = np.array(
-            [
-                _search(p, top[i : i + 1], floor, creep_limit, options)[0][0]
-                for i, p in enumerate(one)
-            ]
-        )
-        at_top = None
+    if has_multiple_equilibria(problem.fluid):  # the same force whatever the batch
+        options = replace(options, split_min=1, predictor_min_points=sys.maxsize)
+    out, at_top = _search(flat, top, floor, creep_limit, options)
     return out.reshape(problem.shape), at_top
 
 

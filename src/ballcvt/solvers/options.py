@@ -14,6 +14,12 @@ CREEP_BOUNDS = (-0.5, 0.98)
 METHODS = ("newton", "hybr")
 
 
+#: Fewest points of a batch near their solutions that Newton evaluates without the
+#: Jacobian apart from the rest (`SolverOptions.split_min`, `ballcvt.solvers.newton_eval`):
+#: a second evaluation's fixed cost outweighs fewer.
+SPLIT_MIN = 16
+
+
 @dataclass(frozen=True)
 class SolverOptions:
     """Numerical options of the equilibrium solvers.
@@ -51,6 +57,12 @@ class SolverOptions:
         the predictor pays from a few tens of points up (benchmarks/bench_paths.py).
     max_evaluations : int
         Residual evaluations allowed to the hybrid method before the fallback.
+    split_min : int
+        Fewest points of a batch near their solutions that Newton evaluates without the
+        Jacobian, apart from the others (`ballcvt.solvers.newton_eval.evaluate_split`).
+        With 1 (and ``predictor_min_points`` above the batch) every point's iterates are
+        its own to the bit, whatever its batch: the optimal clamp's capacity search under
+        a law with more than one equilibrium (`ballcvt.solvers.optimal_capacity`).
     """
 
     quadrature: Quadrature = Quadrature()
@@ -62,10 +74,13 @@ class SolverOptions:
     predictor_tol: float = 1e-6
     predictor_min_points: int = 32
     search_rule: Quadrature | None = Quadrature("centred", 12, 8, 8)
+    split_min: int = SPLIT_MIN
 
     def __post_init__(self):
         if self.method not in METHODS:
             raise ValueError(f"solver method must be one of {METHODS}, got {self.method!r}")
+        if self.split_min < 1:
+            raise ValueError(f"split_min must be at least 1, got {self.split_min!r}")
 
 
 def at_residual_floor(options: SolverOptions, fluid) -> SolverOptions:

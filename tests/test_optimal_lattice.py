@@ -15,6 +15,7 @@ from ballcvt import Variator, load_builtin
 from ballcvt.analysis.cycle_files import cycle_from_arrays
 from ballcvt.api import CycleSettings, with_oil_temperature
 from ballcvt.model.clamping import OptimalClamp
+from ballcvt.params.io import load_builtin_fluid
 from ballcvt.solvers.optimal_batch import optimal_forces
 from ballcvt.solvers.optimal_clamp import ClampCase, point_problem
 from ballcvt.solvers.optimal_lattice import LATTICE, lattice_search
@@ -28,7 +29,11 @@ class _Options:
 
 
 #: What the climb reads of a problem: the contacts (for a cold start's creeps).
-_POINTS = SimpleNamespace(shape=(64,), layout=SimpleNamespace(is_idler=np.array([0, 1, 1, 0]) > 0))
+_POINTS = SimpleNamespace(  # the scorer's problem: its shape, layout and (its law) fluid
+    shape=(64,),
+    layout=SimpleNamespace(is_idler=np.array([0, 1, 1, 0]) > 0),
+    fluid=load_builtin_fluid(),
+)
 
 
 @dataclass(frozen=True)

@@ -236,7 +236,7 @@ class Variator(SummaryMethods, BatchMethods, LifeMethods, ShiftMethods, ShiftMom
                 problem, law, lambda p, x: solve_point(p, self.options, x)
             )
         else:
-            sol = solve_point(problem, self.options, x0)
+            sol = solve_point(problem, self.options, x0, near=x0 is not None)
         if how.check_capacity:
             refuse_beyond_capacity(problem, sol, law, name, self.options)
         if not sol.converged:

@@ -370,7 +370,7 @@ def _wide_start(score: _Scorer, index, centre):
     `_guess` on the hub's duty cycle the climb's parabolas through stencils 0.02 apart
     jumped twice before they reached the optimum (session 32)."""
     u = centre[:, None] + WIDTH * np.array([-1.0, 0.0, 1.0])
-    e, x = _first_round(score, index, u)
+    e, x = _first_round(score, index, u, guess=True)
     e, x = e.reshape(-1, 3), x.reshape(index.size, 3, -1)
     vertex, concave = _parabola(u, e)
     best = np.take_along_axis(u, np.argmax(e, axis=1)[:, None], axis=1)[:, 0]

@@ -10,6 +10,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
+from ..model.traction.base import has_multiple_equilibria
 from ..performance.efficiency import efficiency
 from .clamped import with_clamp
 from .newton import initial_creep, solve_batch, solve_near
@@ -40,14 +41,15 @@ class _Scorer:
     c_lim: float
     options: SolverOptions
 
-    def __call__(self, index, u, x0=None):
+    def __call__(self, index, u, x0=None, follow=True):
         """``(score, creeps)`` of points ``index`` at ``F_N0 = exp(u)``: the score is the
         overall efficiency where the point converges within the creep limit, ``-inf``
         elsewhere (as in `search_optimum`). From the starting creeps ``x0`` (a last
         stencil's, a coarse search's, a duty cycle's first pass's), `solve_near`: under a
         law with more than one equilibrium Newton's answer is kept unless it lies past a
         fold, where each solve was followed from zero torque before session 30 (a third
-        of the thermal optimal sweep's traction evaluations)."""
+        of the thermal optimal sweep's traction evaluations); without ``follow``, a point
+        Newton does not keep so scores ``-inf`` (a guess's round, `_first_round`)."""
         pb = with_clamp(self.problem.take(index), np.exp(u))
         options = replace(
             self.options,
@@ -57,7 +59,7 @@ class _Scorer:
         if x0 is None:
             sol = solve_batch(pb, options, None, fallback=False)
         else:  # near their solutions (under the thermal law: kept unless past a fold)
-            sol = solve_near(pb, options, x0)
+            sol = solve_near(pb, options, x0, follow)
         creep = np.max(np.abs(sol.state.creep), axis=-1)
         ok = sol.converged & (creep <= self.c_lim * (1.0 + CREEP_RTOL))
         eta = efficiency(pb, sol.state).overall
@@ -107,7 +109,7 @@ def _interpolated(xs, us, es, u):
     return out.reshape(-1, xs.shape[-1])
 
 
-def _first_round(score: _Scorer, index, u, x0=None):
+def _first_round(score: _Scorer, index, u, x0=None, guess=False):
     """``(scores, creeps)`` of the first stencils ``u`` ``(k, 3)``, as one flat batch.
 
     Given ``x0``, creeps near each centre (a coarse search's, a duty cycle's first
@@ -119,14 +121,24 @@ def _first_round(score: _Scorer, index, u, x0=None):
     Given ``x0`` or on a rule without a predictor (the search rule, whose solves stop at
     the predictor's tolerance, 1e-6), a point's Newton iterates depend on its own start
     only, never on its batch: a table, a sweep and `solve` then certify the same force
-    even where the efficiency has a kink near its optimum (harden task 0:28)."""
+    even where the efficiency has a kink near its optimum (harden task 0:28). Under a law
+    with more than one equilibrium (the thermal law) the centres come first on any rule,
+    each followed from zero torque, and their neighbours start from their creeps
+    (`solve_near`: kept unless past a fold), each point's still from its own start only:
+    before session 37 all three were followed from zero torque (the wide start of
+    `ballcvt.solvers.optimal_batch`, a quarter of Table I's thermal optimal sweep). With
+    ``guess`` (that wide start: its scores only pick where the lattice's climb starts) a
+    neighbour Newton does not keep scores ``-inf`` without being followed from zero
+    torque."""
     options = score.options
     x = None if x0 is None else _start(x0, u - u[:, 1:2])
-    if x is not None or options.predictor is None or 3 * index.size < options.predictor_min_points:
+    staged = options.predictor is not None and 3 * index.size >= options.predictor_min_points
+    if x is not None or not (staged or has_multiple_equilibria(score.problem.fluid)):
         return score(np.repeat(index, 3), u.reshape(-1), x)
     mid, x_mid = score(index, u[:, 1])
     sides = u[:, [0, 2]]
-    got, x_sides = score(np.repeat(index, 2), sides.reshape(-1), _start(x_mid, sides - u[:, 1:2]))
+    x_sides = _start(x_mid, sides - u[:, 1:2])
+    got, x_sides = score(np.repeat(index, 2), sides.reshape(-1), x_sides, not guess)
     got, x_sides = got.reshape(-1, 2), x_sides.reshape(index.size, 2, -1)
     scores = np.column_stack([got[:, 0], mid, got[:, 1]]).reshape(-1)
     creeps = np.stack([x_sides[:, 0], x_mid, x_sides[:, 1]], axis=1)

@@ -14,11 +14,13 @@ with either ``method``, so that it gets the equilibrium a sweep or a map gets.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..model.traction.base import has_multiple_equilibria
-from .newton import initial_creep, solve_batch
+from .newton import initial_creep, solve_batch, solve_near
 from .options import METHODS, SolverOptions, at_residual_floor
 from .robust import PointSolution, solve_robust
 
@@ -26,7 +28,7 @@ __all__ = ["SolverOptions", "PointSolution", "solve_point", "initial_creep", "ME
 
 
 def solve_point(
-    problem: EquilibriumProblem, options: SolverOptions = SolverOptions(), x0=None
+    problem: EquilibriumProblem, options: SolverOptions = SolverOptions(), x0=None, near=False
 ) -> PointSolution:
     """Solve one operating point (``problem.shape == ()``).
 
@@ -38,6 +40,12 @@ def solve_point(
         Numerical options.
     x0 : array_like, optional
         Starting creeps (e.g. a neighbouring point's solution).
+    near : bool
+        Whether ``x0`` lies next to the solution on the branch from zero torque (the
+        optimal clamp's search found it there): under a law with more than one
+        equilibrium Newton from it is then kept unless it lands past a fold, as a sweep
+        keeps it (`ballcvt.solvers.newton.solve_near`); otherwise such a point is
+        followed from zero torque whatever ``x0``.
 
     Returns
     -------
@@ -46,20 +54,27 @@ def solve_point(
     """
     if problem.shape != ():
         raise ValueError("solve_point takes a single operating point")
+    start = None if x0 is None or not near else np.asarray(x0, dtype=float)
     x0 = initial_creep(problem) if x0 is None else np.asarray(x0, dtype=float)
     if has_multiple_equilibria(problem.fluid):
-        return _on_branch(problem, at_residual_floor(options, problem.fluid))
+        return _on_branch(problem, at_residual_floor(options, problem.fluid), start)
     if options.method == "hybr":
         return solve_robust(problem, options, x0)
     batch = solve_batch(problem, options, x0, fallback=False)
     return solve_robust(problem, options, x0, batch.state, int(batch.iterations))
 
 
-def _on_branch(problem: EquilibriumProblem, options: SolverOptions) -> PointSolution:
+def _on_branch(problem: EquilibriumProblem, options: SolverOptions, x0=None) -> PointSolution:
     """The equilibrium reached from zero torque (a law with ``multiple_equilibria``,
-    `ballcvt.solvers.continuation`); no fallback from a cold start, which could land on
+    `ballcvt.solvers.continuation`), or from ``x0`` where Newton's answer from there does
+    not lie past a fold (`solve_near`); no fallback from a cold start, which could land on
     another equilibrium."""
-    batch = solve_batch(problem, options)
+    if x0 is not None:
+        batch = solve_near(problem.flat(), options, x0.reshape(1, -1))
+        batch = replace(batch, state=batch.state.take(0), converged=batch.converged[0],
+                        residual_norm=batch.residual_norm[0], iterations=batch.iterations[0])  # fmt: skip
+    else:
+        batch = solve_batch(problem, options)
     norm = float(batch.residual_norm)
     converged = bool(batch.converged)
     message = (

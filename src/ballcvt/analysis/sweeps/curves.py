@@ -21,7 +21,7 @@ from ...performance.efficiency import efficiency, loss_breakdown, power_losses
 from ...performance.validity import validity
 from ...solvers.clamped import solve_clamped, with_clamp
 from ...solvers.limit import LimitSearch, bisection_steps, limit_search
-from ...solvers.newton import initial_creep, solve_batch, solve_from
+from ...solvers.newton import initial_creep, solve_batch, solve_from, solve_near
 from ...solvers.optimal_batch import optimal_forces
 from ...solvers.optimal_capacity import capacity_search
 from ...solvers.options import SolverOptions
@@ -348,8 +348,10 @@ def solve_column(pb, law, options, x0, predict=True, below=None):
     pb, start = optimal_start(pb, law, options)
     x = initial_creep(pb) if x0 is None else np.broadcast_to(x0, start.shape)
     unknown = np.isnan(start).any(axis=1)
-    sol = solve_batch(pb, options, np.where(unknown[:, None], x, start), predict=unknown.any())
-    return pb, sol
+    x = np.where(unknown[:, None], x, start)
+    if has_multiple_equilibria(pb.fluid):  # from the search's creeps, as `solve` (since
+        return pb, solve_near(pb, options, x)  # session 37; followed from zero torque before)
+    return pb, solve_batch(pb, options, x, predict=unknown.any())
 
 
 def at_optimal_forces(pb, law, options):

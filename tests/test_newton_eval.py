@@ -1,6 +1,8 @@
 """What the batched Newton solver evaluates: the residual alone for the points near their
 solutions, apart from the rest of the batch (`ballcvt.solvers.newton_eval`, session 34)."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -44,9 +46,8 @@ def test_points_near_their_solution_skip_the_jacobian_and_keep_their_answers():
     v, pb, x = _batch()
     start = x * np.where(np.arange(x.shape[0]) % 2 == 0, 1 + 1e-6, 1.05)[:, None]
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(newton_eval, "SPLIT_MIN", 10**9)  # never apart
-        whole = _counted(mp)
-        ref = solve_batch(pb, v.options, start, predict=False)
+        whole = _counted(mp)  # never apart:
+        ref = solve_batch(pb, replace(v.options, split_min=10**9), start, predict=False)
     with pytest.MonkeyPatch.context() as mp:
         split = _counted(mp)
         got = solve_batch(pb, v.options, start, predict=False)
@@ -75,3 +76,25 @@ def test_near_means_the_secant_range_except_under_a_law_with_folds():
     assert confirm_norm(f) == NEAR_NORM
     thermal = f.model_copy(update={"traction_law": "thermal"})
     assert confirm_norm(thermal) == CONFIRM_NORM < NEAR_NORM
+
+
+def test_with_split_min_one_every_point_is_solved_as_alone():
+    """With ``split_min`` 1 a point near its solution is evaluated without the Jacobian
+    whatever its batch, so each point's answer is the one it gets alone, to the bit (the
+    kernels with and without the derivatives round ``chi`` apart in its last bit, and with
+    the default a point's evaluation depended on how many others were near)."""
+    v, pb, x = _batch(8)
+    start = x * np.where(np.arange(8) < 3, 1 + 1e-6, 1.05)[:, None]
+    own = replace(v.options, split_min=1)
+    got = solve_batch(pb, own, start, predict=False)
+    for i in range(8):
+        one = solve_batch(pb.take(np.array([i])), own, start[i : i + 1], predict=False)
+        assert np.array_equal(one.state.creep[0], got.state.creep[i])
+        assert np.array_equal(one.state.body_torque[0], got.state.body_torque[i])
+
+
+def test_split_min_is_at_least_one():
+    from ballcvt.solvers.options import SolverOptions
+
+    with pytest.raises(ValueError, match="split_min"):
+        SolverOptions(split_min=0)

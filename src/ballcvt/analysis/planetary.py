@@ -11,7 +11,7 @@ from ..model.modes import MEMBERS, OperatingMode
 from ..params.drive import Drive
 from ..solvers.options import SolverOptions
 from ..solvers.planetary import ModePoint
-from ..solvers.planetary_batch import limit_load_batch, solve_mode_batch
+from ..solvers.planetary_batch import PROBE, limit_load_batch, limit_load_search, solve_mode_batch
 from ..status import Status
 
 __all__ = ["OperatingMode", "mode_kinematics", "mode_curves", "mode_capacity", "mode_map"]
@@ -128,6 +128,31 @@ def mode_capacity(
     )
 
 
+def _grid(drive, mode, grid, driver, solved):
+    """`solve_mode_batch` of a map's grid ``(ratio, load, limit)`` (arrays ``(ratios,
+    loads)``; ``driver``: ``(driver_speed, clamp_force)``; ``solved``: the options and the
+    batches at zero load and at the limit, per ratio), flat.
+
+    A load above its capacity by more than the bisection's bracket (`PROBE`) is not
+    solved: it is beyond the limit (status 1, its figures NaN), as the carrier-held map
+    leaves the torques above its limit (`ballcvt.analysis.sweeps.grid`): most of a map's
+    Newton iterations in a mode went to those loads, each run to its last iteration, and
+    then to the point solver (issue 26). The others start from the ratio and creeps
+    interpolated in the load between zero load and the limit, where the ideal ratio took
+    twice the passes.
+    """
+    ratio, load, limit = np.broadcast_arrays(*grid)
+    options, (zero, top) = solved
+    share = np.abs(load) / limit  # (NaN where there is no limit: the cold start)
+    tau = zero.actual_ratio[:, None] + share * (top.actual_ratio - zero.actual_ratio)[:, None]
+    x = zero.creep[:, :, None] + share * (top.creep - zero.creep)[:, :, None]
+    solve = np.flatnonzero(~(np.abs(load) > limit * (1.0 + PROBE)).ravel())
+    point = ModePoint(ratio.ravel()[solve], load.ravel()[solve], *driver)
+    start = (tau.ravel()[solve], x.reshape(x.shape[0], -1)[:, solve])
+    got = solve_mode_batch(drive, mode, point, options, start=start)
+    return got.expand(solve, ratio.size, Status.BEYOND_LIMIT)
+
+
 def mode_map(
     drive, mode: OperatingMode, ratios, loads, *, driver_speed: float, clamp_force: float
 ):
@@ -170,21 +195,16 @@ def mode_map(
     here, opts = Drive(drive.design, drive.fluid, drive.architecture), _options(drive)
     zero = solve_mode_batch(here, mode, ModePoint(ratios, 0.0, driver_speed, clamp_force), opts)
     brake = zero.braking_direction(mode)
-    limit = limit_load_batch(here, mode, ModePoint(ratios, brake, driver_speed, clamp_force), opts)
-    at_limit = solve_mode_batch(
-        here, mode, ModePoint(ratios, brake * limit, driver_speed, clamp_force), opts
+    limit, at_limit = limit_load_search(
+        here, mode, ModePoint(ratios, brake, driver_speed, clamp_force), opts, zero=zero
     )
     if np.ndim(loads) == 0:
         top = 1.02 * float(np.nanmax(limit)) if np.isfinite(limit).any() else 1.0
         loads = np.linspace(top / int(loads), top, int(loads))
     loads = np.asarray(loads, dtype=float)
     r, t = np.meshgrid(ratios, loads, indexing="ij")
-    got = solve_mode_batch(
-        here,
-        mode,
-        ModePoint(r.ravel(), (brake[:, None] * t).ravel(), driver_speed, clamp_force),
-        opts,
-    )
+    got = _grid(here, mode, (r, brake[:, None] * t, limit[:, None]), (driver_speed, clamp_force),
+                (opts, (zero, at_limit)))  # fmt: skip
     drn, drv = MEMBERS.index(mode.driven), MEMBERS.index(mode.driver)
     shape = r.shape
     # no equilibrium beyond the capacity: that load is beyond the limit, as in the default map

@@ -7,25 +7,40 @@ per mode by bisection on the load.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-from ..equilibrium.problem import OperatingInputs, make_problem
+from ..equilibrium.problem import EquilibriumProblem, OperatingInputs, make_problem
 from ..equilibrium.residual import balancing_output_torque
 from ..model.architectures import contact_layout
-from ..model.inertia import max_carrier_speed
 from ..model.modes import MEMBERS, OperatingMode, member_torques, resolve_mode
-from ..model.traction.base import has_multiple_equilibria
+from ..model.traction.base import has_multiple_equilibria, traction_rises_with_creep
 from ..params.drive import Drive
 from ..performance.efficiency import LOSS_KINDS, loss_breakdown, power_losses
 from ..status import Status
+from .admissible import CREEP_RTOL
 from .limit import traction_ceiling_torque
-from .newton import initial_creep, solve_batch
+from .newton import BatchSolution, initial_creep, solve_batch
 from .options import SolverOptions
-from .planetary import ModePoint, carrier_frame_problem, ratio_settles, ratio_tolerance
+from .planetary import (
+    ModePoint,
+    carrier_frame_problem,
+    next_ratio,
+    ratio_settles,
+    ratio_tolerance,
+)
+from .planetary_pinned import carrier_speed_bound, held_creep_loads, member_speeds
 
-__all__ = ["ModeBatch", "solve_mode_batch", "limit_load_batch", "PROBE", "PROBES"]
+__all__ = [
+    "ModeBatch",
+    "solve_mode_batch",
+    "limit_load_batch",
+    "limit_load_search",
+    "PROBE",
+    "PROBES",
+    "START_SHARES",
+]
 
 #: Relative step above the bisection's end at a failed solve at which `limit_load_batch`
 #: solves again [-] (twice its default ``rtol``), and how many times it goes on from there.
@@ -38,7 +53,8 @@ class ModeBatch:
     """Outcome of `solve_mode_batch`; arrays ``(n,)`` (speeds and torques ``(3, n)`` in
     the order of `ballcvt.model.modes.MEMBERS`), NaN where ``status`` (a
     `ballcvt.status.Status` code) is not ``CONVERGED``; ``losses`` [W] is ``(k, n)``, one
-    row per kind of `ballcvt.performance.efficiency.LOSS_KINDS` (``loss`` is its total)."""
+    row per kind of `ballcvt.performance.efficiency.LOSS_KINDS` (``loss`` is its total);
+    ``creep`` ``(n_c, n)`` holds the contacts' creeps in the carrier frame [-]."""
 
     status: np.ndarray
     speeds: np.ndarray
@@ -48,6 +64,7 @@ class ModeBatch:
     max_creep: np.ndarray
     circulating_power: np.ndarray
     losses: np.ndarray
+    creep: np.ndarray
 
     @property
     def powers(self) -> np.ndarray:
@@ -66,6 +83,19 @@ class ModeBatch:
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(p_in > 0, np.sum(np.maximum(-self.powers, 0.0), axis=0) / p_in, np.nan)
 
+    def expand(self, index, size: int, status: int) -> ModeBatch:
+        """The batch of ``size`` points with these at ``index`` and every other point
+        at ``status``, its figures NaN."""
+
+        def full(values):
+            out = np.full(np.shape(values)[:-1] + (size,), np.nan)
+            out[..., index] = values
+            return out
+
+        codes = np.full(size, int(status))
+        codes[index] = self.status
+        return ModeBatch(codes, *(full(getattr(self, f.name)) for f in fields(self)[1:]))
+
     def braking_direction(self, mode: OperatingMode) -> np.ndarray:
         """Sign of a load that brakes the driven member: that of its speed in this batch
         (solved at zero load), +1 where it is zero or unknown."""
@@ -78,6 +108,8 @@ def solve_mode_batch(
     point: ModePoint,
     options: SolverOptions = SolverOptions(),
     max_passes: int = 30,
+    rescue=True,
+    start=None,
 ) -> ModeBatch:
     """`solve_mode` on a batch of points, batched through the fast solver.
 
@@ -88,6 +120,15 @@ def solve_mode_batch(
     a point's figures are taken from the pass in which it settles. Points whose speeds are
     out of range are flagged (``Status.OUT_OF_RANGE``), not raised; points whose creeps exceed
     ``design.creep_limit`` are flagged 1.
+
+    ``rescue`` says which points whose Newton run fails go on to the point solver
+    (`ballcvt.solvers.robust`, MINPACK's hybrid method then bracketing, about ten
+    milliseconds a point): every one (True), a mask ``(n,)`` of them, or ``"within"``,
+    those whose creeps stayed within ``design.creep_limit`` (`_solve_pass`). ``start``:
+    ``(ratio (n,), creeps (n_c, n))``, a guess of each point's actual (relative) ratio and
+    carrier-frame creeps (e.g. interpolated between solved loads; NaN: the ideal ratio and
+    the cold start). The fixed point has one solution: a start saves passes, and moves the
+    answer only within the tolerances.
     """
     mode = resolve_mode(mode)
     design, clamp_force = drive.design, point.clamp_force
@@ -102,25 +143,18 @@ def solve_mode_batch(
     )
     n = ratio.size
     layout = contact_layout(design, drive.architecture)
-    w_max = float(max_carrier_speed(design, layout, clamp_force)) if mode.centrifugal else np.inf
+    w_max = carrier_speed_bound(drive, mode, clamp_force)
     status = np.full(n, int(Status.NOT_CONVERGED))
-    tau = ratio.copy()
-    x = np.full((n, layout.n_contacts), np.nan)
+    tau, x = _started(ratio, start, layout.n_contacts)
     speeds, torques = np.full((3, n), np.nan), np.full((3, n), np.nan)
     loss, circ, big = (np.full(n, np.nan) for _ in range(3))
     kinds = np.full((len(LOSS_KINDS), n), np.nan)
     settled = np.zeros(n, dtype=bool)
     ratio_tol = ratio_tolerance(options, drive.fluid)
     last = np.full(n, np.inf)  # each point's last change of the ratio
+    memory = (np.full(n, np.nan), np.full(n, np.nan), np.zeros(n))  # of `next_ratio`
     for _ in range(max_passes):
-        sp = mode.speeds(w, tau, check=False)
-        rel = sp["disc0"] - sp["carrier"]
-        ok = (
-            np.isfinite(rel)
-            & (np.abs(rel) > 0)
-            & np.isfinite(sp["carrier"])
-            & (np.abs(sp["carrier"]) < w_max)
-        )
+        sp, ok = member_speeds(mode, w, tau, w_max)
         status[~ok & ~settled] = Status.OUT_OF_RANGE
         todo = np.flatnonzero(ok & ~settled)
         if todo.size == 0:
@@ -131,7 +165,9 @@ def solve_mode_batch(
             ModePoint(ratio[todo], load[todo], w[todo], clamp_force),
             {m: v[todo] for m, v in sp.items()},
         )
-        sol = solve_batch(pb, options, np.where(np.isnan(x[todo]), initial_creep(pb), x[todo]))
+        cold = np.isnan(x[todo])
+        start = np.where(cold, initial_creep(pb), x[todo])
+        sol = _solve_pass(pb, options, start, _rescued(rescue, todo), bool(cold.any()))
         st = sol.state
         x[todo] = st.creep
         new = st.omega[:, -1] / st.omega[:, 0]
@@ -152,7 +188,10 @@ def solve_mode_batch(
             kinds[row, j] = by_kind[kind][fin]
         circ[j] = np.abs(st.input_torque * pb.input_speed)[fin]
         big[j] = np.max(np.abs(st.creep[fin]), axis=-1)
-        tau[todo] = np.where(sol.converged, new, tau[todo])
+        step, seen = next_ratio(tau[todo], new, tuple(m[todo] for m in memory), ratio_tol)
+        for mine, now in zip(memory, seen, strict=True):
+            mine[todo] = now
+        tau[todo] = np.where(sol.converged, np.where(done, new, step), tau[todo])
     status[(status == Status.CONVERGED) & (big > design.creep_limit)] = Status.BEYOND_LIMIT
     keep = status == Status.CONVERGED
     return ModeBatch(
@@ -164,7 +203,59 @@ def solve_mode_batch(
         np.where(keep, big, np.nan),
         np.where(keep, circ, np.nan),
         np.where(keep, kinds, np.nan),
+        np.where(keep, x.T, np.nan),
     )
+
+
+def _started(ratio, start, nc: int):
+    """The first pass's ratios ``(n,)`` and creeps ``(n, n_c)`` of `solve_mode_batch`
+    (``start`` where finite; else the ideal ratio, and NaN creeps for the cold start)."""
+    if start is None:
+        return ratio.copy(), np.full((ratio.size, nc), np.nan)
+    guess = np.broadcast_to(np.asarray(start[0], dtype=float), ratio.shape)
+    creeps = np.broadcast_to(np.asarray(start[1], dtype=float), (nc, ratio.size)).T
+    return np.where(np.isfinite(guess), guess, ratio), np.array(creeps)
+
+
+def _rescued(rescue, todo):
+    """``rescue`` of `solve_mode_batch` for its points ``todo``."""
+    if isinstance(rescue, str) or np.ndim(rescue) == 0:
+        return rescue
+    return np.asarray(rescue, dtype=bool)[todo]
+
+
+def _solve_pass(pb: EquilibriumProblem, options: SolverOptions, x0, rescue, predict: bool):
+    """One pass of `solve_mode_batch`: `solve_batch` from ``x0`` (with its predictor stage
+    where ``predict``: not from the last pass's creeps, which it would only move away, five
+    iterations a point and a pass), the points whose Newton run failed rescued by the point
+    solver as ``rescue`` says (True: all of them; a mask; ``"within"``: those whose creeps
+    did not run past ``design.creep_limit``). A point whose Newton run fails with its
+    creeps past the limit lies beyond the capacity, as `ballcvt.solvers.admissible.
+    solve_admissible` decides the default mode's points: the capacity's bisection
+    (`limit_load_batch`) so skips the point solver, which took three quarters of a map's
+    time in a mode (issue 26)."""
+    if rescue is True or has_multiple_equilibria(pb.fluid):
+        return solve_batch(pb, options, x0, predict=predict)
+    sol = solve_batch(pb, options, x0, fallback=False, predict=predict)
+    if isinstance(rescue, str):
+        limit = float(pb.design.creep_limit) * (1.0 + CREEP_RTOL)
+        rescue = ~(np.max(np.abs(sol.state.creep), axis=-1) > limit)
+    idx = np.flatnonzero(~sol.converged & rescue)
+    if idx.size == 0:
+        return sol
+    again = solve_batch(pb.take(idx), options, np.asarray(x0)[idx])
+    return BatchSolution(
+        sol.state.put(idx, again.state),
+        _put(sol.converged, idx, again.converged),
+        _put(sol.residual_norm, idx, again.residual_norm),
+        _put(sol.iterations, idx, again.iterations),
+    )
+
+
+def _put(values, idx, new) -> np.ndarray:
+    out = np.array(values)
+    out[idx] = new
+    return out
 
 
 def limit_load_batch(
@@ -174,28 +265,51 @@ def limit_load_batch(
     options: SolverOptions = SolverOptions(),
     rtol: float = 1e-3,
     max_steps: int = 40,
+    zero: ModeBatch | None = None,
 ) -> np.ndarray:
     """Largest load torque of the driven member with every ``|C| <= creep_limit``
-    (``drive.design.creep_limit``).
+    (``drive.design.creep_limit``): `limit_load_search`'s first return."""
+    return limit_load_search(drive, mode, point, options, (rtol, max_steps), zero)[0]
+
+
+def limit_load_search(
+    drive: Drive,
+    mode: OperatingMode | str,
+    point: ModePoint,
+    options: SolverOptions = SolverOptions(),
+    bisection: tuple[float, int] = (1e-3, 40),
+    zero: ModeBatch | None = None,
+) -> tuple[np.ndarray, ModeBatch]:
+    """Largest load torque of the driven member with every ``|C| <= creep_limit``
+    (``drive.design.creep_limit``), and the points solved there.
 
     ``point.ratio`` and ``point.driver_speed`` are the batch; ``point.load_torque`` only
     gives the direction of the load searched, by its sign where it is finite and non-zero
     (an overhauling load, negative to the driven member's speed, has its own capacity).
-
     Elsewhere the load brakes the driven member: its sign is that of the driven speed at
-    zero load (positive at geared neutral). Bracketed by doubling from the carrier-frame
-    traction ceiling, then bisected to ``rtol`` on all ratios at once (`solve_mode_batch`).
-    Where the bisection ends at a load whose solve failed (not one beyond the creep
-    limit), the load `PROBE` above it is solved: where that one is admissible, the failure
-    was the solver's, not the capacity's edge, and the bisection goes on above it (up to
-    `PROBES` times; not under a law with more than one equilibrium, where a failed solve
-    is the continuation's verdict: the load lies past the fold of the branch from zero).
+    zero load (positive at geared neutral).
+
+    Under a traction law whose traction never falls with the creep, the load at which a
+    disc contact's creep reaches the limit is found at a held creep
+    (`ballcvt.solvers.planetary_pinned.held_creep_loads`, from an admissible load of
+    `START_SHARES` of the traction ceiling) and kept where a solve there is admissible (issue 26: a tenth of
+    the bisection's solves). The other points are bracketed by doubling from the
+    carrier-frame traction ceiling, then bisected on all ratios at once to ``bisection``
+    = ``(rtol, max_steps)`` (`solve_mode_batch`). Where the bisection ends at a load whose
+    solve failed (not one beyond the creep limit), the load `PROBE` above it is solved:
+    where that one is admissible, the failure was the solver's, not the capacity's edge,
+    and the bisection goes on above it (up to `PROBES` times; not under a law with more
+    than one equilibrium, where a failed solve is the continuation's verdict: the load
+    lies past the fold of the branch from zero). ``zero``: the points solved at zero
+    load, where the caller has them (`solve_mode_batch` of the same points).
 
     Returns
     -------
-    ndarray
+    limit : ndarray
         ``|L|`` at the limit [N m], ``(n,)``; NaN where even zero load is not admissible or
         the speeds are out of range.
+    at_limit : ModeBatch
+        The points solved at that load (in the load's direction).
     """
     mode = resolve_mode(mode)
     ratio, given, w = (
@@ -208,35 +322,99 @@ def limit_load_batch(
         )
     )
     at = replace(point, ratio=ratio, driver_speed=w)
-    zero = solve_mode_batch(drive, mode, replace(at, load_torque=0.0), options)
+    if zero is None:
+        zero = solve_mode_batch(drive, mode, replace(at, load_torque=0.0), options)
     chosen = np.isfinite(given) & (given != 0.0)
     direction = np.where(
         chosen, np.sign(np.where(chosen, given, 1.0)), zero.braking_direction(mode)
     )
+    at = replace(at, load_torque=direction)
     ok0 = zero.status == Status.CONVERGED
-
-    def status(size, rows=None):  # of the loads ``size`` [N m] of the points ``rows`` (all)
-        here = (
-            replace(at, load_torque=direction * size)
-            if rows is None
-            else _rows(at, direction[rows] * size, rows)
-        )
-        return solve_mode_batch(drive, mode, here, options).status
-
     hi = traction_ceiling_torque(
         make_problem(drive, OperatingInputs(ratio, 0.0, point.clamp_force, 1.0))
     )
-    lo = np.zeros(ratio.size)
+
+    def solved(size, rows):  # the points ``rows`` at the loads ``size`` [N m]
+        here = _rows(at, direction[rows] * size, rows)
+        return solve_mode_batch(drive, mode, here, options, rescue="within")
+
+    limit, found = np.full(ratio.size, np.nan), None
+    if traction_rises_with_creep(drive.fluid):
+        limit, found = _held_limits(drive, mode, (at, solved), (zero, hi), options)
+    rest = np.flatnonzero(ok0 & np.isnan(limit))
+    if rest.size:
+        limit[rest] = _bisected(lambda size, rows: solved(size, rest[rows]).status, hi[rest],
+                                has_multiple_equilibria(drive.fluid), bisection)  # fmt: skip
+    limit = np.where(ok0, limit, np.nan)
+    fill = np.flatnonzero(np.isfinite(limit)) if found is None else rest[np.isfinite(limit[rest])]
+    again = solved(limit[fill], fill).expand(fill, ratio.size, Status.NOT_CONVERGED)
+    return limit, again if found is None else _merged(found, again, fill)
+
+
+#: Loads of the first solve of `limit_load_search`'s held-creep path, as shares of the
+#: traction ceiling, each tried where the one before was not admissible [-]: its creeps
+#: and actual ratio start the search, and their change from zero load tells the sign in
+#: which each creep grows.
+START_SHARES = (0.1, 0.02, 0.004)
+
+
+def _held_limits(drive, mode, at_solved, zero_hi, options):
+    """`limit_load_search`'s loads at a held creep (NaN where none is confirmed by an
+    admissible solve) and the points solved there (``at_solved``: the points and their
+    ``solved(size, rows)``; ``zero_hi``: the zero-load batch and the traction ceilings)."""
+    at, solved = at_solved
+    zero, hi = zero_hi
+    n = hi.size
+    first = np.full(n, np.nan)
+    tau, x = np.full(n, np.nan), np.full((n, zero.creep.shape[0]), np.nan)
+    for share in START_SHARES:
+        idx = np.flatnonzero((zero.status == Status.CONVERGED) & np.isnan(first))
+        if idx.size == 0:
+            break
+        probe = solved(share * hi[idx], idx)
+        keep = probe.status == Status.CONVERGED
+        j = idx[keep]
+        first[j], tau[j], x[j] = share * hi[j], probe.actual_ratio[keep], probe.creep[:, keep].T
+    idx = np.flatnonzero(np.isfinite(first))
+    growth = np.sign(x[idx] - zero.creep[:, idx].T)
+    load = held_creep_loads(drive, mode, _rows(at, at.load_torque[idx], idx),
+                            (tau[idx], x[idx], growth), options)  # fmt: skip
+    idx, load = idx[load > first[idx]], load[load > first[idx]]  # (NaN: none)
+    limit = np.full(n, np.nan)
+    found = solved(load, idx).expand(idx, n, Status.NOT_CONVERGED)
+    ok = found.status[idx] == Status.CONVERGED
+    limit[idx[ok]] = load[ok]
+    return limit, found
+
+
+def _merged(first: ModeBatch, second: ModeBatch, rows) -> ModeBatch:
+    """``first`` with the points ``rows`` replaced by ``second``'s (batches of one size)."""
+    values = []
+    for f in fields(first):
+        mine, theirs = np.array(getattr(first, f.name)), getattr(second, f.name)
+        mine[..., rows] = theirs[..., rows]
+        values.append(mine)
+    return ModeBatch(*values)
+
+
+def _bisected(status, hi, multiple: bool, bisection) -> np.ndarray:
+    """The doubling from the traction ceilings ``hi`` [N m] and the bisection of
+    `limit_load_search` (``status(size, rows)``: the statuses of the points ``rows`` at the
+    loads ``size``; ``multiple``: a law with more than one equilibrium; ``bisection``: its
+    ``(rtol, max_steps)``), for points admissible at zero load; returns ``lo`` [N m]."""
+    rtol, max_steps = bisection
+    everyone = np.arange(hi.size)
+    lo = np.zeros(hi.size)
     for _ in range(12):  # double until beyond the capacity
-        up = (status(hi) == Status.CONVERGED) & ok0
+        up = status(hi, everyone) == Status.CONVERGED
         if not up.any():
             break
         lo, hi = np.where(up, hi, lo), np.where(up, 2.0 * hi, hi)
     top = hi.copy()
-    probes = PROBES if not has_multiple_equilibria(drive.fluid) else 0
+    probes = PROBES if not multiple else 0
     for attempt in range(probes + 1):
-        lo, hi, failed = _bisect(status, (lo, hi), ok0, rtol, max_steps)
-        again = np.flatnonzero(failed & ok0 & (hi * (1.0 + PROBE) < top))
+        lo, hi, failed = _bisect(lambda size: status(size, everyone), (lo, hi), rtol, max_steps)
+        again = np.flatnonzero(failed & (hi * (1.0 + PROBE) < top))
         if attempt == probes or again.size == 0:
             break
         above = hi[again] * (1.0 + PROBE)
@@ -244,17 +422,17 @@ def limit_load_batch(
         lo[again[good]], hi[again[good]] = above[good], top[again[good]]
         if not good.any():
             break
-    return np.where(ok0, lo, np.nan)
+    return lo
 
 
-def _bisect(status, bracket, ok0, rtol, max_steps):
+def _bisect(status, bracket, rtol, max_steps):
     """Bisect each point's bracket ``(lo, hi)`` [N m] on ``status(load) == CONVERGED`` to
-    ``rtol`` (the points not ``ok0`` left as they are); returns ``lo``, ``hi`` and whether
-    each ``hi`` was last set by a failed solve (``NOT_CONVERGED``)."""
+    ``rtol``; returns ``lo``, ``hi`` and whether each ``hi`` was last set by a failed solve
+    (``NOT_CONVERGED``)."""
     lo, hi = (np.array(b, dtype=float) for b in bracket)
     failed = np.zeros(lo.size, dtype=bool)
     for _ in range(max_steps):
-        if np.all(~ok0 | (hi - lo <= rtol * hi)):
+        if np.all(hi - lo <= rtol * hi):
             break
         mid = 0.5 * (lo + hi)
         got = status(mid)

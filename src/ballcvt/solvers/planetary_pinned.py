@@ -1,0 +1,152 @@
+"""The capacity of a planetary mode at a held creep (docs/model.md §8, §13; issue 26).
+
+A mode's capacity is the largest load of its driven member with every ``|C| <=
+creep_limit``. Under a traction law whose traction never falls with the creep the creeps
+grow with the load, so it is the load at which a disc contact's creep reaches the limit
+first. As for the carrier-held drive (`ballcvt.solvers.limit`), that creep is held
+`PIN_MARGIN` below the limit and the balances other than the torque condition are solved
+(`ballcvt.solvers.newton.solve_pinned`): the torque condition's value at that solution
+gives the load. The carrier-frame speeds depend on the actual ratio, so each held solve
+is one pass of the fixed point of `ballcvt.solvers.planetary_batch.solve_mode_batch` on
+it (`ballcvt.solvers.planetary.next_ratio`). One such search replaces the dozen batches
+of solves of a bisection on the load; `ballcvt.solvers.planetary_batch.limit_load_batch`
+confirms its answers by a solve there and bisects where one fails.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..model.architectures import contact_layout
+from ..model.inertia import max_carrier_speed
+from ..model.modes import OperatingMode
+from .limit import PIN_MARGIN
+from .newton import solve_pinned
+from .planetary import (
+    ModePoint,
+    carrier_frame_problem,
+    next_ratio,
+    ratio_settles,
+    ratio_tolerance,
+)
+
+__all__ = ["held_creep_loads", "carrier_speed_bound", "member_speeds"]
+
+
+def carrier_speed_bound(drive, mode: OperatingMode, clamp_force: float) -> float:
+    """The carrier speed [rad/s] above which the balls' centrifugal force lifts them off
+    the idler (`ballcvt.model.inertia.max_carrier_speed`), or ``inf`` for a mode without
+    it."""
+    if not mode.centrifugal:
+        return np.inf
+    layout = contact_layout(drive.design, drive.architecture)
+    return float(max_carrier_speed(drive.design, layout, clamp_force))
+
+
+def member_speeds(mode: OperatingMode, driver_speed, tau, bound: float):
+    """The members' speeds [rad/s] at the relative ratio ``tau`` (`OperatingMode.speeds`,
+    unchecked) and whether each point's are in range: the discs turn relative to the
+    carrier, and the carrier turns below ``bound`` (`carrier_speed_bound`)."""
+    sp = mode.speeds(driver_speed, tau, check=False)
+    rel = sp["disc0"] - sp["carrier"]
+    ok = (
+        np.isfinite(rel)
+        & (np.abs(rel) > 0)
+        & np.isfinite(sp["carrier"])
+        & (np.abs(sp["carrier"]) < bound)
+    )
+    return sp, ok
+
+
+def held_creep_loads(drive, mode: OperatingMode, point: ModePoint, start, options):
+    """The loads of the driven member [N m] at which a disc contact's creep reaches the
+    creep limit (module docstring), magnitudes ``(n,)``; NaN where neither disc contact
+    gives one with every creep within the limit.
+
+    Parameters
+    ----------
+    drive : Drive
+        Design (its ``creep_limit``), fluid and architecture.
+    mode : OperatingMode
+        Held and driving members.
+    point : ModePoint
+        ``ratio`` and ``driver_speed`` ``(n,)``; ``load_torque`` the direction of the load
+        (its sign) ``(n,)``.
+    start : tuple of ndarray
+        An admissible solved load of each point: the actual (relative) ratio ``(n,)``
+        [-], the carrier-frame creeps ``(n, n_c)`` [-] and the sign in which each creep
+        grows with the load ``(n, n_c)``.
+    options : SolverOptions
+        Solver options.
+    """
+    tau0, x0, growth = (np.asarray(v, dtype=float) for v in start)
+    n, nc = x0.shape
+    pin = float(drive.design.creep_limit) * (1.0 - PIN_MARGIN)
+    load = np.full(n, np.nan)
+    first = np.where(np.abs(x0[:, 0]) >= np.abs(x0[:, -1]), 0, nc - 1)  # nearer its limit
+    x0 = x0.copy()
+    x0[:, [0, -1]] = growth[:, [0, -1]] * pin
+    usable = (
+        np.isfinite(tau0) & np.all(np.isfinite(x0), axis=-1) & (growth[:, [0, -1]] != 0).all(-1)
+    )
+    for attempt in range(2):  # the other disc where the first one's load is inadmissible
+        for k in (0, nc - 1):
+            idx = np.flatnonzero(usable & np.isnan(load) & ((first == k) == (attempt == 0)))
+            if idx.size:
+                got = _held(
+                    drive, mode, _rows(point, idx), (tau0[idx], x0[idx]), (k, pin), options
+                )
+                load[idx] = got
+    return load
+
+
+def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> np.ndarray:
+    """The fixed point on the actual ratio with creep ``k`` of ``held = (k, pin)`` held at
+    its value in the start: the load magnitudes [N m] ``(n,)`` (NaN where a solve failed,
+    the speeds left their range, a creep passed ``pin`` or the load does not brake)."""
+    k, pin = held
+    tau, x = (np.array(v, dtype=float) for v in start)
+    n = tau.size
+    ratio, direction, w = (np.broadcast_to(np.asarray(v, dtype=float), (n,))
+                           for v in (point.ratio, point.load_torque, point.driver_speed))  # fmt: skip
+    bound = carrier_speed_bound(drive, mode, point.clamp_force)
+    tol = ratio_tolerance(options, drive.fluid)
+    per_load = mode.torque_condition(1.0)[2]  # the target per unit load: +1 or -1
+    load, last = np.full(n, np.nan), np.full(n, np.inf)
+    memory = (np.full(n, np.nan), np.full(n, np.nan), np.zeros(n))
+    todo = np.arange(n)
+    for _ in range(max_passes):
+        sp, ok = member_speeds(mode, w[todo], tau[todo], bound)
+        todo, sp = todo[ok], {m: v[ok] for m, v in sp.items()}
+        if todo.size == 0:
+            break
+        sub = ModePoint(ratio[todo], 0.0, w[todo], point.clamp_force)
+        pb, sign = carrier_frame_problem(drive, mode, sub, sp)
+        t2, sol = solve_pinned(pb, k, x[todo], options)
+        st = sol.state
+        a, b = pb.torque_weights
+        here = direction[todo] * sign * (a * st.input_torque + b * t2) / per_load
+        x[todo] = st.creep
+        new = st.omega[:, -1] / st.omega[:, 0]
+        change = np.abs(new - tau[todo])
+        settled = ratio_settles(change, last[todo], tau[todo], tol)
+        last[todo] = change
+        within = np.max(np.abs(st.creep), axis=-1) <= pin * (1.0 + 1e-9)
+        good = sol.converged & settled & within & (here > 0.0)
+        load[todo[good]] = here[good]
+        step, seen = next_ratio(tau[todo], new, tuple(m[todo] for m in memory), tol)
+        for mine, now in zip(memory, seen, strict=True):
+            mine[todo] = now
+        tau[todo] = step
+        todo = todo[sol.converged & ~settled & within]
+        if todo.size == 0:
+            break
+    return load
+
+
+def _rows(point: ModePoint, rows) -> ModePoint:
+    """The points ``rows`` of a batch ``point`` (ratio, load and driver speed ``(n,)``)."""
+    return replace(point, ratio=point.ratio[rows], load_torque=point.load_torque[rows],
+                   driver_speed=point.driver_speed[rows])  # fmt: skip

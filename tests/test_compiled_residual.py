@@ -78,13 +78,43 @@ def test_what_it_leaves_to_numpy():
     assert compiled.covers(flat, rs._constants(flat))
     one = build_problem(v.design, v.fluid, v.architecture, 1.0, 10.0, 1500.0, 209.4)
     assert not compiled.covers(one, rs._constants(one))  # not a 1-D batch
+
+
+def _mode_problems(v):
+    """A planetary mode's carrier-frame problems: a turning carrier (tilted: a gyroscopic
+    moment on the axle bearings) and torque conditions other than the output's."""
     drive = Drive(v.design, v.fluid, v.architecture)
-    turning = make_problem(drive, OperatingInputs(np.full(2, 1.5), 10.0, 1500.0, 209.4),
-                           CarrierFrame(carrier_speed=50.0))  # tilted: a gyroscopic moment
-    assert not compiled.covers(turning, rs._constants(turning))
-    weights = make_problem(drive, OperatingInputs(np.ones(2), 10.0, 1500.0, 209.4),
-                           CarrierFrame(torque_weights=(1.0, 1.0), signed_torque=True))
-    assert not compiled.covers(weights, rs._constants(weights))
+    ratio = np.linspace(0.6, 1.6, 4)
+    yield make_problem(drive, OperatingInputs(ratio, 10.0, 1500.0, 209.4),
+                       CarrierFrame(carrier_speed=50.0))
+    for weights in ((1.0, 0.0), (-1.0, 1.0), (1.0, 1.0)):
+        yield make_problem(drive, OperatingInputs(ratio, -15.0, 1500.0, 209.4),
+                           CarrierFrame(carrier_speed=-30.0, torque_weights=weights,
+                                        signed_torque=True))
+
+
+@pytest.mark.parametrize("case", ["table1", "single", "mixed"])  # (no drags: refused there)
+def test_planetary_modes_the_same_as_numpy(case, monkeypatch):
+    """Since session 38 the kernels take the modes' torque condition and gyroscopic
+    moment: the same states and Jacobians as the NumPy path, and the same solutions."""
+    v = _variator(case)
+    for p in _mode_problems(v):
+        assert compiled.covers(p, rs._constants(p))
+        assert np.any(p.gyro_factor) or p.torque_weights != (0.0, 1.0)
+        sol = solve_batch(p, OPTIONS)
+        x = sol.state.creep * 1.2
+        got = rs.evaluate_with_jacobian(p, x, OPTIONS.quadrature)
+        with monkeypatch.context() as m:
+            _numpy_path(m)
+            want = rs.evaluate_with_jacobian(p, x, OPTIONS.quadrature)
+            again = solve_batch(p, OPTIONS)
+        for name in vars(want[0]):
+            assert _relative(getattr(got[0], name), getattr(want[0], name)) < 1e-14, name
+        assert _relative(got[1], want[1]) < 1e-7
+        # (a made-up torque condition can have no equilibrium: the same verdict both ways)
+        assert (sol.converged == again.converged).all() and sol.converged.sum() >= 3
+        ok = sol.converged
+        assert np.allclose(sol.state.creep[ok], again.state.creep[ok], rtol=1e-9, atol=1e-15)
 
 
 def test_no_warning_from_a_problem_of_broadcast_inputs():

@@ -8,8 +8,10 @@ one of three hundred (the traction kernels do the rest). These two kernels do th
 arithmetic in loops, in the same order, so that they give the NumPy path's numbers to
 the last bit or nearly (tests compare them); the NumPy path stays the reference, and the
 one for the problems these kernels do not cover (`covers`): a batch of other than one
-dimension, a torque condition other than the output torque's, the balls' gyroscopic
-moment.
+dimension. Since session 38 they also take the planetary modes' problems (docs/model.md
+§13): a torque condition ``a T_0 + b T_2`` other than the output torque's, and the balls'
+gyroscopic moment on the axle bearings (a mode's evaluation with the Jacobian: 154 -> 61
+us for one point, 429 -> 316 us for ten).
 
 `contact_rows` gives the contact inputs of every row (Eqs. 7-14, 55, 56); the traction
 law is then evaluated at row 0 by the caller, in Python (any registered law); `balance_rows`
@@ -42,14 +44,11 @@ AVAILABLE = njit is not None
 
 
 def covers(problem, constants: dict) -> bool:
-    """Whether the kernels compute ``problem``'s residual (module docstring);
-    ``constants``: its `_balance_constants`."""
-    return (
-        AVAILABLE
-        and problem.tilt.ndim == 1
-        and problem.torque_weights == (0.0, 1.0)
-        and not constants["gyro"]
-    )
+    """Whether the kernels compute ``problem``'s residual (module docstring): a 1-D batch
+    (``constants``, its `_balance_constants`, are not needed since session 38, when the
+    kernels took the planetary modes' torque condition and gyroscopic moment)."""
+    del constants
+    return AVAILABLE and problem.tilt.ndim == 1
 
 
 def evaluate_rows(problem, creep, h, quadrature, memos) -> tuple[dict, np.ndarray]:
@@ -97,6 +96,7 @@ def _inputs(problem, unit, k) -> tuple:
     geometry = (own(problem.rho), own(problem.sz), lay.radius, lay.z_j, problem.radius)
     per_contact = [own(k[name]) for name in ("kappa_load", "load_radius", "rs_rho", "rs_sz")]
     per_point = ("roller_drag", "roller_scale")
+    a, b = (float(w) for w in problem.torque_weights)
     constants = (
         tuple(per_contact) + geometry[1::-1] + (own(k["idler_load_torque"]),),
         tuple(own(k[name]) for name in per_point)
@@ -104,6 +104,7 @@ def _inputs(problem, unit, k) -> tuple:
         (problem.radius, lay.z_j, lay.is_idler),
         (float(des.roller_radius), int(des.n_rollers)),
         _drags(k["shaft_drags"], problem.shape[0]),
+        (a, b, (a, b) == (0.0, 1.0), own(np.broadcast_to(problem.gyro_factor, problem.shape))),
     )
     return geometry, own(problem.input_speed), own(unit), constants, bearings
 
@@ -194,14 +195,19 @@ if AVAILABLE:
         `contact_rows`; ``k``: ``(kappa F_N, F_N r_c, r_S rho, r_S sz, sz, rho,
         idler load torque)`` ``(n, n_c)``, ``(roller drag, F_N0 r_S, n F_N0 r_S, T_2)``
         ``(n,)``, ``(r_c, z_j, is_idler)`` ``(n_c,)``, ``(r_S, n)``, the shaft and
-        between-disc drags (`_drags`); ``bearings``: the roller's and the idler's
+        between-disc drags (`_drags`), and the frame's ``(a, b, standard, gyro_factor
+        (n,))``: the torque condition ``a T_0 + b T_2 = T`` of a planetary mode (the last
+        balance; ``standard``: ``(0, 1)``, the output's, in the paper's form) and the
+        factor of the balls' gyroscopic moment, which loads the axle bearings with the
+        reactions (§13); ``bearings``: the roller's and the idler's
         `speed_torque_constants` and the roller's `load_torque_constants`. Returns ``res``
         ``(n, rows, n_c)``, and of row 0 ``(force, moment, body, t_bl, mu, chi)`` ``(n,
         n_c)``, the axle reactions ``(n, 2)``, ``t_bls`` ``(n,)`` and the input and output
         shafts' drags ``(n, 2)``.
         """
         om, ws = speeds
-        contact, point, layout, ball, drags = k
+        contact, point, layout, ball, drags, frame = k
+        w_a, w_b, standard, gyro = frame
         kappa_load, load_radius, rs_rho, rs_sz, sz, rho, idler_load = contact
         roller_drag, roller_scale, scale, t2 = point
         radius, z_j, is_idler = layout
@@ -228,19 +234,27 @@ if AVAILABLE:
                 a0 = 0.5 * (f_sum + 2.0 * m_u / rs)
                 a1 = 0.5 * (f_sum - 2.0 * m_u / rs)
                 w_s = ws[i, r]
+                g = gyro[i] * w_s  # the gyroscopic load of each axle end (none: as they are)
+                l0, l1 = (math.hypot(a0, g), math.hypot(a1, g)) if g != 0.0 else (a0, a1)
                 t_bls = 2.0 * _speed_torque(w_s, roller) + (
-                    load[0] * abs(a0) ** load[1] + load[0] * abs(a1) ** load[1]
+                    load[0] * abs(l0) ** load[1] + load[0] * abs(l1) ** load[1]
                 )
                 res[i, r, 0] = (m_s - _sign(w_s) * (t_bls + roller_drag[i])) / roller_scale[i]
                 t_in, t_out = _shaft_drags(drags, i, om[i, r, 0], om[i, r, nc - 1])
+                body0 = 0.0
                 for m in range(nc):
                     w = om[i, r, m]
                     t_bl[m] = _speed_torque(w, idler) + idler_load[i, m] if is_idler[m] else 0.0
                     body = n_balls * (-force[m] * radius[m] - moment[m] * z_j[m])
+                    if m == 0:
+                        body0 = body
                     if 0 < m < nc - 1:
                         res[i, r, m] = (body - _sign(w) * t_bl[m]) / scale[i]
-                    elif m == nc - 1:
+                    elif m == nc - 1 and standard:
                         res[i, r, m] = (body - (t2[i] + t_out)) / scale[i]
+                    elif m == nc - 1:
+                        torque = w_a * (-body0 + t_in) + w_b * (body - t_out)
+                        res[i, r, m] = (torque - t2[i]) / scale[i]
                     if r == 0:
                         row0[2, i, m] = body
                 if r == 0:

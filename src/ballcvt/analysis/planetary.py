@@ -12,6 +12,7 @@ from ..params.drive import Drive
 from ..solvers.options import SolverOptions
 from ..solvers.planetary import ModePoint
 from ..solvers.planetary_batch import PROBE, limit_load_batch, limit_load_search, solve_mode_batch
+from ..solvers.planetary_pinned import relative_ratio
 from ..status import Status
 
 __all__ = ["OperatingMode", "mode_kinematics", "mode_curves", "mode_capacity", "mode_map"]
@@ -144,11 +145,11 @@ def _grid(drive, mode, grid, driver, solved):
     ratio, load, limit = np.broadcast_arrays(*grid)
     options, (zero, top) = solved
     share = np.abs(load) / limit  # (NaN where there is no limit: the cold start)
-    tau = zero.actual_ratio[:, None] + share * (top.actual_ratio - zero.actual_ratio)[:, None]
     x = zero.creep[:, :, None] + share * (top.creep - zero.creep)[:, :, None]
     solve = np.flatnonzero(~(np.abs(load) > limit * (1.0 + PROBE)).ravel())
     point = ModePoint(ratio.ravel()[solve], load.ravel()[solve], *driver)
-    start = (tau.ravel()[solve], x.reshape(x.shape[0], -1)[:, solve])
+    x = x.reshape(x.shape[0], -1)[:, solve]
+    start = (relative_ratio(point.ratio, x.T), x)
     got = solve_mode_batch(drive, mode, point, options, start=start)
     return got.expand(solve, ratio.size, Status.BEYOND_LIMIT)
 

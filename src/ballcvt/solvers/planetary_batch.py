@@ -40,6 +40,7 @@ __all__ = [
     "PROBE",
     "PROBES",
     "START_SHARES",
+    "START_ITERATIONS",
 ]
 
 #: Relative step above the bisection's end at a failed solve at which `limit_load_batch`
@@ -334,9 +335,12 @@ def limit_load_search(
         make_problem(drive, OperatingInputs(ratio, 0.0, point.clamp_force, 1.0))
     )
 
-    def solved(size, rows):  # the points ``rows`` at the loads ``size`` [N m]
+    def solved(size, rows, start=None, first=False):  # the points ``rows`` at ``size``
         here = _rows(at, direction[rows] * size, rows)
-        return solve_mode_batch(drive, mode, here, options, rescue="within")
+        if first:  # a start for the held creep: not converging soon, it is tried lower
+            brief = replace(options, max_iterations=START_ITERATIONS)
+            return solve_mode_batch(drive, mode, here, brief, rescue=False, start=start)
+        return solve_mode_batch(drive, mode, here, options, rescue="within", start=start)
 
     limit, found = np.full(ratio.size, np.nan), None
     if traction_rises_with_creep(drive.fluid):
@@ -356,6 +360,11 @@ def limit_load_search(
 #: and actual ratio start the search, and their change from zero load tells the sign in
 #: which each creep grows.
 START_SHARES = (0.1, 0.02, 0.004)
+#: Newton iterations a pass of that first solve may take [-]: from zero load's creeps it
+#: converges in some five where the load is admissible; one beyond the capacity ran to
+#: ``max_iterations`` (40) and took most of the capacity search's time (issue 26). It is
+#: not left to the point solver either: where it fails, the next share is tried.
+START_ITERATIONS = 12
 
 
 def _held_limits(drive, mode, at_solved, zero_hi, options):
@@ -371,17 +380,18 @@ def _held_limits(drive, mode, at_solved, zero_hi, options):
         idx = np.flatnonzero((zero.status == Status.CONVERGED) & np.isnan(first))
         if idx.size == 0:
             break
-        probe = solved(share * hi[idx], idx)
+        probe = solved(share * hi[idx], idx, (zero.actual_ratio[idx], zero.creep[:, idx]), True)
         keep = probe.status == Status.CONVERGED
         j = idx[keep]
         first[j], tau[j], x[j] = share * hi[j], probe.actual_ratio[keep], probe.creep[:, keep].T
     idx = np.flatnonzero(np.isfinite(first))
     growth = np.sign(x[idx] - zero.creep[:, idx].T)
-    load = held_creep_loads(drive, mode, _rows(at, at.load_torque[idx], idx),
-                            (tau[idx], x[idx], growth), options)  # fmt: skip
-    idx, load = idx[load > first[idx]], load[load > first[idx]]  # (NaN: none)
+    load, tau, x = held_creep_loads(drive, mode, _rows(at, at.load_torque[idx], idx),
+                                    (tau[idx], x[idx], growth), options)  # fmt: skip
+    above = load > first[idx]  # (NaN: none)
+    idx, load, start = idx[above], load[above], (tau[above], x[above].T)
     limit = np.full(n, np.nan)
-    found = solved(load, idx).expand(idx, n, Status.NOT_CONVERGED)
+    found = solved(load, idx, start).expand(idx, n, Status.NOT_CONVERGED)
     ok = found.status[idx] == Status.CONVERGED
     limit[idx[ok]] = load[ok]
     return limit, found

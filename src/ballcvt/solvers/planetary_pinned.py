@@ -32,7 +32,7 @@ from .planetary import (
     ratio_tolerance,
 )
 
-__all__ = ["held_creep_loads", "carrier_speed_bound", "member_speeds"]
+__all__ = ["held_creep_loads", "carrier_speed_bound", "member_speeds", "relative_ratio"]
 
 
 def carrier_speed_bound(drive, mode: OperatingMode, clamp_force: float) -> float:
@@ -65,6 +65,9 @@ def held_creep_loads(drive, mode: OperatingMode, point: ModePoint, start, option
     creep limit (module docstring), magnitudes ``(n,)``; NaN where neither disc contact
     gives one with every creep within the limit.
 
+    Also returns the actual (relative) ratios ``(n,)`` and the carrier-frame creeps ``(n,
+    n_c)`` there (NaN where no load), a start for a solve at those loads.
+
     Parameters
     ----------
     drive : Drive
@@ -84,28 +87,40 @@ def held_creep_loads(drive, mode: OperatingMode, point: ModePoint, start, option
     tau0, x0, growth = (np.asarray(v, dtype=float) for v in start)
     n, nc = x0.shape
     pin = float(drive.design.creep_limit) * (1.0 - PIN_MARGIN)
-    load = np.full(n, np.nan)
+    load, ratio, creep = np.full(n, np.nan), np.full(n, np.nan), np.full((n, nc), np.nan)
     first = np.where(np.abs(x0[:, 0]) >= np.abs(x0[:, -1]), 0, nc - 1)  # nearer its limit
-    x0 = x0.copy()
-    x0[:, [0, -1]] = growth[:, [0, -1]] * pin
-    usable = (
-        np.isfinite(tau0) & np.all(np.isfinite(x0), axis=-1) & (growth[:, [0, -1]] != 0).all(-1)
-    )
+    usable = np.all(np.isfinite(x0), axis=-1) & np.all(growth[:, [0, -1]] != 0, axis=-1)
     for attempt in range(2):  # the other disc where the first one's load is inadmissible
-        for k in (0, nc - 1):
-            idx = np.flatnonzero(usable & np.isnan(load) & ((first == k) == (attempt == 0)))
-            if idx.size:
-                got = _held(
-                    drive, mode, _rows(point, idx), (tau0[idx], x0[idx]), (k, pin), options
-                )
-                load[idx] = got
-    return load
+        idx = np.flatnonzero(usable & np.isnan(load))
+        if idx.size == 0:
+            break
+        k = first[idx] if attempt == 0 else nc - 1 - first[idx]  # one batch, either disc
+        x, tau = _held_start(point.ratio[idx], x0[idx], growth[idx], (k, pin))
+        got = _held(drive, mode, _rows(point, idx), (tau, x), (k, pin), options)
+        load[idx], ratio[idx], creep[idx] = got
+    return load, ratio, creep
 
 
-def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> np.ndarray:
-    """The fixed point on the actual ratio with creep ``k`` of ``held = (k, pin)`` held at
-    its value in the start: the load magnitudes [N m] ``(n,)`` (NaN where a solve failed,
-    the speeds left their range, a creep passed ``pin`` or the load does not brake)."""
+def _held_start(ideal, x0, growth, held):
+    """The creeps ``(n, n_c)`` and actual ratios ``(n,)`` a held search starts from: the
+    start's creeps scaled as creep ``k`` of ``held = (k, pin)`` (one per point) to its
+    limit ``pin``, in the sign it grows in, each within the limit (from the start's load the
+    creeps grow near in proportion: the first held solve took 13 iterations from the
+    start's creeps with both discs' set to the limit, 10 so), and the ratio they give
+    (`relative_ratio`)."""
+    k, pin = held
+    rows = np.arange(x0.shape[0])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = np.clip(x0 * (pin / np.abs(x0[rows, k]))[:, None], -pin, pin)
+    x[rows, k] = growth[rows, k] * pin
+    return x, relative_ratio(ideal, x)
+
+
+def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> tuple:
+    """The fixed point on the actual ratio with creep ``k`` of ``held = (k, pin)`` (one
+    contact, or one per point) held at its value in the start: the load magnitudes [N m]
+    ``(n,)`` (NaN where a solve failed, the speeds left their range, a creep passed
+    ``pin`` or the load does not brake), and the actual ratios and creeps there."""
     k, pin = held
     tau, x = (np.array(v, dtype=float) for v in start)
     n = tau.size
@@ -114,7 +129,7 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> np.
     bound = carrier_speed_bound(drive, mode, point.clamp_force)
     tol = ratio_tolerance(options, drive.fluid)
     per_load = mode.torque_condition(1.0)[2]  # the target per unit load: +1 or -1
-    load, last = np.full(n, np.nan), np.full(n, np.inf)
+    load, found, last = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.inf)
     memory = (np.full(n, np.nan), np.full(n, np.nan), np.zeros(n))
     todo = np.arange(n)
     for _ in range(max_passes):
@@ -124,7 +139,7 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> np.
             break
         sub = ModePoint(ratio[todo], 0.0, w[todo], point.clamp_force)
         pb, sign = carrier_frame_problem(drive, mode, sub, sp)
-        t2, sol = solve_pinned(pb, k, x[todo], options)
+        t2, sol = solve_pinned(pb, np.broadcast_to(k, (n,))[todo], x[todo], options)
         st = sol.state
         a, b = pb.torque_weights
         here = direction[todo] * sign * (a * st.input_torque + b * t2) / per_load
@@ -136,6 +151,7 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> np.
         within = np.max(np.abs(st.creep), axis=-1) <= pin * (1.0 + 1e-9)
         good = sol.converged & settled & within & (here > 0.0)
         load[todo[good]] = here[good]
+        found[todo[good]] = new[good]
         step, seen = next_ratio(tau[todo], new, tuple(m[todo] for m in memory), tol)
         for mine, now in zip(memory, seen, strict=True):
             mine[todo] = now
@@ -143,7 +159,16 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> np.
         todo = todo[sol.converged & ~settled & within]
         if todo.size == 0:
             break
-    return load
+    return load, found, np.where(np.isfinite(load)[:, None], x, np.nan)
+
+
+def relative_ratio(ideal, creep) -> np.ndarray:
+    """The actual relative ratio ``omega_2 / omega_0`` of the carrier-frame creeps ``creep``
+    ``(n, n_c)`` at the ideal ratio ``ideal`` [-]: ``tau_ID (1 - C_0) (1 - C_2)`` (the disc
+    contacts' creeps as `ballcvt.equilibrium.residual` defines them, Eqs. 7-9), a first
+    pass's ratio from guessed creeps."""
+    creep = np.asarray(creep, dtype=float)
+    return np.asarray(ideal, dtype=float) * (1.0 - creep[:, 0]) * (1.0 - creep[:, -1])
 
 
 def _rows(point: ModePoint, rows) -> ModePoint:

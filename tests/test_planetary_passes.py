@@ -36,17 +36,26 @@ def test_next_ratio_keeps_its_slope_within_the_noise():
     """Passes closer than `SLOPE_STEPS` tolerances keep the last slope: a change at the
     solves' noise does not give one."""
     memory = (np.array([1.0]), np.array([1.0 + 1e-12]), np.array([0.25]))
-    step, (_, _, slope) = next_ratio(np.array([1.0 + 1e-12]), np.array([1.0 + 5e-12]),
-                                     memory, 1e-13)
-    assert slope[0] == 0.25
+    step, (_, _, slope, secant) = next_ratio(np.array([1.0 + 1e-12]),
+                                             np.array([1.0 + 5e-12]), memory, 1e-13)
+    assert slope[0] == 0.25 and secant[0]
     assert step[0] == pytest.approx(1.0 + 1e-12 + 4e-12 / 0.75, abs=1e-15)
 
 
+def test_next_ratio_plain_at_the_noise():
+    """Within `SECANT_STEPS` tolerances the step is the plain one, and says so (the next
+    pass may then be settled by the noise rule of `ratio_settles`)."""
+    memory = (np.array([1.0]), np.array([1.0 + 1e-12]), np.array([0.25]))
+    step, (*_, secant) = next_ratio(np.array([1.0 + 1e-12]), np.array([1.0 + 1.5e-12]),
+                                    memory, 1e-13)
+    assert step[0] == 1.0 + 1.5e-12 and not secant[0]
+
+
 def test_next_ratio_bounds_its_slope():
-    """A measured slope of 1 or more (no contraction) is clipped to 0.9."""
+    """A measured slope of 1 or more (no contraction) is clipped to 0.99."""
     memory = (np.array([1.0]), np.array([1.1]), np.array([0.0]))
-    _, (_, _, slope) = next_ratio(np.array([1.1]), np.array([1.25]), memory, 1e-13)
-    assert slope[0] == 0.9
+    _, (_, _, slope, _) = next_ratio(np.array([1.1]), np.array([1.25]), memory, 1e-13)
+    assert slope[0] == 0.99
 
 
 @pytest.mark.parametrize("mode", ["disc0_held_disc2_drives", "carrier_held_disc2_drives"])

@@ -153,7 +153,7 @@ def solve_mode_batch(
     settled = np.zeros(n, dtype=bool)
     ratio_tol = ratio_tolerance(options, drive.fluid)
     last = np.full(n, np.inf)  # each point's last change of the ratio
-    memory = (np.full(n, np.nan), np.full(n, np.nan), np.zeros(n))  # of `next_ratio`
+    memory = (np.full(n, np.nan), np.full(n, np.nan), np.zeros(n), np.zeros(n, dtype=bool))
     for _ in range(max_passes):
         sp, ok = member_speeds(mode, w, tau, w_max)
         status[~ok & ~settled] = Status.OUT_OF_RANGE
@@ -174,7 +174,6 @@ def solve_mode_batch(
         new = st.omega[:, -1] / st.omega[:, 0]
         change = np.abs(new - tau[todo])
         done = ~sol.converged | ratio_settles(change, last[todo], tau[todo], ratio_tol)
-        last[todo] = change
         settled[todo[done]] = True
         fin = done & sol.converged
         j = todo[fin]
@@ -192,6 +191,7 @@ def solve_mode_batch(
         step, seen = next_ratio(tau[todo], new, tuple(m[todo] for m in memory), ratio_tol)
         for mine, now in zip(memory, seen, strict=True):
             mine[todo] = now
+        last[todo] = np.where(seen[3], np.inf, change)  # (no noise rule after a secant step)
         tau[todo] = np.where(sol.converged, np.where(done, new, step), tau[todo])
     status[(status == Status.CONVERGED) & (big > design.creep_limit)] = Status.BEYOND_LIMIT
     keep = status == Status.CONVERGED

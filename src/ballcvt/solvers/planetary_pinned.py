@@ -130,7 +130,7 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> tup
     tol = ratio_tolerance(options, drive.fluid)
     per_load = mode.torque_condition(1.0)[2]  # the target per unit load: +1 or -1
     load, found, last = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.inf)
-    memory = (np.full(n, np.nan), np.full(n, np.nan), np.zeros(n))
+    memory = (np.full(n, np.nan), np.full(n, np.nan), np.zeros(n), np.zeros(n, dtype=bool))
     todo = np.arange(n)
     for _ in range(max_passes):
         sp, ok = member_speeds(mode, w[todo], tau[todo], bound)
@@ -147,7 +147,6 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> tup
         new = st.omega[:, -1] / st.omega[:, 0]
         change = np.abs(new - tau[todo])
         settled = ratio_settles(change, last[todo], tau[todo], tol)
-        last[todo] = change
         within = np.max(np.abs(st.creep), axis=-1) <= pin * (1.0 + 1e-9)
         good = sol.converged & settled & within & (here > 0.0)
         load[todo[good]] = here[good]
@@ -155,6 +154,7 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> tup
         step, seen = next_ratio(tau[todo], new, tuple(m[todo] for m in memory), tol)
         for mine, now in zip(memory, seen, strict=True):
             mine[todo] = now
+        last[todo] = np.where(seen[3], np.inf, change)
         tau[todo] = step
         todo = todo[sol.converged & ~settled & within]
         if todo.size == 0:

@@ -149,21 +149,23 @@ FIELDS_3801 = {
 }
 
 
-def test_the_ratio_settles_after_a_plain_step():
-    v = _random_drive("table1", FIELDS_3801["26826"], "double", "viscoelastic")
-    ratio, kw = 1.1321285902722042, {"clamp_force": 9628.581965968811,
-                                     "input_speed_rpm": 45.82813366600011}
-    mode = "disc2_held_disc0_drives"
+def _at_capacity_3801(task, mode, point, sign):
+    """``solve`` at the capacity (times ``sign``: a braking load's) of a campaign 3801
+    task's drive, visco-elastic law; ``point``: ratio, force [N], speed [rpm]."""
+    v = _random_drive("table1", FIELDS_3801[task], "double", "viscoelastic")
+    ratio, force, rpm = point
+    kw = {"clamp_force": force, "input_speed_rpm": rpm}
     cap = v.limit_torque(ratio, **kw, mode=mode)
-    r = v.solve(ratio, cap, **kw, settings=SolveSettings(mode=mode))
+    return v, v.solve(ratio, sign * cap, **kw, settings=SolveSettings(mode=mode))
+
+
+def test_the_ratio_settles_after_a_plain_step():
+    point = (1.1321285902722042, 9628.581965968811, 45.82813366600011)
+    _, r = _at_capacity_3801("26826", "disc2_held_disc0_drives", point, 1.0)
     assert abs(r.eta - r.eta_loss) <= 2e-11  # 5.5e-10 before
 
 
 def test_the_ratio_settles_where_the_map_is_near_marginal():
-    v = _random_drive("table1", FIELDS_3801["13175"], "double", "viscoelastic")
-    ratio, kw = 1.6457076642053492, {"clamp_force": 8281.019530661964,
-                                     "input_speed_rpm": 3843.549368558162}
-    mode = "disc0_held_disc2_drives"
-    cap = v.limit_torque(ratio, **kw, mode=mode)
-    r = v.solve(ratio, -cap, **kw, settings=SolveSettings(mode=mode))  # (braking: negative)
+    point = (1.6457076642053492, 8281.019530661964, 3843.549368558162)
+    v, r = _at_capacity_3801("13175", "disc0_held_disc2_drives", point, -1.0)  # (braking)
     assert max(abs(c.creep) for c in r.relative.contacts.values()) <= v.design.creep_limit

@@ -71,15 +71,16 @@ def test_few_passes_same_answer(v, mode):
         float(one.solution.state.omega[-1] / one.solution.state.omega[0]), rel=1e-12)
 
 
-def _counting(monkeypatch):
+def _counting(monkeypatch, module=newton, name="solve_robust"):
+    """The calls of ``module.name`` from here on (a list that grows by one per call)."""
     calls = []
-    real = newton.solve_robust
+    real = getattr(module, name)
 
     def counted(*args, **kwargs):
         calls.append(1)
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(newton, "solve_robust", counted)
+    monkeypatch.setattr(module, name, counted)
     return calls
 
 
@@ -142,14 +143,7 @@ def test_held_creep_capacity_takes_few_solves(v, monkeypatch):
     dozen batches of a bisection."""
     from ballcvt.solvers import planetary_batch as pbm
 
-    calls = []
-    real = pbm.solve_mode_batch
-
-    def counted(*args, **kwargs):
-        calls.append(1)
-        return real(*args, **kwargs)
-
-    monkeypatch.setattr(pbm, "solve_mode_batch", counted)
+    calls = _counting(monkeypatch, pbm, "solve_mode_batch")
     limit = pbm.limit_load_batch(v, "carrier_held_disc2_drives",
                                  ModePoint(np.array([0.8, 1.4]), np.nan, 30.0, F), v.options)
     assert np.isfinite(limit).all() and len(calls) <= 4

@@ -169,3 +169,23 @@ def test_the_ratio_settles_where_the_map_is_near_marginal():
     point = (1.6457076642053492, 8281.019530661964, 3843.549368558162)
     v, r = _at_capacity_3801("13175", "disc0_held_disc2_drives", point, -1.0)  # (braking)
     assert max(abs(c.creep) for c in r.relative.contacts.values()) <= v.design.creep_limit
+
+
+# Harden task 3804:471 (all cases, session 38): the held-creep capacity (creep 0.288 at
+# the limit, on the flat of the visco-elastic traction curve) was confirmed by a solve
+# started from the held search's solution, where `solve`, from the cold start, found no
+# equilibrium. It is now confirmed from the cold start (and the bisection takes the point
+# where that fails); the bisection's trials go to the point solver as `solve` does.
+FIELDS_3804 = json.loads("""{"aspect_ratio": 9.358616837963298, "roller_radius": 0.0048085431761132015, "theta0_deg": 67.61974549271737, "theta2_deg": 38.64973858757198, "alpha_deg": 17.351463746423182, "n_rollers": 9, "roller_bearing_diameter": 0.00870930742609465, "idler_bearing_diameter": 0.0015800769404693282, "disc_groove_ratio": 4.407093310892721, "idler_groove_ratio": Infinity, "single_idler_groove_ratio": Infinity, "tilt_safety_factor": 0.36000290965673204, "creep_limit": 0.288144109317746, "min_roller_gap": 7.477868520899277e-06, "cam": {"disc": "output", "preload": 9.973618356324486, "ramp_angle_deg": 19.210639422241872, "mean_radius": 0.004363731250905695, "friction": 0.01565461856677617}, "parasitic": null}""")
+
+
+def test_the_held_capacity_is_one_solve_reaches():
+    v = _random_drive("table1", FIELDS_3804, "single", "viscoelastic")
+    ratio, kw = 2.4676744179563976, {"clamp_force": 318.48899521629926,
+                                     "input_speed_rpm": 1093.8751804478875}
+    mode = "disc2_held_disc0_drives"
+    cap = v.limit_torque(ratio, **kw, mode=mode)
+    r = v.solve(ratio, cap, **kw, settings=SolveSettings(mode=mode))  # refused before
+    assert max(abs(c.creep) for c in r.relative.contacts.values()) <= v.design.creep_limit
+    with pytest.raises(TractionLimitError):
+        v.solve(ratio, cap * 1.001, **kw, settings=SolveSettings(mode=mode))

@@ -84,20 +84,20 @@ def _counting(monkeypatch, module=newton, name="solve_robust"):
     return calls
 
 
-def test_rescue_within_skips_the_point_solver_beyond_the_capacity(v, monkeypatch):
-    """A load far beyond the capacity, whose Newton run ends with creeps past the limit,
-    goes to the point solver by default and not with ``rescue="within"``: both say it is
-    not admissible, and the admissible load is the same in both."""
+def test_rescue_false_skips_the_point_solver(v, monkeypatch):
+    """A load far beyond the capacity goes to the point solver by default (as `solve`),
+    not with ``rescue=False`` (the capacity search's first loads, only starts): both say
+    it is not admissible, and the admissible load is the same in both."""
     mode = OperatingMode("disc0", "carrier")
     point = ModePoint(np.array([1.0, 1.0]), np.array([20.0, 2000.0]), 30.0, F)
     calls = _counting(monkeypatch)
     every = solve_mode_batch(v, mode, point, v.options)
     rescued = len(calls)
-    within = solve_mode_batch(v, mode, point, v.options, rescue="within")
+    none = solve_mode_batch(v, mode, point, v.options, rescue=False)
     assert rescued > 0 and len(calls) == rescued
-    assert every.status[0] == within.status[0] == Status.CONVERGED
-    assert every.status[1] != Status.CONVERGED and within.status[1] != Status.CONVERGED
-    assert within.eta[0] == pytest.approx(every.eta[0], abs=1e-12)
+    assert every.status[0] == none.status[0] == Status.CONVERGED
+    assert every.status[1] != Status.CONVERGED and none.status[1] != Status.CONVERGED
+    assert none.eta[0] == pytest.approx(every.eta[0], abs=1e-12)
 
 
 def test_rescue_mask(v, monkeypatch):

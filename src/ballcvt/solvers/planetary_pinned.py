@@ -65,9 +65,6 @@ def held_creep_loads(drive, mode: OperatingMode, point: ModePoint, start, option
     creep limit (module docstring), magnitudes ``(n,)``; NaN where neither disc contact
     gives one with every creep within the limit.
 
-    Also returns the actual (relative) ratios ``(n,)`` and the carrier-frame creeps ``(n,
-    n_c)`` there (NaN where no load), a start for a solve at those loads.
-
     Parameters
     ----------
     drive : Drive
@@ -87,7 +84,7 @@ def held_creep_loads(drive, mode: OperatingMode, point: ModePoint, start, option
     tau0, x0, growth = (np.asarray(v, dtype=float) for v in start)
     n, nc = x0.shape
     pin = float(drive.design.creep_limit) * (1.0 - PIN_MARGIN)
-    load, ratio, creep = np.full(n, np.nan), np.full(n, np.nan), np.full((n, nc), np.nan)
+    load = np.full(n, np.nan)
     first = np.where(np.abs(x0[:, 0]) >= np.abs(x0[:, -1]), 0, nc - 1)  # nearer its limit
     usable = np.all(np.isfinite(x0), axis=-1) & np.all(growth[:, [0, -1]] != 0, axis=-1)
     for attempt in range(2):  # the other disc where the first one's load is inadmissible
@@ -97,8 +94,8 @@ def held_creep_loads(drive, mode: OperatingMode, point: ModePoint, start, option
         k = first[idx] if attempt == 0 else nc - 1 - first[idx]  # one batch, either disc
         x, tau = _held_start(point.ratio[idx], x0[idx], growth[idx], (k, pin))
         got = _held(drive, mode, _rows(point, idx), (tau, x), (k, pin), options)
-        load[idx], ratio[idx], creep[idx] = got
-    return load, ratio, creep
+        load[idx] = got
+    return load
 
 
 def _held_start(ideal, x0, growth, held):
@@ -116,11 +113,11 @@ def _held_start(ideal, x0, growth, held):
     return x, relative_ratio(ideal, x)
 
 
-def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> tuple:
+def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> np.ndarray:
     """The fixed point on the actual ratio with creep ``k`` of ``held = (k, pin)`` (one
     contact, or one per point) held at its value in the start: the load magnitudes [N m]
     ``(n,)`` (NaN where a solve failed, the speeds left their range, a creep passed
-    ``pin`` or the load does not brake), and the actual ratios and creeps there."""
+    ``pin`` or the load does not brake)."""
     k, pin = held
     tau, x = (np.array(v, dtype=float) for v in start)
     n = tau.size
@@ -129,7 +126,7 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> tup
     bound = carrier_speed_bound(drive, mode, point.clamp_force)
     tol = ratio_tolerance(options, drive.fluid)
     per_load = mode.torque_condition(1.0)[2]  # the target per unit load: +1 or -1
-    load, found, last = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.inf)
+    load, last = np.full(n, np.nan), np.full(n, np.inf)
     memory = (np.full(n, np.nan), np.full(n, np.nan), np.zeros(n), np.zeros(n, dtype=bool))
     todo = np.arange(n)
     for _ in range(max_passes):
@@ -150,7 +147,6 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> tup
         within = np.max(np.abs(st.creep), axis=-1) <= pin * (1.0 + 1e-9)
         good = sol.converged & settled & within & (here > 0.0)
         load[todo[good]] = here[good]
-        found[todo[good]] = new[good]
         step, seen = next_ratio(tau[todo], new, tuple(m[todo] for m in memory), tol)
         for mine, now in zip(memory, seen, strict=True):
             mine[todo] = now
@@ -159,7 +155,7 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> tup
         todo = todo[sol.converged & ~settled & within]
         if todo.size == 0:
             break
-    return load, found, np.where(np.isfinite(load)[:, None], x, np.nan)
+    return load
 
 
 def relative_ratio(ideal, creep) -> np.ndarray:

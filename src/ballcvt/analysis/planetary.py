@@ -138,9 +138,9 @@ def _grid(drive, mode, grid, driver, solved):
     solved: it is beyond the limit (status 1, its figures NaN), as the carrier-held map
     leaves the torques above its limit (`ballcvt.analysis.sweeps.grid`): most of a map's
     Newton iterations in a mode went to those loads, each run to its last iteration, and
-    then to the point solver (issue 26). The others start from the ratio and creeps
-    interpolated in the load between zero load and the limit, where the ideal ratio took
-    twice the passes.
+    then to the point solver (issue 26). The others start from the creeps interpolated in
+    the load between zero load and the limit, and the actual ratio they give
+    (`ballcvt.solvers.planetary_pinned.relative_ratio`).
     """
     ratio, load, limit = np.broadcast_arrays(*grid)
     options, (zero, top) = solved

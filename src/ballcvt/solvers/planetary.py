@@ -37,6 +37,7 @@ __all__ = [
     "ratio_tolerance",
     "ratio_settles",
     "next_ratio",
+    "RatioPasses",
     "RATIO_TOL",
     "SECANT_STEPS",
     "RATIO_PER_TOL",
@@ -127,6 +128,39 @@ def next_ratio(tau, new, before, tol):
         slope = np.where(fresh, np.clip(measured, *SLOPE_BOUNDS), slope)
     far = np.abs(new - tau) > SECANT_STEPS * tol * np.abs(tau)
     return np.where(far, tau + (new - tau) / (1.0 - slope), new), (tau, new, slope, far)
+
+
+class RatioPasses:
+    """The fixed point on the actual ratio over a batch of ``n`` points, pass by pass:
+    its tolerance (`ratio_tolerance`), each point's last change (``inf`` before the first
+    pass and after a secant step, whose pass the noise rule of `ratio_settles` must not
+    settle) and the memory of `next_ratio`. Used by the batched passes of
+    `ballcvt.solvers.planetary_batch.solve_mode_batch` and of the held-creep capacity
+    (`ballcvt.solvers.planetary_pinned`)."""
+
+    def __init__(self, n: int, options: SolverOptions, fluid):
+        self.tol = ratio_tolerance(options, fluid)
+        self.last = np.full(n, np.inf)
+        self.memory = (
+            np.full(n, np.nan),
+            np.full(n, np.nan),
+            np.zeros(n),
+            np.zeros(n, dtype=bool),
+        )
+
+    def settles(self, tau, new, todo) -> np.ndarray:
+        """`ratio_settles` of the points ``todo`` (``tau`` ``(n,)``, ``new`` their actual
+        ratios)."""
+        return ratio_settles(np.abs(new - tau[todo]), self.last[todo], tau[todo], self.tol)
+
+    def step(self, tau, new, todo) -> np.ndarray:
+        """`next_ratio` of the points ``todo``: their next ratios; updates the memory and
+        the last changes."""
+        step, seen = next_ratio(tau[todo], new, tuple(m[todo] for m in self.memory), self.tol)
+        for mine, now in zip(self.memory, seen, strict=True):
+            mine[todo] = now
+        self.last[todo] = np.where(seen[3], np.inf, np.abs(new - tau[todo]))
+        return step
 
 
 def ratio_settles(change, last, tau, tol):

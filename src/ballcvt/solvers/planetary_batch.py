@@ -22,13 +22,7 @@ from ..status import Status
 from .limit import traction_ceiling_torque
 from .newton import BatchSolution, initial_creep, solve_batch
 from .options import SolverOptions
-from .planetary import (
-    ModePoint,
-    carrier_frame_problem,
-    next_ratio,
-    ratio_settles,
-    ratio_tolerance,
-)
+from .planetary import ModePoint, RatioPasses, carrier_frame_problem
 from .planetary_pinned import carrier_speed_bound, held_creep_loads, member_speeds
 
 __all__ = [
@@ -150,9 +144,7 @@ def solve_mode_batch(
     loss, circ, big = (np.full(n, np.nan) for _ in range(3))
     kinds = np.full((len(LOSS_KINDS), n), np.nan)
     settled = np.zeros(n, dtype=bool)
-    ratio_tol = ratio_tolerance(options, drive.fluid)
-    last = np.full(n, np.inf)  # each point's last change of the ratio
-    memory = (np.full(n, np.nan), np.full(n, np.nan), np.zeros(n), np.zeros(n, dtype=bool))
+    passes = RatioPasses(n, options, drive.fluid)
     for _ in range(max_passes):
         sp, ok = member_speeds(mode, w, tau, w_max)
         status[~ok & ~settled] = Status.OUT_OF_RANGE
@@ -171,8 +163,7 @@ def solve_mode_batch(
         st = sol.state
         x[todo] = st.creep
         new = st.omega[:, -1] / st.omega[:, 0]
-        change = np.abs(new - tau[todo])
-        done = ~sol.converged | ratio_settles(change, last[todo], tau[todo], ratio_tol)
+        done = ~sol.converged | passes.settles(tau, new, todo)
         settled[todo[done]] = True
         fin = done & sol.converged
         j = todo[fin]
@@ -187,10 +178,7 @@ def solve_mode_batch(
             kinds[row, j] = by_kind[kind][fin]
         circ[j] = np.abs(st.input_torque * pb.input_speed)[fin]
         big[j] = np.max(np.abs(st.creep[fin]), axis=-1)
-        step, seen = next_ratio(tau[todo], new, tuple(m[todo] for m in memory), ratio_tol)
-        for mine, now in zip(memory, seen, strict=True):
-            mine[todo] = now
-        last[todo] = np.where(seen[3], np.inf, change)  # (no noise rule after a secant step)
+        step = passes.step(tau, new, todo)
         tau[todo] = np.where(sol.converged, np.where(done, new, step), tau[todo])
     status[(status == Status.CONVERGED) & (big > design.creep_limit)] = Status.BEYOND_LIMIT
     keep = status == Status.CONVERGED
@@ -284,8 +272,9 @@ def limit_load_search(
     Under a traction law whose traction never falls with the creep, the load at which a
     disc contact's creep reaches the limit is found at a held creep
     (`ballcvt.solvers.planetary_pinned.held_creep_loads`, from an admissible load of
-    `START_SHARES` of the traction ceiling) and kept where a solve there is admissible (issue 26: a tenth of
-    the bisection's solves). The other points are bracketed by doubling from the
+    `START_SHARES` of the traction ceiling) and kept where a solve there from the cold
+    start, as `solve` makes it, is admissible (issue 26: a handful of batched solves for
+    the bisection's dozen). The other points are bracketed by doubling from the
     carrier-frame traction ceiling, then bisected on all ratios at once to ``bisection``
     = ``(rtol, max_steps)`` (`solve_mode_batch`). Where the bisection ends at a load whose
     solve failed (not one beyond the creep limit), the load `PROBE` above it is solved:
@@ -342,6 +331,8 @@ def limit_load_search(
                                 has_multiple_equilibria(drive.fluid), bisection)  # fmt: skip
     limit = np.where(ok0, limit, np.nan)
     fill = np.flatnonzero(np.isfinite(limit)) if found is None else rest[np.isfinite(limit[rest])]
+    if found is not None and fill.size == 0:  # every limit held and confirmed
+        return limit, found
     again = solved(limit[fill], fill).expand(fill, ratio.size, Status.NOT_CONVERGED)
     return limit, again if found is None else _merged(found, again, fill)
 

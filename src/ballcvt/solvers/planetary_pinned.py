@@ -24,13 +24,7 @@ from ..model.inertia import max_carrier_speed
 from ..model.modes import OperatingMode
 from .limit import PIN_MARGIN
 from .newton import solve_pinned
-from .planetary import (
-    ModePoint,
-    carrier_frame_problem,
-    next_ratio,
-    ratio_settles,
-    ratio_tolerance,
-)
+from .planetary import ModePoint, RatioPasses, carrier_frame_problem
 
 __all__ = ["held_creep_loads", "carrier_speed_bound", "member_speeds", "relative_ratio"]
 
@@ -124,10 +118,8 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> np.
     ratio, direction, w = (np.broadcast_to(np.asarray(v, dtype=float), (n,))
                            for v in (point.ratio, point.load_torque, point.driver_speed))  # fmt: skip
     bound = carrier_speed_bound(drive, mode, point.clamp_force)
-    tol = ratio_tolerance(options, drive.fluid)
     per_load = mode.torque_condition(1.0)[2]  # the target per unit load: +1 or -1
-    load, last = np.full(n, np.nan), np.full(n, np.inf)
-    memory = (np.full(n, np.nan), np.full(n, np.nan), np.zeros(n), np.zeros(n, dtype=bool))
+    load, passes = np.full(n, np.nan), RatioPasses(n, options, drive.fluid)
     todo = np.arange(n)
     for _ in range(max_passes):
         sp, ok = member_speeds(mode, w[todo], tau[todo], bound)
@@ -142,16 +134,11 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> np.
         here = direction[todo] * sign * (a * st.input_torque + b * t2) / per_load
         x[todo] = st.creep
         new = st.omega[:, -1] / st.omega[:, 0]
-        change = np.abs(new - tau[todo])
-        settled = ratio_settles(change, last[todo], tau[todo], tol)
+        settled = passes.settles(tau, new, todo)
         within = np.max(np.abs(st.creep), axis=-1) <= pin * (1.0 + 1e-9)
         good = sol.converged & settled & within & (here > 0.0)
         load[todo[good]] = here[good]
-        step, seen = next_ratio(tau[todo], new, tuple(m[todo] for m in memory), tol)
-        for mine, now in zip(memory, seen, strict=True):
-            mine[todo] = now
-        last[todo] = np.where(seen[3], np.inf, change)
-        tau[todo] = step
+        tau[todo] = passes.step(tau, new, todo)
         todo = todo[sol.converged & ~settled & within]
         if todo.size == 0:
             break

@@ -136,10 +136,11 @@ class RatioPasses:
     pass and after a secant step, whose pass the noise rule of `ratio_settles` must not
     settle) and the memory of `next_ratio`. Used by the batched passes of
     `ballcvt.solvers.planetary_batch.solve_mode_batch` and of the held-creep capacity
-    (`ballcvt.solvers.planetary_pinned`)."""
+    (`ballcvt.solvers.planetary_pinned`). ``rtol``: a looser relative tolerance [-] (a
+    start for another search), never a tighter one."""
 
-    def __init__(self, n: int, options: SolverOptions, fluid):
-        self.tol = ratio_tolerance(options, fluid)
+    def __init__(self, n: int, options: SolverOptions, fluid, rtol: float | None = None):
+        self.tol = max(ratio_tolerance(options, fluid), 0.0 if rtol is None else rtol)
         self.last = np.full(n, np.inf)
         self.memory = (
             np.full(n, np.nan),

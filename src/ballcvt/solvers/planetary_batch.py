@@ -34,12 +34,40 @@ __all__ = [
     "PROBES",
     "START_SHARES",
     "START_ITERATIONS",
+    "START_RTOL",
+    "PassPlan",
 ]
 
 #: Relative step above the bisection's end at a failed solve at which `limit_load_batch`
 #: solves again [-] (twice its default ``rtol``), and how many times it goes on from there.
 PROBE = 2e-3
 PROBES = 2
+
+
+@dataclass(frozen=True)
+class PassPlan:
+    """How `solve_mode_batch` runs the fixed point on the actual ratio.
+
+    Attributes
+    ----------
+    max_passes : int
+        Most passes.
+    ratio_rtol : float or None
+        Its relative tolerance [-] where looser than `ballcvt.solvers.planetary.
+        ratio_tolerance` (points solved only as a start for another search); None: that
+        tolerance.
+    second : ndarray or None
+        ``(n,)`` actual ratio [-] the second pass runs at where finite, instead of the
+        next ratio of the first pass (`ballcvt.solvers.planetary.next_ratio`): the fixed
+        point of a held-creep search at the same load, which the first pass, from the
+        ideal ratio and the cold start as `solve` makes it, misses by up to a tenth near
+        the capacity (two to four passes more; the fixed point has one solution, and the
+        passes after the first start from its creeps either way).
+    """
+
+    max_passes: int = 30
+    ratio_rtol: float | None = None
+    second: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -101,7 +129,7 @@ def solve_mode_batch(
     mode: OperatingMode | str,
     point: ModePoint,
     options: SolverOptions = SolverOptions(),
-    max_passes: int = 30,
+    plan: PassPlan = PassPlan(),
     rescue=True,
     start=None,
 ) -> ModeBatch:
@@ -118,7 +146,8 @@ def solve_mode_batch(
     ``rescue`` says which points whose Newton run fails go on to the point solver
     (`ballcvt.solvers.robust`, MINPACK's hybrid method then bracketing, about ten
     milliseconds a point): every one (True, as `solve`), a mask ``(n,)`` of them, or none
-    (False: the capacity search's first loads, which are only starts). ``start``:
+    (False: the capacity search's first loads, which are only starts). ``plan``: the
+    passes' number, tolerance and second ratio (`PassPlan`). ``start``:
     ``(ratio (n,), creeps (n_c, n))``, a guess of each point's actual (relative) ratio and
     carrier-frame creeps (e.g. interpolated between solved loads; NaN: the ideal ratio and
     the cold start). The fixed point has one solution: a start saves passes, and moves the
@@ -144,8 +173,8 @@ def solve_mode_batch(
     loss, circ, big = (np.full(n, np.nan) for _ in range(3))
     kinds = np.full((len(LOSS_KINDS), n), np.nan)
     settled = np.zeros(n, dtype=bool)
-    passes = RatioPasses(n, options, drive.fluid)
-    for _ in range(max_passes):
+    passes = RatioPasses(n, options, drive.fluid, plan.ratio_rtol)
+    for count in range(plan.max_passes):
         sp, ok = member_speeds(mode, w, tau, w_max)
         status[~ok & ~settled] = Status.OUT_OF_RANGE
         todo = np.flatnonzero(ok & ~settled)
@@ -179,6 +208,8 @@ def solve_mode_batch(
         circ[j] = np.abs(st.input_torque * pb.input_speed)[fin]
         big[j] = np.max(np.abs(st.creep[fin]), axis=-1)
         step = passes.step(tau, new, todo)
+        if count == 0 and plan.second is not None:
+            step = np.where(np.isfinite(plan.second[todo]), plan.second[todo], step)
         tau[todo] = np.where(sol.converged, np.where(done, new, step), tau[todo])
     status[(status == Status.CONVERGED) & (big > design.creep_limit)] = Status.BEYOND_LIMIT
     keep = status == Status.CONVERGED
@@ -315,12 +346,13 @@ def limit_load_search(
         make_problem(drive, OperatingInputs(ratio, 0.0, point.clamp_force, 1.0))
     )
 
-    def solved(size, rows, start=None, first=False):  # the points ``rows`` at ``size``
+    def solved(size, rows, start=None, first=False, plan=PassPlan()):  # ``rows`` at ``size``
         here = _rows(at, direction[rows] * size, rows)
         if first:  # a start for the held creep: not converging soon, it is tried lower
             brief = replace(options, max_iterations=START_ITERATIONS)
-            return solve_mode_batch(drive, mode, here, brief, rescue=False, start=start)
-        return solve_mode_batch(drive, mode, here, options, start=start)
+            rough = PassPlan(ratio_rtol=START_RTOL)
+            return solve_mode_batch(drive, mode, here, brief, rough, False, start)
+        return solve_mode_batch(drive, mode, here, options, plan, start=start)
 
     limit, found = np.full(ratio.size, np.nan), None
     if traction_rises_with_creep(drive.fluid):
@@ -347,6 +379,11 @@ START_SHARES = (0.1, 0.02, 0.004)
 #: ``max_iterations`` (40) and took most of the capacity search's time (issue 26). It is
 #: not left to the point solver either: where it fails, the next share is tried.
 START_ITERATIONS = 12
+#: Relative tolerance of that first solve's fixed point on the actual ratio [-]: only its
+#: creeps are used, scaled to the creep limit (`ballcvt.solvers.planetary_pinned`), and
+#: whether it is admissible. Two passes where 1e-13 took five: the held search then
+#: found the same loads to 1e-14 (a map of each mode at 300 rpm, session 39).
+START_RTOL = 1e-4
 
 
 def _held_limits(drive, mode, at_solved, zero_hi, options):
@@ -368,15 +405,15 @@ def _held_limits(drive, mode, at_solved, zero_hi, options):
         first[j], tau[j], x[j] = share * hi[j], probe.actual_ratio[keep], probe.creep[:, keep].T
     idx = np.flatnonzero(np.isfinite(first))
     growth = np.sign(x[idx] - zero.creep[:, idx].T)
-    load = held_creep_loads(drive, mode, _rows(at, at.load_torque[idx], idx),
-                            (tau[idx], x[idx], growth), options)  # fmt: skip
+    load, held = held_creep_loads(drive, mode, _rows(at, at.load_torque[idx], idx),
+                                  (tau[idx], x[idx], growth), options)  # fmt: skip
     above = load > first[idx]  # (NaN: none)
-    idx, load = idx[above], load[above]
+    idx, load, held = idx[above], load[above], held[above]
     limit = np.full(n, np.nan)
     # confirmed from the cold start, as `solve` reaches it: started from the held search's
     # solution, a confirming solve kept a load with a creep at the limit, 0.288, where
     # `solve` found no equilibrium (harden task 3804:471, a disc held, visco-elastic law)
-    found = solved(load, idx).expand(idx, n, Status.NOT_CONVERGED)
+    found = solved(load, idx, plan=PassPlan(second=held)).expand(idx, n, Status.NOT_CONVERGED)
     ok = found.status[idx] == Status.CONVERGED
     limit[idx[ok]] = load[ok]
     return limit, found

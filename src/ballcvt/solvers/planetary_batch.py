@@ -46,12 +46,11 @@ PROBES = 2
 
 @dataclass(frozen=True)
 class PassPlan:
-    """How `solve_mode_batch` runs the fixed point on the actual ratio.
+    """How `solve_mode_batch` runs the fixed point on the actual ratio: at most
+    ``max_passes`` passes (int), to a tolerance and from a second ratio.
 
     Attributes
     ----------
-    max_passes : int
-        Most passes.
     ratio_rtol : float or None
         Its relative tolerance [-] where looser than `ballcvt.solvers.planetary.
         ratio_tolerance` (points solved only as a start for another search); None: that

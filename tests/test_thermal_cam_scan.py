@@ -78,13 +78,41 @@ def test_a_thermal_cam_sweep_is_solve_up_to_its_capacity(ratio):
 
 def test_the_capacity_is_the_torque_solve_reaches():
     """Table I's single-idler drive at 5000 rpm, ratio 1.56, under the cam: the capacity's
-    bisection follows each trial from zero torque, as `solve` does. Started from their
+    bisection ends are followed from zero torque, as `solve` does. Started from their
     admissible end (Newton and the fold test) its trials carried the capacity to 10.785
     N m, where `solve` found no equilibrium on the branch above 10.783 and raised a
-    ConvergenceError inside the reported capacity (session 33)."""
+    ConvergenceError inside the reported capacity (session 33); since session 39 the
+    trials are so started and the two final ends confirmed."""
     single = Variator(THERMAL.design, THERMAL.fluid, "single", traction_law="thermal")
     ratio, kw = float(np.linspace(0.6, 1.8, 6)[4]), {"clamp_law": "cam", "input_speed_rpm": 5000.0}
     limit = single.limit_torque(ratio, **kw)
     assert single.solve(ratio, limit * (1 - 2e-5), **kw).converged
     with pytest.raises(TractionLimitError):
         single.solve(ratio, limit * (1 + 1e-4), **kw)
+
+
+def test_the_bisection_ends_are_those_of_trials_followed_from_zero_torque(monkeypatch):
+    """Table I at 2000 rpm, ratios whose capacity is the fold of the branch: the
+    bisection by Newton from the admissible end, its ends confirmed from zero torque
+    (stepped down by `FOLD_MARGIN` where the continuation stops short of the fold), gives
+    the capacity of the bisection whose every trial is followed from zero torque, within
+    that margin and the bisection's tolerance, and `solve` reaches it."""
+    from ballcvt.solvers.limit import LIMIT_RTOL
+    from ballcvt.solvers.peak import FOLD_MARGIN
+
+    ratios = np.array([1.55, 1.8, 2.0])
+    pb = build_problem(THERMAL.design, THERMAL.fluid, THERMAL.architecture, ratios,
+                       np.zeros(ratios.size), 1000.0, W)  # fmt: skip
+    law = clamp_law("cam", THERMAL.design, None)
+    fast = limit_search(pb, THERMAL.design.creep_limit, OPTIONS, law=law).torque
+
+    def followed(flat, admissible, rows, ends, rtol):
+        trial = lambda p, x0: admissible(p, None, False)  # noqa: E731
+        return capacity._bisect(flat, trial, rows, ends, rtol)
+
+    monkeypatch.setattr(capacity, "_confirmed_bisection", followed)
+    slow = limit_search(pb, THERMAL.design.creep_limit, OPTIONS, law=law).torque
+    share = fast / slow - 1.0
+    assert np.all(share >= -(FOLD_MARGIN + 2 * LIMIT_RTOL)) and np.all(share <= LIMIT_RTOL)
+    for ratio, limit in zip(ratios, fast, strict=True):
+        assert THERMAL.solve(float(ratio), float(limit), **CAM).converged

@@ -89,3 +89,51 @@ def test_a_fold_beyond_the_creep_limit_is_located_by_the_climb(monkeypatch):
     )
     assert torque[0] < fold  # not reached: past the fold
     assert marches == []
+
+
+def test_the_concave_bound_lies_above_a_concave_top():
+    """`_concave_bound` of three points on ``T = 10 - (s - 1)^2`` along a straight line in
+    the creeps (the top at ``s = 1`` between the second and the third): above 10, and
+    infinite where two points coincide."""
+    from ballcvt.solvers.branch_path import Walk
+    from ballcvt.solvers.walk_reach import _concave_bound
+
+    line = np.array([0.6, 0.0, 0.0, 0.8])  # unit direction in the creeps
+    s = np.array([[0.2, 0.9, 1.6], [0.5, 0.5, 1.2]])
+    t = 10.0 - (s - 1.0) ** 2
+    x = s[..., None] * line
+    walk = Walk(t[:, 1], x[:, 1], (t[:, 0], x[:, 0]), (t[:, 2], x[:, 2]), x[:, 1],
+                np.ones(2, dtype=bool), np.zeros(2, dtype=bool))  # fmt: skip
+    bound = _concave_bound(walk, np.ones(2, dtype=bool))
+    assert 10.0 <= bound[0] < 11.0  # 10.62: the first chord at the third point
+    assert np.isinf(bound[1])
+
+
+def test_far_past_the_fold_the_concave_bound_decides_as_the_climb(monkeypatch):
+    """Ratio 2 at 9396 N (fold 161.79 N m): torques from 1.02 to 3 times the fold are
+    found past it with and without the climb skipped above `FAR_MARGIN` over the walk's
+    concave bound, and the climb runs only for the nearer ones (session 39: a thermal
+    cam sweep's capacity scan spent a third of its time in climbs to folds far below its
+    torques)."""
+    import ballcvt.solvers.continuation as continuation
+    import ballcvt.solvers.walk_reach as walk_reach
+
+    force, fold = 9395.82198308934, 161.79
+    torques = fold * np.array([0.9, 1.02, 1.1, 1.5, 3.0])
+    climbs = []
+    real = walk_reach.climb_to_fold
+    monkeypatch.setattr(walk_reach, "climb_to_fold",
+                        lambda p, *a: (climbs.append(p.size), real(p, *a))[1])  # fmt: skip
+
+    def reached(margin):
+        monkeypatch.setattr(walk_reach, "FAR_MARGIN", margin)
+        climbs.clear()
+        _, _, torque = continuation.continue_in_torque(
+            _at(2.0, torques, force), branch_solver(OPTIONS), pinned=branch_pinned(OPTIONS)
+        )
+        return torque == torques, sum(climbs)
+
+    (skipped, few), (climbed, many) = reached(walk_reach.FAR_MARGIN), reached(np.inf)
+    np.testing.assert_array_equal(skipped, [True, False, False, False, False])
+    np.testing.assert_array_equal(skipped, climbed)
+    assert few < many

@@ -94,6 +94,7 @@ def solve_admissible(
     law=None,
     x0=None,
     predict: bool = True,
+    follow: bool = True,
 ) -> Admissibility:
     """Solve a 1-D batch and say which points lie within the traction capacity.
 
@@ -122,6 +123,11 @@ def solve_admissible(
         with more than one equilibrium the points then start from ``x0``,
         `ballcvt.solvers.newton.solve_from`, where otherwise each is followed from zero
         torque).
+    follow : bool
+        Under such a law, from ``x0`` without the predictor stage: whether a point that
+        Newton does not solve on its branch is followed from zero torque (else it is
+        inadmissible: a bisection's trial, whose ends are then confirmed so,
+        `ballcvt.solvers.capacity.interval_search`).
 
     Returns
     -------
@@ -134,7 +140,7 @@ def solve_admissible(
             return solve_clamped(
                 pb,
                 law,
-                lambda p, y: solve_from(p, options, y, fallback, predict),
+                lambda p, y: solve_from(p, options, y, fallback, predict, follow),
                 x,
                 pb.design.max_pressure,
                 lambda p, y: solve_batch(p, options, y, fallback, False),
@@ -142,7 +148,7 @@ def solve_admissible(
     else:
 
         def solve(pb, x, fallback):
-            return pb, solve_from(pb, options, x, fallback, predict)
+            return pb, solve_from(pb, options, x, fallback, predict, follow)
 
     pb, sol = solve(problem, x0, False)
     big = np.max(np.abs(sol.state.creep), axis=-1)

@@ -20,6 +20,7 @@ from ..equilibrium.problem import EquilibriumProblem
 from ..errors import NoEquilibriumError
 from ..model.traction.base import has_multiple_equilibria
 from .clamped import at_ceiling, pressure_bound_force, solve_clamped
+from .peak import FOLD_MARGIN
 from .point import SolverOptions, solve_point
 
 __all__ = ["Capacity", "interval_search", "no_equilibrium_error", "SCAN_POINTS"]
@@ -28,6 +29,10 @@ __all__ = ["Capacity", "interval_search", "no_equilibrium_error", "SCAN_POINTS"]
 SCAN_POINTS = 48
 #: Most bisection steps on one change between admissible and inadmissible torques.
 MAX_STEPS = 60
+#: Under a law with more than one equilibrium, the width of the first bracket [-] (relative to
+#: the end) next to a bisection end the continuation from zero torque does not confirm
+#: (`_confirmed_bisection`): the answer lies within some 1e-4 of it.
+NEAR_BRACKET = 1e-3
 #: Smallest nonzero scan torque, as a share of the bound [-].
 SCAN_POINTS_FLOOR = 1e-4
 #: Under a law with more than one equilibrium, the scan torques followed from zero torque:
@@ -138,27 +143,85 @@ def interval_search(flat: EquilibriumProblem, admissible, top, rtol: float, scre
     i, j = np.nonzero(ok[:, :-1] != ok[:, 1:])
     good = np.where(ok[i, j], j, j + 1)
     bad = np.where(ok[i, j], j + 1, j)
-    a, b, x = grid[i, good], grid[i, bad], creep[i, good]
-    # under a law with more than one equilibrium each trial is followed from zero torque,
-    # as `solve` follows it: from the admissible end's creeps, Newton and the fold test
-    # carried Table I's single-idler thermal cam capacity at 5000 rpm and ratio 1.56 to
-    # 10.785 N m, where `solve` found no equilibrium on the branch above 10.783 (session 33)
-    follow = has_multiple_equilibria(flat.fluid)
-    for _ in range(MAX_STEPS):  # to rtol of the end itself (an end may lie near zero)
-        act = np.flatnonzero(np.abs(b - a) > rtol * np.maximum(a, b))
-        if act.size == 0:
-            break
-        mid = 0.5 * (a[act] + b[act])
-        trial = replace(flat.take(i[act]), output_torque=mid)
-        got = admissible(trial, None if follow else x[act], False)
-        a[act], b[act] = np.where(got.ok, mid, a[act]), np.where(got.ok, b[act], mid)
-        x[act] = np.where(got.ok[:, None], got.creep, x[act])
+    ends = grid[i, good], grid[i, bad], creep[i, good]
+    if has_multiple_equilibria(flat.fluid):
+        a, b, x = _confirmed_bisection(flat, admissible, i, ends, rtol)
+    else:
+        a, b, x = _bisect(flat, lambda pb, x0: admissible(pb, x0, False), i, ends, rtol)
     edge = np.full(grid.shape, np.nan)
     edge[i, j] = a
     conv = converged.reshape(grid.shape)
     zero = np.where(conv[:, :1], creep[:, 0], np.nan)
     scan = (grid, np.where(conv[..., None], creep, np.nan))
     return _assemble(ok, grid, edge), _top_creep(ok, creep, (i, j, x)), zero, scan
+
+
+def _bisect(flat: EquilibriumProblem, trial, rows, ends, rtol: float):
+    """Bisect each change between an admissible and an inadmissible torque to ``rtol`` of
+    the end itself (an end may lie near zero): ``rows`` ``(m,)`` the changes' points of
+    ``flat``, ``ends`` = ``(a, b, x)`` their admissible and inadmissible torques [N m] and
+    the creeps at ``a`` ``(m, n_c)``, ``trial(problem, x0) -> Admissibility`` from the
+    creeps of the admissible end. Returns the final ``(a, b, x)`` (new arrays)."""
+    a, b, x = (np.array(v, dtype=float) for v in ends)
+    for _ in range(MAX_STEPS):
+        act = np.flatnonzero(np.abs(b - a) > rtol * np.maximum(a, b))
+        if act.size == 0:
+            break
+        mid = 0.5 * (a[act] + b[act])
+        got = trial(replace(flat.take(rows[act]), output_torque=mid), x[act])
+        a[act], b[act] = np.where(got.ok, mid, a[act]), np.where(got.ok, b[act], mid)
+        x[act] = np.where(got.ok[:, None], got.creep, x[act])
+    return a, b, x
+
+
+def _confirmed_bisection(flat: EquilibriumProblem, admissible, rows, ends, rtol: float):
+    """`_bisect` under a law with more than one equilibrium, where each point is followed
+    from zero torque, as `solve` follows it: the trials by Newton from the admissible
+    end's creeps alone, kept where they lie on their branch below its fold
+    (`ballcvt.solvers.newton.solve_near` without its continuation), and the two final
+    ends then followed from zero torque. Next to a fold Newton and the fold test accept
+    torques up to the fold, which the continuation stops short of by 1e-5 to 3e-5 of it
+    (Table I's thermal cam, session 38): an admissible end it does not reach is stepped
+    down by `ballcvt.solvers.peak.FOLD_MARGIN`, the margin below a fold at which the
+    limit under a constant force is reported. Where that fails too, or the
+    inadmissible end is reached, the bisection runs again between the unconfirmed end and
+    the scan's, each trial followed from zero torque (session 33: from the admissible
+    end's creeps Table I's single-idler thermal cam capacity at 5000 rpm and ratio 1.56
+    came out 10.785 N m, where `solve` found no equilibrium above 10.783). Each trial
+    costs a Newton run instead of a continuation to next to the fold (a thermal cam
+    sweep's capacity search, session 39)."""
+    a0, b0 = np.array(ends[0], dtype=float), np.array(ends[1], dtype=float)
+    a, b, x = _bisect(flat, lambda pb, x0: admissible(pb, x0, False, False), rows, ends, rtol)
+    m = a.size
+    both = replace(flat.take(np.concatenate([rows, rows])), output_torque=np.concatenate([a, b]))
+    got = admissible(both, None, False)
+    ok_a, ok_b = got.ok[:m], got.ok[m:]
+    x = np.where(ok_a[:, None], got.creep[:m], x)
+    # the admissible end in the fold's sliver: stepped down (an upper end only)
+    down = np.flatnonzero(~ok_a & ~ok_b & (a < b))
+    if down.size:
+        lower = a[down] * (1.0 - FOLD_MARGIN)
+        again = admissible(replace(flat.take(rows[down]), output_torque=lower), None, False)
+        fine = again.ok & (lower > a0[down])
+        a[down[fine]], b[down[fine]] = lower[fine], a[down[fine]]
+        x[down[fine]] = again.creep[fine]
+        ok_a[down[fine]] = True
+    # the rest: between the unconfirmed end and the scan's, followed from zero torque,
+    # first within `NEAR_BRACKET` of the unconfirmed end (the answer lies next to it)
+    redo = np.flatnonzero(~ok_a | ok_b)
+    if redo.size:
+        yes = np.where(ok_b[redo], b[redo], a0[redo])  # the admissible end
+        no = np.where(ok_b[redo], b0[redo], a[redo])
+        start = np.where(ok_b[redo, None], got.creep[m:][redo], np.asarray(ends[2])[redo])
+        near = np.where(ok_b[redo], b[redo], a[redo])  # the unconfirmed end
+        gap = np.where(ok_b[redo], no, yes) - near  # to the other one
+        near = near + np.clip(NEAR_BRACKET * near * np.sign(gap), -np.abs(gap), np.abs(gap))
+        probe = admissible(replace(flat.take(rows[redo]), output_torque=near), None, False)
+        yes, no = np.where(probe.ok, near, yes), np.where(probe.ok, no, near)
+        start = np.where(probe.ok[:, None], probe.creep, start)
+        followed = lambda pb, x0: admissible(pb, None, False)  # noqa: E731 - one line
+        a[redo], b[redo], x[redo] = _bisect(flat, followed, rows[redo], (yes, no, start), rtol)
+    return a, b, x
 
 
 def _scan(points: EquilibriumProblem, admissible, screen, grid):

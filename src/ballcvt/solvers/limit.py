@@ -318,8 +318,8 @@ def limit_search(
     if law is not None:
         spans, creep, x_zero, (scan_t, scan_x) = interval_search(
             flat,
-            lambda pb, x, predict=True: solve_admissible(
-                pb, creep_limit, options, law, x, predict
+            lambda pb, x, predict=True, follow=True: solve_admissible(
+                pb, creep_limit, options, law, x, predict, follow
             ),
             _law_bound(flat, law),
             rtol,

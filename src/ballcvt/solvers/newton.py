@@ -179,9 +179,8 @@ def solve_near(
     return _follow(flat, options, False, x, accept, follow)
 
 
-def solve_from(
-    problem: EquilibriumProblem, options: SolverOptions, x0=None, fallback=True, predict=True
-) -> BatchSolution:
+def solve_from(problem: EquilibriumProblem, options: SolverOptions, x0=None, fallback=True,
+               predict=True, follow=True) -> BatchSolution:  # fmt: skip
     """`solve_batch`, except from starts ``x0`` near the solutions (``predict`` False) under
     a law with more than one equilibrium: `solve_near` there (Newton from them, kept where it
     lands on the branch from zero torque, not past a fold; only the other points followed
@@ -189,9 +188,10 @@ def solve_from(
     the one below and a sweep's points from its scan's creeps so cost a Newton run where
     each was followed from zero torque (Table I's thermal cam sweep, session 33). Not next
     to a fold: there Newton and the fold test accept torques the continuation does not
-    reach (`ballcvt.solvers.capacity.interval_search` follows its bisection's trials)."""
+    reach (`ballcvt.solvers.capacity.interval_search` confirms its bisection's ends so).
+    Without ``follow`` the points Newton leaves are left unconverged (`solve_near`)."""
     if x0 is not None and not predict and has_multiple_equilibria(problem.fluid):
-        return solve_near(problem, options, x0)
+        return solve_near(problem, options, x0, follow)
     return solve_batch(problem, options, x0, fallback, predict)
 
 

@@ -30,13 +30,18 @@ from .branch_path import follow_branch, walks
 from .fold import climb_to_fold
 from .held_creep import disc_to_climb, secant_in_creep
 
-__all__ = ["walk_to_torque", "PAST_RTOL", "CLIMB_BOUND"]
+__all__ = ["walk_to_torque", "PAST_RTOL", "CLIMB_BOUND", "FAR_MARGIN"]
 
 #: Relative margin by which a torque must exceed the largest one the climb met to count
 #: as past the fold [-]: the climb stops within `ballcvt.solvers.held_creep.
 #: FOLD_CREEP_RTOL` of its creep bound (`CLIMB_BOUND`) of the fold's creep, some 1e-7 of
 #: its torque below it; a torque within the margin goes to `reach_torque`.
 PAST_RTOL = 1e-5
+#: Relative margin by which a torque must exceed `_concave_bound` of a walk's last points to
+#: count as past the fold without the climb that locates the fold [-]: a capacity scan's
+#: torques far past their folds (at 2000 rpm, Table I's thermal cam sweep's lie at up to 17
+#: times theirs) spent a third of its time in that climb (session 39).
+FAR_MARGIN = 0.05
 #: Bound on the creeps of the climb to the fold, in creep limits [-]. A solve has no creep
 #: bound, and the fold of a heavily clamped drive can lie beyond the creep limit: a climb
 #: bounded there ended undecided at the limit, and the march in a held creep
@@ -120,16 +125,17 @@ def _bracketed(flat, pinned, walk, idx, at_torque):
 
 def _past_fold(flat, pinned, walk, fell, scale) -> np.ndarray:
     """Whether the points ``fell`` of ``walk`` (their torque fell before their target)
-    lie past their fold: the climb from the walk's last points to the fold (in the disc
-    creep that moved more over its last step, within `CLIMB_BOUND` creep limits
-    ``scale``), clean, below the target by more than `PAST_RTOL`."""
+    lie past their fold: the target above `FAR_MARGIN` over `_concave_bound`, or else the
+    climb from the walk's last points to the fold (in the disc creep that moved more over
+    its last step, within `CLIMB_BOUND` creep limits ``scale``), clean, below the target
+    by more than `PAST_RTOL`."""
     pin_solve, tol = pinned
     nc = flat.layout.n_contacts
     first = disc_to_climb(walk.direction[fell])
     goal = np.broadcast_to(np.asarray(flat.output_torque, dtype=float), (flat.size,))
-    past = np.zeros(flat.size, dtype=bool)
+    past = goal > (1.0 + FAR_MARGIN) * _concave_bound(walk, fell)
     for k in (0, nc - 1):
-        j = np.flatnonzero(first == k)
+        j = np.flatnonzero((first == k) & ~past)
         if j.size == 0:
             continue
         pick = np.flatnonzero(fell)[j]
@@ -138,3 +144,23 @@ def _past_fold(flat, pinned, walk, fell, scale) -> np.ndarray:
         climb = climb_to_fold(flat.take(j), pin_solve, k, CLIMB_BOUND * scale, tol, start, 1.0)
         past[j] = climb.clean & ~climb.at_pin & (goal[j] > climb.torque * (1.0 + PAST_RTOL))
     return past
+
+
+def _concave_bound(walk, fell) -> np.ndarray:
+    """An upper bound [N m] on the fold's torque of the points ``fell`` of ``walk``, from
+    its last three points, ``(s, T)`` in the distance ``s`` along the creeps: the point
+    before the last on the rising side, that one, and the fallen one. Where the torque is
+    concave in ``s`` between them (as next to the top of a traction curve), the chord of
+    each pair extended over the other pair's interval lies above it, so no torque there
+    exceeds the larger of the two chords' values at the far ends."""
+    idx = np.flatnonzero(fell)
+    t_b, x_b = walk.before[0][idx], walk.before[1][idx]
+    t_m, x_m = walk.torque[idx], walk.creep[idx]
+    t_a, x_a = walk.after[0][idx], walk.after[1][idx]
+    s_1 = np.linalg.norm(x_m - x_b, axis=-1)
+    s_2 = np.linalg.norm(x_a - x_m, axis=-1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rise = t_m + (t_m - t_b) / s_1 * s_2  # the first chord, at the fallen point
+        back = t_m + (t_m - t_a) / s_2 * s_1  # the second chord, at the point before
+    bound = np.fmax(np.fmax(rise, back), t_m)
+    return np.where(np.isfinite(bound) & (s_1 > 0) & (s_2 > 0), bound, np.inf)

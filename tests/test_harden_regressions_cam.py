@@ -75,3 +75,33 @@ def test_a_cam_first_force_short_of_the_torque_does_not_end_the_capacity():
     assert largest == pytest.approx(d.creep_limit, rel=2e-2)  # the limit is the creep's
     with pytest.raises(TractionLimitError):
         v.solve(RATIO_2701, limit * 1.001, **kw)
+
+
+# Harden task 3902:3522 (session 39): an input-disc cam on a hub drive at 39,000 rpm and
+# 26 % efficiency. The first pass's force (1,866 N, at the lossless input torque) ran the
+# creeps off; the retry at the pressure limit's force (8,305 N) failed too with its creeps
+# within the limit (Newton's failure, residual 2e-3), but the first pass's creeps were
+# kept, and the study's scattered points (`evaluate_points`) called 118.5 N m beyond the
+# capacity where `solve` settles at 6,289 N and an efficiency of 0.2573. The retry's
+# outcome is now kept, so the point solver takes the point; and the rescued point reports
+# the force of its own fixed point (it reported the ceiling's, and an efficiency of 0.2145).
+FIELDS_3902 = '{"aspect_ratio": 1.5163765125592006, "roller_radius": 0.032792726409047505, "theta0_deg": 63.79660732670419, "theta2_deg": 29.746984039219374, "alpha_deg": 4.574072056977254, "n_rollers": 7, "roller_bearing_diameter": 0.014184185875363409, "idler_bearing_diameter": 0.01831047338935479, "disc_groove_ratio": 1.5494789096618757, "idler_groove_ratio": 3.8331286062232808, "single_idler_groove_ratio": Infinity, "tilt_safety_factor": 0.8489449705042413, "creep_limit": 0.06253980110952811, "min_roller_gap": 0.0007436644349215738, "cam": {"disc": "input", "preload": 1422.9404281005163, "ramp_angle_deg": 6.6689110245419405, "mean_radius": 0.07308961099831203, "friction": 0.04603306777175495}}'
+
+
+def test_scattered_points_under_an_input_cam_are_solve():
+    import numpy as np
+
+    from ballcvt.analysis.sweeps.curves import OperatingRows
+    from ballcvt.analysis.sweeps.points import evaluate_points
+
+    d, f = fixed_oil_hub()
+    v = Variator(d.replace(name="random", **json.loads(FIELDS_3902)), f, "double",
+                 traction_law="viscoelastic")  # fmt: skip
+    ratio, rpm, torque = 1.0407904943055502, 39182.60541471054, 118.47531467747233
+    solved = v.solve(ratio, torque, clamp_law="cam", input_speed_rpm=rpm)
+    rows = OperatingRows.of(v, [ratio], [rpm * np.pi / 30], None, v.clamp_law("cam", None),
+                            v.options)  # fmt: skip
+    got = evaluate_points(rows, [torque])
+    assert got["status"][0] == 0
+    assert got["eta"][0] == pytest.approx(solved.eta, abs=1e-8)
+    assert got["clamp_force"][0] == pytest.approx(solved.clamp_force, rel=1e-8)

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..equilibrium.problem import EquilibriumProblem
 from ..model.traction.base import has_multiple_equilibria, traction_rises_with_creep
-from .clamped import at_ceiling, pressure_bound_force, solve_clamped
+from .clamped import at_ceiling, pressure_bound_force, solve_clamped, with_clamp
 from .newton import initial_creep, solve_batch, solve_from
 from .options import SolverOptions, at_residual_floor, coarse_options
 
@@ -162,8 +162,12 @@ def solve_admissible(
     # with the point solver there (`solve_batch` ignores ``x0`` and ``fallback``): the
     # same run again gives the same answer (it cost a quarter of a thermal cam sweep)
     if unsure.size and not has_multiple_equilibria(pb.fluid):
-        _, again = solve(pb.take(unsure), _restart(problem, x0, sol, unsure), True)
+        got, again = solve(pb.take(unsure), _restart(problem, x0, sol, unsure), True)
         conv[unsure], creep[unsure] = again.converged, again.state.creep
+        if law is not None and law.implicit:  # the rescue's own forces (its fixed point's)
+            force = np.array(np.broadcast_to(pb.clamp_force, conv.shape), dtype=float)
+            force[unsure] = got.clamp_force
+            pb = with_clamp(pb, force)
     big = np.max(np.abs(creep), axis=-1)
     ok = conv & (big <= within)
     beyond = conv | (big > within)

@@ -73,8 +73,12 @@ def test_a_fold_beyond_the_creep_limit_is_located_by_the_climb(monkeypatch):
     there jumps the fold to a creep of 0.1006, still above the step before. The climb
     seeded there, bounded at the creep limit, ended at its bound undecided, and the march
     in a held creep (`reach_torque`) went on to the fold; bounded at `CLIMB_BOUND` limits
-    it brackets the fold, and 287 N m is found past it without the march."""
+    it brackets the fold, and 287 N m is found past it without the march (the climb run
+    even though 287 N m lies far above the walk's concave bound)."""
     import ballcvt.solvers.continuation as continuation
+    import ballcvt.solvers.walk_reach as walk_reach
+
+    monkeypatch.setattr(walk_reach, "FAR_MARGIN", np.inf)
 
     force = 9395.82198308934
     fold = float(limit_torque_batch(_at(2.0, [0.0], force), THERMAL.design.creep_limit, OPTIONS)[0])

@@ -189,3 +189,22 @@ def test_the_held_capacity_is_one_solve_reaches():
     assert max(abs(c.creep) for c in r.relative.contacts.values()) <= v.design.creep_limit
     with pytest.raises(TractionLimitError):
         v.solve(ratio, cap * 1.001, **kw, settings=SolveSettings(mode=mode))
+
+
+# Harden task 3904:25323 (session 39): a disc held, an overhauling load, 907 rpm. The
+# confirming solve of a held-creep capacity once ran its second pass at the held search's
+# actual ratio instead of the first pass's next one (a shortcut of two to four passes):
+# it settled at -2.19 N m, where `solve`, from the ideal ratio, did not settle in 30
+# passes. The confirmation follows `solve`'s own passes again.
+FIELDS_3904 = json.loads("""{"aspect_ratio": 0.7433546888548724, "roller_radius": 0.018089961791140936, "theta0_deg": 60.96301078356534, "theta2_deg": 44.07967600617439, "alpha_deg": 22.919865299085163, "n_rollers": 4, "roller_bearing_diameter": 0.010210719863232742, "idler_bearing_diameter": 0.0020961029249337137, "disc_groove_ratio": 1.5790974021608437, "idler_groove_ratio": 1.4951606387608567, "single_idler_groove_ratio": Infinity, "tilt_safety_factor": 0.5815926733355614, "creep_limit": 0.14262029323806702, "min_roller_gap": 0.001273962418942065, "cam": {"disc": "output", "preload": 386.3359261929641, "ramp_angle_deg": 2.6336956530466553, "mean_radius": 0.03267775957738239, "friction": 0.007699076929960808}, "parasitic": null}""")
+
+
+def test_the_held_capacity_is_confirmed_along_solves_own_passes():
+    v = _random_drive("table1", FIELDS_3904, "double", "isothermal")
+    ratio, kw = 1.1952876067891172, {"clamp_force": 1363.329918039611,
+                                     "input_speed_rpm": 906.7847949063168}
+    mode = "disc0_held_disc2_drives"
+    cap = v.limit_torque(ratio, **kw, mode=mode)
+    # the load that brakes the driven member, negative here (an overhauling direction)
+    r = v.solve(ratio, -cap, **kw, settings=SolveSettings(mode=mode))  # refused before
+    assert max(abs(c.creep) for c in r.relative.contacts.values()) <= v.design.creep_limit

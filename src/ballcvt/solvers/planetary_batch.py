@@ -47,7 +47,7 @@ PROBES = 2
 @dataclass(frozen=True)
 class PassPlan:
     """How `solve_mode_batch` runs the fixed point on the actual ratio: at most
-    ``max_passes`` passes (int), to a tolerance and from a second ratio.
+    ``max_passes`` passes (int), to a tolerance.
 
     Attributes
     ----------
@@ -55,18 +55,10 @@ class PassPlan:
         Its relative tolerance [-] where looser than `ballcvt.solvers.planetary.
         ratio_tolerance` (points solved only as a start for another search); None: that
         tolerance.
-    second : ndarray or None
-        ``(n,)`` actual ratio [-] the second pass runs at where finite, instead of the
-        next ratio of the first pass (`ballcvt.solvers.planetary.next_ratio`): the fixed
-        point of a held-creep search at the same load, which the first pass, from the
-        ideal ratio and the cold start as `solve` makes it, misses by up to a tenth near
-        the capacity (two to four passes more; the fixed point has one solution, and the
-        passes after the first start from its creeps either way).
     """
 
     max_passes: int = 30
     ratio_rtol: float | None = None
-    second: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -173,7 +165,7 @@ def solve_mode_batch(
     kinds = np.full((len(LOSS_KINDS), n), np.nan)
     settled = np.zeros(n, dtype=bool)
     passes = RatioPasses(n, options, drive.fluid, plan.ratio_rtol)
-    for count in range(plan.max_passes):
+    for _ in range(plan.max_passes):
         sp, ok = member_speeds(mode, w, tau, w_max)
         status[~ok & ~settled] = Status.OUT_OF_RANGE
         todo = np.flatnonzero(ok & ~settled)
@@ -207,8 +199,6 @@ def solve_mode_batch(
         circ[j] = np.abs(st.input_torque * pb.input_speed)[fin]
         big[j] = np.max(np.abs(st.creep[fin]), axis=-1)
         step = passes.step(tau, new, todo)
-        if count == 0 and plan.second is not None:
-            step = np.where(np.isfinite(plan.second[todo]), plan.second[todo], step)
         tau[todo] = np.where(sol.converged, np.where(done, new, step), tau[todo])
     status[(status == Status.CONVERGED) & (big > design.creep_limit)] = Status.BEYOND_LIMIT
     keep = status == Status.CONVERGED
@@ -345,13 +335,13 @@ def limit_load_search(
         make_problem(drive, OperatingInputs(ratio, 0.0, point.clamp_force, 1.0))
     )
 
-    def solved(size, rows, start=None, first=False, plan=PassPlan()):  # ``rows`` at ``size``
+    def solved(size, rows, start=None, first=False):  # the points ``rows`` at ``size``
         here = _rows(at, direction[rows] * size, rows)
         if first:  # a start for the held creep: not converging soon, it is tried lower
             brief = replace(options, max_iterations=START_ITERATIONS)
             rough = PassPlan(ratio_rtol=START_RTOL)
             return solve_mode_batch(drive, mode, here, brief, rough, False, start)
-        return solve_mode_batch(drive, mode, here, options, plan, start=start)
+        return solve_mode_batch(drive, mode, here, options, start=start)
 
     limit, found = np.full(ratio.size, np.nan), None
     if traction_rises_with_creep(drive.fluid):
@@ -404,15 +394,15 @@ def _held_limits(drive, mode, at_solved, zero_hi, options):
         first[j], tau[j], x[j] = share * hi[j], probe.actual_ratio[keep], probe.creep[:, keep].T
     idx = np.flatnonzero(np.isfinite(first))
     growth = np.sign(x[idx] - zero.creep[:, idx].T)
-    load, held = held_creep_loads(drive, mode, _rows(at, at.load_torque[idx], idx),
-                                  (tau[idx], x[idx], growth), options)  # fmt: skip
+    load = held_creep_loads(drive, mode, _rows(at, at.load_torque[idx], idx),
+                            (tau[idx], x[idx], growth), options)  # fmt: skip
     above = load > first[idx]  # (NaN: none)
-    idx, load, held = idx[above], load[above], held[above]
+    idx, load = idx[above], load[above]
     limit = np.full(n, np.nan)
     # confirmed from the cold start, as `solve` reaches it: started from the held search's
     # solution, a confirming solve kept a load with a creep at the limit, 0.288, where
     # `solve` found no equilibrium (harden task 3804:471, a disc held, visco-elastic law)
-    found = solved(load, idx, plan=PassPlan(second=held)).expand(idx, n, Status.NOT_CONVERGED)
+    found = solved(load, idx).expand(idx, n, Status.NOT_CONVERGED)
     ok = found.status[idx] == Status.CONVERGED
     limit[idx[ok]] = load[ok]
     return limit, found

@@ -74,16 +74,11 @@ def held_creep_loads(drive, mode: OperatingMode, point: ModePoint, start, option
         grows with the load ``(n, n_c)``.
     options : SolverOptions
         Solver options.
-
-    Returns
-    -------
-    (ndarray, ndarray)
-        The loads, and the actual (relative) ratios [-] of the fixed point there, ``(n,)``.
     """
     tau0, x0, growth = (np.asarray(v, dtype=float) for v in start)
     n, nc = x0.shape
     pin = float(drive.design.creep_limit) * (1.0 - PIN_MARGIN)
-    load, ratio = np.full(n, np.nan), np.full(n, np.nan)
+    load = np.full(n, np.nan)
     first = np.where(np.abs(x0[:, 0]) >= np.abs(x0[:, -1]), 0, nc - 1)  # nearer its limit
     usable = np.all(np.isfinite(x0), axis=-1) & np.all(growth[:, [0, -1]] != 0, axis=-1)
     for attempt in range(2):  # the other disc where the first one's load is inadmissible
@@ -92,8 +87,9 @@ def held_creep_loads(drive, mode: OperatingMode, point: ModePoint, start, option
             break
         k = first[idx] if attempt == 0 else nc - 1 - first[idx]  # one batch, either disc
         x, tau = _held_start(point.ratio[idx], x0[idx], growth[idx], (k, pin))
-        load[idx], ratio[idx] = _held(drive, mode, _rows(point, idx), (tau, x), (k, pin), options)
-    return load, ratio
+        got = _held(drive, mode, _rows(point, idx), (tau, x), (k, pin), options)
+        load[idx] = got
+    return load
 
 
 def _held_start(ideal, x0, growth, held):
@@ -111,11 +107,11 @@ def _held_start(ideal, x0, growth, held):
     return x, relative_ratio(ideal, x)
 
 
-def _held(drive, mode, point, start, held, options, max_passes: int = 30):
+def _held(drive, mode, point, start, held, options, max_passes: int = 30) -> np.ndarray:
     """The fixed point on the actual ratio with creep ``k`` of ``held = (k, pin)`` (one
     contact, or one per point) held at its value in the start: the load magnitudes [N m]
-    and the actual ratios there [-], ``(n,)`` (NaN where a solve failed, the speeds left
-    their range, a creep passed ``pin`` or the load does not brake)."""
+    ``(n,)`` (NaN where a solve failed, the speeds left their range, a creep passed
+    ``pin`` or the load does not brake)."""
     k, pin = held
     tau, x = (np.array(v, dtype=float) for v in start)
     n = tau.size
@@ -124,7 +120,6 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30):
     bound = carrier_speed_bound(drive, mode, point.clamp_force)
     per_load = mode.torque_condition(1.0)[2]  # the target per unit load: +1 or -1
     load, passes = np.full(n, np.nan), RatioPasses(n, options, drive.fluid)
-    found = np.full(n, np.nan)
     todo = np.arange(n)
     for _ in range(max_passes):
         sp, ok = member_speeds(mode, w[todo], tau[todo], bound)
@@ -142,12 +137,12 @@ def _held(drive, mode, point, start, held, options, max_passes: int = 30):
         settled = passes.settles(tau, new, todo)
         within = np.max(np.abs(st.creep), axis=-1) <= pin * (1.0 + 1e-9)
         good = sol.converged & settled & within & (here > 0.0)
-        load[todo[good]], found[todo[good]] = here[good], new[good]
+        load[todo[good]] = here[good]
         tau[todo] = passes.step(tau, new, todo)
         todo = todo[sol.converged & ~settled & within]
         if todo.size == 0:
             break
-    return load, found
+    return load
 
 
 def relative_ratio(ideal, creep) -> np.ndarray:

@@ -190,8 +190,9 @@ def _confirmed_bisection(flat: EquilibriumProblem, admissible, rows, ends, rtol:
     came out 10.785 N m, where `solve` found no equilibrium above 10.783). Each trial
     costs a Newton run instead of a continuation to next to the fold (a thermal cam
     sweep's capacity search, session 39)."""
-    a0, b0 = np.array(ends[0], dtype=float), np.array(ends[1], dtype=float)
-    a, b, x = _bisect(flat, lambda pb, x0: admissible(pb, x0, False, False), rows, ends, rtol)
+    a0, b0, x0 = (np.array(v, dtype=float) for v in ends)
+    near_trial = lambda pb, xs: admissible(pb, xs, predict=False, follow=False)  # noqa: E731
+    a, b, x = _bisect(flat, near_trial, rows, ends, rtol)
     m = a.size
     both = replace(flat.take(np.concatenate([rows, rows])), output_torque=np.concatenate([a, b]))
     got = admissible(both, None, False)
@@ -212,14 +213,14 @@ def _confirmed_bisection(flat: EquilibriumProblem, admissible, rows, ends, rtol:
     if redo.size:
         yes = np.where(ok_b[redo], b[redo], a0[redo])  # the admissible end
         no = np.where(ok_b[redo], b0[redo], a[redo])
-        start = np.where(ok_b[redo, None], got.creep[m:][redo], np.asarray(ends[2])[redo])
+        start = np.where(ok_b[redo, None], got.creep[m:][redo], x0[redo])
         near = np.where(ok_b[redo], b[redo], a[redo])  # the unconfirmed end
         gap = np.where(ok_b[redo], no, yes) - near  # to the other one
         near = near + np.clip(NEAR_BRACKET * near * np.sign(gap), -np.abs(gap), np.abs(gap))
         probe = admissible(replace(flat.take(rows[redo]), output_torque=near), None, False)
         yes, no = np.where(probe.ok, near, yes), np.where(probe.ok, no, near)
         start = np.where(probe.ok[:, None], probe.creep, start)
-        followed = lambda pb, x0: admissible(pb, None, False)  # noqa: E731 - one line
+        followed = lambda pb, xs: admissible(pb, None, False)  # noqa: E731 - one line
         a[redo], b[redo], x[redo] = _bisect(flat, followed, rows[redo], (yes, no, start), rtol)
     return a, b, x
 

@@ -138,7 +138,7 @@ def solve_mode_batch(
     (`ballcvt.solvers.robust`, MINPACK's hybrid method then bracketing, about ten
     milliseconds a point): every one (True, as `solve`), a mask ``(n,)`` of them, or none
     (False: the capacity search's first loads, which are only starts). ``plan``: the
-    passes' number, tolerance and second ratio (`PassPlan`). ``start``:
+    passes' number and tolerance (`PassPlan`). ``start``:
     ``(ratio (n,), creeps (n_c, n))``, a guess of each point's actual (relative) ratio and
     carrier-frame creeps (e.g. interpolated between solved loads; NaN: the ideal ratio and
     the cold start). The fixed point has one solution: a start saves passes, and moves the

@@ -187,24 +187,36 @@ FIELDS_3804 = json.loads("""{"aspect_ratio": 9.358616837963298, "roller_radius":
 FIELDS_3904 = json.loads("""{"aspect_ratio": 0.7433546888548724, "roller_radius": 0.018089961791140936, "theta0_deg": 60.96301078356534, "theta2_deg": 44.07967600617439, "alpha_deg": 22.919865299085163, "n_rollers": 4, "roller_bearing_diameter": 0.010210719863232742, "idler_bearing_diameter": 0.0020961029249337137, "disc_groove_ratio": 1.5790974021608437, "idler_groove_ratio": 1.4951606387608567, "single_idler_groove_ratio": Infinity, "tilt_safety_factor": 0.5815926733355614, "creep_limit": 0.14262029323806702, "min_roller_gap": 0.001273962418942065, "cam": {"disc": "output", "preload": 386.3359261929641, "ramp_angle_deg": 2.6336956530466553, "mean_radius": 0.03267775957738239, "friction": 0.007699076929960808}, "parasitic": null}""")
 
 
+# Harden task 3904:25888 (session 39, fixed in session 40): a disc held, the visco-elastic
+# law, 65 kN. Along the branch from zero load the load passes a maximum (a fold, 3,806 N m)
+# with the creeps at 0.09, below the limit of 0.152. The held-creep search landed beyond
+# the fold, at 3,799 N m with a disc creep at the limit, and the confirming solve there
+# found the branch from zero load (creeps 0.072): admissible, so 3,799 N m was kept, 0.2 %
+# short of where `solve` still converges. A held load is now kept only where its
+# confirming solve finds the held creep (`HELD_MATCH`); this one goes to the bisection.
+FIELDS_25888 = json.loads("""{"aspect_ratio": 2.513681074308028, "roller_radius": 0.06207770827366561, "theta0_deg": 58.16444248911222, "theta2_deg": 25.997640117914003, "alpha_deg": 13.801478202997039, "n_rollers": 5, "roller_bearing_diameter": 0.01611583252483642, "idler_bearing_diameter": 0.04241007762868712, "disc_groove_ratio": 1.727535913991341, "idler_groove_ratio": 2.3444514645377894, "single_idler_groove_ratio": 6.674810840061815, "tilt_safety_factor": 0.8528694850002096, "creep_limit": 0.15177253093622278, "min_roller_gap": 0.0011899719475267645, "cam": {"disc": "output", "preload": 3254.8793918987844, "ramp_angle_deg": 11.028896650941997, "mean_radius": 0.19702219468611518, "friction": 0.030297581341909137}, "parasitic": null}""")
 
 
 CASES = {
     # harden task 3804:471 (session 38), a disc held, the visco-elastic law
-    "3804:471": ("single", "viscoelastic", FIELDS_3804, 2.4676744179563976,
+    "3804:471": ("table1", "single", "viscoelastic", FIELDS_3804, 2.4676744179563976,
                  {"clamp_force": 318.48899521629926, "input_speed_rpm": 1093.8751804478875},
                  "disc2_held_disc0_drives", 1.0),
     # harden task 3904:25323 (below), the load that brakes the driven member negative
-    "3904:25323": ("double", "isothermal", FIELDS_3904, 1.1952876067891172,
+    "3904:25323": ("table1", "double", "isothermal", FIELDS_3904, 1.1952876067891172,
                    {"clamp_force": 1363.329918039611, "input_speed_rpm": 906.7847949063168},
                    "disc0_held_disc2_drives", -1.0),
+    # harden task 3904:25888 (below), the hub's oil, a held load past a fold of the branch
+    "3904:25888": ("hub", "single", "viscoelastic", FIELDS_25888, 0.6198422394002607,
+                   {"clamp_force": 64937.76487495033, "input_speed_rpm": 1387.120866332185},
+                   "disc2_held_disc0_drives", -1.0),
 }  # fmt: skip
 
 
 @pytest.mark.parametrize("task", sorted(CASES))
 def test_the_held_capacity_is_one_solve_reaches(task):
-    arch, law, fields, ratio, kw, mode, sign = CASES[task]
-    v = _random_drive("table1", fields, arch, law)
+    base, arch, law, fields, ratio, kw, mode, sign = CASES[task]
+    v = _random_drive(base, fields, arch, law)
     cap = v.limit_torque(ratio, **kw, mode=mode)
     r = v.solve(ratio, sign * cap, **kw, settings=SolveSettings(mode=mode))  # refused before
     assert max(abs(c.creep) for c in r.relative.contacts.values()) <= v.design.creep_limit

@@ -19,7 +19,7 @@ from ..model.traction.base import has_multiple_equilibria, traction_rises_with_c
 from ..params.drive import Drive
 from ..performance.efficiency import LOSS_KINDS, loss_breakdown, power_losses
 from ..status import Status
-from .limit import traction_ceiling_torque
+from .limit import PIN_MARGIN, traction_ceiling_torque
 from .newton import BatchSolution, initial_creep, solve_batch
 from .options import SolverOptions
 from .planetary import ModePoint, RatioPasses, carrier_frame_problem
@@ -35,6 +35,7 @@ __all__ = [
     "START_SHARES",
     "START_ITERATIONS",
     "START_RTOL",
+    "HELD_MATCH",
     "PassPlan",
 ]
 
@@ -375,6 +376,17 @@ START_ITERATIONS = 12
 START_RTOL = 1e-4
 
 
+#: Relative distance [-] within which the confirming solve of a held-creep load must find
+#: the held disc creep (the larger disc creep at the held value): the same equilibrium as
+#: the held search's. Along a mode's branch from zero load the load can pass a maximum (a
+#: fold) before a creep reaches the limit, even under a traction law whose traction rises
+#: with the creep; the held search then lands on the branch beyond the fold, at a lower
+#: load, and the solve there finds the branch from zero load with its creeps far below the
+#: limit (harden task 3904:25888: 0.072 against 0.152, a capacity 0.2 % short of the
+#: fold). Such a load goes to the bisection.
+HELD_MATCH = 1e-4
+
+
 def _held_limits(drive, mode, at_solved, zero_hi, options):
     """`limit_load_search`'s loads at a held creep (NaN where none is confirmed by an
     admissible solve) and the points solved there (``at_solved``: the points and their
@@ -403,7 +415,9 @@ def _held_limits(drive, mode, at_solved, zero_hi, options):
     # solution, a confirming solve kept a load with a creep at the limit, 0.288, where
     # `solve` found no equilibrium (harden task 3804:471, a disc held, visco-elastic law)
     found = solved(load, idx).expand(idx, n, Status.NOT_CONVERGED)
-    ok = found.status[idx] == Status.CONVERGED
+    disc = np.max(np.abs(found.creep[[0, -1]][:, idx]), axis=0)  # NaN where it failed
+    pin = float(drive.design.creep_limit) * (1.0 - PIN_MARGIN)
+    ok = (found.status[idx] == Status.CONVERGED) & (disc >= pin * (1.0 - HELD_MATCH))
     limit[idx[ok]] = load[ok]
     return limit, found
 

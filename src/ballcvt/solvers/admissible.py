@@ -95,15 +95,16 @@ def solve_admissible(
     x0=None,
     predict: bool = True,
     follow: bool = True,
+    cold=False,
 ) -> Admissibility:
     """Solve a 1-D batch and say which points lie within the traction capacity.
 
     Newton alone first; the point solver only for the points whose Newton run failed
     without its creeps running past the limit (a failure of the method, not of the
     equilibrium). A point whose Newton run fails with its creeps beyond the limit is
-    beyond the capacity at once. This is the admissibility test of the limiting torque
-    (docs/model.md §8, §11), so a point is admissible exactly when its torque is at most
-    the limit.
+    beyond the capacity at once, unless ``cold``. This is the admissibility test of the
+    limiting torque (docs/model.md §8, §11), so a point is admissible exactly when its
+    torque is at most the limit.
 
     Parameters
     ----------
@@ -128,6 +129,15 @@ def solve_admissible(
         Newton does not solve on its branch is followed from zero torque (else it is
         inadmissible: a bisection's trial, whose ends are then confirmed so,
         `ballcvt.solvers.capacity.interval_search`).
+    cold : bool or array_like of bool
+        The points (all, or a mask ``(n,)``) that start from the kinematic start with no
+        solved neighbour: their failed runs go to the point solver whatever their creeps,
+        as `solve`'s do. The rule "beyond at once" holds for a run started next to an
+        equilibrium (a bisection's, a scan's or a continuation's), not for a run from the
+        kinematic start: there Newton can run the creeps past the limit at a point whose
+        equilibrium lies within it (harden task 3903:1810, a cam-clamped drive at 6,364
+        rpm, the visco-elastic law: a study called 6.42 N m beyond the capacity, where
+        `solve` converged at a creep of 0.098 against the limit of 0.106).
 
     Returns
     -------
@@ -157,7 +167,7 @@ def solve_admissible(
     # away) gets nothing from the point solver, which only ever replaces failed creeps
     balanced = sol.residual_norm <= at_residual_floor(options, pb.fluid).tol
     within = creep_limit * (1.0 + CREEP_RTOL)
-    unsure = np.flatnonzero(~conv & ~(big > within) & ~balanced)
+    unsure = np.flatnonzero(~conv & (~(big > within) | cold) & ~balanced)
     # under a law with more than one equilibrium every point was followed from zero torque
     # with the point solver there (`solve_batch` ignores ``x0`` and ``fallback``): the
     # same run again gives the same answer (it cost a quarter of a thermal cam sweep)

@@ -95,16 +95,15 @@ def solve_admissible(
     x0=None,
     predict: bool = True,
     follow: bool = True,
-    cold=False,
 ) -> Admissibility:
     """Solve a 1-D batch and say which points lie within the traction capacity.
 
     Newton alone first; the point solver only for the points whose Newton run failed
     without its creeps running past the limit (a failure of the method, not of the
     equilibrium). A point whose Newton run fails with its creeps beyond the limit is
-    beyond the capacity at once, unless ``cold``. This is the admissibility test of the
-    limiting torque (docs/model.md §8, §11), so a point is admissible exactly when its
-    torque is at most the limit.
+    beyond the capacity at once, unless it started cold (a NaN row of ``x0``). This is the
+    admissibility test of the limiting torque (docs/model.md §8, §11), so a point is
+    admissible exactly when its torque is at most the limit.
 
     Parameters
     ----------
@@ -117,7 +116,16 @@ def solve_admissible(
     law : clamping law, optional
         A torque-following law (`ballcvt.model.clamping`); by default the problem's forces.
     x0 : array_like, optional
-        Starting creeps ``(n, n_c)``.
+        Starting creeps ``(n, n_c)``. A NaN row starts cold: from the kinematic start
+        (`ballcvt.solvers.newton.initial_creep`), with no solved neighbour, and its failed
+        run goes to the point solver whatever its creeps, as `solve`'s does. The rule
+        "beyond at once" holds for a run started next to an equilibrium (a bisection's, a
+        scan's, a continuation's), not for one from the kinematic start: there Newton can
+        run the creeps past the limit at a point whose equilibrium lies within it (harden
+        task 3903:1810, a cam-clamped drive at 6,364 rpm, the visco-elastic law: a study
+        called 6.42 N m beyond the capacity, where `solve` converged at a creep of 0.098
+        against the limit of 0.106). None: every point from the kinematic start, the rule
+        kept (a capacity scan's first torques).
     predict : bool
         Whether the Newton runs start with the predictor stage (`ballcvt.solvers.newton.
         solve_batch`); False when ``x0`` is already close to the solutions (under a law
@@ -129,21 +137,15 @@ def solve_admissible(
         Newton does not solve on its branch is followed from zero torque (else it is
         inadmissible: a bisection's trial, whose ends are then confirmed so,
         `ballcvt.solvers.capacity.interval_search`).
-    cold : bool or array_like of bool
-        The points (all, or a mask ``(n,)``) that start from the kinematic start with no
-        solved neighbour: their failed runs go to the point solver whatever their creeps,
-        as `solve`'s do. The rule "beyond at once" holds for a run started next to an
-        equilibrium (a bisection's, a scan's or a continuation's), not for a run from the
-        kinematic start: there Newton can run the creeps past the limit at a point whose
-        equilibrium lies within it (harden task 3903:1810, a cam-clamped drive at 6,364
-        rpm, the visco-elastic law: a study called 6.42 N m beyond the capacity, where
-        `solve` converged at a creep of 0.098 against the limit of 0.106).
-
     Returns
     -------
     Admissibility
     """
     law = law if follows_torque(law) else None
+    cold = np.zeros(problem.size, dtype=bool)
+    if x0 is not None:
+        cold = np.isnan(np.asarray(x0, dtype=float)).any(axis=-1)
+        x0 = np.where(cold[:, None], initial_creep(problem), x0)
     if law is not None:
 
         def solve(pb, x, fallback):

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...solvers.admissible import solve_admissible
-from ...solvers.newton import initial_creep, solve_batch
+from ...solvers.newton import solve_batch
 from ...status import Status
 from .curves import OperatingRows, derived, optimal_start
 
@@ -110,10 +110,10 @@ def _solve_chunk(points: OperatingRows, idx, torque, force, beyond=False, start=
         # from the search's creeps, near the solutions: no predictor stage, which would
         # only move them to its coarse rule's solutions (as a sweep's `solve_column`)
         predict = bool(np.isnan(x0).any())
-    cold = np.ones(idx.size, dtype=bool) if x0 is None else np.isnan(x0).any(axis=-1)
-    if x0 is not None:
-        x0 = np.where(np.isnan(x0), initial_creep(pb), x0)
-    got = solve_admissible(pb, c_lim, points.options, follows, x0, predict, cold=cold)
+    # rows with no start are cold (NaN: the kinematic start, `solve_admissible`)
+    x0 = np.full((idx.size, pb.layout.n_contacts), np.nan) if x0 is None else x0
+    x0 = np.where(np.isnan(x0).any(axis=-1, keepdims=True), np.nan, x0)
+    got = solve_admissible(pb, c_lim, points.options, follows, x0, predict)
     used = np.array(got.problem.clamp_force, dtype=float)
     # converged but inadmissible (creep or, under a cam, pressure), or running away
     status = np.where(

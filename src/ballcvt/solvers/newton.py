@@ -33,7 +33,16 @@ from .branch_path import walks
 from .continuation import REACH_STEP, continue_in_torque
 from .held_creep import on_branch, turned_back
 from .newton_eval import confirm_norm, evaluate_split
-from .newton_step import MAX_STEP, Iterates, advance, at_free, free_creeps
+from .newton_step import (
+    MAX_STEP,
+    Iterates,
+    advance,
+    at_free,
+    free_creeps,
+    reshape_state,
+    residual_norm,
+    scatter_state,
+)
 from .options import CREEP_BOUNDS, SolverOptions, at_residual_floor
 from .robust import solve_robust
 from .secant import SecantCorrection
@@ -139,7 +148,7 @@ def solve_batch(
     else:
         sol = _solve_flat(flat, x, options, fallback, predict)
     return BatchSolution(
-        state=_reshape(sol.state, shape),
+        state=reshape_state(sol.state, shape),
         converged=sol.converged.reshape(shape),
         residual_norm=sol.residual_norm.reshape(shape),
         iterations=sol.iterations.reshape(shape),
@@ -289,7 +298,7 @@ def _solve_flat(flat, x, options, fallback, predict, patience=None) -> BatchSolu
     ``patience``: as in `_newton`."""
     iterations = np.zeros(flat.size, dtype=int)
     x, state = _staged_newton(flat, x, iterations, options, predict=predict, patience=patience)
-    norm = _norm(state.residual)
+    norm = residual_norm(state.residual)
     bad = np.flatnonzero(~(norm <= options.tol))
     if fallback and bad.size:
         robust = replace(options, method="hybr")
@@ -305,7 +314,7 @@ def _solve_flat(flat, x, options, fallback, predict, patience=None) -> BatchSolu
 
 def _flat_solution(state, iterations, tol) -> BatchSolution:
     """The `BatchSolution` of a 1-D batch at ``state`` (converged: norm <= ``tol``)."""
-    norm = _norm(state.residual)
+    norm = residual_norm(state.residual)
     return BatchSolution(state, norm <= tol, norm, iterations)
 
 
@@ -379,7 +388,7 @@ def solve_pinned(problem: EquilibriumProblem, contact: int, x0, options=None, pa
     x = np.array(x0, dtype=float).reshape(flat.size, nc)  # (0, n_c) too: no rows, no crash
     iterations = np.zeros(flat.size, dtype=int)
     _, state = _staged_newton(flat, x, iterations, options, pinned=contact, patience=patience)
-    norm = _norm(state.residual[:, :-1])
+    norm = residual_norm(state.residual[:, :-1])
     return balancing_output_torque(flat, state), BatchSolution(
         state=state, converged=norm <= options.tol, residual_norm=norm, iterations=iterations
     )
@@ -406,13 +415,15 @@ def _predicts(options, n_points: int) -> bool:
     )
 
 
-def _newton(flat, x, iterations, options, pinned=None, patience=None):
+def _newton(flat, x, iterations, options, pinned=None, patience=None, refresh=None):
     """Damped Newton on the points of the 1-D batch ``flat``; updates ``x`` in place.
 
     ``pinned``: the contact whose creep stays at its value in ``x`` (one, or one per
     point); the output balance (the last residual) is then dropped, the output torque
     being the unknown it defines (`solve_pinned`). ``patience``: a point stops
     (unconverged) after that many iterations without a lower residual norm; None: never.
+    ``refresh``: ``(rows, x) -> problem`` of the points ``rows`` rebuilt at their creeps
+    ``x`` before each evaluation (`ballcvt.solvers.planetary_coupled`); None: ``flat``'s.
 
     Returns the state at the final ``x`` of every point: each point's last evaluation,
     or a fresh one for the points whose last move was not evaluated.
@@ -440,7 +451,8 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
             break
         whole = active.size == n  # every point still iterates: no gathers or scatters
         at = slice(None) if whole else active  # (views of every point: no index arrays)
-        sub, xa = (flat, x) if whole else (flat.take(active), x[active])
+        xa = x if whole else x[active]
+        sub = _problem(flat, None if whole else active, xa, refresh)
         jac = None
         if confirm:
             state = evaluate(sub, xa, options.quadrature)
@@ -450,13 +462,13 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
             if pinned is not None:
                 jac = at_free(jac[:, :m], free, at, same)
         iterations[at] += 1
-        final = state if final is None or whole else _scatter(final, state, active)
+        final = state if final is None or whole else scatter_state(final, state, active)
         fresh[at] = True
         res = np.ascontiguousarray(state.residual[:, :m])
         # near its solution a point steps with its last Jacobian, corrected
         jac = secant.update(active, at_free(xa, free, at, same), res, jac)
         before = it.best[at].copy()  # (`advance` updates the best norms in place)
-        norm = _norm(res)
+        norm = residual_norm(res)
         secant.near[at] = (norm <= near_norm) & (norm < before)
         kept = advance(it, active, res, jac, free, options.tol)
         confirm = bool(secant.near[kept].all())  # no fresh Jacobian needed
@@ -467,30 +479,16 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None):
         active = kept
     stale = np.flatnonzero(~fresh)
     if final is None or stale.size == n:
-        return evaluate(flat, x, options.quadrature)
+        return evaluate(_problem(flat, None, x, refresh), x, options.quadrature)
     if stale.size:
-        final = _scatter(final, evaluate(flat.take(stale), x[stale], options.quadrature), stale)
+        again = evaluate(_problem(flat, stale, x[stale], refresh), x[stale], options.quadrature)
+        final = scatter_state(final, again, stale)
     return final
 
 
-def _scatter(full: EquilibriumState, part: EquilibriumState, index) -> EquilibriumState:
-    """``full`` with the points ``index`` replaced by ``part`` (copies, 1-D batches)."""
-    if part.creep.shape[0] == full.creep.shape[0] and np.array_equal(
-        index, np.arange(full.creep.shape[0])
-    ):
-        return part
-    return full.put(index, part)
-
-
-def _norm(res):
-    norm = np.abs(res).max(axis=-1)
-    norm[~np.isfinite(norm)] = np.inf
-    return norm
-
-
-def _reshape(state: EquilibriumState, shape) -> EquilibriumState:
-    fields = {}
-    for name, value in vars(state).items():
-        value = np.asarray(value)
-        fields[name] = value.reshape(shape + value.shape[1:])
-    return EquilibriumState(**fields)
+def _problem(flat, rows, x, refresh):
+    """The problem `_newton` evaluates at the creeps ``x`` of its points ``rows`` (None:
+    all of them)."""
+    if refresh is not None:
+        return refresh(np.arange(flat.size) if rows is None else rows, x)
+    return flat if rows is None else flat.take(rows)

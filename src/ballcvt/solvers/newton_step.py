@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from ..equilibrium.residual import EquilibriumState
 from .options import CREEP_BOUNDS
 
 njit: Any
@@ -29,6 +30,9 @@ __all__ = [
     "cap",
     "free_creeps",
     "at_free",
+    "residual_norm",
+    "reshape_state",
+    "scatter_state",
 ]
 
 #: Largest change of any creep in one Newton step [-].
@@ -231,3 +235,28 @@ def advance(it: Iterates, active, res, jac, free, tol):
 
 def _lstsq(jac, res):
     return np.linalg.lstsq(jac, -res, rcond=None)[0]
+
+
+def scatter_state(full: EquilibriumState, part: EquilibriumState, index) -> EquilibriumState:
+    """``full`` with the points ``index`` replaced by ``part`` (copies, 1-D batches)."""
+    if part.creep.shape[0] == full.creep.shape[0] and np.array_equal(
+        index, np.arange(full.creep.shape[0])
+    ):
+        return part
+    return full.put(index, part)
+
+
+def residual_norm(res) -> np.ndarray:
+    """``max |res|`` over the last axis, ``inf`` where it is not finite."""
+    norm = np.abs(res).max(axis=-1)
+    norm[~np.isfinite(norm)] = np.inf
+    return norm
+
+
+def reshape_state(state: EquilibriumState, shape) -> EquilibriumState:
+    """``state`` of a 1-D batch with its batch axis reshaped to ``shape``."""
+    fields = {}
+    for name, value in vars(state).items():
+        value = np.asarray(value)
+        fields[name] = value.reshape(shape + value.shape[1:])
+    return EquilibriumState(**fields)

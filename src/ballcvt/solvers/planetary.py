@@ -8,6 +8,18 @@ sets the condition ``a T_0 + b T_2 = target`` that closes the last balance. The 
 found by a fixed point on ``tau_R`` (it depends on the speeds only through the film
 thickness and the bearing drag: two or three passes), each pass a warm-started solve.
 
+After the first pass, `coupled_creeps` solves the creeps with the ratio following them:
+Newton's iteration with each point's carrier-frame problem rebuilt, before every
+evaluation, at the ratio its current creeps give (`relative_ratio`: ``tau_ID (1 - C_0)(1 -
+C_2)``). Where it converges, its creeps are the fixed point's (the ratio they give is the
+one their problem was built at), found in one Newton run where the passes took three to
+seven, each a Newton run of its own (issue 26). Its Jacobian leaves out the ratio's
+dependence on the creeps (a weak one away from the capacity, the fixed point's slope some
+1e-3), which Broyden's update of the last Jacobian near the solution
+(`ballcvt.solvers.secant`) takes in. The passes then go on from its answer and confirm it,
+in one evaluation where it converged; a point it leaves goes on from its first pass. A
+batch started near its solutions (a map's grid) runs it at once, before any pass.
+
 Where the relative input speed is negative the problem is solved mirrored: all speeds and
 torques change sign together and the creeps stay (the shear stress and the bearing drags
 are odd in the speeds, the centrifugal force even, the gyroscopic force odd in each of the
@@ -24,13 +36,25 @@ import numpy as np
 from ..equilibrium.problem import CarrierFrame, EquilibriumProblem, OperatingInputs, make_problem
 from ..equilibrium.residual import balancing_output_torque
 from ..errors import ConvergenceError, InputError
+from ..model.architectures import contact_layout
 from ..model.modes import OperatingMode, resolve_mode
+from ..model.traction.base import has_multiple_equilibria
 from ..params.drive import Drive
+from .newton import _newton, initial_creep
+from .newton_step import residual_norm
 from .options import at_residual_floor
+from .planetary_speeds import carrier_speed_bound, member_speeds, relative_ratio
 from .point import PointSolution, SolverOptions, solve_point
 
 __all__ = [
     "ModePoint",
+    "carrier_speed_bound",
+    "member_speeds",
+    "relative_ratio",
+    "coupled_creeps",
+    "couples",
+    "COUPLED_ITERATIONS",
+    "COUPLED_PATIENCE",
     "ModeSolution",
     "solve_mode",
     "carrier_frame_problem",
@@ -154,6 +178,13 @@ class RatioPasses:
         ratios)."""
         return ratio_settles(np.abs(new - tau[todo]), self.last[todo], tau[todo], self.tol)
 
+    def forget(self, rows) -> None:
+        """Start the points ``rows`` afresh (as before their first pass): their ratios were
+        set otherwise (`ballcvt.solvers.planetary_coupled`)."""
+        self.last[rows] = np.inf
+        for mine, fresh in zip(self.memory, (np.nan, np.nan, 0.0, False), strict=True):
+            mine[rows] = fresh
+
     def step(self, tau, new, todo) -> np.ndarray:
         """`next_ratio` of the points ``todo``: their next ratios; updates the memory and
         the last changes."""
@@ -272,6 +303,8 @@ def solve_mode(
     fixed = replace(point, load_torque=float(point.load_torque))
     ratio_tol = ratio_tolerance(options, drive.fluid)
     last, before = np.inf, None
+    if couples(drive.fluid, mode):  # on to the fixed point at once, as the batches
+        tau, x = _coupled_point(drive, mode, fixed, options)
     for passes in range(1, max_passes + 1):  # noqa: B007 (the count is returned)
         speeds = mode.speeds(driver_speed, tau)
         if not abs(float(speeds["disc0"] - speeds["carrier"])) > 0.0:
@@ -307,6 +340,19 @@ def solve_mode(
     t2 = balancing_output_torque(pb, sol.state)
     standard = replace(pb, output_torque=np.asarray(t2), torque_weights=(0.0, 1.0))
     return ModeSolution(standard, sol, sign, speeds, passes)
+
+
+def _coupled_point(drive: Drive, mode: OperatingMode, point: ModePoint, options):
+    """`solve_mode`'s start: the ratio and creeps of `coupled_creeps` from the cold start
+    where it converges (the passes confirm them), else the ideal ratio and no creeps."""
+    ratio = float(point.ratio)
+    bound = carrier_speed_bound(drive, mode, point.clamp_force)
+    if not member_speeds(mode, np.array([point.driver_speed]), np.array([ratio]), bound)[1][0]:
+        return ratio, None  # (the passes say why)
+    nc = contact_layout(drive.design, drive.architecture).n_contacts
+    got, creep, done = coupled_creeps(drive, mode, point, ([ratio], np.full((1, nc), np.nan)),
+                                      options)  # fmt: skip
+    return (float(got[0]), creep[0]) if done[0] else (ratio, None)
 
 
 def carrier_frame_problem(drive: Drive, mode: OperatingMode, point: ModePoint, speeds):
@@ -346,3 +392,83 @@ def carrier_frame_problem(drive: Drive, mode: OperatingMode, point: ModePoint, s
         ),
     )
     return pb, sign
+
+
+#: Newton iterations `coupled_creeps` may take [-]: some eight from a first pass's creeps
+#: (a 10 x 10 map of each mode at 300 rpm); near geared neutral, where the fixed point's
+#: slope nears 1, it converges slowly, and the passes' secant steps do better.
+COUPLED_ITERATIONS = 16
+#: Iterations without a lower residual after which a point leaves `coupled_creeps` [-]:
+#: where the ratio's dependence on the creeps, left out of the Jacobian, is strong (a
+#: load next to the capacity) the iteration stalls, and the passes take the point on.
+COUPLED_PATIENCE = 2
+
+
+def couples(fluid, mode: OperatingMode) -> bool:
+    """Whether the fixed point of ``mode`` goes through `coupled_creeps` under ``fluid``'s
+    law: not under a law with more than one equilibrium, whose solves follow each point's
+    branch from zero torque (`ballcvt.solvers.newton.solve_batch`), nor where the input
+    disc's and the carrier's speeds, and so the carrier-frame problem, do not depend on
+    the ratio (one of them held, the other driving: the second pass settles at once)."""
+    one, two = (mode.speeds(1.0, tau, check=False) for tau in (0.5, 2.0))
+    fixed = all(one[m] == two[m] for m in ("disc0", "carrier"))
+    return not has_multiple_equilibria(fluid) and not fixed
+
+
+def coupled_creeps(drive, mode: OperatingMode, point: ModePoint, start, options: SolverOptions):
+    """The creeps of points of a mode at the fixed point on the actual ratio, by one Newton
+    run with the ratio following the creeps (module docstring).
+
+    Parameters
+    ----------
+    drive : Drive
+        Design, fluid and architecture.
+    mode : OperatingMode
+        Held and driving members.
+    point : ModePoint
+        Ratios, loads and driver speeds ``(n,)`` (and the clamping force).
+    start : tuple of ndarray
+        ``(tau (n,), x (n, n_c))``: the ratios [-] and creeps [-] to start from (NaN
+        creeps: the cold start, `ballcvt.solvers.newton.initial_creep`).
+    options : SolverOptions
+        Solver options (at most `COUPLED_ITERATIONS` iterations; no point solver).
+
+    Returns
+    -------
+    tau : ndarray
+        ``(n,)``: the ratios [-] the creeps give where ``done``.
+    x : ndarray
+        ``(n, n_c)``: the final creeps [-].
+    done : ndarray of bool
+        ``(n,)``: converged, at the ratio its creeps give (a point whose ratio would put its
+        speeds out of range, or turn the relative input speed, keeps its last ratio, and
+        is not done).
+    """
+    ratio, load, w = (np.broadcast_to(np.asarray(v, dtype=float), np.shape(start[0]))
+                      for v in (point.ratio, point.load_torque, point.driver_speed))  # fmt: skip
+    tau, x = np.array(start[0], dtype=float), np.array(start[1], dtype=float)
+    bound = carrier_speed_bound(drive, mode, point.clamp_force)
+    sign = _relative_sign(mode, w, tau)
+
+    def refresh(rows, creep):  # the points ``rows`` at the ratio of their creeps
+        new = relative_ratio(ratio[rows], creep)
+        _, ok = member_speeds(mode, w[rows], new, bound)
+        ok &= _relative_sign(mode, w[rows], new) == sign[rows]
+        tau[rows] = np.where(ok, new, tau[rows])
+        speeds, _ = member_speeds(mode, w[rows], tau[rows], bound)
+        at = ModePoint(ratio[rows], load[rows], w[rows], point.clamp_force)
+        return carrier_frame_problem(drive, mode, at, speeds)[0]
+
+    opts = at_residual_floor(replace(options, max_iterations=COUPLED_ITERATIONS), drive.fluid)
+    flat = refresh(np.arange(tau.size), x)
+    x = np.where(np.isnan(x), initial_creep(flat), x)  # (NaN: the cold start)
+    iterations = np.zeros(tau.size, dtype=int)
+    state = _newton(flat, x, iterations, opts, patience=COUPLED_PATIENCE, refresh=refresh)
+    done = residual_norm(state.residual) <= opts.tol
+    return tau, x, done & (tau == relative_ratio(ratio, x))
+
+
+def _relative_sign(mode: OperatingMode, w, tau) -> np.ndarray:
+    """Sign of the relative input speed ``omega_0 - omega_c`` at the ratios ``tau``."""
+    sp = mode.speeds(w, tau, check=False)
+    return np.sign(sp["disc0"] - sp["carrier"])

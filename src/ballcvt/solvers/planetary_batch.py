@@ -20,9 +20,10 @@ from ..params.drive import Drive
 from ..performance.efficiency import LOSS_KINDS, loss_breakdown, power_losses
 from ..status import Status
 from .limit import PIN_MARGIN, traction_ceiling_torque
+from .mode_batch import ModeBatch
 from .newton import BatchSolution, initial_creep, solve_batch
 from .options import SolverOptions
-from .planetary import ModePoint, RatioPasses, carrier_frame_problem
+from .planetary import ModePoint, RatioPasses, carrier_frame_problem, coupled_creeps, couples
 from .planetary_pinned import carrier_speed_bound, held_creep_loads, member_speeds
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
     "START_RTOL",
     "HELD_MATCH",
     "PassPlan",
+    "LoadSearch",
 ]
 
 #: Relative step above the bisection's end at a failed solve at which `limit_load_batch`
@@ -60,60 +62,6 @@ class PassPlan:
 
     max_passes: int = 30
     ratio_rtol: float | None = None
-
-
-@dataclass(frozen=True)
-class ModeBatch:
-    """Outcome of `solve_mode_batch`; arrays ``(n,)`` (speeds and torques ``(3, n)`` in
-    the order of `ballcvt.model.modes.MEMBERS`), NaN where ``status`` (a
-    `ballcvt.status.Status` code) is not ``CONVERGED``; ``losses`` [W] is ``(k, n)``, one
-    row per kind of `ballcvt.performance.efficiency.LOSS_KINDS` (``loss`` is its total);
-    ``creep`` ``(n_c, n)`` holds the contacts' creeps in the carrier frame [-]."""
-
-    status: np.ndarray
-    speeds: np.ndarray
-    torques: np.ndarray
-    loss: np.ndarray
-    actual_ratio: np.ndarray
-    max_creep: np.ndarray
-    circulating_power: np.ndarray
-    losses: np.ndarray
-    creep: np.ndarray
-
-    @property
-    def powers(self) -> np.ndarray:
-        """Power into the drive through each member [W], ``(3, n)``."""
-        return self.torques * self.speeds
-
-    @property
-    def input_power(self) -> np.ndarray:
-        """Power into the drive: the sum of the members' positive powers [W]."""
-        return np.sum(np.maximum(self.powers, 0.0), axis=0)
-
-    @property
-    def eta(self) -> np.ndarray:
-        """Power out over power in [-] (as `PlanetaryResult.eta`)."""
-        p_in = self.input_power
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(p_in > 0, np.sum(np.maximum(-self.powers, 0.0), axis=0) / p_in, np.nan)
-
-    def expand(self, index, size: int, status: int) -> ModeBatch:
-        """The batch of ``size`` points with these at ``index`` and every other point
-        at ``status``, its figures NaN."""
-
-        def full(values):
-            out = np.full(np.shape(values)[:-1] + (size,), np.nan)
-            out[..., index] = values
-            return out
-
-        codes = np.full(size, int(status))
-        codes[index] = self.status
-        return ModeBatch(codes, *(full(getattr(self, f.name)) for f in fields(self)[1:]))
-
-    def braking_direction(self, mode: OperatingMode) -> np.ndarray:
-        """Sign of a load that brakes the driven member: that of its speed in this batch
-        (solved at zero load), +1 where it is zero or unknown."""
-        return np.where(np.nan_to_num(self.speeds[MEMBERS.index(mode.driven)]) < 0, -1.0, 1.0)
 
 
 def solve_mode_batch(
@@ -166,6 +114,10 @@ def solve_mode_batch(
     kinds = np.full((len(LOSS_KINDS), n), np.nan)
     settled = np.zeros(n, dtype=bool)
     passes = RatioPasses(n, options, drive.fluid, plan.ratio_rtol)
+    if plan.ratio_rtol is None and couples(drive.fluid, mode):  # on to the fixed point at once
+        rows = np.flatnonzero(member_speeds(mode, w, tau, w_max)[1])
+        at = ModePoint(ratio, load, w, clamp_force)
+        _couple(drive, mode, (at, rows), (tau, x), (options, passes))
     for _ in range(plan.max_passes):
         sp, ok = member_speeds(mode, w, tau, w_max)
         status[~ok & ~settled] = Status.OUT_OF_RANGE
@@ -216,6 +168,25 @@ def solve_mode_batch(
     )
 
 
+def _couple(drive, mode, point_rows, state, options_passes) -> None:
+    """`coupled_creeps` of the points ``rows`` of ``point_rows = (point, rows)`` (their
+    speeds in range) before the passes of `solve_mode_batch`: where it converges, their
+    ratios and creeps in ``state = (tau, x)`` (updated in place; NaN creeps: the cold
+    start) are its, and their passes (``options_passes = (options, passes)``) confirm
+    them; elsewhere the passes run from ``state`` as it was."""
+    point, rows = point_rows
+    options, passes = options_passes
+    if rows.size == 0:
+        return
+    tau, x = state
+    here = replace(point, ratio=point.ratio[rows], load_torque=point.load_torque[rows],
+                   driver_speed=point.driver_speed[rows])  # fmt: skip
+    got, creep, done = coupled_creeps(drive, mode, here, (tau[rows], x[rows]), options)
+    j = rows[done]
+    tau[j], x[j] = got[done], creep[done]
+    passes.forget(j)
+
+
 def _started(ratio, start, nc: int):
     """The first pass's ratios ``(n,)`` and creeps ``(n, n_c)`` of `solve_mode_batch`
     (``start`` where finite; else the ideal ratio, and NaN creeps for the cold start)."""
@@ -259,6 +230,35 @@ def _put(values, idx, new) -> np.ndarray:
     return out
 
 
+@dataclass(frozen=True)
+class LoadSearch:
+    """What `limit_load_search` found; unpacks as ``(limit, at_limit)``.
+
+    Attributes
+    ----------
+    limit : ndarray
+        ``|L|`` at the limit [N m], ``(n,)``; NaN where even zero load is not admissible or
+        the speeds are out of range.
+    at_limit : ModeBatch
+        The points solved at that load (in the load's direction).
+    probe : tuple of ndarray
+        ``(load (n,), creep (n_c, n))``: the admissible load [N m] (magnitude) below the
+        limit that the held-creep search started from (`START_SHARES`), and its creeps
+        [-] (to `START_RTOL` in the ratio); NaN where there is none (the bisection's
+        points). A third solved load of each curve, between zero load and the limit.
+    """
+
+    limit: np.ndarray
+    at_limit: ModeBatch
+    probe: tuple
+
+    def __iter__(self):
+        return iter((self.limit, self.at_limit))
+
+    def __getitem__(self, k):
+        return (self.limit, self.at_limit)[k]
+
+
 def limit_load_batch(
     drive: Drive,
     mode: OperatingMode | str,
@@ -280,7 +280,7 @@ def limit_load_search(
     options: SolverOptions = SolverOptions(),
     bisection: tuple[float, int] = (1e-3, 40),
     zero: ModeBatch | None = None,
-) -> tuple[np.ndarray, ModeBatch]:
+) -> LoadSearch:
     """Largest load torque of the driven member with every ``|C| <= creep_limit``
     (``drive.design.creep_limit``), and the points solved there.
 
@@ -307,11 +307,9 @@ def limit_load_search(
 
     Returns
     -------
-    limit : ndarray
-        ``|L|`` at the limit [N m], ``(n,)``; NaN where even zero load is not admissible or
-        the speeds are out of range.
-    at_limit : ModeBatch
-        The points solved at that load (in the load's direction).
+    LoadSearch
+        The limits and the points solved there (it unpacks as ``(limit, at_limit)``), and
+        the held search's first loads.
     """
     mode = resolve_mode(mode)
     ratio, given, w = (
@@ -345,8 +343,9 @@ def limit_load_search(
         return solve_mode_batch(drive, mode, here, options, start=start)
 
     limit, found = np.full(ratio.size, np.nan), None
+    probe = (np.full(ratio.size, np.nan), np.full(zero.creep.shape, np.nan))
     if traction_rises_with_creep(drive.fluid):
-        limit, found = _held_limits(drive, mode, (at, solved), (zero, hi), options)
+        limit, found, probe = _held_limits(drive, mode, (at, solved), (zero, hi), options)
     rest = np.flatnonzero(ok0 & np.isnan(limit))
     if rest.size:
         limit[rest] = _bisected(lambda size, rows: solved(size, rest[rows]).status, hi[rest],
@@ -354,9 +353,9 @@ def limit_load_search(
     limit = np.where(ok0, limit, np.nan)
     fill = np.flatnonzero(np.isfinite(limit)) if found is None else rest[np.isfinite(limit[rest])]
     if found is not None and fill.size == 0:  # every limit held and confirmed
-        return limit, found
+        return LoadSearch(limit, found, probe)
     again = solved(limit[fill], fill).expand(fill, ratio.size, Status.NOT_CONVERGED)
-    return limit, again if found is None else _merged(found, again, fill)
+    return LoadSearch(limit, again if found is None else _merged(found, again, fill), probe)
 
 
 #: Loads of the first solve of `limit_load_search`'s held-creep path, as shares of the
@@ -389,8 +388,9 @@ HELD_MATCH = 1e-4
 
 def _held_limits(drive, mode, at_solved, zero_hi, options):
     """`limit_load_search`'s loads at a held creep (NaN where none is confirmed by an
-    admissible solve) and the points solved there (``at_solved``: the points and their
-    ``solved(size, rows)``; ``zero_hi``: the zero-load batch and the traction ceilings)."""
+    admissible solve), the points solved there and `LoadSearch.probe` (``at_solved``: the
+    points and their ``solved(size, rows)``; ``zero_hi``: the zero-load batch and the
+    traction ceilings)."""
     at, solved = at_solved
     zero, hi = zero_hi
     n = hi.size
@@ -419,7 +419,7 @@ def _held_limits(drive, mode, at_solved, zero_hi, options):
     pin = float(drive.design.creep_limit) * (1.0 - PIN_MARGIN)
     ok = (found.status[idx] == Status.CONVERGED) & (disc >= pin * (1.0 - HELD_MATCH))
     limit[idx[ok]] = load[ok]
-    return limit, found
+    return limit, found, (first, x.T)
 
 
 def _merged(first: ModeBatch, second: ModeBatch, rows) -> ModeBatch:

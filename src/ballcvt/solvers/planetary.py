@@ -394,9 +394,10 @@ def carrier_frame_problem(drive: Drive, mode: OperatingMode, point: ModePoint, s
     return pb, sign
 
 
-#: Newton iterations `coupled_creeps` may take [-]: some eight from a first pass's creeps
-#: (a 10 x 10 map of each mode at 300 rpm); near geared neutral, where the fixed point's
-#: slope nears 1, it converges slowly, and the passes' secant steps do better.
+#: Newton iterations `coupled_creeps` may take [-]: from the cold start it took ten to
+#: twelve, from a map's interpolated start three to nine (Table I, a 10 x 10 map of each
+#: mode at 300 rpm); near geared neutral, where the fixed point's slope nears 1, it
+#: converges slowly, and the passes' secant steps do better.
 COUPLED_ITERATIONS = 16
 #: Iterations without a lower residual after which a point leaves `coupled_creeps` [-]:
 #: where the ratio's dependence on the creeps, left out of the Jacobian, is strong (a

@@ -405,9 +405,9 @@ def _held_limits(drive, mode, at_solved, zero_hi, options):
         j = idx[keep]
         first[j], tau[j], x[j] = share * hi[j], probe.actual_ratio[keep], probe.creep[:, keep].T
     idx = np.flatnonzero(np.isfinite(first))
-    growth = np.sign(x[idx] - zero.creep[:, idx].T)
+    change = x[idx] - zero.creep[:, idx].T
     load = held_creep_loads(drive, mode, _rows(at, at.load_torque[idx], idx),
-                            (tau[idx], x[idx], growth), options)  # fmt: skip
+                            (tau[idx], x[idx], change), options)  # fmt: skip
     above = load > first[idx]  # (NaN: none)
     idx, load = idx[above], load[above]
     limit = np.full(n, np.nan)

@@ -456,10 +456,11 @@ def coupled_creeps(drive, mode: OperatingMode, point: ModePoint, start, options:
 
     def refresh(rows, creep):  # the points ``rows`` at the ratio of their creeps
         new = relative_ratio(ratio[rows], creep)
-        _, ok = member_speeds(mode, w[rows], new, bound)
-        ok &= _relative_sign(mode, w[rows], new) == sign[rows]
+        speeds, ok = member_speeds(mode, w[rows], new, bound)
+        ok &= np.sign(speeds["disc0"] - speeds["carrier"]) == sign[rows]
         tau[rows] = np.where(ok, new, tau[rows])
-        speeds, _ = member_speeds(mode, w[rows], tau[rows], bound)
+        if not ok.all():  # (those keep their last ratio)
+            speeds, _ = member_speeds(mode, w[rows], tau[rows], bound)
         at = ModePoint(ratio[rows], load[rows], w[rows], point.clamp_force)
         return carrier_frame_problem(drive, mode, at, speeds)[0]
 

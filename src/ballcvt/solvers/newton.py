@@ -423,7 +423,7 @@ def _newton(flat, x, iterations, options, pinned=None, patience=None, refresh=No
     being the unknown it defines (`solve_pinned`). ``patience``: a point stops
     (unconverged) after that many iterations without a lower residual norm; None: never.
     ``refresh``: ``(rows, x) -> problem`` of the points ``rows`` rebuilt at their creeps
-    ``x`` before each evaluation (`ballcvt.solvers.planetary_coupled`); None: ``flat``'s.
+    ``x`` before each evaluation (`ballcvt.solvers.planetary.coupled_creeps`); None: ``flat``'s.
 
     Returns the state at the final ``x`` of every point: each point's last evaluation,
     or a fresh one for the points whose last move was not evaluated.

@@ -178,13 +178,6 @@ class RatioPasses:
         ratios)."""
         return ratio_settles(np.abs(new - tau[todo]), self.last[todo], tau[todo], self.tol)
 
-    def forget(self, rows) -> None:
-        """Start the points ``rows`` afresh (as before their first pass): their ratios were
-        set otherwise (`ballcvt.solvers.planetary_coupled`)."""
-        self.last[rows] = np.inf
-        for mine, fresh in zip(self.memory, (np.nan, np.nan, 0.0, False), strict=True):
-            mine[rows] = fresh
-
     def step(self, tau, new, todo) -> np.ndarray:
         """`next_ratio` of the points ``todo``: their next ratios; updates the memory and
         the last changes."""

@@ -77,9 +77,12 @@ def solve_mode_batch(
 
     ``point.ratio``, ``point.load_torque`` and ``point.driver_speed`` broadcast to
     ``(n,)``; ``mode`` is an `OperatingMode` or a name of
-    `ballcvt.registry.OPERATING_MODES`. Every pass of the
-    fixed point on the actual ratio is one `solve_batch` of the points not yet settled;
-    a point's figures are taken from the pass in which it settles. Points whose speeds are
+    `ballcvt.registry.OPERATING_MODES`. The points first go through
+    `ballcvt.solvers.planetary.coupled_creeps` (the fixed point on the actual ratio
+    inside one Newton run; not in a rough ``plan``, nor where `couples` says no); then
+    every pass of the fixed point is one `solve_batch` of the points not yet settled (one
+    evaluation where the coupled run converged); a point's figures are taken from the pass
+    in which it settles. Points whose speeds are
     out of range are flagged (``Status.OUT_OF_RANGE``), not raised; points whose creeps exceed
     ``design.creep_limit`` are flagged 1.
 
@@ -117,7 +120,7 @@ def solve_mode_batch(
     if plan.ratio_rtol is None and couples(drive.fluid, mode):  # on to the fixed point at once
         rows = np.flatnonzero(member_speeds(mode, w, tau, w_max)[1])
         at = ModePoint(ratio, load, w, clamp_force)
-        _couple(drive, mode, (at, rows), (tau, x), (options, passes))
+        _couple(drive, mode, (at, rows), (tau, x), options)
     for _ in range(plan.max_passes):
         sp, ok = member_speeds(mode, w, tau, w_max)
         status[~ok & ~settled] = Status.OUT_OF_RANGE
@@ -168,14 +171,13 @@ def solve_mode_batch(
     )
 
 
-def _couple(drive, mode, point_rows, state, options_passes) -> None:
+def _couple(drive, mode, point_rows, state, options) -> None:
     """`coupled_creeps` of the points ``rows`` of ``point_rows = (point, rows)`` (their
     speeds in range) before the passes of `solve_mode_batch`: where it converges, their
     ratios and creeps in ``state = (tau, x)`` (updated in place; NaN creeps: the cold
-    start) are its, and their passes (``options_passes = (options, passes)``) confirm
-    them; elsewhere the passes run from ``state`` as it was."""
+    start) are its, and the passes confirm them; elsewhere the passes run from ``state``
+    as it was."""
     point, rows = point_rows
-    options, passes = options_passes
     if rows.size == 0:
         return
     tau, x = state
@@ -184,7 +186,6 @@ def _couple(drive, mode, point_rows, state, options_passes) -> None:
     got, creep, done = coupled_creeps(drive, mode, here, (tau[rows], x[rows]), options)
     j = rows[done]
     tau[j], x[j] = got[done], creep[done]
-    passes.forget(j)
 
 
 def _started(ratio, start, nc: int):

@@ -8,7 +8,7 @@ sets the condition ``a T_0 + b T_2 = target`` that closes the last balance. The 
 found by a fixed point on ``tau_R`` (it depends on the speeds only through the film
 thickness and the bearing drag: two or three passes), each pass a warm-started solve.
 
-After the first pass, `coupled_creeps` solves the creeps with the ratio following them:
+Before the passes, `coupled_creeps` solves the creeps with the ratio following them:
 Newton's iteration with each point's carrier-frame problem rebuilt, before every
 evaluation, at the ratio its current creeps give (`relative_ratio`: ``tau_ID (1 - C_0)(1 -
 C_2)``). Where it converges, its creeps are the fixed point's (the ratio they give is the
@@ -17,8 +17,8 @@ seven, each a Newton run of its own (issue 26). Its Jacobian leaves out the rati
 dependence on the creeps (a weak one away from the capacity, the fixed point's slope some
 1e-3), which Broyden's update of the last Jacobian near the solution
 (`ballcvt.solvers.secant`) takes in. The passes then go on from its answer and confirm it,
-in one evaluation where it converged; a point it leaves goes on from its first pass. A
-batch started near its solutions (a map's grid) runs it at once, before any pass.
+in one evaluation where it converged; a point it leaves goes through the passes from its
+start (a map's interpolated one, or the cold start) as before.
 
 Where the relative input speed is negative the problem is solved mirrored: all speeds and
 torques change sign together and the creeps stay (the shear stress and the bearing drags
@@ -445,12 +445,12 @@ def coupled_creeps(drive, mode: OperatingMode, point: ModePoint, start, options:
                       for v in (point.ratio, point.load_torque, point.driver_speed))  # fmt: skip
     tau, x = np.array(start[0], dtype=float), np.array(start[1], dtype=float)
     bound = carrier_speed_bound(drive, mode, point.clamp_force)
-    sign = _relative_sign(mode, w, tau)
+    sign = _relative_sign(member_speeds(mode, w, tau, bound)[0])
 
     def refresh(rows, creep):  # the points ``rows`` at the ratio of their creeps
         new = relative_ratio(ratio[rows], creep)
         speeds, ok = member_speeds(mode, w[rows], new, bound)
-        ok &= np.sign(speeds["disc0"] - speeds["carrier"]) == sign[rows]
+        ok &= _relative_sign(speeds) == sign[rows]
         tau[rows] = np.where(ok, new, tau[rows])
         if not ok.all():  # (those keep their last ratio)
             speeds, _ = member_speeds(mode, w[rows], tau[rows], bound)
@@ -466,7 +466,7 @@ def coupled_creeps(drive, mode: OperatingMode, point: ModePoint, start, options:
     return tau, x, done & (tau == relative_ratio(ratio, x))
 
 
-def _relative_sign(mode: OperatingMode, w, tau) -> np.ndarray:
-    """Sign of the relative input speed ``omega_0 - omega_c`` at the ratios ``tau``."""
-    sp = mode.speeds(w, tau, check=False)
-    return np.sign(sp["disc0"] - sp["carrier"])
+def _relative_sign(speeds) -> np.ndarray:
+    """Sign of the relative input speed ``omega_0 - omega_c`` of the members' ``speeds``
+    (`member_speeds`)."""
+    return np.sign(speeds["disc0"] - speeds["carrier"])

@@ -112,7 +112,6 @@ def _solve_chunk(points: OperatingRows, idx, torque, force, beyond=False, start=
         predict = bool(np.isnan(x0).any())
     # rows with no start are cold (NaN: the kinematic start, `solve_admissible`)
     x0 = np.full((idx.size, pb.layout.n_contacts), np.nan) if x0 is None else x0
-    x0 = np.where(np.isnan(x0).any(axis=-1, keepdims=True), np.nan, x0)
     got = solve_admissible(pb, c_lim, points.options, follows, x0, predict)
     used = np.array(got.problem.clamp_force, dtype=float)
     # converged but inadmissible (creep or, under a cam, pressure), or running away

@@ -77,3 +77,34 @@ def test_write_readme_puts_each_mode_in_its_place(tmp_path):
     readme.write_text(f"{quick[0]}\nq\n{quick[1]}\n{full[0]}\nf\n{full[1]}\n")
     b.write_readme("| full |", readme, full)
     assert readme.read_text() == f"{quick[0]}\nq\n{quick[1]}\n{full[0]}\n| full |\n{full[1]}\n"
+
+
+def _evaluations():
+    _bench()  # bench_evaluations imports bench_table's README writer
+    path = ROOT / "benchmarks" / "bench_evaluations.py"
+    spec = importlib.util.spec_from_file_location("bench_evaluations", path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["bench_evaluations"] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_evaluations_table_against_the_first_row():
+    """bench_evaluations.py's table: each row against the first (the baseline), its phases
+    and its capacity scan's counts (no timings run here)."""
+    e = _evaluations()
+    rows = [e.Counted("isothermal", "constant", 0.2, 8.0, 20.0, 0.8, {"sweep": 8.0}),
+            e.Counted("thermal", "cam", 2.0, 64.0, 25.0, 0.8,
+                      {"capacity scan": 50.0, "sweep": 14.0}, 0, (1470, 294))]
+    lines = e.table(rows, 30).splitlines()
+    thermal = [c.strip() for c in lines[-1].split("|")[1:-1]]
+    assert thermal[:4] == ["thermal, cam", "2.000 (10.00)", "64.0 (8.00)", "25.0 (1.25)"]
+    assert thermal[5] == "capacity scan 50.0, sweep 14.0" and thermal[6] == "1,470 (294)"
+    assert [c.strip() for c in lines[-2].split("|")[1:-1]][6] == "-"
+
+
+def test_readme_evaluations_table_is_the_scripts():
+    e = _evaluations()
+    text = (ROOT / "README.md").read_text()
+    a, z = (text.index(m) for m in e.MARKERS)
+    assert "| law, clamp | ms/point (x baseline) |" in text[a:z]

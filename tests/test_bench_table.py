@@ -11,12 +11,17 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _bench():
-    spec = importlib.util.spec_from_file_location("bench_table", ROOT / "benchmarks" / "bench_table.py")
+def _load(name):
+    """The benchmark script ``benchmarks/<name>.py`` as the module ``name``."""
+    spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
     module = importlib.util.module_from_spec(spec)
-    sys.modules["bench_table"] = module  # its dataclass looks its module up
+    sys.modules[name] = module  # its dataclasses look their module up
     spec.loader.exec_module(module)
     return module
+
+
+def _bench():
+    return _load("bench_table")
 
 
 ROWS = [
@@ -80,13 +85,8 @@ def test_write_readme_puts_each_mode_in_its_place(tmp_path):
 
 
 def _evaluations():
-    _bench()  # bench_evaluations imports bench_table's README writer
-    path = ROOT / "benchmarks" / "bench_evaluations.py"
-    spec = importlib.util.spec_from_file_location("bench_evaluations", path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["bench_evaluations"] = module
-    spec.loader.exec_module(module)
-    return module
+    _bench()  # bench_evaluations imports bench_table's rows and README writer
+    return _load("bench_evaluations")
 
 
 def test_evaluations_table_against_the_first_row():

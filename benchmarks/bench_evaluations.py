@@ -17,7 +17,11 @@ share of the row's time spent in them, and the evaluations by phase: each curve'
 search (`ballcvt.analysis.sweeps.curves.limit_search_curves`; under the cam its capacity
 scan, `ballcvt.solvers.capacity.interval_search`: 49 torques per curve from zero to the
 force's pressure bound, and the bisections of its changes, each counted apart) and the
-sweep's own solves. The optimal clamp's search runs inside its sweep's solves.
+sweep's own solves, each with the CPU time it took per point (its own, without the phases
+inside it). The optimal clamp's search runs inside its sweep's solves. Last, the
+evaluations by quadrature rule: the solver's full rule (32 x 24 nodes) and its predictor's
+coarse one (12 x 8), each with its cost; an evaluation's cost depends on its rule as much
+as on its law, so the cost per evaluation of two rows compares their mix of rules too.
 
 What the figures bound. Evaluations times their cost is most of each row's time, so a row
 whose target is ``2 x`` the baseline's cost per point has to do with ``2 x`` the
@@ -35,7 +39,7 @@ import os
 import sys
 import time
 from contextlib import contextmanager
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
@@ -56,7 +60,9 @@ LAWS = ("isothermal", "viscoelastic", "thermal")
 @dataclass
 class Counted:
     """One sweep row: CPU time per point [ms], residual evaluations per point, CPU time per
-    evaluation [us], share of the time in evaluations, and evaluations per phase."""
+    evaluation [us], share of the time in evaluations, evaluations per phase, the NumPy
+    path's calls, the capacity scan's torques (and those not converged), CPU time per
+    phase [ms/point] and, per quadrature rule, ``(evaluations/point, us/evaluation)``."""
 
     law: str
     clamp: str
@@ -67,6 +73,8 @@ class Counted:
     phases: dict
     numpy_calls: int = 0
     scan: tuple = (0, 0)
+    phase_ms: dict = field(default_factory=dict)
+    rules: dict = field(default_factory=dict)
 
 
 class _Counter:
@@ -76,15 +84,19 @@ class _Counter:
         self.points, self.seconds, self.by_phase = 0, 0.0, {}
         self.phase, self.numpy_calls = "sweep", 0
         self.scan = [0, 0]  # the capacity scan's torques, and those that did not converge
+        self.phase_seconds, self._inner = {}, 0.0  # each phase's own CPU time
+        self.by_rule = {}  # rule -> [points, seconds]
 
-    def wrap(self, fn, points_of):
+    def wrap(self, fn, points_of, rule_of):
         def counted(*args, **kwargs):
             t = time.process_time()
             out = fn(*args, **kwargs)
-            n = points_of(*args)
+            n, spent = points_of(*args), time.process_time() - t
             self.points += n
-            self.seconds += time.process_time() - t
+            self.seconds += spent
             self.by_phase[self.phase] = self.by_phase.get(self.phase, 0) + n
+            tally = self.by_rule.setdefault(rule_of(*args), [0, 0.0])
+            tally[0], tally[1] = tally[0] + n, tally[1] + spent
             return out
 
         return counted
@@ -92,10 +104,15 @@ class _Counter:
     def in_phase(self, name, fn):
         def phased(*args, **kwargs):
             outer, self.phase = self.phase, name
+            inner, self._inner = self._inner, 0.0
+            t = time.process_time()
             try:
                 return fn(*args, **kwargs)
             finally:
-                self.phase = outer
+                spent = time.process_time() - t
+                own = spent - self._inner  # without the phases inside it
+                self.phase_seconds[name] = self.phase_seconds.get(name, 0.0) + own
+                self._inner, self.phase = inner + spent, outer
 
         return phased
 
@@ -108,7 +125,8 @@ def counting():
              (curves, "limit_search_curves"), (capacity, "_scan"),
              (capacity, "_confirmed_bisection"), (capacity, "_bisect")]
     old = [getattr(m, name) for m, name in saved]
-    compiled.evaluate_rows = c.wrap(old[0], lambda problem, creep, *a: creep.shape[0])
+    compiled.evaluate_rows = c.wrap(old[0], lambda problem, creep, *a: creep.shape[0],
+                                    lambda problem, creep, h, quadrature, *a: _rule(quadrature))
 
     def numpy_path(*args):
         c.numpy_calls += 1
@@ -134,6 +152,17 @@ def counting():
             setattr(m, name, fn)
 
 
+def _rule(quadrature) -> str:
+    """A quadrature rule's name in the table, e.g. ``"32 x 24"``."""
+    return f"{quadrature.n_radial} x {quadrature.n_angular}"
+
+
+def _nodes(rule: str) -> int:
+    """The nodes of a rule named by `_rule`."""
+    a, b = rule.split(" x ")
+    return int(a) * int(b)
+
+
 def measure(law, clamp, n, repeat=3):
     """The `Counted` figures of one sweep row: the median CPU time of ``repeat`` sweeps after
     one more (the first of a process ran 20 % slower than the next), each counted (the
@@ -149,10 +178,14 @@ def measure(law, clamp, n, repeat=3):
             runs.append((time.process_time() - t, c))
     total, c = sorted(runs, key=lambda r: r[0])[repeat // 2]
     points = n * n
+    phase_ms = {k: s / points * 1e3 for k, s in c.phase_seconds.items()}
+    phase_ms = {"sweep": total / points * 1e3 - sum(phase_ms.values()), **phase_ms}
+    finest = sorted(c.by_rule.items(), key=lambda kv: -_nodes(kv[0]))  # the full rule first
+    rules = {k: (p / points, s / max(p, 1) * 1e6) for k, (p, s) in finest}
     return Counted(law, clamp, total / points * 1e3, c.points / points,
                    c.seconds / max(c.points, 1) * 1e6, c.seconds / total,
                    {k: v / points for k, v in c.by_phase.items()}, c.numpy_calls,
-                   tuple(c.scan))
+                   tuple(c.scan), phase_ms, rules)
 
 
 def table(rows, n):
@@ -161,19 +194,26 @@ def table(rows, n):
     lines = [f"{n} x {n} sweeps of Table I at {OP['input_speed_rpm']:g} rpm, CPU time, warm; generated by "
              "`python benchmarks/bench_evaluations.py --write-readme`.", "",
              "| law, clamp | ms/point (x baseline) | evaluations/point (x baseline) | "
-             "us/evaluation (x baseline) | time in evaluations | evaluations/point by phase | "
-             "capacity scan: torques (not converged) |",
-             "|---|---|---|---|---|---|---|"]
+             "us/evaluation (x baseline) | time in evaluations | by phase: evaluations/point "
+             "(ms/point) | capacity scan: torques (not converged) | by rule: evaluations/point "
+             "(us each) |",
+             "|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        phases = ", ".join(f"{k} {v:.1f}" for k, v in r.phases.items())
+        shown = [k for k in dict.fromkeys([*r.phases, *r.phase_ms])  # evaluations or time
+                 if r.phases.get(k, 0) or r.phase_ms.get(k, 0) >= 0.01 * r.ms_per_point]
+        phases = ", ".join(
+            f"{k} {r.phases.get(k, 0.0):.1f}"
+            + (f" ({r.phase_ms[k]:.3f})" if k in r.phase_ms else "") for k in shown)
         phases += f" (and {r.numpy_calls} calls on the NumPy path)" if r.numpy_calls else ""
+        rules = "; ".join(f"{k}: {p:.1f} ({us:.1f})" for k, (p, us) in r.rules.items())
         lines.append(
             f"| {r.law}, {r.clamp} | {r.ms_per_point:.3f} "
             f"({r.ms_per_point / base.ms_per_point:.2f}) | {r.evaluations_per_point:.1f} "
             f"({r.evaluations_per_point / base.evaluations_per_point:.2f}) | "
             f"{r.us_per_evaluation:.1f} ({r.us_per_evaluation / base.us_per_evaluation:.2f}) | "
             f"{r.share_in_evaluations:.0%} | {phases} | "
-            + (f"{r.scan[0]:,} ({r.scan[1]:,}) |" if r.scan[0] else "- |"))
+            + (f"{r.scan[0]:,} ({r.scan[1]:,}) |" if r.scan[0] else "- |")
+            + f" {rules or '-'} |")
     return "\n".join(lines)
 
 

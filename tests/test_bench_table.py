@@ -95,12 +95,35 @@ def test_evaluations_table_against_the_first_row():
     e = _evaluations()
     rows = [e.Counted("isothermal", "constant", 0.2, 8.0, 20.0, 0.8, {"sweep": 8.0}),
             e.Counted("thermal", "cam", 2.0, 64.0, 25.0, 0.8,
-                      {"capacity scan": 50.0, "sweep": 14.0}, 0, (1470, 294))]
+                      {"capacity scan": 50.0, "sweep": 14.0}, 0, (1470, 294),
+                      {"sweep": 0.4, "capacity scan": 1.5, "limit search": 0.1,
+                       "capacity bisections": 0.001},
+                      {"32 x 24": (40.0, 38.0), "12 x 8": (24.0, 15.5)})]
     lines = e.table(rows, 30).splitlines()
     thermal = [c.strip() for c in lines[-1].split("|")[1:-1]]
     assert thermal[:4] == ["thermal, cam", "2.000 (10.00)", "64.0 (8.00)", "25.0 (1.25)"]
-    assert thermal[5] == "capacity scan 50.0, sweep 14.0" and thermal[6] == "1,470 (294)"
-    assert [c.strip() for c in lines[-2].split("|")[1:-1]][6] == "-"
+    # phases with evaluations, or 1 % of the time or more (each with its own time)
+    assert thermal[5] == "capacity scan 50.0 (1.500), sweep 14.0 (0.400), limit search 0.0 (0.100)"
+    assert thermal[6] == "1,470 (294)"
+    assert thermal[7] == "32 x 24: 40.0 (38.0); 12 x 8: 24.0 (15.5)"
+    baseline = [c.strip() for c in lines[-2].split("|")[1:-1]]
+    assert baseline[5] == "sweep 8.0" and baseline[6] == "-" and baseline[7] == "-"
+
+
+def test_evaluations_by_rule_and_phase_time():
+    """The counter tallies evaluations per quadrature rule and each phase's own CPU time
+    (without the phases inside it)."""
+    e = _evaluations()
+    c = e._Counter()
+    rule = type("Q", (), {"n_radial": 32, "n_angular": 24})()
+    evaluate = c.wrap(lambda *a: None, lambda problem, creep, *a: len(creep),
+                      lambda problem, creep, h, quadrature, *a: e._rule(quadrature))
+    inner = c.in_phase("capacity scan", lambda: evaluate(None, [0, 0, 0], None, rule))
+    c.in_phase("limit search", lambda: (inner(), evaluate(None, [0], None, rule)))()
+    assert c.by_rule["32 x 24"][0] == 4 and e._nodes("32 x 24") == 768
+    assert c.by_phase == {"capacity scan": 3, "limit search": 1}
+    assert set(c.phase_seconds) == {"capacity scan", "limit search"}
+    assert all(s >= 0.0 for s in c.phase_seconds.values())
 
 
 def test_readme_evaluations_table_is_the_scripts():

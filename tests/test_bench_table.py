@@ -1,5 +1,6 @@
-"""The benchmark table's formatter and README writer (benchmarks/bench_table.py); the
-measurements themselves are not run here (no timings in tests)."""
+"""The benchmark table's formatter and README writer (benchmarks/bench_table.py) and
+bench_evaluations.py's counter; no timing is asserted here (one 3 x 3 sweep checks that
+the counter still reaches the solvers, by its counts alone)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,8 @@ import importlib.util
 import json
 import sys
 from pathlib import Path
+
+import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -131,3 +134,17 @@ def test_readme_evaluations_table_is_the_scripts():
     text = (ROOT / "README.md").read_text()
     a, z = (text.index(m) for m in e.MARKERS)
     assert "| law, clamp | ms/point (x baseline) |" in text[a:z]
+
+
+def test_evaluations_counted_on_a_small_sweep():
+    """The counter's hooks still reach the solvers: on a 3 x 3 cam sweep every evaluation
+    is counted once by phase and once by rule, the capacity scan's 49 torques per curve are
+    seen, and both rules run (the scan's screen on the coarse one)."""
+    e = _evaluations()
+    r = e.measure("isothermal", "cam", 3, repeat=1)
+    assert r.scan[0] == 3 * 49 and r.numpy_calls == 0
+    assert set(r.rules) == {"32 x 24", "12 x 8"} and {"capacity scan", "sweep"} <= set(r.phases)
+    by_rule = sum(p for p, _ in r.rules.values())
+    assert by_rule == pytest.approx(r.evaluations_per_point)
+    assert sum(r.phases.values()) == pytest.approx(r.evaluations_per_point)
+    assert sum(r.phase_ms.values()) == pytest.approx(r.ms_per_point)

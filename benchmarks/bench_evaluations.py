@@ -85,7 +85,7 @@ class _Counter:
         self.phase, self.numpy_calls = "sweep", 0
         self.scan = [0, 0]  # the capacity scan's torques, and those that did not converge
         self.phase_seconds, self._inner = {}, 0.0  # each phase's own CPU time
-        self.by_rule = {}  # rule -> [points, seconds]
+        self.by_rule = {}  # (radial, angular nodes) -> [points, seconds]
 
     def wrap(self, fn, points_of, rule_of):
         def counted(*args, **kwargs):
@@ -126,7 +126,7 @@ def counting():
              (capacity, "_confirmed_bisection"), (capacity, "_bisect")]
     old = [getattr(m, name) for m, name in saved]
     compiled.evaluate_rows = c.wrap(old[0], lambda problem, creep, *a: creep.shape[0],
-                                    lambda problem, creep, h, quadrature, *a: _rule(quadrature))
+                                    lambda problem, creep, h, q, *a: (q.n_radial, q.n_angular))
 
     def numpy_path(*args):
         c.numpy_calls += 1
@@ -152,17 +152,6 @@ def counting():
             setattr(m, name, fn)
 
 
-def _rule(quadrature) -> str:
-    """A quadrature rule's name in the table, e.g. ``"32 x 24"``."""
-    return f"{quadrature.n_radial} x {quadrature.n_angular}"
-
-
-def _nodes(rule: str) -> int:
-    """The nodes of a rule named by `_rule`."""
-    a, b = rule.split(" x ")
-    return int(a) * int(b)
-
-
 def measure(law, clamp, n, repeat=3):
     """The `Counted` figures of one sweep row: the median CPU time of ``repeat`` sweeps after
     one more (the first of a process ran 20 % slower than the next), each counted (the
@@ -180,11 +169,11 @@ def measure(law, clamp, n, repeat=3):
     points = n * n
     phase_ms = {k: s / points * 1e3 for k, s in c.phase_seconds.items()}
     phase_ms = {"sweep": total / points * 1e3 - sum(phase_ms.values()), **phase_ms}
-    finest = sorted(c.by_rule.items(), key=lambda kv: -_nodes(kv[0]))  # the full rule first
-    rules = {k: (p / points, s / max(p, 1) * 1e6) for k, (p, s) in finest}
+    finest = sorted(c.by_rule.items(), key=lambda kv: -kv[0][0] * kv[0][1])  # full rule first
+    rules = {f"{a} x {b}": (p / points, s / max(p, 1) * 1e6) for (a, b), (p, s) in finest}
     return Counted(law, clamp, total / points * 1e3, c.points / points,
                    c.seconds / max(c.points, 1) * 1e6, c.seconds / total,
-                   {k: v / points for k, v in c.by_phase.items()}, c.numpy_calls,
+                   {k: e / points for k, e in c.by_phase.items()}, c.numpy_calls,
                    tuple(c.scan), phase_ms, rules)
 
 
